@@ -1,0 +1,281 @@
+//! Navigation graphs for RMF fleet adapters (generator.md §4), one document per graph.
+
+use crate::yaml::{to_string, Yaml};
+use crate::OutputFile;
+use mapc_ir::*;
+use std::collections::BTreeMap;
+
+/// One `<graph>.yaml` per graph index that has at least one lane (any index >= 0, not
+/// only 0..8 as in the reference generator).
+pub fn nav_graphs(b: &Building) -> Vec<OutputFile> {
+    b.graph_indices()
+        .into_iter()
+        .map(|g| OutputFile {
+            path: format!("{g}.yaml").into(),
+            contents: to_string(&nav_graph(b, g)).into_bytes(),
+        })
+        .collect()
+}
+
+/// The YAML document of graph `graph`.
+pub fn nav_graph(b: &Building, graph: i64) -> Yaml {
+    let mut root = vec![("building_name".to_string(), Yaml::str(&b.name))];
+    if let Some(crs) = &b.crs_name {
+        root.push(("crs_name".into(), Yaml::str(crs)));
+    }
+
+    // Every door of every level, sorted by name; a later duplicate replaces an earlier one.
+    let mut doors = BTreeMap::new();
+    for (_, d) in b.doors.iter() {
+        let p = |v: Handle<Vertex>| {
+            let pos = b.vertices[v].pos;
+            Yaml::Seq(vec![Yaml::Float(pos.x), Yaml::Float(pos.y)])
+        };
+        doors.insert(
+            d.name.clone(),
+            Yaml::Map(vec![
+                ("endpoints".into(), Yaml::Seq(vec![p(d.start), p(d.end)])),
+                ("map".into(), Yaml::str(&b.levels[d.level].name)),
+            ]),
+        );
+    }
+    root.push(("doors".into(), Yaml::Map(doors.into_iter().collect())));
+
+    let mut levels = BTreeMap::new();
+    for (lh, level) in b.levels.iter() {
+        levels.insert(level.name.clone(), nav_level(b, lh, graph));
+    }
+    root.push(("levels".into(), Yaml::Map(levels.into_iter().collect())));
+
+    let mut lifts = BTreeMap::new();
+    for (_, l) in b.lifts.iter() {
+        lifts.insert(
+            l.name.clone(),
+            Yaml::Map(vec![
+                (
+                    "dims".into(),
+                    Yaml::Seq(vec![Yaml::Float(l.width), Yaml::Float(l.depth)]),
+                ),
+                (
+                    "position".into(),
+                    Yaml::Seq(vec![
+                        Yaml::Float(l.pos.x),
+                        Yaml::Float(l.pos.y),
+                        Yaml::Float(l.yaw),
+                    ]),
+                ),
+            ]),
+        );
+    }
+    root.push(("lifts".into(), Yaml::Map(lifts.into_iter().collect())));
+
+    if matches!(
+        b.coordinate_system,
+        CoordinateSystem::Wgs84 | CoordinateSystem::CartesianMeters | CoordinateSystem::WebMercator
+    ) {
+        root.push((
+            "offset".into(),
+            Yaml::Seq(vec![Yaml::Float(b.offset.x), Yaml::Float(b.offset.y)]),
+        ));
+    }
+    Yaml::Map(root)
+}
+
+fn param_yaml(v: &ParamValue) -> Yaml {
+    match v {
+        ParamValue::String(s) => Yaml::str(s),
+        ParamValue::Int(i) => Yaml::Int(*i),
+        ParamValue::Double(d) => Yaml::Float(*d),
+        ParamValue::Bool(x) => Yaml::Bool(*x),
+    }
+}
+
+fn nav_level(b: &Building, lh: Handle<Level>, graph: i64) -> Yaml {
+    let level = &b.levels[lh];
+    let lanes: Vec<&Lane> = level
+        .lanes
+        .iter()
+        .map(|&h| &b.lanes[h])
+        .filter(|l| l.graph == graph)
+        .collect();
+
+    // Only vertices used by this graph's lanes, numbered by first appearance.
+    let mut index: BTreeMap<Handle<Vertex>, usize> = BTreeMap::new();
+    let mut order = Vec::new();
+    for lane in &lanes {
+        for v in [lane.start, lane.end] {
+            index.entry(v).or_insert_with(|| {
+                order.push(v);
+                order.len() - 1
+            });
+        }
+    }
+    let lifts_here: Vec<&Lift> = b.lifts_on_level(lh).map(|h| &b.lifts[h]).collect();
+
+    let vertices = order
+        .iter()
+        .map(|&vh| {
+            let v = &b.vertices[vh];
+            let mut p: BTreeMap<String, Yaml> = v
+                .params
+                .iter()
+                .map(|p| (p.name.clone(), param_yaml(&p.value)))
+                .collect();
+            // The vertex's own name wins over a parameter called `name`.
+            p.insert("name".into(), Yaml::str(&v.name));
+            if let Some(lift) = lifts_here.iter().find(|l| l.shaft_contains(v.pos)) {
+                p.insert("lift".into(), Yaml::str(&lift.name));
+            }
+            Yaml::Flow(Box::new(Yaml::Seq(vec![
+                Yaml::Float(v.pos.x),
+                Yaml::Float(v.pos.y),
+                Yaml::Map(p.into_iter().collect()),
+            ])))
+        })
+        .collect();
+
+    let mut out_lanes = Vec::new();
+    for lane in lanes {
+        let (s, e) = (index[&lane.start], index[&lane.end]);
+        let dock = |v: Handle<Vertex>| b.vertices[v].roles.dock_name.clone();
+        let (begin_dock, end_dock) = (dock(lane.start), dock(lane.end));
+        let forward = lane_params(b, lh, lane, false, end_dock.clone(), begin_dock.clone());
+        out_lanes.push(lane_yaml(s, e, forward));
+        if lane.bidirectional {
+            let backward = lane_params(b, lh, lane, true, begin_dock, end_dock);
+            out_lanes.push(lane_yaml(e, s, backward));
+        }
+    }
+    Yaml::Map(vec![
+        ("lanes".into(), Yaml::Seq(out_lanes)),
+        ("vertices".into(), Yaml::Seq(vertices)),
+    ])
+}
+
+fn lane_yaml(s: usize, e: usize, params: BTreeMap<String, Yaml>) -> Yaml {
+    Yaml::Flow(Box::new(Yaml::Seq(vec![
+        Yaml::Int(s as i64),
+        Yaml::Int(e as i64),
+        Yaml::Map(params.into_iter().collect()),
+    ])))
+}
+
+fn lane_params(
+    b: &Building,
+    lh: Handle<Level>,
+    lane: &Lane,
+    reverse: bool,
+    dock_name: Option<String>,
+    undock_name: Option<String>,
+) -> BTreeMap<String, Yaml> {
+    let mut p = BTreeMap::new();
+    let (from, to) = if reverse {
+        (lane.end, lane.start)
+    } else {
+        (lane.start, lane.end)
+    };
+    if let Some(door) = crossed_door(b, lh, b.vertices[from].pos, b.vertices[to].pos) {
+        p.insert("door_name".into(), Yaml::str(door));
+    }
+    let orientation = if reverse {
+        lane.orientation.reversed()
+    } else {
+        lane.orientation.clone()
+    };
+    if orientation != Orientation::Any {
+        p.insert(
+            "orientation_constraint".into(),
+            Yaml::str(orientation.as_str()),
+        );
+    }
+    if let Some(v) = lane.speed_limit {
+        p.insert("speed_limit".into(), Yaml::Float(v));
+    }
+    for (k, v) in [
+        ("mutex", &lane.mutex),
+        ("demo_mock_floor_name", &lane.demo_mock_floor_name),
+        ("demo_mock_lift_name", &lane.demo_mock_lift_name),
+    ] {
+        if let Some(v) = v {
+            p.insert(k.into(), Yaml::str(v));
+        }
+    }
+    if !lane.bidirectional {
+        p.insert("is_bidirectional".into(), Yaml::Bool(false));
+    }
+    if let Some(d) = dock_name {
+        p.insert("dock_name".into(), Yaml::str(d));
+    }
+    if let Some(d) = undock_name {
+        p.insert("undock_name".into(), Yaml::str(d));
+    }
+    p
+}
+
+/// The door of level `lh` that the lane from `a` to `b` crosses first, if any. Unlike the
+/// reference (raw coordinates, absolute threshold, last door wins), this works in metres
+/// with a scale-free parallel test, so it also finds doors on wgs84 maps.
+pub fn crossed_door(b: &Building, lh: Handle<Level>, a: Vec2, z: Vec2) -> Option<&str> {
+    let mut best: Option<(f64, &str)> = None;
+    for &dh in &b.levels[lh].doors {
+        let d = &b.doors[dh];
+        let (p, q) = (b.vertices[d.start].pos, b.vertices[d.end].pos);
+        if let Some(t) = segment_intersection(a, z, p, q) {
+            if best.is_none_or(|(bt, _)| t < bt) {
+                best = Some((t, &d.name));
+            }
+        }
+    }
+    best.map(|(_, n)| n)
+}
+
+/// Parameter along `a→b` where it meets segment `p→q` (endpoints included); `None` for
+/// parallel, colinear or degenerate segments.
+pub fn segment_intersection(a: Vec2, b: Vec2, p: Vec2, q: Vec2) -> Option<f64> {
+    let r = b.minus(a);
+    let s = q.minus(p);
+    let denom = r.cross(s);
+    if denom.abs() <= 1e-12 * r.norm() * s.norm() || denom == 0.0 {
+        return None;
+    }
+    let ap = p.minus(a);
+    let t = ap.cross(s) / denom;
+    let u = ap.cross(r) / denom;
+    let eps = 1e-9;
+    ((-eps..=1.0 + eps).contains(&t) && (-eps..=1.0 + eps).contains(&u)).then_some(t)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn intersection_cases() {
+        let v = Vec2::new;
+        // Crossing at the middle.
+        assert_eq!(
+            segment_intersection(v(0., 0.), v(2., 0.), v(1., -1.), v(1., 1.)),
+            Some(0.5)
+        );
+        // Touching at an endpoint counts.
+        assert!(segment_intersection(v(0., 0.), v(1., 0.), v(1., 0.), v(1., 1.)).is_some());
+        // Parallel and colinear never intersect.
+        assert_eq!(
+            segment_intersection(v(0., 0.), v(1., 0.), v(0., 1.), v(1., 1.)),
+            None
+        );
+        assert_eq!(
+            segment_intersection(v(0., 0.), v(2., 0.), v(1., 0.), v(3., 0.)),
+            None
+        );
+        // Missing by a little.
+        assert_eq!(
+            segment_intersection(v(0., 0.), v(1., 0.), v(1.1, -1.), v(1.1, 1.)),
+            None
+        );
+        // Scale-free: tiny (degree-sized) segments work.
+        assert!(
+            segment_intersection(v(0., 0.), v(2e-5, 0.), v(1e-5, -1e-5), v(1e-5, 1e-5)).is_some()
+        );
+    }
+}

@@ -1,0 +1,204 @@
+//! Reads `.building.yaml` (and legacy `.project.yaml`) into the mapc IR.
+//!
+//! The frontend never panics on any input: it returns what it could read plus diagnostics.
+//! A building is returned only when it has at least one level; it may still carry
+//! diagnostics, and callers must not generate outputs when any of them is an error.
+
+mod lower;
+mod transform;
+mod yaml;
+
+use mapc_ir::{Building, Diagnostic, FileId, Span};
+use std::path::{Path, PathBuf};
+
+/// Largest input file accepted (bytes). Real maps are under 1 MB.
+pub const MAX_FILE_BYTES: u64 = 64 * 1024 * 1024;
+
+/// A source file kept for diagnostics rendering.
+#[derive(Debug, Clone)]
+pub struct SourceFile {
+    pub name: String,
+    pub text: String,
+}
+
+/// The result of reading a map.
+#[derive(Debug)]
+pub struct Parsed {
+    pub building: Option<Building>,
+    pub diagnostics: Vec<Diagnostic>,
+    /// Indexed by `FileId`.
+    pub sources: Vec<SourceFile>,
+}
+
+impl Parsed {
+    pub fn has_errors(&self) -> bool {
+        mapc_ir::has_errors(&self.diagnostics)
+    }
+    /// The building when there are no errors.
+    pub fn valid_building(&self) -> Option<&Building> {
+        if self.has_errors() {
+            None
+        } else {
+            self.building.as_ref()
+        }
+    }
+}
+
+/// Parses a `.building.yaml` document held in memory. `name` is used in diagnostics.
+pub fn parse_str(name: &str, text: &str) -> Parsed {
+    let mut sources = vec![SourceFile {
+        name: name.to_string(),
+        text: text.to_string(),
+    }];
+    let mut diagnostics = Vec::new();
+    let building = parse_into(FileId(0), text, &mut diagnostics);
+    sources.truncate(1);
+    Parsed {
+        building,
+        diagnostics,
+        sources,
+    }
+}
+
+fn parse_into(file: FileId, text: &str, diags: &mut Vec<Diagnostic>) -> Option<Building> {
+    let root = match yaml::parse(text, file) {
+        Ok(r) => r,
+        Err(d) => {
+            diags.push(d);
+            return None;
+        }
+    };
+    let mut b = lower::Lower { diags: &mut *diags }.building(&root)?;
+    transform::apply(&mut b, diags);
+    Some(b)
+}
+
+/// An I/O problem reading the input (exit code 2 in the CLI).
+#[derive(Debug)]
+pub struct LoadError {
+    pub path: PathBuf,
+    pub message: String,
+}
+
+impl std::fmt::Display for LoadError {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(f, "{}: {}", self.path.display(), self.message)
+    }
+}
+
+fn read(path: &Path) -> Result<Vec<u8>, LoadError> {
+    let err = |message: String| LoadError {
+        path: path.to_path_buf(),
+        message,
+    };
+    let meta = std::fs::metadata(path).map_err(|e| err(e.to_string()))?;
+    if !meta.is_file() {
+        return Err(err("not a regular file".into()));
+    }
+    if meta.len() > MAX_FILE_BYTES {
+        return Err(err(format!(
+            "file is {} bytes, above the limit of {MAX_FILE_BYTES} bytes",
+            meta.len()
+        )));
+    }
+    std::fs::read(path).map_err(|e| err(e.to_string()))
+}
+
+/// Reads and parses a map file. A `.project.yaml` is followed to the building file it
+/// names (relative to the project file).
+pub fn load(path: &Path) -> Result<Parsed, LoadError> {
+    let mut sources = Vec::new();
+    let mut diagnostics = Vec::new();
+    let building = load_into(path, &mut sources, &mut diagnostics, 0)?;
+    Ok(Parsed {
+        building,
+        diagnostics,
+        sources,
+    })
+}
+
+fn is_project_file(path: &Path) -> bool {
+    path.file_name()
+        .and_then(|n| n.to_str())
+        .is_some_and(|n| n.ends_with(".project.yaml"))
+}
+
+fn load_into(
+    path: &Path,
+    sources: &mut Vec<SourceFile>,
+    diags: &mut Vec<Diagnostic>,
+    depth: usize,
+) -> Result<Option<Building>, LoadError> {
+    let bytes = read(path)?;
+    let file = FileId(sources.len() as u32);
+    let name = path.display().to_string();
+    let text = match String::from_utf8(bytes) {
+        Ok(t) => t,
+        Err(e) => {
+            let valid = &e.as_bytes()[..e.utf8_error().valid_up_to()];
+            let line = valid.iter().filter(|&&c| c == b'\n').count() + 1;
+            let col = valid.iter().rev().take_while(|&&c| c != b'\n').count() + 1;
+            let off = valid.len() as u32;
+            diags.push(
+                Diagnostic::error(
+                    "E0003",
+                    Span {
+                        file,
+                        start: off,
+                        end: off,
+                        line: line as u32,
+                        col: col as u32,
+                    },
+                    "the file is not valid UTF-8",
+                )
+                .with_help("save the map as UTF-8"),
+            );
+            let text = String::from_utf8_lossy(e.as_bytes()).into_owned();
+            sources.push(SourceFile { name, text });
+            return Ok(None);
+        }
+    };
+    sources.push(SourceFile {
+        name,
+        text: text.clone(),
+    });
+    if !is_project_file(path) {
+        return Ok(parse_into(file, &text, diags));
+    }
+    // Legacy project file: {building: {filename: x.building.yaml}, ...}.
+    let root = match yaml::parse(&text, file) {
+        Ok(r) => r,
+        Err(d) => {
+            diags.push(d);
+            return Ok(None);
+        }
+    };
+    let target = root
+        .get("building")
+        .and_then(|b| b.get("filename"))
+        .and_then(|f| f.key_text());
+    let Some(target) = target else {
+        diags.push(
+            Diagnostic::error(
+                "E0111",
+                root.span,
+                "project file has no `building: {filename: ...}`",
+            )
+            .with_help("name the .building.yaml file under `building.filename`, or pass the .building.yaml directly"),
+        );
+        return Ok(None);
+    };
+    let bpath = path.parent().unwrap_or(Path::new(".")).join(target);
+    if depth > 0 || is_project_file(&bpath) {
+        diags.push(
+            Diagnostic::error(
+                "E0111",
+                root.span,
+                "a project file must point at a .building.yaml, not another project file",
+            )
+            .with_help("set `building.filename` to the .building.yaml file"),
+        );
+        return Ok(None);
+    }
+    load_into(&bpath, sources, diags, depth + 1)
+}

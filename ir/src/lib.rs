@@ -1,0 +1,16 @@
+//! mapc's typed building model.
+//!
+//! Invariants: every `Handle` stored in a [`Building`] is valid for its arenas; all
+//! positions are finite metres in the map frame; every element has a span.
+
+mod arena;
+mod building;
+mod diag;
+mod params;
+mod span;
+
+pub use arena::{Arena, Handle};
+pub use building::*;
+pub use diag::{has_errors, Diagnostic, Label, Severity};
+pub use params::{Param, ParamValue, Params};
+pub use span::{FileId, Span};
