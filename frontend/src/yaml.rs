@@ -200,23 +200,38 @@ fn is_float_syntax(b: &[u8]) -> bool {
 struct Positions<'a> {
     text: &'a str,
     line_starts: Vec<usize>,
+    /// Whether each line is pure ASCII (then char column == byte column).
+    line_ascii: Vec<bool>,
 }
 
 impl<'a> Positions<'a> {
     fn new(text: &'a str) -> Self {
         let mut line_starts = vec![0];
         line_starts.extend(text.match_indices('\n').map(|(i, _)| i + 1));
-        Positions { text, line_starts }
+        let line_ascii = line_starts
+            .iter()
+            .enumerate()
+            .map(|(i, &s)| {
+                let e = line_starts.get(i + 1).copied().unwrap_or(text.len());
+                text.as_bytes()[s..e].is_ascii()
+            })
+            .collect();
+        Positions {
+            text,
+            line_starts,
+            line_ascii,
+        }
     }
     /// Byte offset of (1-based line, 0-based char column).
     fn byte(&self, line: usize, col: usize) -> usize {
-        let Some(&start) = self.line_starts.get(line.saturating_sub(1)) else {
+        let i = line.saturating_sub(1);
+        let Some(&start) = self.line_starts.get(i) else {
             return self.text.len();
         };
-        let rest = &self.text[start..];
-        if rest.is_ascii() || rest[..rest.len().min(col * 4 + 4)].is_ascii() {
+        if self.line_ascii[i] {
             return (start + col).min(self.text.len());
         }
+        let rest = &self.text[start..];
         start + rest.char_indices().nth(col).map_or(rest.len(), |(i, _)| i)
     }
     fn span(&self, file: FileId, s: saphyr_parser::Span) -> Span {

@@ -8,9 +8,11 @@ mod building;
 mod diag;
 mod params;
 mod span;
+mod summary;
 
 pub use arena::{Arena, Handle};
 pub use building::*;
 pub use diag::{has_errors, Diagnostic, Label, Severity};
 pub use params::{Param, ParamValue, Params};
 pub use span::{FileId, Span};
+pub use summary::summary;
