@@ -383,6 +383,15 @@ impl Lower<'_> {
         };
 
         let mut b = Building::new(name, coordinate_system, params);
+        b.spans = BuildingSpans {
+            root: root.span,
+            name: root
+                .get("building_name")
+                .or(root.get("name"))
+                .map_or(root.span, |n| n.span),
+            coordinate_system: root.get("coordinate_system").map_or(root.span, |n| n.span),
+            parameters: root.get("parameters").map_or(root.span, |n| n.span),
+        };
         b.map_version = root
             .get("map_version")
             .and_then(|n| n.key_text())

@@ -46,7 +46,7 @@ pub(crate) fn apply(b: &mut Building, diags: &mut Vec<Diagnostic>) {
             diags.push(
                 Diagnostic::warning(
                     "W0108",
-                    Span::UNKNOWN,
+                    b.spans.coordinate_system,
                     "coordinate_system web_mercator is deprecated",
                 )
                 .with_help("re-save the map with coordinate_system wgs84"),
@@ -69,7 +69,7 @@ pub(crate) fn apply(b: &mut Building, diags: &mut Vec<Diagnostic>) {
                 None => diags.push(
                     Diagnostic::warning(
                         "W0108",
-                        Span::UNKNOWN,
+                        b.spans.parameters,
                         format!(
                             "web_mercator map has no vertex named `{origin_name}`; offset is 0"
                         ),
@@ -137,7 +137,7 @@ fn projector(b: &mut Building, diags: &mut Vec<Diagnostic>) -> Option<Projector>
         diags.push(
             Diagnostic::error(
                 "E0108",
-                Span::UNKNOWN,
+                b.spans.coordinate_system,
                 format!("a {cs} map needs the building parameter `generate_crs`"),
             )
             .with_help("add `parameters: {generate_crs: [1, \"EPSG:<code>\"]}` naming the projected CRS of the site"),
@@ -148,7 +148,7 @@ fn projector(b: &mut Building, diags: &mut Vec<Diagnostic>) -> Option<Projector>
     let span = b
         .params
         .param("generate_crs")
-        .map_or(Span::UNKNOWN, |p| p.span);
+        .map_or(b.spans.parameters, |p| p.span);
     let code = crs
         .strip_prefix("EPSG:")
         .or(crs.strip_prefix("epsg:"))

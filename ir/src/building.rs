@@ -116,6 +116,20 @@ pub struct Building {
     pub crowd_sim: Option<CrowdSim>,
     /// Unparsed legacy `map_version`, kept for exports.
     pub map_version: Option<String>,
+    pub spans: BuildingSpans,
+}
+
+/// Where the building-wide keys are, for diagnostics about them.
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct BuildingSpans {
+    /// The whole document.
+    pub root: Span,
+    /// The `name` (or `building_name`) value.
+    pub name: Span,
+    /// The `coordinate_system` value, or the root when the key is absent.
+    pub coordinate_system: Span,
+    /// The `parameters` mapping, or the root when absent.
+    pub parameters: Span,
 }
 
 #[derive(Debug, Clone, Default)]
@@ -554,6 +568,7 @@ impl Building {
             graphs: Vec::new(),
             crowd_sim: None,
             map_version: None,
+            spans: BuildingSpans::default(),
         }
     }
 
