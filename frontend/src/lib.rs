@@ -4,10 +4,12 @@
 //! A building is returned only when it has at least one level; it may still carry
 //! diagnostics, and callers must not generate outputs when any of them is an error.
 
+mod codes;
 mod lower;
 mod transform;
 mod yaml;
 
+pub use codes::{Code, CODES};
 use mapc_ir::{Building, Diagnostic, FileId, Span};
 use std::path::{Path, PathBuf};
 

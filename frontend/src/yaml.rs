@@ -360,7 +360,7 @@ pub fn parse(text: &str, file: FileId) -> Result<Node, Diagnostic> {
                 Some(Frame::Seq(items, start, anchor, size)) => Some((
                     Node {
                         kind: Kind::Seq(items),
-                        span: join(start, span),
+                        span: join(text, start, span),
                     },
                     anchor,
                     size,
@@ -371,7 +371,7 @@ pub fn parse(text: &str, file: FileId) -> Result<Node, Diagnostic> {
                 Some(Frame::Map(items, _, start, anchor, size)) => Some((
                     Node {
                         kind: Kind::Map(items),
-                        span: join(start, span),
+                        span: join(text, start, span),
                     },
                     anchor,
                     size,
@@ -417,9 +417,20 @@ pub fn parse(text: &str, file: FileId) -> Result<Node, Diagnostic> {
     }))
 }
 
-fn join(a: Span, b: Span) -> Span {
+/// Span of a collection from its start to its end event: through the closing bracket of
+/// a flow collection, and without trailing whitespace for block collections.
+fn join(text: &str, a: Span, b: Span) -> Span {
+    let bytes = text.as_bytes();
+    let mut end = b.start as usize;
+    if matches!(bytes.get(end), Some(b']' | b'}')) {
+        end += 1;
+    } else {
+        while end > a.start as usize && bytes.get(end - 1).is_some_and(u8::is_ascii_whitespace) {
+            end -= 1;
+        }
+    }
     Span {
-        end: b.end.max(a.start),
+        end: (end as u32).max(a.start),
         ..a
     }
 }

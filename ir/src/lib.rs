@@ -9,6 +9,7 @@ mod diag;
 mod params;
 mod span;
 mod summary;
+mod validate;
 
 pub use arena::{Arena, Handle};
 pub use building::*;
@@ -16,3 +17,4 @@ pub use diag::{has_errors, Diagnostic, Label, Severity};
 pub use params::{Param, ParamValue, Params};
 pub use span::{FileId, Span};
 pub use summary::summary;
+pub use validate::{rule, rules, validate, Context, Rule};

@@ -1,0 +1,5 @@
+//! Rules of the `lifts` group.
+
+use super::Rule;
+
+pub(super) static RULES: &[&Rule] = &[];

@@ -1,0 +1,150 @@
+//! Machine-readable diagnostics: JSON Lines for editors and scripts, SARIF 2.1.0 for
+//! code-scanning tools. The JSON schema is documented in docs/diagnostics.md and is
+//! stable: fields are only ever added.
+
+use mapc_frontend::SourceFile;
+use mapc_ir::{Diagnostic, Severity, Span};
+use serde_json::{json, Value};
+
+/// (line, column) of the end of a span, 1-based, column in characters.
+fn end_position(sources: &[SourceFile], s: Span) -> (u32, u32) {
+    let Some(src) = sources.get(s.file.0 as usize) else {
+        return (s.line, s.col);
+    };
+    let end = (s.end as usize).min(src.text.len());
+    let start = (s.start as usize).min(end);
+    let Some(piece) = src.text.get(start..end) else {
+        return (s.line, s.col);
+    };
+    let newlines = piece.matches('\n').count() as u32;
+    if newlines == 0 {
+        (s.line, s.col + piece.chars().count() as u32)
+    } else {
+        let tail = piece.rsplit('\n').next().unwrap_or("");
+        (s.line + newlines, tail.chars().count() as u32 + 1)
+    }
+}
+
+fn file_name(sources: &[SourceFile], s: Span) -> &str {
+    sources
+        .get(s.file.0 as usize)
+        .or(sources.first())
+        .map_or("", |f| f.name.as_str())
+}
+
+fn location(sources: &[SourceFile], s: Span) -> Value {
+    if !s.is_known() {
+        return json!({ "file": file_name(sources, s) });
+    }
+    let (end_line, end_column) = end_position(sources, s);
+    json!({
+        "file": file_name(sources, s),
+        "line": s.line,
+        "column": s.col,
+        "end_line": end_line,
+        "end_column": end_column,
+        "byte_start": s.start,
+        "byte_end": s.end,
+    })
+}
+
+fn severity(d: &Diagnostic) -> &'static str {
+    match d.severity {
+        Severity::Error => "error",
+        Severity::Warning => "warning",
+    }
+}
+
+/// One JSON object per diagnostic.
+pub fn diagnostic_json(sources: &[SourceFile], d: &Diagnostic) -> Value {
+    let mut v = json!({
+        "severity": severity(d),
+        "code": d.code,
+        "name": crate::code_name(d.code),
+        "message": d.message,
+        "location": location(sources, d.span),
+        "labels": d.labels.iter().map(|l| {
+            let mut loc = location(sources, l.span);
+            loc["message"] = json!(l.message);
+            loc
+        }).collect::<Vec<_>>(),
+    });
+    if let Some(h) = &d.help {
+        v["help"] = json!(h);
+    }
+    v
+}
+
+/// JSON Lines: one object per line.
+pub fn json_lines(sources: &[SourceFile], diags: &[Diagnostic]) -> String {
+    let mut out = String::new();
+    for d in diags {
+        out.push_str(&diagnostic_json(sources, d).to_string());
+        out.push('\n');
+    }
+    out
+}
+
+/// A SARIF 2.1.0 log with one run.
+pub fn sarif(sources: &[SourceFile], diags: &[Diagnostic]) -> String {
+    let mut codes: Vec<&str> = diags.iter().map(|d| d.code).collect();
+    codes.sort_unstable();
+    codes.dedup();
+    let rules: Vec<Value> = codes
+        .iter()
+        .map(|c| {
+            json!({
+                "id": c,
+                "name": crate::code_name(c),
+                "helpUri": format!("docs/diagnostics.md#{}", c.to_ascii_lowercase()),
+            })
+        })
+        .collect();
+    let results: Vec<Value> = diags
+        .iter()
+        .map(|d| {
+            let mut region = json!({});
+            if d.span.is_known() {
+                let (el, ec) = end_position(sources, d.span);
+                region = json!({
+                    "startLine": d.span.line,
+                    "startColumn": d.span.col,
+                    "endLine": el,
+                    "endColumn": ec,
+                });
+            }
+            let mut text = d.message.clone();
+            if let Some(h) = &d.help {
+                text.push_str("\nhelp: ");
+                text.push_str(h);
+            }
+            json!({
+                "ruleId": d.code,
+                "level": severity(d),
+                "message": { "text": text },
+                "locations": [{
+                    "physicalLocation": {
+                        "artifactLocation": { "uri": file_name(sources, d.span) },
+                        "region": region,
+                    }
+                }],
+            })
+        })
+        .collect();
+    let log = json!({
+        "$schema": "https://json.schemastore.org/sarif-2.1.0.json",
+        "version": "2.1.0",
+        "runs": [{
+            "tool": { "driver": {
+                "name": "mapc",
+                "version": env!("CARGO_PKG_VERSION"),
+                "informationUri": "https://github.com/open-rmf",
+                "rules": rules,
+            }},
+            "results": results,
+        }],
+    });
+    let mut s = serde_json::to_string_pretty(&log).unwrap_or_default();
+    s.push('\n');
+    s
+}
