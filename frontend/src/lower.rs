@@ -372,7 +372,9 @@ impl Lower<'_> {
                         "unknown `coordinate_system`",
                         "use one of reference_image, cartesian_meters, wgs84, web_mercator",
                     );
-                    CoordinateSystem::ReferenceImage
+                    // Read positions as they are, without pixel-scale warnings that would
+                    // only follow from this error.
+                    CoordinateSystem::CartesianMeters
                 }
             },
         };
@@ -399,17 +401,22 @@ impl Lower<'_> {
 
         let levels_node = self.require(root, "levels", "the building")?;
         let level_entries = self.map(levels_node, "`levels`")?;
-        let mut seen = HashSet::new();
-        for (k, v) in level_entries {
+        // A duplicated level name (reported by `map`) keeps its last definition, as
+        // everywhere else, at the position of that last definition.
+        let mut last = std::collections::HashMap::new();
+        for (i, (k, _)) in level_entries.iter().enumerate() {
+            if let Some(name) = k.key_text() {
+                last.insert(name, i);
+            }
+        }
+        for (i, (k, v)) in level_entries.iter().enumerate() {
             let Some(name) = k.key_text() else {
                 self.wrong_type(k, "a level name", "a string");
                 continue;
             };
-            if !seen.insert(name) {
-                // Reported by `map` already; keep the first so handles stay unique.
-                continue;
+            if last.get(name) == Some(&i) {
+                self.level(&mut b, name, v, k.span);
             }
-            self.level(&mut b, name, v, k.span);
         }
         if b.levels.is_empty() {
             self.err(

@@ -1,0 +1,260 @@
+//! docs/diagnostics.md is generated from the doc comments of the frontend's codes
+//! (frontend/src/codes.rs) and of every validation rule (ir/src/validate/<group>/<rule>.rs).
+//! This test fails when the file is stale; `MAPC_UPDATE_DOCS=1 cargo test --test docs`
+//! rewrites it.
+
+use std::collections::BTreeMap;
+use std::path::Path;
+
+struct Entry {
+    code: String,
+    name: String,
+    body: String,
+    source: String,
+}
+
+fn root() -> &'static Path {
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+}
+
+/// Splits `# CODE name` off a doc block.
+fn parse_block(lines: &[String], source: &str) -> Entry {
+    let first = lines.first().map(String::as_str).unwrap_or("");
+    let heading = first
+        .strip_prefix("# ")
+        .unwrap_or_else(|| panic!("{source}: doc must start with `# CODE name`, found {first:?}"));
+    let (code, name) = heading
+        .split_once(' ')
+        .unwrap_or_else(|| panic!("{source}: heading needs a code and a name"));
+    let body = lines[1..].join("\n").trim().to_string();
+    Entry {
+        code: code.into(),
+        name: name.into(),
+        body,
+        source: source.into(),
+    }
+}
+
+fn frontend_entries() -> Vec<Entry> {
+    let text = std::fs::read_to_string(root().join("frontend/src/codes.rs")).unwrap();
+    let mut out = Vec::new();
+    let mut block: Vec<String> = Vec::new();
+    for line in text.lines() {
+        let t = line.trim_start();
+        if let Some(doc) = t.strip_prefix("///") {
+            block.push(doc.strip_prefix(' ').unwrap_or(doc).to_string());
+        } else {
+            if t.starts_with("pub const") && !block.is_empty() {
+                out.push(parse_block(&block, "frontend/src/codes.rs"));
+            }
+            block.clear();
+        }
+    }
+    out
+}
+
+fn rule_entries() -> Vec<Entry> {
+    let mut out = Vec::new();
+    let vdir = root().join("ir/src/validate");
+    let mut groups: Vec<_> = std::fs::read_dir(&vdir)
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .filter(|p| p.is_dir())
+        .collect();
+    groups.sort();
+    for g in groups {
+        let mut files: Vec<_> = std::fs::read_dir(&g)
+            .unwrap()
+            .map(|e| e.unwrap().path())
+            .filter(|p| p.extension().is_some_and(|e| e == "rs"))
+            .collect();
+        files.sort();
+        for f in files {
+            let text = std::fs::read_to_string(&f).unwrap();
+            if !text.contains("static RULE: Rule") {
+                continue; // mod.rs and helpers
+            }
+            let rel = f.strip_prefix(root()).unwrap().display().to_string();
+            let block: Vec<String> = text
+                .lines()
+                .take_while(|l| l.starts_with("//!"))
+                .map(|l| {
+                    let d = &l[3..];
+                    d.strip_prefix(' ').unwrap_or(d).to_string()
+                })
+                .collect();
+            let e = parse_block(&block, &rel);
+            assert!(
+                text.contains(&format!("code: \"{}\"", e.code)),
+                "{rel}: heading code {} differs from RULE.code",
+                e.code
+            );
+            assert!(
+                text.contains(&format!("name: \"{}\"", e.name)),
+                "{rel}: heading name {} differs from RULE.name",
+                e.name
+            );
+            for section in [
+                "**What:**",
+                "**Why it matters:**",
+                "**Fix:**",
+                "**Example:**",
+            ] {
+                assert!(e.body.contains(section), "{rel}: doc lacks {section}");
+            }
+            out.push(e);
+        }
+    }
+    out
+}
+
+const SCHEMA: &str = r#"## Output formats
+
+`mapc check` (and every command that reads a map) prints diagnostics in one of three
+formats, chosen with `--format`:
+
+- `human` (default): source snippets with underlines on stderr, colour only on a terminal.
+- `json`: JSON Lines on stdout, one object per diagnostic, in the order found:
+
+  ```json
+  {"severity": "error", "code": "E0103", "name": "vertex-index-out-of-range",
+   "message": "vertex index 5 is out of range: level `L1` has 2 vertices (0..1)",
+   "location": {"file": "site.building.yaml", "line": 11, "column": 13,
+                "end_line": 11, "end_column": 14, "byte_start": 272, "byte_end": 273},
+   "labels": [{"file": "...", "line": 9, "column": 9, "end_line": 9, "end_column": 21,
+               "byte_start": 150, "byte_end": 162, "message": "the vertex"}],
+   "help": "use the 0-based index of a vertex in this level's `vertices` list"}
+  ```
+
+  `severity` is `error` or `warning`; `code` and `name` are stable; lines are 1-based and
+  columns count characters from 1; `end_*` is exclusive; `labels` are secondary locations;
+  `help` may be absent. A diagnostic about the whole file has only `location.file`. Fields
+  are only ever added, never renamed or removed.
+- `sarif`: one SARIF 2.1.0 log on stdout (all inputs in one run), for code-scanning tools.
+
+Exit codes: 0 no errors (warnings allowed), 1 at least one error (or a warning with
+`--deny-warnings`), 2 usage or I/O error.
+"#;
+
+fn render(entries: &[Entry]) -> String {
+    let mut s = String::from(
+        "# mapc diagnostics\n\n<!-- Generated by `MAPC_UPDATE_DOCS=1 cargo test --test docs` from the doc \
+         comments in frontend/src/codes.rs and ir/src/validate/. Do not edit by hand. -->\n\n\
+         Every problem mapc reports has a stable code: `E` codes are errors (nothing is written), \
+         `W` codes are warnings. `E00xx`/`E01xx` come from reading the file, `E02xx` lanes and \
+         graphs, `E03xx` doors, `E04xx` lifts, `E05xx` names and roles, `E06xx` geometry and \
+         coordinates.\n\n",
+    );
+    s.push_str(SCHEMA);
+    s.push_str("\n## All codes\n\n| code | name | severity | defined in |\n|---|---|---|---|\n");
+    for e in entries {
+        let sev = if e.code.starts_with('E') {
+            "error"
+        } else {
+            "warning"
+        };
+        s.push_str(&format!(
+            "| [{}](#{}) | `{}` | {sev} | `{}` |\n",
+            e.code,
+            format!("{}-{}", e.code, e.name).to_ascii_lowercase(),
+            e.name,
+            e.source
+        ));
+    }
+    for e in entries {
+        s.push_str(&format!("\n## {} {}\n\n", e.code, e.name));
+        // Demote headings inside the body below the entry's own.
+        for line in e.body.lines() {
+            if line.starts_with('#') && !line.starts_with("#!") {
+                s.push_str("##");
+            }
+            s.push_str(line);
+            s.push('\n');
+        }
+    }
+    s
+}
+
+fn all_entries() -> Vec<Entry> {
+    let mut by_code: BTreeMap<String, Entry> = BTreeMap::new();
+    for e in frontend_entries().into_iter().chain(rule_entries()) {
+        if let Some(prev) = by_code.get(&e.code) {
+            panic!(
+                "code {} documented twice: {} and {}",
+                e.code, prev.source, e.source
+            );
+        }
+        by_code.insert(e.code.clone(), e);
+    }
+    // Sort by number, then E before W.
+    let mut v: Vec<Entry> = by_code.into_values().collect();
+    v.sort_by_key(|e| (e.code[1..].to_string(), e.code.clone()));
+    v
+}
+
+#[test]
+fn every_code_in_use_is_documented() {
+    let documented: Vec<String> = all_entries().into_iter().map(|e| e.code).collect();
+    // Codes the frontend emits as literals.
+    for f in std::fs::read_dir(root().join("frontend/src")).unwrap() {
+        let path = f.unwrap().path();
+        if path.extension().is_none_or(|e| e != "rs") {
+            continue;
+        }
+        let text = std::fs::read_to_string(&path).unwrap();
+        for (i, _) in text.match_indices('"') {
+            let rest = &text[i + 1..];
+            let code: String = rest.chars().take(5).collect();
+            let is_code = code.len() == 5
+                && (code.starts_with('E') || code.starts_with('W'))
+                && code[1..].chars().all(|c| c.is_ascii_digit())
+                && rest[5..].starts_with('"');
+            if is_code {
+                assert!(
+                    documented.contains(&code),
+                    "{code} used in {} is not documented",
+                    path.display()
+                );
+            }
+        }
+    }
+    // Every registered rule, and every frontend code entry.
+    for r in mapc_ir::rules() {
+        assert!(
+            documented.iter().any(|c| c == r.code),
+            "rule {} has no doc",
+            r.code
+        );
+    }
+    for c in mapc_frontend::CODES {
+        assert!(
+            documented.iter().any(|d| d == c.code),
+            "frontend code {} has no doc",
+            c.code
+        );
+    }
+    // And every documented rule is registered (a rule file not in any RULES array).
+    for e in rule_entries() {
+        assert!(
+            mapc_ir::rule(&e.code).is_some(),
+            "{} documents {} but it is not registered",
+            e.source,
+            e.code
+        );
+    }
+}
+
+#[test]
+fn diagnostics_md_is_current() {
+    let want = render(&all_entries());
+    let path = root().join("docs/diagnostics.md");
+    if std::env::var_os("MAPC_UPDATE_DOCS").is_some() {
+        std::fs::write(&path, &want).unwrap();
+        return;
+    }
+    let have = std::fs::read_to_string(&path).unwrap_or_default();
+    assert!(
+        have == want,
+        "docs/diagnostics.md is stale: run `MAPC_UPDATE_DOCS=1 cargo test --test docs`"
+    );
+}
