@@ -88,7 +88,10 @@ impl std::fmt::Display for LoadError {
     }
 }
 
-fn read(path: &Path) -> Result<Vec<u8>, LoadError> {
+/// Reads a file; `Ok(None)` when it is larger than [`MAX_FILE_BYTES`] (a map problem, not
+/// an I/O one). The read itself is bounded too, in case the file grows meanwhile.
+fn read(path: &Path) -> Result<Option<Vec<u8>>, LoadError> {
+    use std::io::Read;
     let err = |message: String| LoadError {
         path: path.to_path_buf(),
         message,
@@ -98,12 +101,13 @@ fn read(path: &Path) -> Result<Vec<u8>, LoadError> {
         return Err(err("not a regular file".into()));
     }
     if meta.len() > MAX_FILE_BYTES {
-        return Err(err(format!(
-            "file is {} bytes, above the limit of {MAX_FILE_BYTES} bytes",
-            meta.len()
-        )));
+        return Ok(None);
     }
-    std::fs::read(path).map_err(|e| err(e.to_string()))
+    let mut bytes = Vec::with_capacity(meta.len() as usize);
+    std::fs::File::open(path)
+        .and_then(|f| f.take(MAX_FILE_BYTES + 1).read_to_end(&mut bytes))
+        .map_err(|e| err(e.to_string()))?;
+    Ok((bytes.len() as u64 <= MAX_FILE_BYTES).then_some(bytes))
 }
 
 /// Reads and parses a map file. A `.project.yaml` is followed to the building file it
@@ -131,9 +135,26 @@ fn load_into(
     diags: &mut Vec<Diagnostic>,
     depth: usize,
 ) -> Result<Option<Building>, LoadError> {
-    let bytes = read(path)?;
     let file = FileId(sources.len() as u32);
     let name = path.display().to_string();
+    let Some(bytes) = read(path)? else {
+        diags.push(
+            Diagnostic::error(
+                "E0002",
+                Span {
+                    file,
+                    ..Span::UNKNOWN
+                },
+                format!("the file is larger than the input limit of {MAX_FILE_BYTES} bytes"),
+            )
+            .with_help("real building maps are under a few MB; check that this is the right file"),
+        );
+        sources.push(SourceFile {
+            name,
+            text: String::new(),
+        });
+        return Ok(None);
+    };
     let text = match String::from_utf8(bytes) {
         Ok(t) => t,
         Err(e) => {

@@ -11,6 +11,9 @@ use std::collections::HashMap;
 pub const MAX_DEPTH: usize = 64;
 /// Most nodes accepted, counting every alias expansion.
 pub const MAX_NODES: usize = 2_000_000;
+/// Most nodes that aliases may add. The editor never writes aliases; this only bounds
+/// alias bombs, cheaply (each expansion is a copy).
+pub const MAX_ALIAS_NODES: usize = 100_000;
 
 #[derive(Debug, Clone)]
 pub enum Kind {
@@ -261,6 +264,7 @@ pub fn parse(text: &str, file: FileId) -> Result<Node, Diagnostic> {
     let mut anchors: HashMap<usize, (Node, usize)> = HashMap::new();
     let mut root: Option<Node> = None;
     let mut total_nodes = 0usize;
+    let mut alias_nodes = 0usize;
     let mut documents = 0;
 
     for item in Parser::new_from_str(text) {
@@ -305,12 +309,9 @@ pub fn parse(text: &str, file: FileId) -> Result<Node, Diagnostic> {
             Event::Alias(id) => match anchors.get(&id) {
                 Some((node, size)) => {
                     total_nodes += size;
-                    if total_nodes > MAX_NODES {
-                        return Err(limit_error(
-                            span,
-                            "node count (after alias expansion)",
-                            MAX_NODES,
-                        ));
+                    alias_nodes += size;
+                    if alias_nodes > MAX_ALIAS_NODES {
+                        return Err(limit_error(span, "alias expansion", MAX_ALIAS_NODES));
                     }
                     let mut n = node.clone();
                     n.span = span;
