@@ -945,7 +945,10 @@ impl Lower<'_> {
             start,
             end,
             motion_axis,
-            motion_direction: params.int("motion_direction").unwrap_or(1),
+            // Read as a number: files write both `[2, -1]` and `[3, -1.0]`.
+            motion_direction: params
+                .f64("motion_direction")
+                .map_or(1, |v| v.round() as i64),
             motion_degrees: params.f64("motion_degrees").unwrap_or(90.0),
             right_left_ratio: params.f64("right_left_ratio").unwrap_or(1.0),
             plugin: params.str("plugin") != Some("none"),
