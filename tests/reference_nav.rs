@@ -27,11 +27,7 @@ fn conv(y: &YamlOwned) -> V {
             saphyr::ScalarOwned::String(s) => V::Str(s.clone()),
         },
         YamlOwned::Sequence(s) => V::Seq(s.iter().map(conv).collect()),
-        YamlOwned::Mapping(m) => V::Map(
-            m.iter()
-                .map(|(k, v)| (key(k), conv(v)))
-                .collect(),
-        ),
+        YamlOwned::Mapping(m) => V::Map(m.iter().map(|(k, v)| (key(k), conv(v))).collect()),
         YamlOwned::Tagged(_, inner) => conv(inner),
         other => panic!("unexpected YAML node {other:?}"),
     }
@@ -47,7 +43,8 @@ fn key(k: &YamlOwned) -> String {
 
 fn load(path: &Path) -> V {
     let text = std::fs::read_to_string(path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
-    let docs = YamlOwned::load_from_str(&text).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+    let docs =
+        YamlOwned::load_from_str(&text).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
     conv(&docs[0])
 }
 
@@ -130,7 +127,11 @@ fn nav_graphs_match_reference_for_every_demo_map() {
             v.sort();
             v
         };
-        assert_eq!(list(out.path()), list(&ref_dir), "{map}: graph files differ");
+        assert_eq!(
+            list(out.path()),
+            list(&ref_dir),
+            "{map}: graph files differ"
+        );
         // wgs84 maps go through a projection library; allow 1 mm there.
         let tol = if map == "campus" { 1e-3 } else { 1e-6 };
         for f in list(&ref_dir) {
