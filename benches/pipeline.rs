@@ -2,6 +2,10 @@
 //! transforms) followed by `mapc_backends::nav_graphs`, on every `fixtures/*.building.yaml`
 //! (listed when the benchmark starts) and on the demo maps in `../shared/maps` when present.
 //!
+//! `check` times what `mapc check` computes in process (parse, lower, transform, validation
+//! passes) on each demo map; `validate_only` times the validation passes alone on the largest
+//! input.
+//!
 //! Run with `cargo bench --bench pipeline`. Inputs are read once, before any timing; the
 //! timed closures only see `&str`s. Benchmark names are `fixture/<stem>` and
 //! `shared/<map>`.
@@ -102,11 +106,20 @@ fn names() -> Vec<&'static str> {
     inputs().iter().map(|i| i.name.as_str()).collect()
 }
 
+/// The demo maps (`shared/<map>`); empty without `../shared`, which skips the benchmark.
+fn shared_names() -> Vec<&'static str> {
+    inputs()
+        .iter()
+        .map(|i| i.name.as_str())
+        .filter(|n| n.starts_with("shared/"))
+        .collect()
+}
+
 fn text(name: &str) -> &'static str {
     &inputs().iter().find(|i| i.name == name).unwrap().text
 }
 
-/// The largest input (by bytes), for the parse-only benchmark.
+/// The largest input (by bytes), for the parse-only and validate-only benchmarks.
 fn largest() -> Vec<&'static str> {
     inputs()
         .iter()
@@ -140,6 +153,30 @@ fn parse_only(bencher: Bencher, name: &str) {
 /// information: the CLI cost is parse_lower_nav + validate + writing the files).
 #[divan::bench(args = names())]
 fn validate(bencher: Bencher, name: &str) {
+    let parsed = mapc_frontend::parse_str(name, text(name));
+    let Some(b) = parsed.building.as_ref() else {
+        return;
+    };
+    bencher.bench(|| mapc_ir::validate(black_box(b)));
+}
+
+/// What `mapc check` computes in process: parse + lower + transform, then the validation
+/// passes on any building returned (even with frontend errors, as the CLI does). Rendering
+/// the diagnostics and process start-up are not included. Target: the largest demo map
+/// under 10 ms.
+#[divan::bench(args = shared_names())]
+fn check(bencher: Bencher, name: &str) {
+    let text = text(name);
+    bencher.counter(BytesCount::of_str(text)).bench(|| {
+        let parsed = mapc_frontend::parse_str(name, black_box(text));
+        let diagnostics = parsed.building.as_ref().map(mapc_ir::validate);
+        (parsed, diagnostics)
+    });
+}
+
+/// The validation passes alone on the largest input, already parsed.
+#[divan::bench(args = largest())]
+fn validate_only(bencher: Bencher, name: &str) {
     let parsed = mapc_frontend::parse_str(name, text(name));
     let Some(b) = parsed.building.as_ref() else {
         return;

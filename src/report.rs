@@ -6,14 +6,21 @@ use codespan_reporting::diagnostic::{
 use codespan_reporting::files::SimpleFiles;
 use codespan_reporting::term::{
     self,
-    termcolor::{ColorChoice, StandardStream},
+    termcolor::{BufferWriter, ColorChoice},
 };
 use mapc_frontend::SourceFile;
 use mapc_ir::{Diagnostic, Severity};
-use std::io::IsTerminal;
+use std::io::{IsTerminal, Write};
 
 /// Renders diagnostics to stderr, colour only on a terminal.
+///
+/// Everything is rendered into one buffer and written at once: the renderer issues many
+/// small writes (a colour change, a gutter, a fragment of a line), and stderr is
+/// unbuffered, so writing straight to it costs thousands of system calls per map.
 pub fn emit(sources: &[SourceFile], diags: &[Diagnostic]) {
+    if diags.is_empty() {
+        return;
+    }
     let mut files = SimpleFiles::new();
     for s in sources {
         files.add(s.name.as_str(), s.text.as_str());
@@ -23,15 +30,22 @@ pub fn emit(sources: &[SourceFile], diags: &[Diagnostic]) {
     } else {
         ColorChoice::Never
     };
-    let mut out = StandardStream::stderr(choice);
+    let writer = BufferWriter::stderr(choice);
+    let mut out = writer.buffer();
     let config = term::Config::default();
     for d in diags {
         let cs = to_codespan(sources, d);
-        if term::emit_to_write_style(&mut out, &config, &files, &cs).is_err() {
-            // A span that does not fit its file (should not happen): plain fallback.
-            eprintln!("{}", one_line(sources, d));
-        }
+        let mut one = writer.buffer();
+        // Writes to a memory buffer do not fail.
+        let _ = match term::emit_to_write_style(&mut one, &config, &files, &cs) {
+            Ok(()) => out.write_all(one.as_slice()),
+            // A span that does not fit its file (should not happen): plain fallback, in
+            // place of whatever was rendered before the failure.
+            Err(_) => writeln!(out, "{}", one_line(sources, d)),
+        };
     }
+    // Nothing useful to do if stderr is gone (e.g. a closed pipe).
+    let _ = writer.print(&out);
 }
 
 fn to_codespan(sources: &[SourceFile], d: &Diagnostic) -> CsDiagnostic<usize> {

@@ -1,5 +1,7 @@
 //! Mutation robustness: each demo map in `../shared/maps`, damaged in many deterministic
-//! pseudo-random ways, must never make the frontend or the nav backend panic or stall.
+//! pseudo-random ways, must never make the frontend, the validation passes or the nav
+//! backend panic or stall. As in `mapc check`, validation runs whenever the frontend returns
+//! a building, even one with frontend errors.
 //!
 //! The maps are third-party data and are not in this repository; without `../shared` the
 //! test prints `skipped: ../shared not found` and passes.
@@ -11,30 +13,19 @@ use std::panic::{catch_unwind, AssertUnwindSafe};
 use std::path::{Path, PathBuf};
 use std::time::{Duration, Instant};
 
-/// Mutations per map for the demo maps up to `SMALL_MAP_BYTES` (office, campus,
-/// battle_royale, triple_H). Larger maps get `LARGE_MAP_BUDGET` bytes of mutated text
-/// (hotel 58, airport_terminal 33, clinic 21 mutations), so that a debug build runs the whole
-/// test in about 15-20 s on 2 cores. `MAPC_MUTATIONS=n` sets the count for every map (400 per
-/// map took 103 s and found nothing).
-const MUTATIONS_PER_MAP: usize = 200;
-const SMALL_MAP_BYTES: usize = 40_000;
-/// Debug builds parse about 1 MB/s.
-const LARGE_MAP_BUDGET: usize = 6_000_000;
-/// Fewest mutations for any map.
-const MIN_MUTATIONS: usize = 20;
+/// Mutations per map, the same for every map whatever its size, so that the 7 demo maps
+/// always get 7 × 150 = 1050 mutants (at least 1000), independently of how fast the build
+/// is. `MAPC_MUTATIONS=n` sets another count for every map.
+const MUTATIONS_PER_MAP: usize = 150;
 
-fn mutations_for(map_bytes: usize) -> usize {
-    match std::env::var("MAPC_MUTATIONS")
+fn mutations_per_map() -> usize {
+    std::env::var("MAPC_MUTATIONS")
         .ok()
         .and_then(|v| v.parse().ok())
-    {
-        Some(n) => n,
-        None if map_bytes <= SMALL_MAP_BYTES => MUTATIONS_PER_MAP,
-        None => (LARGE_MAP_BUDGET / map_bytes).clamp(MIN_MUTATIONS, MUTATIONS_PER_MAP),
-    }
+        .unwrap_or(MUTATIONS_PER_MAP)
 }
 
-/// Budget for one parse + nav of a mutated map.
+/// Budget for one parse + validate + nav of a mutated map.
 const BUDGET: Duration = Duration::from_secs(2);
 
 fn shared_maps() -> Option<Vec<PathBuf>> {
@@ -252,26 +243,41 @@ fn mutate(text: &str, rng: &mut Rng) -> (String, String) {
     }
 }
 
+/// How far a mutant got through the pipeline.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+struct Reached {
+    /// The frontend returned a building, so the validation passes ran on it.
+    validate: bool,
+    /// The frontend reported no error, so the nav backend ran too.
+    nav: bool,
+}
+
 enum Outcome {
-    /// Finished in time; `true` when the map was valid and nav graphs were generated.
-    Ok(Duration, bool),
+    /// Finished in time.
+    Ok(Duration, Reached),
     Panicked(String),
     Slow(Duration),
 }
 
-/// The pipeline under test; returns whether the nav backend ran.
-fn pipeline(name: &str, text: &str) -> bool {
+/// The pipeline under test: parse, then validate any building returned (as `mapc check`
+/// does, frontend errors or not), then nav graphs for a building without frontend errors.
+fn pipeline(name: &str, text: &str) -> Reached {
     let parsed = mapc_frontend::parse_str(name, text);
-    match parsed.valid_building() {
-        Some(b) => {
-            std::hint::black_box(mapc_backends::nav_graphs(b));
-            true
-        }
-        None => false,
+    let Some(b) = &parsed.building else {
+        return Reached::default();
+    };
+    std::hint::black_box(mapc_ir::validate(b));
+    let nav = !parsed.has_errors();
+    if nav {
+        std::hint::black_box(mapc_backends::nav_graphs(b));
+    }
+    Reached {
+        validate: true,
+        nav,
     }
 }
 
-fn run_once(f: &mut impl FnMut() -> bool) -> Result<(Duration, bool), String> {
+fn run_once(f: &mut impl FnMut() -> Reached) -> Result<(Duration, Reached), String> {
     let t = Instant::now();
     let r = catch_unwind(AssertUnwindSafe(&mut *f));
     let took = t.elapsed();
@@ -285,11 +291,11 @@ fn run_once(f: &mut impl FnMut() -> bool) -> Result<(Duration, bool), String> {
     }
 }
 
-fn check(f: impl FnMut() -> bool) -> Outcome {
+fn check(f: impl FnMut() -> Reached) -> Outcome {
     check_within(BUDGET, f)
 }
 
-fn check_within(budget: Duration, mut f: impl FnMut() -> bool) -> Outcome {
+fn check_within(budget: Duration, mut f: impl FnMut() -> Reached) -> Outcome {
     match run_once(&mut f) {
         Err(p) => Outcome::Panicked(p),
         Ok((d, nav)) if d <= budget => Outcome::Ok(d, nav),
@@ -305,7 +311,9 @@ fn check_within(budget: Duration, mut f: impl FnMut() -> bool) -> Outcome {
 struct MapResult {
     failures: Vec<String>,
     count: usize,
-    /// Mutated maps that were still valid, so the nav backend ran on them.
+    /// Mutated maps that still lowered to a building, so validation ran on them.
+    reached_validate: usize,
+    /// Mutated maps without frontend errors, so the nav backend ran on them.
     reached_nav: usize,
     slowest: Duration,
 }
@@ -318,8 +326,8 @@ fn fuzz_map(path: &Path) -> MapResult {
     let dump = std::env::var_os("MAPC_MUTATION_DUMP").map(PathBuf::from);
     let mut failures = Vec::new();
     let mut slowest = Duration::ZERO;
-    let mut reached_nav = 0;
-    let count = mutations_for(text.len());
+    let (mut reached_validate, mut reached_nav) = (0, 0);
+    let count = mutations_per_map();
     for i in 0..count {
         // Mostly single mutations, sometimes two or three stacked.
         let mut mutated = text.clone();
@@ -330,9 +338,10 @@ fn fuzz_map(path: &Path) -> MapResult {
             what.push(w);
         }
         let problem = match check(|| pipeline(&name, &mutated)) {
-            Outcome::Ok(d, nav) => {
+            Outcome::Ok(d, reached) => {
                 slowest = slowest.max(d);
-                reached_nav += usize::from(nav);
+                reached_validate += usize::from(reached.validate);
+                reached_nav += usize::from(reached.nav);
                 None
             }
             Outcome::Panicked(p) => Some(format!("panicked: {p}")),
@@ -352,6 +361,7 @@ fn fuzz_map(path: &Path) -> MapResult {
     MapResult {
         failures,
         count,
+        reached_validate,
         reached_nav,
         slowest,
     }
@@ -359,11 +369,13 @@ fn fuzz_map(path: &Path) -> MapResult {
 
 #[test]
 fn mutated_demo_maps_never_panic_or_stall() {
-    let Some(maps) = shared_maps() else {
+    let Some(mut maps) = shared_maps() else {
         println!("skipped: ../shared not found");
         return;
     };
     assert!(!maps.is_empty(), "../shared/maps holds no maps");
+    // Largest first, so that the two workers finish at about the same time.
+    maps.sort_by_cached_key(|m| std::cmp::Reverse(std::fs::metadata(m).map_or(0, |md| md.len())));
     let t = Instant::now();
     // Two worker threads (the CI machine has 2 cores); maps are handed out in order.
     let next = std::sync::atomic::AtomicUsize::new(0);
@@ -381,27 +393,32 @@ fn mutated_demo_maps_never_panic_or_stall() {
     let mut results = results.into_inner().unwrap();
     results.sort_by(|a, b| a.0.cmp(&b.0));
     let mut failures = Vec::new();
-    let mut reached_nav = 0;
+    let (mut total, mut reached_validate, mut reached_nav) = (0, 0, 0);
     for (map, r) in &results {
         eprintln!(
-            "{}: {} mutations, {} still valid (nav ran), {} failure(s), slowest {:?}",
+            "{}: {} mutations, {} validated, {} without frontend errors (nav ran), {} failure(s), slowest {:?}",
             map.file_name().unwrap().to_string_lossy(),
             r.count,
+            r.reached_validate,
             r.reached_nav,
             r.failures.len(),
             r.slowest
         );
+        total += r.count;
+        reached_validate += r.reached_validate;
         reached_nav += r.reached_nav;
         failures.extend(r.failures.iter().cloned());
     }
-    eprintln!("total {:?}", t.elapsed());
+    eprintln!("total {total} mutations in {:?}", t.elapsed());
     assert!(
         failures.is_empty(),
         "{} mutated input(s) broke mapc:\n{}",
         failures.len(),
         failures.join("\n")
     );
-    // Some mutants must survive validation, or the backend would never be exercised.
+    // Some mutants must get through the frontend, or the later stages would never be
+    // exercised.
+    assert!(reached_validate > 0, "no mutated map reached validation");
     assert!(reached_nav > 0, "no mutated map reached the nav backend");
 }
 
@@ -432,17 +449,28 @@ fn check_reports_panics_and_stalls() {
     assert!(matches!(
         check_within(Duration::from_millis(20), || {
             std::thread::sleep(Duration::from_millis(40));
-            true
+            Reached::default()
         }),
         Outcome::Slow(_)
     ));
     let text = "name: x\nlevels:\n  L1:\n    vertices: [[0, 0, 0, a], [1, 0, 0, b]]\n    lanes: [[0, 1, {graph_idx: [2, 0]}]]\n";
-    assert!(matches!(
-        check(|| pipeline("ok", text)),
-        Outcome::Ok(_, true)
-    ));
+    let all = Reached {
+        validate: true,
+        nav: true,
+    };
+    assert!(matches!(check(|| pipeline("ok", text)), Outcome::Ok(_, r) if r == all));
     assert!(matches!(
         check(|| pipeline("bad", "levels: ]")),
-        Outcome::Ok(_, false)
+        Outcome::Ok(_, r) if r == Reached::default()
+    ));
+    // A frontend error with a building: validation runs, nav does not.
+    let bad_lane = text.replace("[2, 0]", "[2, x]");
+    let validate_only = Reached {
+        validate: true,
+        nav: false,
+    };
+    assert!(matches!(
+        check(|| pipeline("bad lane", &bad_lane)),
+        Outcome::Ok(_, r) if r == validate_only
     ));
 }

@@ -9,6 +9,29 @@ pub(crate) struct Lower<'d> {
     pub diags: &'d mut Vec<Diagnostic>,
 }
 
+/// One slot per entry of a level's `vertices` list, in file order: `None` for an entry
+/// that did not lower (already reported). Edges and polygons index this table, so a bad
+/// vertex neither shifts the indices of the ones after it nor enters the IR.
+type VertexSlots = [Option<Handle<Vertex>>];
+
+/// An entry of `lanes`, `walls`, `measurements`, `doors` or `human_lanes` whose two vertex
+/// indices resolved.
+struct Edge {
+    start: Handle<Vertex>,
+    end: Handle<Vertex>,
+    params: Params,
+    /// Names of parameters present in the file but malformed (already reported as E0105
+    /// or E0104), so that a required one is not reported a second time as missing.
+    invalid: Vec<String>,
+    span: Span,
+}
+
+impl Edge {
+    fn is_invalid(&self, name: &str) -> bool {
+        self.invalid.iter().any(|n| n == name)
+    }
+}
+
 /// Keys each element may carry; anything else gets a typo warning.
 const ROOT_KEYS: &[&str] = &[
     "name",
@@ -65,7 +88,11 @@ impl Lower<'_> {
 
     /// Entries of a mapping, warning about duplicate keys. `null` is an empty mapping
     /// (with a warning); other types are an error.
-    pub fn map<'n>(&mut self, node: &'n Node, what: &str) -> Option<&'n [(Node, Node)]> {
+    pub fn map<'n, 's>(
+        &mut self,
+        node: &'n Node<'s>,
+        what: &str,
+    ) -> Option<&'n [(Node<'s>, Node<'s>)]> {
         match &node.kind {
             Kind::Map(m) => {
                 if m.len() > 1 {
@@ -101,7 +128,7 @@ impl Lower<'_> {
         }
     }
 
-    pub fn seq<'n>(&mut self, node: &'n Node, what: &str) -> Option<&'n [Node]> {
+    pub fn seq<'n, 's>(&mut self, node: &'n Node<'s>, what: &str) -> Option<&'n [Node<'s>]> {
         match &node.kind {
             Kind::Seq(s) => Some(s),
             _ if node.is_null() => {
@@ -176,7 +203,7 @@ impl Lower<'_> {
 
     pub fn string(&mut self, node: &Node, what: &str) -> Option<String> {
         match &node.kind {
-            Kind::Scalar { text, .. } if !node.is_null() => Some(text.clone()),
+            Kind::Scalar { text, .. } if !node.is_null() => Some(text.to_string()),
             _ if node.is_null() => Some(String::new()),
             _ => {
                 self.wrong_type(node, what, "a string");
@@ -185,7 +212,12 @@ impl Lower<'_> {
         }
     }
 
-    fn require<'n>(&mut self, parent: &'n Node, key: &str, what: &str) -> Option<&'n Node> {
+    fn require<'n, 's>(
+        &mut self,
+        parent: &'n Node<'s>,
+        key: &str,
+        what: &str,
+    ) -> Option<&'n Node<'s>> {
         let v = parent.get(key);
         if v.is_none() {
             self.err(
@@ -235,24 +267,32 @@ impl Lower<'_> {
 
     /// A `{name: [type_code, value], ...}` map.
     pub fn params(&mut self, node: &Node, what: &str) -> Params {
+        self.params_checked(node, what).0
+    }
+
+    /// [`Self::params`], plus the names of the parameters that are present but malformed
+    /// (reported here, and left out of the `Params`).
+    fn params_checked(&mut self, node: &Node, what: &str) -> (Params, Vec<String>) {
         let mut out = Params::default();
+        let mut invalid = Vec::new();
         let Some(entries) = self.map(node, &format!("the parameters of {what}")) else {
-            return out;
+            return (out, invalid);
         };
         for (k, v) in entries {
             let Some(name) = k.key_text() else {
                 self.wrong_type(k, "a parameter name", "a string");
                 continue;
             };
-            if let Some(value) = self.param_value(v, name) {
-                out.insert(Param {
+            match self.param_value(v, name) {
+                Some(value) => out.insert(Param {
                     name: name.to_string(),
                     value,
                     span: v.span,
-                });
+                }),
+                None => invalid.push(name.to_string()),
             }
         }
-        out
+        (out, invalid)
     }
 
     fn param_value(&mut self, v: &Node, name: &str) -> Option<ParamValue> {
@@ -287,7 +327,7 @@ impl Lower<'_> {
                 Kind::Scalar { text, .. } => Some(ParamValue::String(if value.is_null() {
                     String::new()
                 } else {
-                    text.clone()
+                    text.to_string()
                 })),
                 _ => bad(self, "string"),
             },
@@ -509,43 +549,52 @@ impl Lower<'_> {
         };
         let lh = b.levels.append(level, span);
 
-        // Vertices first: every other element indexes them.
+        // Vertices first: every other element indexes them, by position in the file.
+        let mut slots: Vec<Option<Handle<Vertex>>> = Vec::new();
         if let Some(vs) = node.get("vertices") {
-            for v in self
+            let list = self
                 .seq(vs, &format!("the vertices of {what}"))
-                .unwrap_or(&[])
-            {
-                if let Some(vx) = self.vertex(lh, v) {
+                .unwrap_or(&[]);
+            slots.reserve(list.len());
+            for v in list {
+                let h = self.vertex(lh, v).map(|vx| {
                     let h = b.vertices.append(vx, v.span);
                     b.levels[lh].vertices.push(h);
-                }
+                    h
+                });
+                slots.push(h);
             }
         }
-        let nverts = b.levels[lh].vertices.len();
+        let slots = &slots[..];
 
-        let edges = |l: &mut Self,
-                     b: &Building,
-                     key: &str|
-         -> Vec<(Handle<Vertex>, Handle<Vertex>, Params, Span)> {
+        let edges = |l: &mut Self, b: &Building, key: &str| -> Vec<Edge> {
             let Some(list) = node.get(key) else {
                 return Vec::new();
             };
             let mut out = Vec::new();
             for e in l.seq(list, &format!("the {key} of {what}")).unwrap_or(&[]) {
-                if let Some(x) = l.edge(b, lh, e, key, nverts) {
+                if let Some(x) = l.edge(b, lh, e, key, slots) {
                     out.push(x);
                 }
             }
             out
         };
 
-        for (start, end, params, span) in edges(self, b, "lanes") {
-            if let Some(lane) = self.lane(lh, start, end, params, span) {
+        for e in edges(self, b, "lanes") {
+            let span = e.span;
+            if let Some(lane) = self.lane(lh, e) {
                 let h = b.lanes.append(lane, span);
                 b.levels[lh].lanes.push(h);
             }
         }
-        for (start, end, params, span) in edges(self, b, "walls") {
+        for Edge {
+            start,
+            end,
+            params,
+            span,
+            ..
+        } in edges(self, b, "walls")
+        {
             let h = b.walls.append(
                 Wall {
                     level: lh,
@@ -557,7 +606,8 @@ impl Lower<'_> {
             );
             b.levels[lh].walls.push(h);
         }
-        for (start, end, params, span) in edges(self, b, "measurements") {
+        for e in edges(self, b, "measurements") {
+            let (params, span) = (&e.params, e.span);
             let distance = match params.get("distance") {
                 Some(v) => match v.as_f64() {
                     Some(d) => d,
@@ -571,6 +621,8 @@ impl Lower<'_> {
                         continue;
                     }
                 },
+                // Present but malformed: already reported.
+                None if e.is_invalid("distance") => continue,
                 None => {
                     self.err(
                         "E0102",
@@ -584,22 +636,30 @@ impl Lower<'_> {
             let h = b.measurements.append(
                 Measurement {
                     level: lh,
-                    start,
-                    end,
+                    start: e.start,
+                    end: e.end,
                     distance,
-                    params,
+                    params: e.params,
                 },
                 span,
             );
             b.levels[lh].measurements.push(h);
         }
-        for (start, end, params, span) in edges(self, b, "doors") {
-            if let Some(door) = self.door(lh, start, end, params, span) {
+        for e in edges(self, b, "doors") {
+            let span = e.span;
+            if let Some(door) = self.door(lh, e) {
                 let h = b.doors.append(door, span);
                 b.levels[lh].doors.push(h);
             }
         }
-        for (start, end, params, span) in edges(self, b, "human_lanes") {
+        for Edge {
+            start,
+            end,
+            params,
+            span,
+            ..
+        } in edges(self, b, "human_lanes")
+        {
             let h = b.human_lanes.append(
                 HumanLane {
                     level: lh,
@@ -618,7 +678,7 @@ impl Lower<'_> {
                 .seq(list, &format!("the {key} of {what}"))
                 .unwrap_or(&[])
             {
-                let Some(poly) = self.polygon(b, lh, p, key, nverts) else {
+                let Some(poly) = self.polygon(b, lh, p, key, slots) else {
                     continue;
                 };
                 if is_floor {
@@ -763,8 +823,8 @@ impl Lower<'_> {
         level: Handle<Level>,
         node: &Node,
         key: &str,
-        nverts: usize,
-    ) -> Option<(Handle<Vertex>, Handle<Vertex>, Params, Span)> {
+        slots: &VertexSlots,
+    ) -> Option<Edge> {
         let Some(items) = node.as_seq() else {
             self.wrong_type(
                 node,
@@ -785,23 +845,34 @@ impl Lower<'_> {
             );
             return None;
         }
-        let s = self.vertex_index(b, level, &items[0], nverts);
-        let e = self.vertex_index(b, level, &items[1], nverts);
-        let params = match items.get(2) {
-            Some(p) => self.params(p, &format!("an entry of `{key}`")),
-            None => Params::default(),
+        let s = self.vertex_index(b, level, &items[0], slots);
+        let e = self.vertex_index(b, level, &items[1], slots);
+        // Parameters are checked even when an index failed: their problems are their own.
+        let (params, invalid) = match items.get(2) {
+            Some(p) => self.params_checked(p, &format!("an entry of `{key}`")),
+            None => Default::default(),
         };
-        Some((s?, e?, params, node.span))
+        Some(Edge {
+            start: s?,
+            end: e?,
+            params,
+            invalid,
+            span: node.span,
+        })
     }
 
+    /// The vertex at file position `n` of the level. Out of range is E0103, counted against
+    /// the file's `vertices` list; a vertex that failed to lower gives `None` without a
+    /// further diagnostic (it has its own).
     fn vertex_index(
         &mut self,
         b: &Building,
         level: Handle<Level>,
         n: &Node,
-        nverts: usize,
+        slots: &VertexSlots,
     ) -> Option<Handle<Vertex>> {
         let i = self.i64(n, "a vertex index")?;
+        let nverts = slots.len();
         if i < 0 || i as u64 >= nverts as u64 {
             self.err(
                 "E0103",
@@ -815,18 +886,21 @@ impl Lower<'_> {
             );
             return None;
         }
-        Some(b.levels[level].vertices[i as usize])
+        slots[i as usize]
     }
 
-    fn lane(
-        &mut self,
-        level: Handle<Level>,
-        start: Handle<Vertex>,
-        end: Handle<Vertex>,
-        params: Params,
-        span: Span,
-    ) -> Option<Lane> {
+    fn lane(&mut self, level: Handle<Level>, edge: Edge) -> Option<Lane> {
+        let graph_idx_invalid = edge.is_invalid("graph_idx");
+        let Edge {
+            start,
+            end,
+            params,
+            span,
+            ..
+        } = edge;
         let graph = match params.get("graph_idx") {
+            // Present but malformed: already reported as E0105.
+            None if graph_idx_invalid => return None,
             None => {
                 self.err(
                     "E0102",
@@ -907,15 +981,20 @@ impl Lower<'_> {
         })
     }
 
-    fn door(
-        &mut self,
-        level: Handle<Level>,
-        start: Handle<Vertex>,
-        end: Handle<Vertex>,
-        params: Params,
-        span: Span,
-    ) -> Option<Door> {
+    fn door(&mut self, level: Handle<Level>, edge: Edge) -> Option<Door> {
+        let (name_invalid, type_invalid) = (edge.is_invalid("name"), edge.is_invalid("type"));
+        let Edge {
+            start,
+            end,
+            params,
+            span,
+            ..
+        } = edge;
         let Some(name) = params.str("name").map(str::to_string) else {
+            // Present but malformed: already reported as E0105.
+            if name_invalid {
+                return None;
+            }
             self.err(
                 "E0102",
                 span,
@@ -926,6 +1005,7 @@ impl Lower<'_> {
         };
         let kind = match params.str("type") {
             Some(t) => DoorKind::parse(t),
+            None if type_invalid => return None,
             None => {
                 self.err(
                     "E0102",
@@ -964,7 +1044,7 @@ impl Lower<'_> {
         level: Handle<Level>,
         node: &Node,
         key: &str,
-        nverts: usize,
+        slots: &VertexSlots,
     ) -> Option<Polygon> {
         if node.as_map().is_none() {
             self.wrong_type(
@@ -978,7 +1058,7 @@ impl Lower<'_> {
         let mut vertices = Vec::new();
         let mut ok = true;
         for i in self.seq(list, "polygon `vertices`")? {
-            match self.vertex_index(b, level, i, nverts) {
+            match self.vertex_index(b, level, i, slots) {
                 Some(h) => vertices.push(h),
                 None => ok = false,
             }
@@ -1353,6 +1433,156 @@ impl Lower<'_> {
             "or" => Condition::Or(sub(self, "condition1"), sub(self, "condition2")),
             "not" => Condition::Not(sub(self, "condition1")),
             other => Condition::Other(other.to_string()),
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use mapc_ir::{Building, Diagnostic, Handle, Vertex};
+
+    /// Lowers a cartesian map with level `L1` whose body is `level` (indented 4 spaces).
+    fn lower(level: &str) -> (Building, Vec<Diagnostic>) {
+        let text = format!("name: t\ncoordinate_system: cartesian_meters\nlevels:\n  L1:\n{level}");
+        let parsed = crate::parse_str("t.building.yaml", &text);
+        (parsed.building.expect("a building"), parsed.diagnostics)
+    }
+
+    fn codes(diags: &[Diagnostic]) -> Vec<&'static str> {
+        diags.iter().map(|d| d.code).collect()
+    }
+
+    fn name(b: &Building, v: Handle<Vertex>) -> &str {
+        &b.vertices[v].name
+    }
+
+    /// `[ok, bad, ok]`: the bad one (a string x) is E0101 and is not in the IR.
+    const OK_BAD_OK: &str =
+        "    vertices:\n      - [0, 0, 0, a]\n      - [x, 0, 0, b]\n      - [4, 0, 0, c]\n";
+
+    #[test]
+    fn bad_vertex_keeps_file_indices_of_later_vertices() {
+        let (b, diags) = lower(&format!(
+            "{OK_BAD_OK}    lanes:\n      - [0, 2, {{graph_idx: [2, 0]}}]\n    walls:\n      - [2, 0]\n"
+        ));
+        assert_eq!(codes(&diags), ["E0101"], "{diags:#?}");
+        assert_eq!(b.vertices.len(), 2, "the bad vertex is not in the IR");
+        let (_, lane) = b.lanes.iter().next().expect("the lane is kept");
+        assert_eq!((name(&b, lane.start), name(&b, lane.end)), ("a", "c"));
+        let (_, wall) = b.walls.iter().next().expect("the wall is kept");
+        assert_eq!((name(&b, wall.start), name(&b, wall.end)), ("c", "a"));
+    }
+
+    #[test]
+    fn out_of_range_counts_the_file_vertices() {
+        let (b, diags) = lower(&format!(
+            "{OK_BAD_OK}    lanes:\n      - [0, 3, {{graph_idx: [2, 0]}}]\n"
+        ));
+        assert_eq!(codes(&diags), ["E0101", "E0103"], "{diags:#?}");
+        assert!(
+            diags[1]
+                .message
+                .contains("level `L1` has 3 vertices (0..2)"),
+            "{}",
+            diags[1].message
+        );
+        assert_eq!(b.lanes.len(), 0);
+    }
+
+    #[test]
+    fn elements_on_a_bad_vertex_are_dropped_silently() {
+        let (b, diags) = lower(&format!(
+            "{OK_BAD_OK}    lanes:\n      - [0, 1, {{graph_idx: [2, 0]}}]\n      - [1, 2]\n\
+             \x20   walls:\n      - [1, 2]\n\
+             \x20   doors:\n      - [0, 1, {{name: [1, d], type: [1, hinged]}}]\n\
+             \x20   measurements:\n      - [1, 0, {{distance: [3, 1.0]}}]\n\
+             \x20   human_lanes:\n      - [2, 1]\n\
+             \x20   floors:\n      - vertices: [0, 1, 2]\n\
+             \x20   holes:\n      - vertices: [2, 1, 0]\n"
+        ));
+        // Only the vertex's own error: no E0103, and no E0102 for the lane `[1, 2]` that
+        // lacks a graph_idx, since it is dropped before its parameters are read as a lane's.
+        assert_eq!(codes(&diags), ["E0101"], "{diags:#?}");
+        assert_eq!(b.lanes.len(), 0);
+        assert_eq!(b.walls.len(), 0);
+        assert_eq!(b.doors.len(), 0);
+        assert_eq!(b.measurements.len(), 0);
+        assert_eq!(b.human_lanes.len(), 0);
+        assert_eq!(b.floors.len(), 0);
+        assert_eq!(b.holes.len(), 0);
+    }
+
+    #[test]
+    fn every_kind_of_bad_vertex_keeps_its_slot() {
+        // Not a sequence, too short, non-finite, bad name: four failures, then `e` at 4.
+        let (b, diags) = lower(
+            "    vertices:\n      - {x: 1}\n      - [0, 0]\n      - [.nan, 0, 0, c]\n      - [0, 0, 0, [n]]\n      - [1, 1, 0, e]\n      - [2, 2, 0, f]\n\
+             \x20   lanes:\n      - [4, 5, {graph_idx: [2, 0]}]\n",
+        );
+        assert_eq!(
+            codes(&diags),
+            ["E0101", "E0101", "E0104", "E0101"],
+            "{diags:#?}"
+        );
+        let (_, lane) = b.lanes.iter().next().expect("the lane is kept");
+        assert_eq!((name(&b, lane.start), name(&b, lane.end)), ("e", "f"));
+    }
+
+    /// Two good vertices and one lane with the given parameters.
+    fn lane_with(params: &str) -> Vec<Diagnostic> {
+        lower(&format!(
+            "    vertices:\n      - [0, 0, 0, a]\n      - [4, 0, 0, b]\n    lanes:\n      - [0, 1, {{{params}}}]\n"
+        ))
+        .1
+    }
+
+    #[test]
+    fn malformed_graph_idx_is_only_e0105() {
+        for p in [
+            "graph_idx: 0",
+            "graph_idx: [2, \"0\"]",
+            "graph_idx: [7, 0]",
+            "graph_idx: [2]",
+            "graph_idx: [2, 0.5]",
+            "graph_idx: [3, .nan]",
+        ] {
+            let diags = lane_with(p);
+            assert_eq!(diags.len(), 1, "{p}: {diags:#?}");
+            assert!(
+                matches!(diags[0].code, "E0105" | "E0104"),
+                "{p}: {diags:#?}"
+            );
+        }
+        // Well-formed parameters of the wrong kind are still E0105 once.
+        for p in ["graph_idx: [1, zero]", "graph_idx: [2, -1]"] {
+            assert_eq!(codes(&lane_with(p)), ["E0105"], "{p}");
+        }
+        // Really absent: E0102, as before.
+        assert_eq!(codes(&lane_with("bidirectional: [4, true]")), ["E0102"]);
+    }
+
+    #[test]
+    fn malformed_required_door_and_measurement_params_are_only_e0105() {
+        let two = "    vertices:\n      - [0, 0, 0, a]\n      - [4, 0, 0, b]\n";
+        for (body, expect) in [
+            (
+                "    doors:\n      - [0, 1, {name: [1, [d]], type: [1, hinged]}]\n",
+                "E0105",
+            ),
+            (
+                "    doors:\n      - [0, 1, {name: [1, d], type: hinged}]\n",
+                "E0105",
+            ),
+            ("    doors:\n      - [0, 1, {type: [1, hinged]}]\n", "E0102"),
+            (
+                "    measurements:\n      - [0, 1, {distance: [3, far]}]\n",
+                "E0105",
+            ),
+            ("    measurements:\n      - [0, 1, {}]\n", "E0102"),
+        ] {
+            let (b, diags) = lower(&format!("{two}{body}"));
+            assert_eq!(codes(&diags), [expect], "{body}: {diags:#?}");
+            assert_eq!(b.doors.len() + b.measurements.len(), 0, "{body}");
         }
     }
 }

@@ -3,8 +3,11 @@
 //! Why our own tree: we need the span of every node, duplicate-key detection, and hard
 //! bounds on depth and alias expansion (alias bombs) that a generic loader does not give.
 
+mod fast;
+
 use mapc_ir::{Diagnostic, FileId, Span};
 use saphyr_parser::{Event, Parser, ScalarStyle};
+use std::borrow::Cow;
 use std::collections::HashMap;
 
 /// Deepest nesting accepted; real maps use 6 levels.
@@ -15,21 +18,23 @@ pub const MAX_NODES: usize = 2_000_000;
 /// alias bombs, cheaply (each expansion is a copy).
 pub const MAX_ALIAS_NODES: usize = 100_000;
 
+/// A node's content. Scalars borrow from the source text when they can, which keeps
+/// parsing and dropping large maps cheap.
 #[derive(Debug, Clone)]
-pub enum Kind {
+pub enum Kind<'a> {
     /// A scalar; `plain` is false for quoted, block and `!!str`-tagged scalars, which are
     /// always strings.
     Scalar {
-        text: String,
+        text: Cow<'a, str>,
         plain: bool,
     },
-    Seq(Vec<Node>),
-    Map(Vec<(Node, Node)>),
+    Seq(Vec<Node<'a>>),
+    Map(Vec<(Node<'a>, Node<'a>)>),
 }
 
 #[derive(Debug, Clone)]
-pub struct Node {
-    pub kind: Kind,
+pub struct Node<'a> {
+    pub kind: Kind<'a>,
     pub span: Span,
 }
 
@@ -43,7 +48,7 @@ pub enum Scalar<'a> {
     Str(&'a str),
 }
 
-impl Node {
+impl<'a> Node<'a> {
     pub fn scalar(&self) -> Option<Scalar<'_>> {
         match &self.kind {
             Kind::Scalar { text, plain: false } => Some(Scalar::Str(text)),
@@ -54,20 +59,20 @@ impl Node {
     pub fn is_null(&self) -> bool {
         matches!(self.scalar(), Some(Scalar::Null))
     }
-    pub fn as_map(&self) -> Option<&[(Node, Node)]> {
+    pub fn as_map(&self) -> Option<&[(Node<'a>, Node<'a>)]> {
         match &self.kind {
             Kind::Map(m) => Some(m),
             _ => None,
         }
     }
-    pub fn as_seq(&self) -> Option<&[Node]> {
+    pub fn as_seq(&self) -> Option<&[Node<'a>]> {
         match &self.kind {
             Kind::Seq(s) => Some(s),
             _ => None,
         }
     }
     /// Value of `key` in a mapping (the last one, as PyYAML does with duplicates).
-    pub fn get(&self, key: &str) -> Option<&Node> {
+    pub fn get(&self, key: &str) -> Option<&Node<'a>> {
         self.as_map()?
             .iter()
             .rev()
@@ -251,18 +256,62 @@ impl<'a> Positions<'a> {
 }
 
 /// An open collection: its items, start span, anchor id and size in nodes so far.
-enum Frame {
-    Seq(Vec<Node>, Span, usize, usize),
-    Map(Vec<(Node, Node)>, Option<Node>, Span, usize, usize),
+enum Frame<'a> {
+    Seq(Vec<Node<'a>>, Span, usize, usize),
+    Map(
+        Vec<(Node<'a>, Node<'a>)>,
+        Option<Node<'a>>,
+        Span,
+        usize,
+        usize,
+    ),
+}
+
+/// Byte just past the closing quote of the quoted scalar starting at `start`.
+fn quoted_end(text: &str, start: usize) -> usize {
+    let b = text.as_bytes();
+    let Some(&q) = b.get(start) else {
+        return start;
+    };
+    if q != b'"' && q != b'\'' {
+        return start;
+    }
+    let mut i = start + 1;
+    while i < b.len() {
+        match b[i] {
+            b'\\' if q == b'"' => i += 2,
+            c if c == q => {
+                if q == b'\'' && b.get(i + 1) == Some(&b'\'') {
+                    i += 2;
+                } else {
+                    return i + 1;
+                }
+            }
+            _ => i += 1,
+        }
+    }
+    b.len()
 }
 
 /// Parses one YAML document. Returns the root or a single error diagnostic (a syntax
-/// error leaves nothing trustworthy to lower).
-pub fn parse(text: &str, file: FileId) -> Result<Node, Diagnostic> {
+/// error leaves nothing trustworthy to lower). Both readers build the same tree: the fast
+/// one for the subset maps are written in, saphyr for everything else.
+pub fn parse(text: &str, file: FileId) -> Result<Node<'_>, Diagnostic> {
+    match fast::parse(text, file) {
+        Some(root) => Ok(root),
+        None => parse_general(text, file),
+    }
+}
+
+/// The general reader (saphyr-parser events). Span conventions, shared with `fast`:
+/// scalars cover their text (quotes included), flow collections run through their closing
+/// bracket, block collections end where their last child ends.
+pub(crate) fn parse_general(text: &str, file: FileId) -> Result<Node<'_>, Diagnostic> {
+    let source = text;
     let pos = Positions::new(text);
     let mut stack: Vec<Frame> = Vec::new();
-    let mut anchors: HashMap<usize, (Node, usize)> = HashMap::new();
-    let mut root: Option<Node> = None;
+    let mut anchors: HashMap<usize, (Node<'_>, usize)> = HashMap::new();
+    let mut root: Option<Node<'_>> = None;
     let mut total_nodes = 0usize;
     let mut alias_nodes = 0usize;
     let mut documents = 0;
@@ -290,7 +339,7 @@ pub fn parse(text: &str, file: FileId) -> Result<Node, Diagnostic> {
         };
         let span = pos.span(file, sp);
         // (node, anchor id) completed by this event, if any.
-        let done: Option<(Node, usize, usize)> = match event {
+        let done: Option<(Node<'_>, usize, usize)> = match event {
             Event::StreamStart | Event::StreamEnd | Event::Nothing | Event::DocumentEnd => None,
             Event::DocumentStart(_) => {
                 documents += 1;
@@ -329,12 +378,14 @@ pub fn parse(text: &str, file: FileId) -> Result<Node, Diagnostic> {
                 total_nodes += 1;
                 let is_str_tag = tag.as_ref().is_some_and(|t| t.suffix == "str");
                 let plain = style == ScalarStyle::Plain && !is_str_tag;
+                let mut span = span;
+                if matches!(style, ScalarStyle::SingleQuoted | ScalarStyle::DoubleQuoted) {
+                    // saphyr's end runs past trailing blanks and comments; stop at the quote.
+                    span.end = quoted_end(source, span.start as usize) as u32;
+                }
                 Some((
                     Node {
-                        kind: Kind::Scalar {
-                            text: text.into_owned(),
-                            plain,
-                        },
+                        kind: Kind::Scalar { text, plain },
                         span,
                     },
                     anchor,
@@ -360,8 +411,14 @@ pub fn parse(text: &str, file: FileId) -> Result<Node, Diagnostic> {
             Event::SequenceEnd => match stack.pop() {
                 Some(Frame::Seq(items, start, anchor, size)) => Some((
                     Node {
+                        span: join(
+                            source,
+                            start,
+                            span,
+                            items.first().map(|n| n.span),
+                            items.last().map(|n| n.span),
+                        ),
                         kind: Kind::Seq(items),
-                        span: join(text, start, span),
                     },
                     anchor,
                     size,
@@ -371,8 +428,14 @@ pub fn parse(text: &str, file: FileId) -> Result<Node, Diagnostic> {
             Event::MappingEnd => match stack.pop() {
                 Some(Frame::Map(items, _, start, anchor, size)) => Some((
                     Node {
+                        span: join(
+                            source,
+                            start,
+                            span,
+                            items.first().map(|(k, _)| k.span),
+                            items.last().map(|(_, v)| v.span),
+                        ),
                         kind: Kind::Map(items),
-                        span: join(text, start, span),
                     },
                     anchor,
                     size,
@@ -405,7 +468,7 @@ pub fn parse(text: &str, file: FileId) -> Result<Node, Diagnostic> {
     }
     Ok(root.unwrap_or(Node {
         kind: Kind::Scalar {
-            text: String::new(),
+            text: Cow::Borrowed(""),
             plain: true,
         },
         span: Span {
@@ -418,20 +481,32 @@ pub fn parse(text: &str, file: FileId) -> Result<Node, Diagnostic> {
     }))
 }
 
-/// Span of a collection from its start to its end event: through the closing bracket of
-/// a flow collection, and without trailing whitespace for block collections.
-fn join(text: &str, a: Span, b: Span) -> Span {
+/// Span of a collection: a flow collection runs through its closing bracket, a block
+/// collection ends where its last child ends.
+fn join(
+    text: &str,
+    a: Span,
+    end_event: Span,
+    first_child: Option<Span>,
+    last_child: Option<Span>,
+) -> Span {
     let bytes = text.as_bytes();
-    let mut end = b.start as usize;
-    if matches!(bytes.get(end), Some(b']' | b'}')) {
-        end += 1;
-    } else {
-        while end > a.start as usize && bytes.get(end - 1).is_some_and(u8::is_ascii_whitespace) {
-            end -= 1;
+    // saphyr starts an indentless block sequence at its first item, which may itself be a
+    // flow collection: a flow collection never starts where its first child does.
+    let flow = matches!(bytes.get(a.start as usize), Some(b'[' | b'{'))
+        && first_child.is_none_or(|c| c.start != a.start);
+    let end = if flow {
+        // The end event sits on the closing bracket, or on a trailing comma before it.
+        let mut i = end_event.start as usize;
+        while matches!(bytes.get(i), Some(b',' | b' ' | b'\n' | b'\t' | b'\r')) {
+            i += 1;
         }
-    }
+        i as u32 + 1
+    } else {
+        last_child.map_or(a.start, |c| c.end.max(c.start))
+    };
     Span {
-        end: (end as u32).max(a.start),
+        end: end.max(a.start),
         ..a
     }
 }
@@ -451,7 +526,7 @@ fn limit_error(span: Span, what: &str, limit: usize) -> Diagnostic {
 mod tests {
     use super::*;
 
-    fn p(s: &str) -> Node {
+    fn p(s: &str) -> Node<'_> {
         parse(s, FileId(0)).unwrap()
     }
 
@@ -520,5 +595,188 @@ mod tests {
     fn duplicate_keys_last_wins() {
         let n = p("a: 1\na: 2\n");
         assert_eq!(n.get("a").unwrap().as_i64(), Some(2));
+    }
+}
+
+/// Differential tests: whenever the fast reader accepts an input, its tree must equal the
+/// general reader's, node for node and span for span.
+#[cfg(test)]
+mod differential {
+    use super::*;
+    use std::path::{Path, PathBuf};
+
+    fn same(a: &Node, b: &Node, at: &str) -> Result<(), String> {
+        if a.span != b.span {
+            return Err(format!("{at}: span {:?} != {:?}", a.span, b.span));
+        }
+        match (&a.kind, &b.kind) {
+            (
+                Kind::Scalar {
+                    text: t1,
+                    plain: p1,
+                },
+                Kind::Scalar {
+                    text: t2,
+                    plain: p2,
+                },
+            ) => {
+                if t1 != t2 || p1 != p2 {
+                    return Err(format!("{at}: scalar {t1:?}/{p1} != {t2:?}/{p2}"));
+                }
+            }
+            (Kind::Seq(x), Kind::Seq(y)) => {
+                if x.len() != y.len() {
+                    return Err(format!("{at}: seq length {} != {}", x.len(), y.len()));
+                }
+                for (i, (p, q)) in x.iter().zip(y).enumerate() {
+                    same(p, q, &format!("{at}[{i}]"))?;
+                }
+            }
+            (Kind::Map(x), Kind::Map(y)) => {
+                if x.len() != y.len() {
+                    return Err(format!("{at}: map length {} != {}", x.len(), y.len()));
+                }
+                for (i, ((k1, v1), (k2, v2))) in x.iter().zip(y).enumerate() {
+                    same(k1, k2, &format!("{at}.key{i}"))?;
+                    same(v1, v2, &format!("{at}.{}", k1.key_text().unwrap_or("?")))?;
+                }
+            }
+            _ => return Err(format!("{at}: kinds differ")),
+        }
+        Ok(())
+    }
+
+    /// Some(true) if fast accepted and agreed, Some(false) if fast declined.
+    fn check(text: &str) -> Result<bool, String> {
+        let Some(f) = fast::parse(text, FileId(0)) else {
+            return Ok(false);
+        };
+        match parse_general(text, FileId(0)) {
+            Ok(g) => same(&f, &g, "root").map(|_| true),
+            Err(d) => Err(format!(
+                "fast accepted input the general reader rejects: {}",
+                d.message
+            )),
+        }
+    }
+
+    fn inputs() -> Vec<PathBuf> {
+        let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("..");
+        let mut out = Vec::new();
+        for dir in ["fixtures", "fixtures/invalid"] {
+            for e in std::fs::read_dir(root.join(dir)).unwrap() {
+                let p = e.unwrap().path();
+                if p.extension().is_some_and(|x| x == "yaml") {
+                    out.push(p);
+                }
+            }
+        }
+        let shared = root.join("../shared/maps");
+        if let Ok(maps) = std::fs::read_dir(&shared) {
+            for m in maps {
+                let m = m.unwrap().path();
+                let name = m.file_name().unwrap().to_string_lossy().into_owned();
+                out.push(m.join(format!("{name}.building.yaml")));
+            }
+        } else {
+            println!("skipped demo maps: ../shared not found");
+        }
+        out.sort();
+        out
+    }
+
+    #[test]
+    fn fast_reader_accepts_real_maps_and_agrees() {
+        for p in inputs() {
+            let text = String::from_utf8_lossy(&std::fs::read(&p).unwrap()).into_owned();
+            let name = p.display().to_string();
+            let accepted = check(&text).unwrap_or_else(|e| panic!("{name}: {e}"));
+            // Every map we or traffic_editor wrote must take the fast path.
+            let must = !name.contains("/invalid/") && !name.contains("web_mercator");
+            if must {
+                assert!(accepted, "{name}: fast reader declined a real map");
+            }
+        }
+    }
+
+    #[test]
+    fn fast_reader_agrees_on_mutations() {
+        // Deterministic single-edit mutations of every input near structural characters.
+        let alphabet: &[&str] = &[
+            "",
+            " ",
+            "  ",
+            "\n",
+            "- ",
+            ": ",
+            ":",
+            ",",
+            "[",
+            "]",
+            "{",
+            "}",
+            "#",
+            " #",
+            "'",
+            "\"",
+            "&a ",
+            "*a",
+            "!",
+            "|",
+            "\t",
+            "?",
+            "-",
+            "\\",
+            "''",
+            "\"\\u00e9\"",
+            "é",
+            "x: y",
+        ];
+        let mut checked = 0;
+        let mut accepted = 0;
+        // MAPC_DIFF_SCALE=k runs k times more mutations (with another seed).
+        let scale: usize = std::env::var("MAPC_DIFF_SCALE")
+            .ok()
+            .and_then(|s| s.parse().ok())
+            .unwrap_or(1);
+        let mut seed = 0x2545F4914F6CDD1Du64 ^ (scale as u64).wrapping_mul(0x9E3779B97F4A7C15);
+        for p in inputs() {
+            let text = String::from_utf8_lossy(&std::fs::read(&p).unwrap()).into_owned();
+            let bytes = text.as_bytes();
+            let n = match bytes.len() {
+                0..=5_000 => 150,
+                5_001..=50_000 => 40,
+                _ => 8,
+            } * scale;
+            for _ in 0..n {
+                seed ^= seed << 13;
+                seed ^= seed >> 7;
+                seed ^= seed << 17;
+                let mut at = (seed % bytes.len().max(1) as u64) as usize;
+                while !text.is_char_boundary(at) {
+                    at -= 1;
+                }
+                let cut = ((seed >> 32) % 3) as usize;
+                let mut end = (at + cut).min(text.len());
+                while !text.is_char_boundary(end) {
+                    end += 1;
+                }
+                let ins = alphabet[((seed >> 40) as usize) % alphabet.len()];
+                let mutated = format!("{}{}{}", &text[..at], ins, &text[end..]);
+                match check(&mutated) {
+                    Ok(a) => accepted += a as usize,
+                    Err(e) => panic!(
+                        "{}: mutation at byte {at} (cut {cut}, insert {ins:?}): {e}",
+                        p.display()
+                    ),
+                }
+                checked += 1;
+            }
+        }
+        assert!(checked > 1000, "{checked}");
+        assert!(
+            accepted > checked / 4,
+            "fast path accepted only {accepted} of {checked}"
+        );
     }
 }

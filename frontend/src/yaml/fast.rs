@@ -1,0 +1,646 @@
+//! A fast reader for the YAML subset that traffic_editor (and careful hand editing)
+//! produces: block mappings and sequences indented with spaces, single-line flow
+//! collections, plain and quoted single-line scalars, comments.
+//!
+//! Why: the general parser costs ~380 instructions per byte, which puts the largest demo
+//! maps at 15-20 ms; this reader is an order of magnitude cheaper. It is not a second YAML
+//! implementation: on anything outside the subset (anchors, tags, block scalars, tabs,
+//! multi-line flow or plain scalars, documents markers, odd indentation, invalid input) it
+//! returns `None` and the caller uses saphyr, which also produces every syntax error. A
+//! differential test and a fuzz target check that whenever this reader accepts an input,
+//! it builds exactly the tree (kinds, texts, spans) that the saphyr path builds.
+
+use super::{Kind, Node, MAX_DEPTH, MAX_NODES};
+use mapc_ir::{FileId, Span};
+use std::borrow::Cow;
+
+/// Gives up: the input is outside the subset (not necessarily invalid).
+struct Bail;
+
+type R<T> = Result<T, Bail>;
+
+struct P<'a> {
+    s: &'a str,
+    b: &'a [u8],
+    pos: usize,
+    line: u32,
+    line_start: usize,
+    file: FileId,
+    nodes: usize,
+    /// Indent of the line the cursor's content is on; `None` at end of input.
+    indent: Option<usize>,
+}
+
+pub(super) fn parse(text: &str, file: FileId) -> Option<Node<'_>> {
+    if text.starts_with('\u{feff}') {
+        return None;
+    }
+    let mut p = P {
+        s: text,
+        b: text.as_bytes(),
+        pos: 0,
+        line: 1,
+        line_start: 0,
+        file,
+        nodes: 0,
+        indent: None,
+    };
+    let root = (|| {
+        p.next_content()?;
+        let indent = p.indent.ok_or(Bail)?;
+        let c = p.b[p.pos];
+        // Only collections at the root; anything else is left to saphyr.
+        let root = if c == b'-' && p.is_sep(p.pos + 1) {
+            p.block_seq(indent, 1)?
+        } else if c == b'[' || c == b'{' {
+            return Err(Bail);
+        } else if p.line_has_key()? {
+            p.block_map(indent, 1)?
+        } else {
+            return Err(Bail);
+        };
+        if p.indent.is_some() {
+            return Err(Bail); // content after the root collection
+        }
+        Ok(root)
+    })();
+    #[cfg(test)]
+    if root.is_err() {
+        eprintln!("fast reader declined at line {} byte {}", p.line, p.pos);
+    }
+    root.ok()
+}
+
+fn is_flow_indicator(c: u8) -> bool {
+    matches!(c, b',' | b'[' | b']' | b'{' | b'}')
+}
+
+impl<'a> P<'a> {
+    fn span(&self, start: usize, end: usize) -> Span {
+        // The start is always on the current line.
+        let prefix = &self.b[self.line_start..start];
+        let col = if prefix.is_ascii() {
+            prefix.len()
+        } else {
+            self.s[self.line_start..start].chars().count()
+        };
+        Span {
+            file: self.file,
+            start: start as u32,
+            end: end as u32,
+            line: self.line,
+            col: col as u32 + 1,
+        }
+    }
+
+    fn count(&mut self) -> R<()> {
+        self.nodes += 1;
+        if self.nodes > MAX_NODES {
+            return Err(Bail);
+        }
+        Ok(())
+    }
+
+    /// Is `i` end of input, a space or a newline (what may follow `-` or `:`)?
+    fn is_sep(&self, i: usize) -> bool {
+        matches!(self.b.get(i), None | Some(b' ') | Some(b'\n'))
+    }
+
+    /// From a line start: skips blank and comment-only lines, leaves the cursor on the
+    /// first content byte and records its indent (or `None` at end of input).
+    fn next_content(&mut self) -> R<()> {
+        loop {
+            let mut i = self.pos;
+            while self.b.get(i) == Some(&b' ') {
+                i += 1;
+            }
+            match self.b.get(i) {
+                None => {
+                    self.pos = i;
+                    self.indent = None;
+                    return Ok(());
+                }
+                Some(b'\n') => self.newline(i),
+                Some(b'#') => {
+                    let nl = self.b[i..].iter().position(|&c| c == b'\n');
+                    match nl {
+                        Some(n) => self.newline(i + n),
+                        None => {
+                            self.pos = self.b.len();
+                            self.indent = None;
+                            return Ok(());
+                        }
+                    }
+                }
+                Some(b'\t' | b'\r') => return Err(Bail),
+                Some(_) => {
+                    self.pos = i;
+                    self.indent = Some(i - self.line_start);
+                    return Ok(());
+                }
+            }
+        }
+    }
+
+    /// Moves past the newline at `i`.
+    fn newline(&mut self, i: usize) {
+        self.pos = i + 1;
+        self.line += 1;
+        self.line_start = i + 1;
+    }
+
+    fn skip_spaces(&mut self) -> R<()> {
+        while let Some(&c) = self.b.get(self.pos) {
+            match c {
+                b' ' => self.pos += 1,
+                b'\t' | b'\r' => return Err(Bail),
+                _ => break,
+            }
+        }
+        Ok(())
+    }
+
+    /// After a value: only spaces and a comment may remain on the line; then moves to
+    /// the next content line.
+    fn finish_line(&mut self) -> R<()> {
+        self.skip_spaces()?;
+        match self.b.get(self.pos) {
+            None => {
+                self.indent = None;
+                Ok(())
+            }
+            Some(b'\n') => {
+                self.newline(self.pos);
+                self.next_content()
+            }
+            Some(b'#') if self.pos > 0 && self.b[self.pos - 1] == b' ' => {
+                match self.b[self.pos..].iter().position(|&c| c == b'\n') {
+                    Some(n) => {
+                        self.newline(self.pos + n);
+                        self.next_content()
+                    }
+                    None => {
+                        self.pos = self.b.len();
+                        self.indent = None;
+                        Ok(())
+                    }
+                }
+            }
+            _ => Err(Bail),
+        }
+    }
+
+    fn at_comment_or_eol(&self) -> bool {
+        match self.b.get(self.pos) {
+            None | Some(b'\n') => true,
+            Some(b'#') => self.pos > 0 && self.b[self.pos - 1] == b' ',
+            _ => false,
+        }
+    }
+
+    /// Does the current line hold `key:` (plain or quoted key) at the cursor?
+    fn line_has_key(&self) -> R<bool> {
+        let b = self.b;
+        let mut i = self.pos;
+        match b.get(i) {
+            Some(b'"') | Some(b'\'') => {
+                let q = b[i];
+                i += 1;
+                loop {
+                    match b.get(i) {
+                        None | Some(b'\n') => return Err(Bail),
+                        Some(b'\\') if q == b'"' => i += 2,
+                        Some(&c) if c == q => {
+                            if q == b'\'' && b.get(i + 1) == Some(&b'\'') {
+                                i += 2;
+                            } else {
+                                i += 1;
+                                break;
+                            }
+                        }
+                        _ => i += 1,
+                    }
+                }
+                while b.get(i) == Some(&b' ') {
+                    i += 1;
+                }
+                Ok(b.get(i) == Some(&b':') && self.is_sep(i + 1))
+            }
+            _ => {
+                while let Some(&c) = b.get(i) {
+                    match c {
+                        b'\n' => return Ok(false),
+                        b':' if self.is_sep(i + 1) => return Ok(true),
+                        b'#' if i > 0 && b[i - 1] == b' ' => return Ok(false),
+                        b'\t' | b'\r' => return Err(Bail),
+                        _ => i += 1,
+                    }
+                }
+                Ok(false)
+            }
+        }
+    }
+
+    /// A null value where nothing follows `key:`: zero width at the colon, where saphyr
+    /// puts it too.
+    fn null_at(&mut self, at: usize, key_span: Span) -> R<Node<'a>> {
+        self.count()?;
+        Ok(Node {
+            kind: Kind::Scalar {
+                text: Cow::Borrowed(""),
+                plain: true,
+            },
+            span: Span {
+                start: at as u32,
+                end: at as u32,
+                col: key_span.col + self.s[key_span.start as usize..at].chars().count() as u32,
+                ..key_span
+            },
+        })
+    }
+
+    fn block_map(&mut self, indent: usize, depth: usize) -> R<Node<'a>> {
+        if depth > MAX_DEPTH {
+            return Err(Bail);
+        }
+        self.count()?;
+        let start = self.span(self.pos, self.pos);
+        let mut items = Vec::new();
+        loop {
+            let key = self.key()?;
+            self.skip_spaces()?;
+            if self.b.get(self.pos) != Some(&b':') {
+                return Err(Bail);
+            }
+            let colon = self.pos;
+            self.pos += 1;
+            self.skip_spaces()?;
+            let value = if self.at_comment_or_eol() {
+                let key_span = key.span;
+                self.finish_line()?;
+                match self.indent {
+                    Some(ind) if ind > indent => self.block_node(ind, depth + 1)?,
+                    Some(ind)
+                        if ind == indent
+                            && self.b[self.pos] == b'-'
+                            && self.is_sep(self.pos + 1) =>
+                    {
+                        // An indentless sequence (`key:` then `- item` at the key's indent).
+                        let mut seq = self.block_seq(indent, depth + 1)?;
+                        // saphyr starts such a sequence at its first item.
+                        if let Kind::Seq(items) = &seq.kind {
+                            if let Some(first) = items.first() {
+                                seq.span = Span {
+                                    end: seq.span.end,
+                                    ..first.span
+                                };
+                            }
+                        }
+                        seq
+                    }
+                    _ => self.null_at(colon, key_span)?,
+                }
+            } else {
+                let v = self.inline_value(depth + 1)?;
+                self.finish_line()?;
+                if self.indent.is_some_and(|i| i > indent) {
+                    return Err(Bail); // continuation lines of a multi-line value
+                }
+                v
+            };
+            items.push((key, value));
+            match self.indent {
+                Some(i) if i == indent => {
+                    if self.b[self.pos] == b'-' && self.is_sep(self.pos + 1) {
+                        return Err(Bail);
+                    }
+                }
+                Some(i) if i > indent => return Err(Bail),
+                _ => break,
+            }
+        }
+        let end = items
+            .last()
+            .map_or(start.start, |(_, v)| v.span.end.max(v.span.start));
+        Ok(Node {
+            kind: Kind::Map(items),
+            span: Span { end, ..start },
+        })
+    }
+
+    fn block_seq(&mut self, indent: usize, depth: usize) -> R<Node<'a>> {
+        if depth > MAX_DEPTH {
+            return Err(Bail);
+        }
+        self.count()?;
+        let start = self.span(self.pos, self.pos);
+        let mut items = Vec::new();
+        loop {
+            // At `-`.
+            self.pos += 1;
+            self.skip_spaces()?;
+            let item = if self.at_comment_or_eol() {
+                self.finish_line()?;
+                match self.indent {
+                    Some(ind) if ind > indent => self.block_node(ind, depth + 1)?,
+                    _ => return Err(Bail), // an empty item
+                }
+            } else if self.b[self.pos] == b'-' && self.is_sep(self.pos + 1) {
+                return Err(Bail); // `- - x`
+            } else if !matches!(self.b[self.pos], b'[' | b'{') && self.line_has_key()? {
+                let col = self.pos - self.line_start;
+                self.block_map(col, depth + 1)?
+            } else {
+                let v = self.inline_value(depth + 1)?;
+                self.finish_line()?;
+                if self.indent.is_some_and(|i| i > indent) {
+                    return Err(Bail);
+                }
+                v
+            };
+            items.push(item);
+            match self.indent {
+                Some(i) if i == indent => {
+                    if !(self.b[self.pos] == b'-' && self.is_sep(self.pos + 1)) {
+                        break; // the next key of a parent mapping at the same indent
+                    }
+                }
+                Some(i) if i > indent => return Err(Bail),
+                _ => break,
+            }
+        }
+        let end = items
+            .last()
+            .map_or(start.start, |v: &Node| v.span.end.max(v.span.start));
+        Ok(Node {
+            kind: Kind::Seq(items),
+            span: Span { end, ..start },
+        })
+    }
+
+    /// A node that starts on its own line at `indent`.
+    fn block_node(&mut self, indent: usize, depth: usize) -> R<Node<'a>> {
+        let c = self.b[self.pos];
+        if c == b'-' && self.is_sep(self.pos + 1) {
+            self.block_seq(indent, depth)
+        } else if self.line_has_key()? {
+            self.block_map(indent, depth)
+        } else {
+            // A flow collection or scalar alone on its line (the editor writes `layers:`
+            // then `{}` on the next line). Continuation lines are caught by the caller,
+            // which declines anything indented deeper than its own entries after this.
+            let v = self.inline_value(depth)?;
+            self.finish_line()?;
+            Ok(v)
+        }
+    }
+
+    fn key(&mut self) -> R<Node<'a>> {
+        match self.b.get(self.pos) {
+            Some(b'"') => self.double_quoted(),
+            Some(b'\'') => self.single_quoted(),
+            _ => self.plain(false),
+        }
+    }
+
+    fn inline_value(&mut self, depth: usize) -> R<Node<'a>> {
+        match self.b.get(self.pos) {
+            Some(b'[' | b'{') => self.flow(depth),
+            Some(b'"') => self.double_quoted(),
+            Some(b'\'') => self.single_quoted(),
+            _ => self.plain(false),
+        }
+    }
+
+    /// A plain scalar; `in_flow` ends it at flow indicators too.
+    fn plain(&mut self, in_flow: bool) -> R<Node<'a>> {
+        let b = self.b;
+        let start = self.pos;
+        match b.get(start) {
+            None => return Err(Bail),
+            Some(&c) => {
+                if matches!(
+                    c,
+                    b'&' | b'*' | b'!' | b'|' | b'>' | b'%' | b'@' | b'`' | b'#' | b'\'' | b'"'
+                ) || is_flow_indicator(c)
+                {
+                    return Err(Bail);
+                }
+                if matches!(c, b'-' | b'?' | b':') && self.is_sep(start + 1) {
+                    return Err(Bail);
+                }
+                if matches!(c, b'-' | b'?' | b':')
+                    && in_flow
+                    && b.get(start + 1).is_some_and(|&n| is_flow_indicator(n))
+                {
+                    return Err(Bail);
+                }
+            }
+        }
+        let mut i = start;
+        let mut end = start;
+        while let Some(&c) = b.get(i) {
+            match c {
+                b'\n' => break,
+                b'\t' | b'\r' => return Err(Bail),
+                b':' if self.is_sep(i + 1)
+                    || (in_flow && b.get(i + 1).is_some_and(|&n| is_flow_indicator(n))) =>
+                {
+                    break
+                }
+                b'#' if b[i - 1] == b' ' => break,
+                c if in_flow && is_flow_indicator(c) => break,
+                b' ' => {}
+                _ => end = i + 1,
+            }
+            i += 1;
+        }
+        if end == start {
+            return Err(Bail);
+        }
+        self.pos = end;
+        self.count()?;
+        Ok(Node {
+            kind: Kind::Scalar {
+                text: Cow::Borrowed(&self.s[start..end]),
+                plain: true,
+            },
+            span: self.span(start, end),
+        })
+    }
+
+    fn single_quoted(&mut self) -> R<Node<'a>> {
+        let b = self.b;
+        let start = self.pos;
+        let mut i = start + 1;
+        let mut owned: Option<String> = None;
+        let mut run = i;
+        loop {
+            match b.get(i) {
+                None | Some(b'\n') | Some(b'\r') => return Err(Bail),
+                Some(b'\'') => {
+                    if b.get(i + 1) == Some(&b'\'') {
+                        let t = owned.get_or_insert_with(String::new);
+                        t.push_str(&self.s[run..i]);
+                        t.push('\'');
+                        i += 2;
+                        run = i;
+                    } else {
+                        i += 1;
+                        break;
+                    }
+                }
+                _ => i += 1,
+            }
+        }
+        let text = match owned {
+            None => Cow::Borrowed(&self.s[start + 1..i - 1]),
+            Some(mut t) => {
+                t.push_str(&self.s[run..i - 1]);
+                Cow::Owned(t)
+            }
+        };
+        self.pos = i;
+        self.count()?;
+        Ok(Node {
+            kind: Kind::Scalar { text, plain: false },
+            span: self.span(start, i),
+        })
+    }
+
+    fn double_quoted(&mut self) -> R<Node<'a>> {
+        let b = self.b;
+        let start = self.pos;
+        let mut i = start + 1;
+        let mut owned: Option<String> = None;
+        let mut run = i;
+        loop {
+            match b.get(i) {
+                None | Some(b'\n') | Some(b'\r') | Some(b'\t') => return Err(Bail),
+                Some(b'"') => {
+                    i += 1;
+                    break;
+                }
+                Some(b'\\') => {
+                    let text = owned.get_or_insert_with(String::new);
+                    text.push_str(&self.s[run..i]);
+                    let (c, len) = match b.get(i + 1) {
+                        Some(b'\\') => ('\\', 2),
+                        Some(b'"') => ('"', 2),
+                        Some(b'/') => ('/', 2),
+                        Some(b'n') => ('\n', 2),
+                        Some(b't') => ('\t', 2),
+                        Some(b'r') => ('\r', 2),
+                        Some(b'0') => ('\0', 2),
+                        Some(b'u') => {
+                            let hex = self.s.get(i + 2..i + 6).ok_or(Bail)?;
+                            let v = u32::from_str_radix(hex, 16).map_err(|_| Bail)?;
+                            (char::from_u32(v).ok_or(Bail)?, 6)
+                        }
+                        _ => return Err(Bail),
+                    };
+                    text.push(c);
+                    i += len;
+                    run = i;
+                }
+                _ => i += 1,
+            }
+        }
+        let text = match owned {
+            None => Cow::Borrowed(&self.s[start + 1..i - 1]),
+            Some(mut t) => {
+                t.push_str(&self.s[run..i - 1]);
+                Cow::Owned(t)
+            }
+        };
+        self.pos = i;
+        self.count()?;
+        Ok(Node {
+            kind: Kind::Scalar { text, plain: false },
+            span: self.span(start, i),
+        })
+    }
+
+    fn flow_skip(&mut self) -> R<()> {
+        while let Some(&c) = self.b.get(self.pos) {
+            match c {
+                b' ' => self.pos += 1,
+                b'\n' | b'\t' | b'\r' | b'#' => return Err(Bail),
+                _ => break,
+            }
+        }
+        Ok(())
+    }
+
+    fn flow_item(&mut self, depth: usize) -> R<Node<'a>> {
+        match self.b.get(self.pos) {
+            Some(b'[' | b'{') => self.flow(depth),
+            Some(b'"') => self.double_quoted(),
+            Some(b'\'') => self.single_quoted(),
+            _ => self.plain(true),
+        }
+    }
+
+    fn flow(&mut self, depth: usize) -> R<Node<'a>> {
+        if depth > MAX_DEPTH {
+            return Err(Bail);
+        }
+        self.count()?;
+        let start = self.pos;
+        let open = self.b[start];
+        self.pos += 1;
+        let kind = if open == b'[' {
+            let mut items = Vec::new();
+            loop {
+                self.flow_skip()?;
+                if self.b.get(self.pos) == Some(&b']') {
+                    break;
+                }
+                items.push(self.flow_item(depth + 1)?);
+                self.flow_skip()?;
+                match self.b.get(self.pos) {
+                    Some(b',') => self.pos += 1,
+                    Some(b']') => break,
+                    _ => return Err(Bail),
+                }
+            }
+            Kind::Seq(items)
+        } else {
+            let mut items = Vec::new();
+            loop {
+                self.flow_skip()?;
+                if self.b.get(self.pos) == Some(&b'}') {
+                    break;
+                }
+                let key = match self.b.get(self.pos) {
+                    Some(b'[' | b'{') => return Err(Bail),
+                    _ => self.flow_item(depth + 1)?,
+                };
+                self.flow_skip()?;
+                // `key:` must be followed by a space here (YAML forbids `a:[` in flow maps).
+                if self.b.get(self.pos) != Some(&b':') || self.b.get(self.pos + 1) != Some(&b' ') {
+                    return Err(Bail);
+                }
+                self.pos += 1;
+                self.flow_skip()?;
+                if matches!(self.b.get(self.pos), Some(b',' | b'}')) {
+                    return Err(Bail); // null value
+                }
+                let value = self.flow_item(depth + 1)?;
+                items.push((key, value));
+                self.flow_skip()?;
+                match self.b.get(self.pos) {
+                    Some(b',') => self.pos += 1,
+                    Some(b'}') => break,
+                    _ => return Err(Bail),
+                }
+            }
+            Kind::Map(items)
+        };
+        self.pos += 1; // the closing bracket
+        Ok(Node {
+            kind,
+            span: self.span(start, self.pos),
+        })
+    }
+}
