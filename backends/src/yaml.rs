@@ -56,13 +56,19 @@ pub fn to_string(root: &Yaml) -> String {
 }
 
 fn indent(out: &mut String, n: usize) {
-    out.extend(std::iter::repeat_n(' ', n));
+    const SPACES: &str = "                                ";
+    let mut n = n;
+    while n > 0 {
+        let k = n.min(SPACES.len());
+        out.push_str(&SPACES[..k]);
+        n -= k;
+    }
 }
 
 fn block_map(out: &mut String, m: &[(String, Yaml)], ind: usize) {
     for (k, v) in m {
         indent(out, ind);
-        out.push_str(&key(k));
+        write_scalar(out, k);
         out.push(':');
         block_value(out, v, ind, true);
     }
@@ -95,7 +101,7 @@ fn block_value(out: &mut String, v: &Yaml, ind: usize, in_map: bool) {
 
 fn flow(out: &mut String, v: &Yaml) {
     match v {
-        Yaml::Str(s) => out.push_str(&scalar_str(s)),
+        Yaml::Str(s) => write_scalar(out, s),
         Yaml::Int(i) => {
             let _ = write!(out, "{i}");
         }
@@ -118,7 +124,7 @@ fn flow(out: &mut String, v: &Yaml) {
                 if i > 0 {
                     out.push_str(", ");
                 }
-                out.push_str(&key(k));
+                write_scalar(out, k);
                 out.push_str(": ");
                 flow(out, x);
             }
@@ -146,14 +152,23 @@ fn yaml_float(f: f64) -> String {
     }
 }
 
-fn key(k: &str) -> String {
-    scalar_str(k)
+/// Writes a string scalar, plain when that is unambiguous (the common case, no allocation).
+fn write_scalar(out: &mut String, s: &str) {
+    if is_plain_safe(s) {
+        out.push_str(s);
+    } else {
+        out.push_str(&quoted(s));
+    }
 }
 
+#[cfg(test)]
 fn scalar_str(s: &str) -> String {
-    if is_plain_safe(s) {
-        return s.to_string();
-    }
+    let mut out = String::new();
+    write_scalar(&mut out, s);
+    out
+}
+
+fn quoted(s: &str) -> String {
     if s.chars().all(|c| !c.is_control()) {
         return format!("'{}'", s.replace('\'', "''"));
     }
@@ -176,23 +191,24 @@ fn scalar_str(s: &str) -> String {
 }
 
 fn is_plain_safe(s: &str) -> bool {
-    let Some(first) = s.chars().next() else {
+    let b = s.as_bytes();
+    let Some(&first) = b.first() else {
         return false;
     };
-    if !(first.is_ascii_alphabetic() || first == '_' || first == '/') {
+    if !(first.is_ascii_alphabetic() || first == b'_' || first == b'/') {
         return false;
     }
-    if !s
-        .chars()
-        .all(|c| c.is_ascii_alphanumeric() || matches!(c, '_' | '-' | '.' | '/'))
+    if !b
+        .iter()
+        .all(|&c| c.is_ascii_alphanumeric() || matches!(c, b'_' | b'-' | b'.' | b'/'))
     {
         return false;
     }
     // Words YAML 1.1 resolves to booleans or null.
-    !matches!(
-        s.to_ascii_lowercase().as_str(),
-        "y" | "n" | "yes" | "no" | "on" | "off" | "true" | "false" | "null"
-    )
+    !(b.len() <= 5
+        && ["y", "n", "yes", "no", "on", "off", "true", "false", "null"]
+            .iter()
+            .any(|w| s.eq_ignore_ascii_case(w)))
 }
 
 #[cfg(test)]

@@ -4,6 +4,17 @@
 use crate::yaml::{Kind, Node, Scalar};
 use mapc_ir::*;
 use std::collections::HashSet;
+use std::fmt::Display;
+
+/// "<what> `<key>`", formatted only when a diagnostic needs it (lowering reads tens of
+/// thousands of fields and almost never reports one).
+struct Field<'a>(&'a str, &'a str);
+
+impl Display for Field<'_> {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(f, "{} `{}`", self.0, self.1)
+    }
+}
 
 pub(crate) struct Lower<'d> {
     pub diags: &'d mut Vec<Diagnostic>,
@@ -91,15 +102,23 @@ impl Lower<'_> {
     pub fn map<'n, 's>(
         &mut self,
         node: &'n Node<'s>,
-        what: &str,
+        what: impl Display + Copy,
     ) -> Option<&'n [(Node<'s>, Node<'s>)]> {
         match &node.kind {
             Kind::Map(m) => {
                 if m.len() > 1 {
-                    let mut seen = HashSet::with_capacity(m.len());
-                    for (k, _) in m {
+                    // Most mappings are small parameter maps: compare pairwise there and
+                    // hash only large ones.
+                    let small = m.len() <= 16;
+                    let mut seen = HashSet::new();
+                    for (i, (k, _)) in m.iter().enumerate() {
                         if let Some(t) = k.key_text() {
-                            if !seen.insert(t) {
+                            let dup = if small {
+                                m[..i].iter().any(|(p, _)| p.key_text() == Some(t))
+                            } else {
+                                !seen.insert(t)
+                            };
+                            if dup {
                                 self.warn(
                                     "W0102",
                                     k.span,
@@ -122,13 +141,17 @@ impl Lower<'_> {
                 Some(&[])
             }
             _ => {
-                self.wrong_type(node, what, "a mapping");
+                self.wrong_type(node, &what.to_string(), "a mapping");
                 None
             }
         }
     }
 
-    pub fn seq<'n, 's>(&mut self, node: &'n Node<'s>, what: &str) -> Option<&'n [Node<'s>]> {
+    pub fn seq<'n, 's>(
+        &mut self,
+        node: &'n Node<'s>,
+        what: impl Display + Copy,
+    ) -> Option<&'n [Node<'s>]> {
         match &node.kind {
             Kind::Seq(s) => Some(s),
             _ if node.is_null() => {
@@ -141,7 +164,7 @@ impl Lower<'_> {
                 Some(&[])
             }
             _ => {
-                self.wrong_type(node, what, "a sequence");
+                self.wrong_type(node, &what.to_string(), "a sequence");
                 None
             }
         }
@@ -162,7 +185,7 @@ impl Lower<'_> {
         }
     }
 
-    pub fn f64(&mut self, node: &Node, what: &str) -> Option<f64> {
+    pub fn f64(&mut self, node: &Node, what: impl Display) -> Option<f64> {
         match node.as_f64() {
             Some(v) if v.is_finite() => Some(v),
             Some(_) => {
@@ -175,38 +198,38 @@ impl Lower<'_> {
                 None
             }
             None => {
-                self.wrong_type(node, what, "a number");
+                self.wrong_type(node, &what.to_string(), "a number");
                 None
             }
         }
     }
 
-    pub fn i64(&mut self, node: &Node, what: &str) -> Option<i64> {
+    pub fn i64(&mut self, node: &Node, what: impl Display) -> Option<i64> {
         let v = node.as_i64();
         if v.is_none() {
-            self.wrong_type(node, what, "an integer");
+            self.wrong_type(node, &what.to_string(), "an integer");
         }
         v
     }
 
-    pub fn bool(&mut self, node: &Node, what: &str) -> Option<bool> {
+    pub fn bool(&mut self, node: &Node, what: impl Display) -> Option<bool> {
         // Old files and crowd_sim write 0/1 for booleans.
         match node.scalar() {
             Some(Scalar::Bool(b)) => Some(b),
             Some(Scalar::Int(i)) if i == 0 || i == 1 => Some(i == 1),
             _ => {
-                self.wrong_type(node, what, "a boolean");
+                self.wrong_type(node, &what.to_string(), "a boolean");
                 None
             }
         }
     }
 
-    pub fn string(&mut self, node: &Node, what: &str) -> Option<String> {
+    pub fn string(&mut self, node: &Node, what: impl Display) -> Option<String> {
         match &node.kind {
             Kind::Scalar { text, .. } if !node.is_null() => Some(text.to_string()),
             _ if node.is_null() => Some(String::new()),
             _ => {
-                self.wrong_type(node, what, "a string");
+                self.wrong_type(node, &what.to_string(), "a string");
                 None
             }
         }
@@ -232,50 +255,48 @@ impl Lower<'_> {
 
     fn opt_f64(&mut self, parent: &Node, key: &str, what: &str, default: f64) -> f64 {
         match parent.get(key) {
-            Some(n) => self.f64(n, &format!("{what} `{key}`")).unwrap_or(default),
+            Some(n) => self.f64(n, Field(what, key)).unwrap_or(default),
             None => default,
         }
     }
     fn opt_i64(&mut self, parent: &Node, key: &str, what: &str, default: i64) -> i64 {
         match parent.get(key) {
-            Some(n) => self.i64(n, &format!("{what} `{key}`")).unwrap_or(default),
+            Some(n) => self.i64(n, Field(what, key)).unwrap_or(default),
             None => default,
         }
     }
     fn opt_string(&mut self, parent: &Node, key: &str, what: &str) -> String {
         match parent.get(key) {
-            Some(n) => self
-                .string(n, &format!("{what} `{key}`"))
-                .unwrap_or_default(),
+            Some(n) => self.string(n, Field(what, key)).unwrap_or_default(),
             None => String::new(),
         }
     }
     fn opt_bool(&mut self, parent: &Node, key: &str, what: &str, default: bool) -> bool {
         match parent.get(key) {
-            Some(n) => self.bool(n, &format!("{what} `{key}`")).unwrap_or(default),
+            Some(n) => self.bool(n, Field(what, key)).unwrap_or(default),
             None => default,
         }
     }
     fn req_f64(&mut self, parent: &Node, key: &str, what: &str) -> Option<f64> {
         let n = self.require(parent, key, what)?;
-        self.f64(n, &format!("{what} `{key}`"))
+        self.f64(n, Field(what, key))
     }
     fn req_string(&mut self, parent: &Node, key: &str, what: &str) -> Option<String> {
         let n = self.require(parent, key, what)?;
-        self.string(n, &format!("{what} `{key}`"))
+        self.string(n, Field(what, key))
     }
 
     /// A `{name: [type_code, value], ...}` map.
-    pub fn params(&mut self, node: &Node, what: &str) -> Params {
+    pub fn params(&mut self, node: &Node, what: impl Display + Copy) -> Params {
         self.params_checked(node, what).0
     }
 
     /// [`Self::params`], plus the names of the parameters that are present but malformed
     /// (reported here, and left out of the `Params`).
-    fn params_checked(&mut self, node: &Node, what: &str) -> (Params, Vec<String>) {
+    fn params_checked(&mut self, node: &Node, what: impl Display + Copy) -> (Params, Vec<String>) {
         let mut out = Params::default();
         let mut invalid = Vec::new();
-        let Some(entries) = self.map(node, &format!("the parameters of {what}")) else {
+        let Some(entries) = self.map(node, format_args!("the parameters of {what}")) else {
             return (out, invalid);
         };
         for (k, v) in entries {
@@ -748,8 +769,8 @@ impl Lower<'_> {
     }
 
     fn coord_pair(&mut self, x: &Node, y: &Node, what: &str) -> Option<Vec2> {
-        let x = self.f64(x, &format!("the x coordinate of {what}"));
-        let y = self.f64(y, &format!("the y coordinate of {what}"));
+        let x = self.f64(x, format_args!("the x coordinate of {what}"));
+        let y = self.f64(y, format_args!("the y coordinate of {what}"));
         Some(Vec2::new(x?, y?))
     }
 
@@ -775,7 +796,7 @@ impl Lower<'_> {
         self.f64(&items[2], "the z of a vertex");
         let name = self.string(&items[3], "a vertex name")?;
         let params = match items.get(4) {
-            Some(p) => self.params(p, &format!("vertex `{name}`")),
+            Some(p) => self.params(p, format_args!("vertex `{name}`")),
             None => Params::default(),
         };
         if items.len() > 5 {
@@ -849,7 +870,7 @@ impl Lower<'_> {
         let e = self.vertex_index(b, level, &items[1], slots);
         // Parameters are checked even when an index failed: their problems are their own.
         let (params, invalid) = match items.get(2) {
-            Some(p) => self.params_checked(p, &format!("an entry of `{key}`")),
+            Some(p) => self.params_checked(p, format_args!("an entry of `{key}`")),
             None => Default::default(),
         };
         Some(Edge {
@@ -1064,7 +1085,7 @@ impl Lower<'_> {
             }
         }
         let params = match node.get("parameters") {
-            Some(p) => self.params(p, &format!("an entry of `{key}`")),
+            Some(p) => self.params(p, format_args!("an entry of `{key}`")),
             None => Params::default(),
         };
         ok.then_some(Polygon {

@@ -29,6 +29,9 @@ struct P<'a> {
     nodes: usize,
     /// Indent of the line the cursor's content is on; `None` at end of input.
     indent: Option<usize>,
+    /// Whether the current line is ASCII (so columns are byte offsets); computed once per
+    /// line on first use.
+    line_ascii: Option<bool>,
 }
 
 pub(super) fn parse(text: &str, file: FileId) -> Option<Node<'_>> {
@@ -44,6 +47,7 @@ pub(super) fn parse(text: &str, file: FileId) -> Option<Node<'_>> {
         file,
         nodes: 0,
         indent: None,
+        line_ascii: None,
     };
     let root = (|| {
         p.next_content()?;
@@ -71,16 +75,32 @@ pub(super) fn parse(text: &str, file: FileId) -> Option<Node<'_>> {
     root.ok()
 }
 
+/// Bytes that can end or complicate a plain scalar.
+static SPECIAL: [bool; 256] = {
+    let mut t = [false; 256];
+    let list = b"\n\t\r:#,[]{} ";
+    let mut i = 0;
+    while i < list.len() {
+        t[list[i] as usize] = true;
+        i += 1;
+    }
+    t
+};
+
 fn is_flow_indicator(c: u8) -> bool {
     matches!(c, b',' | b'[' | b']' | b'{' | b'}')
 }
 
 impl<'a> P<'a> {
-    fn span(&self, start: usize, end: usize) -> Span {
+    fn span(&mut self, start: usize, end: usize) -> Span {
         // The start is always on the current line.
-        let prefix = &self.b[self.line_start..start];
-        let col = if prefix.is_ascii() {
-            prefix.len()
+        let ascii = *self.line_ascii.get_or_insert_with(|| {
+            let rest = &self.b[self.line_start..];
+            let len = rest.iter().position(|&c| c == b'\n').unwrap_or(rest.len());
+            rest[..len].is_ascii()
+        });
+        let col = if ascii {
+            start - self.line_start
         } else {
             self.s[self.line_start..start].chars().count()
         };
@@ -147,6 +167,7 @@ impl<'a> P<'a> {
         self.pos = i + 1;
         self.line += 1;
         self.line_start = i + 1;
+        self.line_ascii = None;
     }
 
     fn skip_spaces(&mut self) -> R<()> {
@@ -440,6 +461,12 @@ impl<'a> P<'a> {
         let mut i = start;
         let mut end = start;
         while let Some(&c) = b.get(i) {
+            if !SPECIAL[c as usize] {
+                // Most bytes of a scalar are ordinary: no further checks.
+                i += 1;
+                end = i;
+                continue;
+            }
             match c {
                 b'\n' => break,
                 b'\t' | b'\r' => return Err(Bail),
@@ -590,7 +617,8 @@ impl<'a> P<'a> {
         let open = self.b[start];
         self.pos += 1;
         let kind = if open == b'[' {
-            let mut items = Vec::new();
+            // Map entries are short flow lists (vertices have 4-5 items, lanes 3).
+            let mut items = Vec::with_capacity(6);
             loop {
                 self.flow_skip()?;
                 if self.b.get(self.pos) == Some(&b']') {

@@ -83,7 +83,8 @@ impl<'a> Node<'a> {
     pub fn key_text(&self) -> Option<&str> {
         match &self.kind {
             Kind::Scalar { text, plain } => {
-                if *plain && matches!(resolve_plain(text), Scalar::Null) {
+                // Same null spellings as `resolve_plain`, without resolving numbers.
+                if *plain && matches!(&**text, "" | "~" | "null" | "Null" | "NULL") {
                     None
                 } else {
                     Some(text)
