@@ -13,6 +13,17 @@ pub use codes::{Code, CODES};
 use mapc_ir::{Building, Diagnostic, FileId, Span};
 use std::path::{Path, PathBuf};
 
+/// Hooks for fuzz targets only (feature `fuzzing`); not part of the stable API.
+#[cfg(feature = "fuzzing")]
+#[doc(hidden)]
+pub mod fuzzing {
+    /// `Ok(true)` when the fast YAML reader accepted `text` and built the same tree as the
+    /// general reader, `Ok(false)` when it declined, `Err` on any disagreement.
+    pub fn yaml_differential(text: &str) -> Result<bool, String> {
+        crate::yaml::oracle::check(text)
+    }
+}
+
 /// Largest input file accepted (bytes). Real maps are under 1 MB.
 pub const MAX_FILE_BYTES: u64 = 64 * 1024 * 1024;
 

@@ -599,14 +599,14 @@ mod tests {
     }
 }
 
-/// Differential tests: whenever the fast reader accepts an input, its tree must equal the
-/// general reader's, node for node and span for span.
-#[cfg(test)]
-mod differential {
+/// The differential oracle: whenever the fast reader accepts an input, its tree must equal
+/// the general reader's, node for node and span for span. Used by the tests below and by
+/// the `yaml_diff` fuzz target (feature `fuzzing`).
+#[cfg(any(test, feature = "fuzzing"))]
+pub(crate) mod oracle {
     use super::*;
-    use std::path::{Path, PathBuf};
 
-    fn same(a: &Node, b: &Node, at: &str) -> Result<(), String> {
+    pub(crate) fn same(a: &Node, b: &Node, at: &str) -> Result<(), String> {
         if a.span != b.span {
             return Err(format!("{at}: span {:?} != {:?}", a.span, b.span));
         }
@@ -648,7 +648,7 @@ mod differential {
     }
 
     /// Some(true) if fast accepted and agreed, Some(false) if fast declined.
-    fn check(text: &str) -> Result<bool, String> {
+    pub(crate) fn check(text: &str) -> Result<bool, String> {
         let Some(f) = fast::parse(text, FileId(0)) else {
             return Ok(false);
         };
@@ -660,6 +660,13 @@ mod differential {
             )),
         }
     }
+
+}
+
+#[cfg(test)]
+mod differential {
+    use super::oracle::check;
+    use std::path::{Path, PathBuf};
 
     fn inputs() -> Vec<PathBuf> {
         let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("..");
