@@ -121,7 +121,8 @@ pub const MISSING_KEY: Code = Code {
 /// **Why it matters:** the reference crashes with `IndexError`, or, for negative indices,
 /// silently uses a vertex counted from the end of the list.
 ///
-/// **Fix:** use a 0-based index into the same level's `vertices`.
+/// **Fix:** use a 0-based index into the same level's `vertices`. (An index that points at
+/// a vertex which itself failed to parse is not reported again: fix that vertex.)
 ///
 /// **Example:**
 /// ```yaml
