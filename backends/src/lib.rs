@@ -3,10 +3,12 @@
 //! job, so backends do no I/O and never see a path outside the output tree.
 
 mod fmt;
+mod mesh;
 mod nav;
 mod yaml;
 
 pub use fmt::py_float;
+pub use mesh::{Material, Mesh, MeshKind};
 pub use nav::{crossed_door, nav_graph, nav_graphs, segment_intersection};
 pub use yaml::{to_string as yaml_to_string, Yaml};
 
