@@ -35,7 +35,7 @@ struct P<'a> {
 }
 
 pub(super) fn parse(text: &str, file: FileId) -> Option<Node<'_>> {
-    if text.starts_with('\u{feff}') {
+    if text.starts_with('\u{feff}') || has_unprintable(text.as_bytes()) {
         return None;
     }
     let mut p = P {
@@ -73,6 +73,22 @@ pub(super) fn parse(text: &str, file: FileId) -> Option<Node<'_>> {
         eprintln!("fast reader declined at line {} byte {}", p.line, p.pos);
     }
     root.ok()
+}
+
+/// Characters YAML does not allow in a stream (controls other than tab, LF and CR; C1
+/// controls other than NEL; U+FFFE and U+FFFF): the general reader reports them.
+fn has_unprintable(b: &[u8]) -> bool {
+    b.iter().enumerate().any(|(i, &c)| match c {
+        b'\t' | b'\n' | b'\r' => false,
+        0..=0x1f | 0x7f => true,
+        // U+0080..U+009F are C2 80..C2 9F; U+0085 (NEL) is allowed.
+        0xc2 => b
+            .get(i + 1)
+            .is_some_and(|&n| (0x80..=0x9f).contains(&n) && n != 0x85),
+        // U+FFFE, U+FFFF are EF BF BE, EF BF BF.
+        0xef => b.get(i + 1) == Some(&0xbf) && matches!(b.get(i + 2), Some(0xbe | 0xbf)),
+        _ => false,
+    })
 }
 
 /// Bytes that can end or complicate a plain scalar.

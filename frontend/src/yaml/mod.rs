@@ -660,7 +660,6 @@ pub(crate) mod oracle {
             )),
         }
     }
-
 }
 
 #[cfg(test)]
@@ -671,7 +670,7 @@ mod differential {
     fn inputs() -> Vec<PathBuf> {
         let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("..");
         let mut out = Vec::new();
-        for dir in ["fixtures", "fixtures/invalid"] {
+        for dir in ["fixtures", "fixtures/invalid", "tests/fuzz_regressions"] {
             for e in std::fs::read_dir(root.join(dir)).unwrap() {
                 let p = e.unwrap().path();
                 if p.extension().is_some_and(|x| x == "yaml") {
@@ -700,11 +699,28 @@ mod differential {
             let name = p.display().to_string();
             let accepted = check(&text).unwrap_or_else(|e| panic!("{name}: {e}"));
             // Every map we or traffic_editor wrote must take the fast path.
-            let must = !name.contains("/invalid/") && !name.contains("web_mercator");
+            let must = !name.contains("/invalid/")
+                && !name.contains("fuzz_regressions")
+                && !name.contains("web_mercator");
             if must {
                 assert!(accepted, "{name}: fast reader declined a real map");
             }
         }
+    }
+
+    #[test]
+    fn fast_reader_declines_what_yaml_forbids() {
+        // Found by the yaml_diff fuzz target: control characters are not printable YAML.
+        for text in [
+            "a: b\u{b}\nc: d\n",
+            "a: [1\u{0} 0]\n",
+            "a: x\u{7f}\n",
+            "a: \u{9f}\n",
+            "a: \u{fffe}\n",
+        ] {
+            assert_eq!(check(text), Ok(false), "{text:?}");
+        }
+        assert_eq!(check("a: caf\u{e9} \u{85}\n"), Ok(true));
     }
 
     #[test]
