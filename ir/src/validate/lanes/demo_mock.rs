@@ -1,13 +1,11 @@
 //! # E0212 demo-mock-incomplete
 //!
-//! **What:** a lane has `demo_mock_floor_name` without `demo_mock_lift_name` (an error), or
-//! `demo_mock_lift_name` without `demo_mock_floor_name` (reported with this code as a
-//! warning: the lift name alone is ignored).
+//! **What:** a lane has `demo_mock_floor_name` without `demo_mock_lift_name`. (The reverse,
+//! a lift without a floor, is the warning W0213.)
 //!
 //! **Why it matters:** the two parameters together turn a lane into a "mock lift" ride for
 //! demos (the robot pretends to take the named lift to the named floor). The fleet adapter
 //! refuses to load a graph with a mock floor but no mock lift, so the fleet fails to start.
-//! A mock lift without a floor does nothing, which is probably not what was intended.
 //!
 //! **Fix:** set both parameters on the lane, or neither.
 //!
@@ -24,7 +22,7 @@ use crate::Diagnostic;
 pub(crate) static RULE: Rule = Rule {
     code: "E0212",
     name: "demo-mock-incomplete",
-    summary: "demo_mock_floor_name without demo_mock_lift_name (or the reverse)",
+    summary: "demo_mock_floor_name without demo_mock_lift_name",
     check,
 };
 
@@ -42,19 +40,6 @@ fn check(ctx: &Context, out: &mut Vec<Diagnostic>) {
                     ),
                 )
                 .with_help("add `demo_mock_lift_name: [1, <lift name>]`, or remove the floor"),
-                ctx,
-                h,
-            )),
-            (None, Some(lift)) => out.push(label_lane(
-                Diagnostic::warning(
-                    RULE.code,
-                    span("demo_mock_lift_name"),
-                    format!(
-                        "lane has `demo_mock_lift_name` `{lift}` but no \
-                         `demo_mock_floor_name`; the lift name is ignored"
-                    ),
-                )
-                .with_help("add `demo_mock_floor_name: [1, <level name>]`, or remove the lift"),
                 ctx,
                 h,
             )),
@@ -87,6 +72,7 @@ mod tests {
         assert!(run(None, None).is_empty());
         assert!(run(Some("L2"), Some("lift1")).is_empty());
         assert_eq!(run(Some("L2"), None), vec![Severity::Error]);
-        assert_eq!(run(None, Some("lift1")), vec![Severity::Warning]);
+        // Reported by W0213 instead.
+        assert!(run(None, Some("lift1")).is_empty());
     }
 }

@@ -5,6 +5,7 @@ use super::Rule;
 mod crosses_wall;
 mod dead_end;
 mod demo_mock;
+mod demo_mock_lift_only;
 mod disconnected;
 mod duplicate;
 mod geom;
@@ -29,6 +30,7 @@ pub(super) static RULES: &[&Rule] = &[
     &orientation::RULE,
     &speed_limit::RULE,
     &demo_mock::RULE,
+    &demo_mock_lift_only::RULE,
 ];
 
 /// Adds a "the lane" label, unless the diagnostic already points into the lane's first
