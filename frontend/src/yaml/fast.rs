@@ -76,7 +76,8 @@ pub(super) fn parse(text: &str, file: FileId) -> Option<Node<'_>> {
 }
 
 /// Characters YAML does not allow in a stream (controls other than tab, LF and CR; C1
-/// controls other than NEL; U+FFFE and U+FFFF): the general reader reports them.
+/// controls other than NEL; U+FFFE and U+FFFF; a byte order mark inside the document):
+/// the general reader reports them.
 fn has_unprintable(b: &[u8]) -> bool {
     b.iter().enumerate().any(|(i, &c)| match c {
         b'\t' | b'\n' | b'\r' => false,
@@ -85,8 +86,12 @@ fn has_unprintable(b: &[u8]) -> bool {
         0xc2 => b
             .get(i + 1)
             .is_some_and(|&n| (0x80..=0x9f).contains(&n) && n != 0x85),
-        // U+FFFE, U+FFFF are EF BF BE, EF BF BF.
-        0xef => b.get(i + 1) == Some(&0xbf) && matches!(b.get(i + 2), Some(0xbe | 0xbf)),
+        // U+FFFE, U+FFFF are EF BF BE, EF BF BF; a byte order mark (EF BB BF) may only
+        // start the stream, and even there we leave it to the general reader.
+        0xef => {
+            (b.get(i + 1) == Some(&0xbf) && matches!(b.get(i + 2), Some(0xbe | 0xbf)))
+                || (b.get(i + 1) == Some(&0xbb) && b.get(i + 2) == Some(&0xbf))
+        }
         _ => false,
     })
 }

@@ -717,6 +717,7 @@ mod differential {
             "a: x\u{7f}\n",
             "a: \u{9f}\n",
             "a: \u{fffe}\n",
+            "a: [0,\u{feff} 0]\n",
         ] {
             assert_eq!(check(text), Ok(false), "{text:?}");
         }
