@@ -29,8 +29,8 @@ pub(crate) static RULE: Rule = Rule {
 fn check(ctx: &Context, out: &mut Vec<Diagnostic>) {
     for (h, lane) in ctx.b.lanes.iter() {
         let span = |name: &str| lane.params.param(name).map_or(ctx.lane_span(h), |p| p.span);
-        match (&lane.demo_mock_floor_name, &lane.demo_mock_lift_name) {
-            (Some(floor), None) => out.push(label_lane(
+        if let (Some(floor), None) = (&lane.demo_mock_floor_name, &lane.demo_mock_lift_name) {
+            out.push(label_lane(
                 Diagnostic::error(
                     RULE.code,
                     span("demo_mock_floor_name"),
@@ -42,8 +42,7 @@ fn check(ctx: &Context, out: &mut Vec<Diagnostic>) {
                 .with_help("add `demo_mock_lift_name: [1, <lift name>]`, or remove the floor"),
                 ctx,
                 h,
-            )),
-            _ => {}
+            ));
         }
     }
 }
