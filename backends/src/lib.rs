@@ -9,7 +9,7 @@ mod yaml;
 
 pub use fmt::py_float;
 pub use mesh::{Material, Mesh, MeshKind};
-pub use nav::{crossed_door, nav_graph, nav_graphs, segment_intersection};
+pub use nav::{nav_graph, nav_graphs};
 pub use yaml::{to_string as yaml_to_string, Yaml};
 
 use std::path::PathBuf;

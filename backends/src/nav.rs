@@ -174,8 +174,8 @@ fn lane_params(
     } else {
         (lane.start, lane.end)
     };
-    if let Some(door) = crossed_door(b, lh, b.vertices[from].pos, b.vertices[to].pos) {
-        p.insert("door_name".into(), Yaml::str(door));
+    if let Some(door) = b.crossed_door(lh, b.vertices[from].pos, b.vertices[to].pos) {
+        p.insert("door_name".into(), Yaml::str(&b.doors[door].name));
     }
     let orientation = if reverse {
         lane.orientation.reversed()
@@ -210,72 +210,4 @@ fn lane_params(
         p.insert("undock_name".into(), Yaml::str(d));
     }
     p
-}
-
-/// The door of level `lh` that the lane from `a` to `b` crosses first, if any. Unlike the
-/// reference (raw coordinates, absolute threshold, last door wins), this works in metres
-/// with a scale-free parallel test, so it also finds doors on wgs84 maps.
-pub fn crossed_door(b: &Building, lh: Handle<Level>, a: Vec2, z: Vec2) -> Option<&str> {
-    let mut best: Option<(f64, &str)> = None;
-    for &dh in &b.levels[lh].doors {
-        let d = &b.doors[dh];
-        let (p, q) = (b.vertices[d.start].pos, b.vertices[d.end].pos);
-        if let Some(t) = segment_intersection(a, z, p, q) {
-            if best.is_none_or(|(bt, _)| t < bt) {
-                best = Some((t, &d.name));
-            }
-        }
-    }
-    best.map(|(_, n)| n)
-}
-
-/// Parameter along `a→b` where it meets segment `p→q` (endpoints included); `None` for
-/// parallel, colinear or degenerate segments.
-pub fn segment_intersection(a: Vec2, b: Vec2, p: Vec2, q: Vec2) -> Option<f64> {
-    let r = b.minus(a);
-    let s = q.minus(p);
-    let denom = r.cross(s);
-    if denom.abs() <= 1e-12 * r.norm() * s.norm() || denom == 0.0 {
-        return None;
-    }
-    let ap = p.minus(a);
-    let t = ap.cross(s) / denom;
-    let u = ap.cross(r) / denom;
-    let eps = 1e-9;
-    ((-eps..=1.0 + eps).contains(&t) && (-eps..=1.0 + eps).contains(&u)).then_some(t)
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn intersection_cases() {
-        let v = Vec2::new;
-        // Crossing at the middle.
-        assert_eq!(
-            segment_intersection(v(0., 0.), v(2., 0.), v(1., -1.), v(1., 1.)),
-            Some(0.5)
-        );
-        // Touching at an endpoint counts.
-        assert!(segment_intersection(v(0., 0.), v(1., 0.), v(1., 0.), v(1., 1.)).is_some());
-        // Parallel and colinear never intersect.
-        assert_eq!(
-            segment_intersection(v(0., 0.), v(1., 0.), v(0., 1.), v(1., 1.)),
-            None
-        );
-        assert_eq!(
-            segment_intersection(v(0., 0.), v(2., 0.), v(1., 0.), v(3., 0.)),
-            None
-        );
-        // Missing by a little.
-        assert_eq!(
-            segment_intersection(v(0., 0.), v(1., 0.), v(1.1, -1.), v(1.1, 1.)),
-            None
-        );
-        // Scale-free: tiny (degree-sized) segments work.
-        assert!(
-            segment_intersection(v(0., 0.), v(2e-5, 0.), v(1e-5, -1e-5), v(1e-5, 1e-5)).is_some()
-        );
-    }
 }

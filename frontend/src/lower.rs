@@ -807,7 +807,7 @@ impl Lower<'_> {
                 "remove them",
             );
         }
-        let roles = self.roles(&params);
+        let roles = WaypointRoles::from_params(&params);
         Some(Vertex {
             level,
             name,
@@ -816,26 +816,6 @@ impl Lower<'_> {
             params,
             roles,
         })
-    }
-
-    fn roles(&mut self, p: &Params) -> WaypointRoles {
-        let s = |k: &str| p.str(k).filter(|s| !s.is_empty()).map(str::to_string);
-        WaypointRoles {
-            is_charger: p.bool("is_charger").unwrap_or(false),
-            is_parking_spot: p.bool("is_parking_spot").unwrap_or(false),
-            is_holding_point: p.bool("is_holding_point").unwrap_or(false),
-            is_passthrough_point: p.bool("is_passthrough_point").unwrap_or(false),
-            is_cleaning_zone: p.bool("is_cleaning_zone").unwrap_or(false),
-            dock_name: s("dock_name"),
-            pickup_dispenser: s("pickup_dispenser"),
-            dropoff_ingestor: s("dropoff_ingestor"),
-            spawn_robot_type: s("spawn_robot_type"),
-            spawn_robot_name: s("spawn_robot_name"),
-            mutex: s("mutex"),
-            lift_cabin: s("lift_cabin"),
-            merge_radius: p.f64("merge_radius"),
-            human_goal_set_name: s("human_goal_set_name"),
-        }
     }
 
     fn edge(

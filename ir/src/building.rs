@@ -174,6 +174,31 @@ pub struct WaypointRoles {
     pub human_goal_set_name: Option<String>,
 }
 
+impl WaypointRoles {
+    /// Roles from vertex params. Flags are true only when the bool param is true; names
+    /// count only when non-empty. (The reference registers a charger for any `is_charger`
+    /// key, even false; mapc does not.)
+    pub fn from_params(p: &Params) -> WaypointRoles {
+        let s = |k: &str| p.str(k).filter(|s| !s.is_empty()).map(str::to_string);
+        WaypointRoles {
+            is_charger: p.bool("is_charger").unwrap_or(false),
+            is_parking_spot: p.bool("is_parking_spot").unwrap_or(false),
+            is_holding_point: p.bool("is_holding_point").unwrap_or(false),
+            is_passthrough_point: p.bool("is_passthrough_point").unwrap_or(false),
+            is_cleaning_zone: p.bool("is_cleaning_zone").unwrap_or(false),
+            dock_name: s("dock_name"),
+            pickup_dispenser: s("pickup_dispenser"),
+            dropoff_ingestor: s("dropoff_ingestor"),
+            spawn_robot_type: s("spawn_robot_type"),
+            spawn_robot_name: s("spawn_robot_name"),
+            mutex: s("mutex"),
+            lift_cabin: s("lift_cabin"),
+            merge_radius: p.f64("merge_radius"),
+            human_goal_set_name: s("human_goal_set_name"),
+        }
+    }
+}
+
 #[derive(Debug, Clone)]
 pub struct Vertex {
     pub level: Handle<Level>,

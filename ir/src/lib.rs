@@ -6,6 +6,7 @@
 mod arena;
 mod building;
 mod diag;
+mod geom;
 mod params;
 mod span;
 mod summary;
@@ -14,6 +15,7 @@ mod validate;
 pub use arena::{Arena, Handle};
 pub use building::*;
 pub use diag::{has_errors, Diagnostic, Label, Severity};
+pub use geom::segment_intersection;
 pub use params::{Param, ParamValue, Params};
 pub use span::{FileId, Span};
 pub use summary::summary;

@@ -55,7 +55,7 @@ impl TestMap {
     }
 
     pub fn vertex_with(&mut self, name: &str, x: f64, y: f64, params: Params) -> Handle<Vertex> {
-        let roles = roles_from(&params);
+        let roles = WaypointRoles::from_params(&params);
         let line = 1000 + self.b.vertices.len() as u32;
         let h = self.b.vertices.append(
             Vertex {
@@ -230,26 +230,6 @@ pub fn param(name: &str, value: ParamValue) -> Param {
 
 pub fn params(list: Vec<Param>) -> Params {
     Params(list)
-}
-
-fn roles_from(p: &Params) -> WaypointRoles {
-    let s = |k: &str| p.str(k).filter(|s| !s.is_empty()).map(str::to_string);
-    WaypointRoles {
-        is_charger: p.bool("is_charger").unwrap_or(false),
-        is_parking_spot: p.bool("is_parking_spot").unwrap_or(false),
-        is_holding_point: p.bool("is_holding_point").unwrap_or(false),
-        is_passthrough_point: p.bool("is_passthrough_point").unwrap_or(false),
-        is_cleaning_zone: p.bool("is_cleaning_zone").unwrap_or(false),
-        dock_name: s("dock_name"),
-        pickup_dispenser: s("pickup_dispenser"),
-        dropoff_ingestor: s("dropoff_ingestor"),
-        spawn_robot_type: s("spawn_robot_type"),
-        spawn_robot_name: s("spawn_robot_name"),
-        mutex: s("mutex"),
-        lift_cabin: s("lift_cabin"),
-        merge_radius: p.f64("merge_radius"),
-        human_goal_set_name: s("human_goal_set_name"),
-    }
 }
 
 /// A level with vertices `v0..vN` at x = 0, 2, 4, ... and the given lanes

@@ -1,5 +1,4 @@
-//! Segment geometry in metres for the lane rules. (The backends have their own copy of
-//! the door test; `ir` cannot depend on them.)
+//! Segment geometry in metres for the lane rules.
 
 use crate::Vec2;
 
@@ -44,22 +43,9 @@ pub(super) fn point_segment_distance(p: Vec2, a: Vec2, b: Vec2) -> f64 {
     p.minus(a.plus(d.scale(t))).norm()
 }
 
-/// Parameter along `a→b` where it meets segment `p→q` (endpoints included); `None` for
-/// parallel, colinear or degenerate segments. This is exactly the test mapc's nav backend
-/// uses to give a lane its `door_name`, so door rules agree with the output.
-pub(super) fn segment_intersection(a: Vec2, b: Vec2, p: Vec2, q: Vec2) -> Option<f64> {
-    let r = b.minus(a);
-    let s = q.minus(p);
-    let denom = r.cross(s);
-    if denom.abs() <= 1e-12 * r.norm() * s.norm() || denom == 0.0 {
-        return None;
-    }
-    let ap = p.minus(a);
-    let t = ap.cross(s) / denom;
-    let u = ap.cross(r) / denom;
-    let eps = 1e-9;
-    ((-eps..=1.0 + eps).contains(&t) && (-eps..=1.0 + eps).contains(&u)).then_some(t)
-}
+/// The same crossing test the nav backend uses to name a lane's door, so door rules agree
+/// with the output.
+pub(super) use crate::segment_intersection;
 
 /// `|sin|` of the angle between the directions `a→b` and `p→q` (both non-degenerate).
 pub(super) fn abs_sin(a: Vec2, b: Vec2, p: Vec2, q: Vec2) -> f64 {
