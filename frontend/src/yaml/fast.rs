@@ -76,11 +76,14 @@ pub(super) fn parse(text: &str, file: FileId) -> Option<Node<'_>> {
 }
 
 /// Characters YAML does not allow in a stream (controls other than tab, LF and CR; C1
-/// controls other than NEL; U+FFFE and U+FFFF; a byte order mark inside the document):
-/// the general reader reports them.
+/// controls other than NEL; U+FFFE and U+FFFF; a byte order mark inside the document),
+/// which the general reader reports, and CR, which this reader leaves to it.
 fn has_unprintable(b: &[u8]) -> bool {
     b.iter().enumerate().any(|(i, &c)| match c {
-        b'\t' | b'\n' | b'\r' => false,
+        // A carriage return is a line break in YAML, even alone inside a comment; CRLF
+        // files go to the general reader.
+        b'\r' => true,
+        b'\t' | b'\n' => false,
         0..=0x1f | 0x7f => true,
         // U+0080..U+009F are C2 80..C2 9F; U+0085 (NEL) is allowed.
         0xc2 => b

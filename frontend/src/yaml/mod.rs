@@ -718,6 +718,8 @@ mod differential {
             "a: \u{9f}\n",
             "a: \u{fffe}\n",
             "a: [0,\u{feff} 0]\n",
+            "a: 1  # x\ry: 2\n",
+            "a: 1\r\nb: 2\r\n",
         ] {
             assert_eq!(check(text), Ok(false), "{text:?}");
         }
