@@ -2,6 +2,9 @@
 //! transforms) followed by `mapc_backends::nav_graphs`, on every `fixtures/*.building.yaml`
 //! (listed when the benchmark starts) and on the demo maps in `../shared/maps` when present.
 //!
+//! `meshes` times the level geometry of every level (`mapc_backends::level_meshes`) and
+//! `obj_files` the OBJ/MTL output on top of it.
+//!
 //! `check` times what `mapc check` computes in process (parse, lower, transform, validation
 //! passes) on each demo map; `validate_only` times the validation passes alone on the largest
 //! input.
@@ -182,4 +185,37 @@ fn validate_only(bencher: Bencher, name: &str) {
         return;
     };
     bencher.bench(|| mapc_ir::validate(black_box(b)));
+}
+
+/// Level geometry of every level of a map (floors with holes and lift shafts cut out and
+/// triangulated, ceilings, walls; `mapc_backends::level_meshes`), on an already parsed map.
+/// Target: the largest demo map under 20 ms.
+#[divan::bench(args = names())]
+fn meshes(bencher: Bencher, name: &str) {
+    let parsed = mapc_frontend::parse_str(name, text(name));
+    let Some(b) = parsed.valid_building() else {
+        return;
+    };
+    bencher.bench(|| {
+        b.levels
+            .iter()
+            .map(|(h, _)| mapc_backends::level_meshes(black_box(b), h))
+            .collect::<Vec<_>>()
+    });
+}
+
+/// Level meshes and their OBJ/MTL/material files for every level (what the gazebo level
+/// models need besides model.sdf).
+#[divan::bench(args = shared_names())]
+fn obj_files(bencher: Bencher, name: &str) {
+    let parsed = mapc_frontend::parse_str(name, text(name));
+    let Some(b) = parsed.valid_building() else {
+        return;
+    };
+    bencher.bench(|| {
+        b.levels
+            .iter()
+            .map(|(h, _)| mapc_backends::level_obj_files(black_box(b), h))
+            .collect::<Vec<_>>()
+    });
 }

@@ -4,6 +4,7 @@
 mod output;
 mod report;
 mod report_json;
+mod texture;
 
 use clap::{Parser, Subcommand, ValueEnum};
 use mapc_ir::Diagnostic;
@@ -14,7 +15,7 @@ use std::process::ExitCode;
 #[command(
     name = "mapc",
     version,
-    about = "Compiles RMF .building.yaml maps into navigation graphs (and more to come)",
+    about = "Compiles RMF .building.yaml maps into navigation graphs and glTF scenes (and more to come)",
     long_about = "mapc reads traffic_editor .building.yaml maps, checks them, and writes the \
                   files RMF needs. `mapc nav` is a drop-in for `building_map_generator nav`.\n\n\
                   Exit codes: 0 ok (warnings allowed), 1 invalid map, 2 usage or I/O error."
@@ -56,6 +57,25 @@ enum Command {
         #[command(flatten)]
         diag: DiagOpts,
     },
+    /// Write the whole building as one binary glTF scene, OUTPUT_DIR/<building>.glb: a node
+    /// per level at its elevation with floors, ceilings, walls, door panels and lift cabins,
+    /// textures embedded.
+    Gltf {
+        /// The .building.yaml (or legacy .project.yaml) to read.
+        input: PathBuf,
+        /// Directory for the .glb files; created if missing.
+        output_dir: PathBuf,
+        /// A directory to search for `<texture>.png` (repeatable; searched in order, before
+        /// MAPC_TEXTURE_PATH and the map's directory).
+        #[arg(long = "texture-path", value_name = "DIR")]
+        texture_path: Vec<PathBuf>,
+        /// Also write each level's meshes as OUTPUT_DIR/<building>_<level>.glb (the gz-sim
+        /// level model meshes, without doors and lifts).
+        #[arg(long)]
+        per_level: bool,
+        #[command(flatten)]
+        diag: DiagOpts,
+    },
     /// Check maps and report every problem found, without writing anything.
     Check {
         /// The .building.yaml (or legacy .project.yaml) files to read.
@@ -74,6 +94,13 @@ fn main() -> ExitCode {
             output_dir,
             diag,
         } => nav(&input, &output_dir, &diag),
+        Command::Gltf {
+            input,
+            output_dir,
+            texture_path,
+            per_level,
+            diag,
+        } => gltf(&input, &output_dir, &texture_path, per_level, &diag),
         Command::Check { inputs, diag } => check(&inputs, &diag),
     }
 }
@@ -85,6 +112,12 @@ pub(crate) fn code_name(code: &str) -> &'static str {
         .find(|c| c.code == code)
         .map(|c| c.name)
         .or_else(|| mapc_ir::rule(code).map(|r| r.name))
+        .or_else(|| {
+            mapc_backends::CODES
+                .iter()
+                .find(|c| c.code == code)
+                .map(|c| c.name)
+        })
         .unwrap_or("")
 }
 
@@ -160,6 +193,110 @@ fn nav(input: &Path, output_dir: &Path, opts: &DiagOpts) -> ExitCode {
         return ExitCode::from(1);
     };
     let files = mapc_backends::nav_graphs(building);
+    match output::write_all(output_dir, &files) {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(e) => {
+            eprintln!("error: {e}");
+            ExitCode::from(2)
+        }
+    }
+}
+
+/// A name usable as one file name: path separators and control characters become `_`.
+fn file_stem(name: &str) -> String {
+    let s: String = name
+        .chars()
+        .map(|c| {
+            if c == '/' || c == '\\' || c.is_control() {
+                '_'
+            } else {
+                c
+            }
+        })
+        .collect();
+    if s.is_empty() || s == "." || s == ".." {
+        "building".into()
+    } else {
+        s
+    }
+}
+
+/// Every level's meshes (floors, ceilings, walls), in document order.
+fn level_meshes(
+    b: &mapc_ir::Building,
+) -> Vec<(mapc_ir::Handle<mapc_ir::Level>, Vec<mapc_backends::Mesh>)> {
+    b.levels
+        .iter()
+        .map(|(h, _)| {
+            (
+                h,
+                mapc_backends::level_meshes(b, h).all().cloned().collect(),
+            )
+        })
+        .collect()
+}
+
+fn gltf(
+    input: &Path,
+    output_dir: &Path,
+    texture_path: &[PathBuf],
+    per_level: bool,
+    opts: &DiagOpts,
+) -> ExitCode {
+    let mut checked = match load_and_check(input) {
+        Ok(c) => c,
+        Err(e) => {
+            eprintln!("error: {e}");
+            return ExitCode::from(2);
+        }
+    };
+    // Meshes and textures only for a map without errors; texture warnings join the report.
+    let mut files = Vec::new();
+    if let Some(b) = checked.parsed.building.as_ref() {
+        if !checked.diagnostics.iter().any(|d| d.is_error()) {
+            let meshes = level_meshes(b);
+            let names = mapc_backends::gltf_texture_names(meshes.iter().flat_map(|(_, m)| m));
+            let search = texture::SearchPath::new(
+                texture_path,
+                std::env::var_os("MAPC_TEXTURE_PATH"),
+                input,
+            );
+            let (textures, diags) =
+                mapc_backends::resolve_textures(b, names.iter().map(String::as_str), &mut |f| {
+                    search.find(f)
+                });
+            checked.diagnostics.extend(diags);
+            let stem = file_stem(&b.name);
+            let sets: Vec<mapc_backends::LevelMeshSet> = meshes
+                .iter()
+                .map(|(h, m)| mapc_backends::LevelMeshSet {
+                    level: *h,
+                    meshes: m.iter().collect(),
+                })
+                .collect();
+            files.push(mapc_backends::OutputFile {
+                path: PathBuf::from(format!("{stem}.glb")),
+                contents: mapc_backends::building_gltf(b, &sets, &textures),
+            });
+            if per_level {
+                for (h, m) in &meshes {
+                    let level = file_stem(&b.levels[*h].name);
+                    files.push(mapc_backends::OutputFile {
+                        path: PathBuf::from(format!("{stem}_{level}.glb")),
+                        contents: mapc_backends::level_glb(b, *h, m, &textures),
+                    });
+                }
+            }
+        }
+    }
+    emit(&checked, opts.format);
+    if opts.format == Format::Human {
+        summary_line(input, &checked);
+    }
+    if checked.failed(opts.deny_warnings) {
+        eprintln!("error: {}: nothing written", input.display());
+        return ExitCode::from(1);
+    }
     match output::write_all(output_dir, &files) {
         Ok(()) => ExitCode::SUCCESS,
         Err(e) => {

@@ -2,14 +2,32 @@
 //! memory. Writing them to disk (atomically, inside the output directory) is the caller's
 //! job, so backends do no I/O and never see a path outside the output tree.
 
+pub mod codes;
 mod fmt;
+pub mod geometry;
+mod gltf;
 mod mesh;
 mod nav;
+mod obj;
+mod texture;
 mod yaml;
 
+pub use codes::CODES;
 pub use fmt::py_float;
+pub use geometry::{level_meshes, LevelMeshes};
+pub use gltf::{
+    building_gltf, cabin_mesh, door_mesh, glb_split, gltf_texture_names, level_glb, LevelMeshSet,
+    CABIN_HEIGHT, DOOR_HEIGHT, DOOR_THICKNESS, GLTF_PBR_MAPS,
+};
 pub use mesh::{Material, Mesh, MeshKind};
 pub use nav::{nav_graph, nav_graphs};
+pub use obj::{
+    level_obj_files, level_obj_files_from, mesh_mtl, mesh_obj, model_material, wall_origin,
+};
+pub use texture::{
+    is_png, is_url, placeholder_png, resolve_textures, strip_png, texture_file_name, texture_names,
+    TextureImage, Textures,
+};
 pub use yaml::{to_string as yaml_to_string, Yaml};
 
 use std::path::PathBuf;

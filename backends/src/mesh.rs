@@ -57,6 +57,31 @@ impl Mesh {
             .sum()
     }
 
+    /// Area of the triangles whose geometric normal (from the winding) points along `dir`
+    /// (positive dot product), m²: e.g. the top face of a floor slab with `[0, 0, 1]`.
+    pub fn area_facing(&self, dir: [f64; 3]) -> f64 {
+        self.triangles
+            .iter()
+            .map(|t| {
+                let [a, b, c] = t.map(|i| self.positions[i as usize]);
+                let u = [b[0] - a[0], b[1] - a[1], b[2] - a[2]];
+                let v = [c[0] - a[0], c[1] - a[1], c[2] - a[2]];
+                let n = [
+                    u[1] * v[2] - u[2] * v[1],
+                    u[2] * v[0] - u[0] * v[2],
+                    u[0] * v[1] - u[1] * v[0],
+                ];
+                let len = (n[0] * n[0] + n[1] * n[1] + n[2] * n[2]).sqrt();
+                let d = n[0] * dir[0] + n[1] * dir[1] + n[2] * dir[2];
+                if d > 1e-12 * len {
+                    0.5 * len
+                } else {
+                    0.0
+                }
+            })
+            .sum()
+    }
+
     /// Axis-aligned bounds `(min, max)`, or `None` for an empty mesh.
     pub fn bounds(&self) -> Option<([f64; 3], [f64; 3])> {
         let first = *self.positions.first()?;

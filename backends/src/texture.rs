@@ -1,0 +1,280 @@
+//! Textures for mesh outputs: which file a texture name stands for, the images found for
+//! them, and the placeholder used when one cannot be found. Finding files is the caller's
+//! job (backends do no I/O): [`resolve_textures`] takes a lookup function, and mapc's CLI
+//! passes one that searches `--texture-path` directories, `MAPC_TEXTURE_PATH` and the map's
+//! directory.
+
+use crate::codes;
+use crate::Mesh;
+use mapc_ir::{Building, Diagnostic, Span};
+use std::collections::{BTreeMap, BTreeSet};
+
+/// An image to embed for a texture name.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct TextureImage {
+    /// PNG file contents.
+    pub png: Vec<u8>,
+    /// True when the texture was not found and `png` is [`placeholder_png`].
+    pub placeholder: bool,
+}
+
+/// Texture name → image, for every name the meshes use.
+#[derive(Debug, Clone, Default, PartialEq, Eq)]
+pub struct Textures {
+    pub images: BTreeMap<String, TextureImage>,
+}
+
+impl Textures {
+    pub fn get(&self, name: &str) -> Option<&TextureImage> {
+        self.images.get(name)
+    }
+}
+
+/// Is the texture name an `http(s)://` URL (the reference downloads those)?
+pub fn is_url(name: &str) -> bool {
+    let lower = name.get(..8).unwrap_or(name).to_ascii_lowercase();
+    lower.starts_with("http://") || lower.starts_with("https://")
+}
+
+/// The file name a plain texture name stands for (`<name>.png`), or `None` when the name
+/// is a URL, empty, or not a single plain path component (so a name can never make mapc
+/// read outside the search directories).
+pub fn texture_file_name(name: &str) -> Option<String> {
+    let plain = !name.is_empty()
+        && !is_url(name)
+        && name != "."
+        && name != ".."
+        && !name.contains(['/', '\\', '\0', ':']);
+    plain.then(|| format!("{name}.png"))
+}
+
+/// Is `bytes` a PNG whose header the `png` crate can read?
+pub fn is_png(bytes: &[u8]) -> bool {
+    png::Decoder::new(std::io::Cursor::new(bytes))
+        .read_info()
+        .is_ok()
+}
+
+/// The PNG with only the chunks that define its pixels (IHDR, PLTE, tRNS, IDAT, IEND);
+/// colour-space, text, time and other ancillary chunks are dropped. glTF 2.0 requires
+/// viewers to ignore PNG colour-space information (§3.8.4.3), and the Khronos validator
+/// warns about it, so the embedded image keeps exactly what is displayed. Chunks are copied
+/// whole (CRCs unchanged); input that does not parse as a chunk sequence is returned as is.
+pub fn strip_png(bytes: &[u8]) -> Vec<u8> {
+    const SIGNATURE: &[u8; 8] = b"\x89PNG\r\n\x1a\n";
+    const KEEP: [&[u8; 4]; 5] = [b"IHDR", b"PLTE", b"tRNS", b"IDAT", b"IEND"];
+    if !bytes.starts_with(SIGNATURE) {
+        return bytes.to_vec();
+    }
+    let mut out = SIGNATURE.to_vec();
+    let mut i = SIGNATURE.len();
+    while i < bytes.len() {
+        let Some(len) = bytes
+            .get(i..i + 4)
+            .map(|b| u32::from_be_bytes(b.try_into().unwrap()) as usize)
+        else {
+            return bytes.to_vec();
+        };
+        let Some(chunk) = bytes.get(i..i.saturating_add(12).saturating_add(len)) else {
+            return bytes.to_vec();
+        };
+        if KEEP.iter().any(|k| &chunk[4..8] == *k) {
+            out.extend_from_slice(chunk);
+        }
+        i += chunk.len();
+    }
+    out
+}
+
+/// A generated 8×8 RGB checkerboard (magenta and grey, 2×2-pixel squares), used in place of
+/// a texture that cannot be found. Always the same bytes.
+pub fn placeholder_png() -> Vec<u8> {
+    const N: u32 = 8;
+    let mut pixels = Vec::with_capacity((N * N * 3) as usize);
+    for y in 0..N {
+        for x in 0..N {
+            let on = ((x / 2) + (y / 2)) % 2 == 0;
+            pixels.extend_from_slice(if on { &[255, 0, 255] } else { &[96, 96, 96] });
+        }
+    }
+    let mut out = Vec::new();
+    {
+        let mut enc = png::Encoder::new(&mut out, N, N);
+        enc.set_color(png::ColorType::Rgb);
+        enc.set_depth(png::BitDepth::Eight);
+        let mut w = enc.write_header().expect("writing to a Vec cannot fail");
+        w.write_image_data(&pixels)
+            .expect("the pixel buffer matches the header");
+    }
+    out
+}
+
+/// Every texture name the meshes' materials use (base colour and PBR maps), sorted.
+pub fn texture_names<'a>(meshes: impl IntoIterator<Item = &'a Mesh>) -> BTreeSet<String> {
+    let mut names = BTreeSet::new();
+    for m in meshes {
+        if !m.material.texture.is_empty() {
+            names.insert(m.material.texture.clone());
+        }
+        for (_, t) in &m.material.pbr_maps {
+            if !t.is_empty() {
+                names.insert(t.clone());
+            }
+        }
+    }
+    names
+}
+
+/// Where a texture name is written in the map: the first wall or floor parameter whose
+/// string value is `name`, else the whole document.
+fn texture_span(b: &Building, name: &str) -> Span {
+    let params = b
+        .walls
+        .iter()
+        .map(|(_, w)| &w.params)
+        .chain(b.floors.iter().map(|(_, f)| &f.params));
+    for ps in params {
+        for p in ps.iter() {
+            if p.value.as_str() == Some(name) {
+                return p.span;
+            }
+        }
+    }
+    b.spans.root
+}
+
+/// Resolves every name: `find(file_name)` returns the contents of the first `<name>.png` on
+/// the search path. A URL, a name that is not a plain file name, a file not found or not a
+/// PNG gets the placeholder and a warning (W0701, W0702); this never fails.
+pub fn resolve_textures<'a>(
+    b: &Building,
+    names: impl IntoIterator<Item = &'a str>,
+    find: &mut dyn FnMut(&str) -> Option<Vec<u8>>,
+) -> (Textures, Vec<Diagnostic>) {
+    let mut textures = Textures::default();
+    let mut diags = Vec::new();
+    let placeholder = TextureImage {
+        png: placeholder_png(),
+        placeholder: true,
+    };
+    for name in names {
+        if textures.images.contains_key(name) {
+            continue;
+        }
+        let span = texture_span(b, name);
+        let image = if is_url(name) {
+            diags.push(
+                Diagnostic::warning(
+                    codes::TEXTURE_URL.code,
+                    span,
+                    format!("texture `{name}` is a URL; mapc does not download textures"),
+                )
+                .with_help("download it into a --texture-path directory and name it by file name; a placeholder is used"),
+            );
+            placeholder.clone()
+        } else {
+            let found = texture_file_name(name).and_then(|f| find(&f).map(|bytes| (f, bytes)));
+            match found {
+                Some((_, png)) if is_png(&png) => TextureImage {
+                    png: strip_png(&png),
+                    placeholder: false,
+                },
+                Some((file, _)) => {
+                    diags.push(
+                        Diagnostic::warning(
+                            codes::TEXTURE_NOT_FOUND.code,
+                            span,
+                            format!("texture file `{file}` is not a readable PNG image"),
+                        )
+                        .with_help("a placeholder texture is used instead"),
+                    );
+                    placeholder.clone()
+                }
+                None => {
+                    diags.push(
+                        Diagnostic::warning(
+                            codes::TEXTURE_NOT_FOUND.code,
+                            span,
+                            format!("texture `{name}` not found on the texture search path"),
+                        )
+                        .with_help(
+                            "add its directory with --texture-path DIR or MAPC_TEXTURE_PATH; \
+                             a placeholder texture is used instead",
+                        ),
+                    );
+                    placeholder.clone()
+                }
+            }
+        };
+        textures.images.insert(name.to_string(), image);
+    }
+    (textures, diags)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn placeholder_is_a_valid_stable_png() {
+        let a = placeholder_png();
+        assert!(is_png(&a));
+        assert_eq!(a, placeholder_png());
+    }
+
+    #[test]
+    fn strip_keeps_pixels_and_drops_metadata() {
+        let mut png = placeholder_png();
+        // Insert a tEXt chunk after IHDR (8 + 25 bytes).
+        let mut text = Vec::new();
+        text.extend_from_slice(&4u32.to_be_bytes());
+        text.extend_from_slice(b"tEXtabcd\0\0\0\0");
+        png.splice(33..33, text);
+        let stripped = strip_png(&png);
+        assert_eq!(stripped, placeholder_png());
+        assert_eq!(strip_png(b"garbage"), b"garbage");
+        let mut cut = placeholder_png();
+        cut.truncate(40);
+        assert_eq!(strip_png(&cut), cut);
+    }
+
+    #[test]
+    fn file_names() {
+        assert_eq!(texture_file_name("wall").as_deref(), Some("wall.png"));
+        assert_eq!(texture_file_name("https://x.org/a.png"), None);
+        assert_eq!(texture_file_name("HTTP://x.org/a.png"), None);
+        assert_eq!(texture_file_name("../etc/passwd"), None);
+        assert_eq!(texture_file_name(".."), None);
+        assert_eq!(texture_file_name(""), None);
+        assert!(is_url("https://example.com/t.png"));
+        assert!(!is_url("httpish"));
+    }
+
+    #[test]
+    fn missing_and_url_textures_get_placeholders_and_warnings() {
+        let b = Building::new(
+            "b".into(),
+            mapc_ir::CoordinateSystem::CartesianMeters,
+            Default::default(),
+        );
+        let good = placeholder_png();
+        let mut find = |f: &str| match f {
+            "ok.png" => Some(good.clone()),
+            "bad.png" => Some(b"not a png".to_vec()),
+            _ => None,
+        };
+        let (t, d) = resolve_textures(
+            &b,
+            ["ok", "bad", "gone", "https://e.org/x.png", "ok"],
+            &mut find,
+        );
+        assert_eq!(t.images.len(), 4);
+        assert!(!t.get("ok").unwrap().placeholder);
+        assert!(t.get("bad").unwrap().placeholder);
+        assert!(t.get("gone").unwrap().placeholder);
+        assert!(t.get("https://e.org/x.png").unwrap().placeholder);
+        let codes: Vec<_> = d.iter().map(|d| d.code).collect();
+        assert_eq!(codes, ["W0701", "W0701", "W0702"]);
+        assert!(d.iter().all(|d| !d.is_error()));
+    }
+}

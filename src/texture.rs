@@ -1,0 +1,58 @@
+//! The texture search path: `--texture-path DIR` options in order, then the directories of
+//! the `MAPC_TEXTURE_PATH` environment variable (colon-separated), then the map file's
+//! directory. The first `<name>.png` found wins.
+
+use std::ffi::OsString;
+use std::path::{Path, PathBuf};
+
+/// Textures larger than this are treated as unreadable (a GLB holds at most 4 GiB).
+const MAX_TEXTURE_BYTES: u64 = 256 << 20;
+
+pub struct SearchPath {
+    pub dirs: Vec<PathBuf>,
+}
+
+impl SearchPath {
+    pub fn new(cli: &[PathBuf], env: Option<OsString>, map_file: &Path) -> Self {
+        let mut dirs: Vec<PathBuf> = cli.to_vec();
+        if let Some(env) = env {
+            dirs.extend(std::env::split_paths(&env).filter(|p| !p.as_os_str().is_empty()));
+        }
+        let map_dir = map_file.parent().filter(|p| !p.as_os_str().is_empty());
+        dirs.push(map_dir.unwrap_or(Path::new(".")).to_path_buf());
+        SearchPath { dirs }
+    }
+
+    /// Contents of the first `file` (a plain file name) found in the search directories.
+    pub fn find(&self, file: &str) -> Option<Vec<u8>> {
+        self.dirs.iter().find_map(|d| {
+            let p = d.join(file);
+            let meta = std::fs::metadata(&p).ok()?;
+            if !meta.is_file() || meta.len() > MAX_TEXTURE_BYTES {
+                return None;
+            }
+            std::fs::read(&p).ok()
+        })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn order_is_cli_then_env_then_map_dir() {
+        let sp = SearchPath::new(
+            &[PathBuf::from("a"), PathBuf::from("b")],
+            Some(OsString::from("c::d")),
+            Path::new("maps/x.building.yaml"),
+        );
+        let want: Vec<PathBuf> = ["a", "b", "c", "d", "maps"]
+            .iter()
+            .map(PathBuf::from)
+            .collect();
+        assert_eq!(sp.dirs, want);
+        let sp = SearchPath::new(&[], None, Path::new("x.building.yaml"));
+        assert_eq!(sp.dirs, [PathBuf::from(".")]);
+    }
+}
