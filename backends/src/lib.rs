@@ -22,7 +22,8 @@ pub use gltf::{
 pub use mesh::{Material, Mesh, MeshKind};
 pub use nav::{nav_graph, nav_graphs};
 pub use obj::{
-    level_obj_files, level_obj_files_from, mesh_mtl, mesh_obj, model_material, wall_origin,
+    level_obj_files, level_obj_files_from, level_texture_files, mesh_mtl, mesh_obj, model_material,
+    wall_origin,
 };
 pub use texture::{
     is_png, is_url, placeholder_png, resolve_textures, strip_png, texture_file_name, texture_names,

@@ -76,6 +76,43 @@ pub fn level_obj_files_from(
     out
 }
 
+/// The texture images the level's meshes refer to, once per level model, as
+/// `<building>_<level>/meshes/<file>` (the file names the MTL files, `model.material` and
+/// model.sdf use), including PBR maps. Images come from `textures` (see
+/// [`crate::resolve_textures`]: a texture not found is the placeholder, with a warning). A
+/// name that cannot be a plain file name is skipped: it has its own warning and writing it
+/// could leave the output directory.
+pub fn level_texture_files(
+    b: &Building,
+    level: Handle<Level>,
+    meshes: &LevelMeshes,
+    textures: &crate::Textures,
+) -> Vec<OutputFile> {
+    let dir = PathBuf::from(format!("{}_{}", b.name, b.levels[level].name)).join("meshes");
+    let mut names = std::collections::BTreeSet::new();
+    for m in meshes.all() {
+        names.insert(m.material.texture.as_str());
+        for (_, t) in &m.material.pbr_maps {
+            names.insert(t.as_str());
+        }
+    }
+    let mut out = Vec::new();
+    for name in names {
+        let file = obj_texture_file(name);
+        let plain = !file.is_empty()
+            && file != "."
+            && file != ".."
+            && !file.contains(['/', '\\', '\0', ':']);
+        if let (true, Some(image)) = (plain, textures.get(name)) {
+            out.push(OutputFile {
+                path: dir.join(file),
+                contents: image.png.clone(),
+            });
+        }
+    }
+    out
+}
+
 /// `d` of each wall group's MTL: the alpha as the YAML wrote it (`1` for `[3, 1]`,
 /// `0.8` for `[3, 0.80000000000000004]`).
 fn wall_alpha_texts(b: &Building, level: Handle<Level>) -> HashMap<String, String> {
@@ -460,6 +497,55 @@ mod tests {
             "material floor_1_Diffuse\n{\n\ttechnique\n\t{\n\t\tpass\n\t\t{\n\t\t\ttexture_unit\n\t\t\t{\n\t\t\t\ttexture blue_linoleum.png\n\t\t\t}\n\t\t}\n\t}\n}\n"
         );
         assert_eq!(obj_texture_file("https://x.org/t/wood.png"), "wood.png");
+    }
+
+    #[test]
+    fn textures_are_written_once_per_level_model_and_never_escape() {
+        use crate::{TextureImage, Textures};
+        let mut b = Building::new(
+            "b".into(),
+            mapc_ir::CoordinateSystem::CartesianMeters,
+            mapc_ir::Params::default(),
+        );
+        let l = b.levels.append(
+            mapc_ir::Level {
+                name: "L1".into(),
+                ..mapc_ir::Level::default()
+            },
+            mapc_ir::Span::UNKNOWN,
+        );
+        let mut floor = tri(MeshKind::Floor, "floor_1");
+        floor.material.texture = "blue_linoleum".into();
+        floor.material.pbr_maps = vec![("normal_map".into(), "bumps".into())];
+        let mut wall = tri(MeshKind::Walls, "wall_1");
+        wall.material.texture = "blue_linoleum".into();
+        let mut bad = tri(MeshKind::Walls, "wall_2");
+        bad.material.texture = "../../etc/x".into();
+        let meshes = LevelMeshes {
+            floors: vec![floor],
+            ceilings: vec![],
+            walls: vec![wall, bad],
+        };
+        let img = |n: u8| TextureImage {
+            png: vec![n],
+            placeholder: false,
+        };
+        let textures = Textures {
+            images: [
+                ("blue_linoleum".to_string(), img(1)),
+                ("bumps".to_string(), img(2)),
+                ("../../etc/x".to_string(), img(3)),
+            ]
+            .into_iter()
+            .collect(),
+        };
+        let files = level_texture_files(&b, l, &meshes, &textures);
+        let paths: Vec<String> = files.iter().map(|f| f.path.display().to_string()).collect();
+        assert_eq!(
+            paths,
+            ["b_L1/meshes/blue_linoleum.png", "b_L1/meshes/bumps.png"]
+        );
+        assert_eq!(files[0].contents, vec![1]);
     }
 }
 
