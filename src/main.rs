@@ -76,6 +76,21 @@ enum Command {
         #[command(flatten)]
         diag: DiagOpts,
     },
+    /// Write each level's meshes as Gazebo level models use them (the reference layout):
+    /// OUTPUT_MODEL_DIR/<building>_<level>/meshes/ with floor_<n>, ceiling_<n> and wall_<k>
+    /// OBJ + MTL files, the OGRE model.material script and the textures they name.
+    Meshes {
+        /// The .building.yaml (or legacy .project.yaml) to read.
+        input: PathBuf,
+        /// Model directory; created if missing.
+        output_model_dir: PathBuf,
+        /// A directory to search for `<texture>.png` (repeatable; searched in order, before
+        /// MAPC_TEXTURE_PATH and the map's directory).
+        #[arg(long = "texture-path", value_name = "DIR")]
+        texture_path: Vec<PathBuf>,
+        #[command(flatten)]
+        diag: DiagOpts,
+    },
     /// Check maps and report every problem found, without writing anything.
     Check {
         /// The .building.yaml (or legacy .project.yaml) files to read.
@@ -101,6 +116,12 @@ fn main() -> ExitCode {
             per_level,
             diag,
         } => gltf(&input, &output_dir, &texture_path, per_level, &diag),
+        Command::Meshes {
+            input,
+            output_model_dir,
+            texture_path,
+            diag,
+        } => meshes(&input, &output_model_dir, &texture_path, &diag),
         Command::Check { inputs, diag } => check(&inputs, &diag),
     }
 }
@@ -252,20 +273,14 @@ fn gltf(
     };
     // Meshes and textures only for a map without errors; texture warnings join the report.
     let mut files = Vec::new();
+    let mut texture_diags = Vec::new();
     if let Some(b) = checked.parsed.building.as_ref() {
         if !checked.diagnostics.iter().any(|d| d.is_error()) {
             let meshes = level_meshes(b);
             let names = mapc_backends::gltf_texture_names(meshes.iter().flat_map(|(_, m)| m));
-            let search = texture::SearchPath::new(
-                texture_path,
-                std::env::var_os("MAPC_TEXTURE_PATH"),
-                input,
-            );
             let (textures, diags) =
-                mapc_backends::resolve_textures(b, names.iter().map(String::as_str), &mut |f| {
-                    search.find(f)
-                });
-            checked.diagnostics.extend(diags);
+                textures_for(b, names.iter().map(String::as_str), texture_path, input);
+            texture_diags = diags;
             let stem = file_stem(&b.name);
             let sets: Vec<mapc_backends::LevelMeshSet> = meshes
                 .iter()
@@ -289,6 +304,7 @@ fn gltf(
             }
         }
     }
+    checked.diagnostics.extend(texture_diags);
     emit(&checked, opts.format);
     if opts.format == Format::Human {
         summary_line(input, &checked);
@@ -298,6 +314,64 @@ fn gltf(
         return ExitCode::from(1);
     }
     match output::write_all(output_dir, &files) {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(e) => {
+            eprintln!("error: {e}");
+            ExitCode::from(2)
+        }
+    }
+}
+
+/// Texture images for `names`, searched on the texture path (`--texture-path` directories,
+/// MAPC_TEXTURE_PATH, the map's directory), with warnings for those not found.
+fn textures_for<'a>(
+    b: &mapc_ir::Building,
+    names: impl IntoIterator<Item = &'a str>,
+    texture_path: &[PathBuf],
+    input: &Path,
+) -> (mapc_backends::Textures, Vec<Diagnostic>) {
+    let search =
+        texture::SearchPath::new(texture_path, std::env::var_os("MAPC_TEXTURE_PATH"), input);
+    mapc_backends::resolve_textures(b, names, &mut |f| search.find(f))
+}
+
+fn meshes(input: &Path, model_dir: &Path, texture_path: &[PathBuf], opts: &DiagOpts) -> ExitCode {
+    let mut checked = match load_and_check(input) {
+        Ok(c) => c,
+        Err(e) => {
+            eprintln!("error: {e}");
+            return ExitCode::from(2);
+        }
+    };
+    let mut files = Vec::new();
+    let mut texture_diags = Vec::new();
+    if let Some(b) = checked.parsed.building.as_ref() {
+        if !checked.diagnostics.iter().any(|d| d.is_error()) {
+            let per_level: Vec<_> = b
+                .levels
+                .iter()
+                .map(|(h, _)| (h, mapc_backends::level_meshes(b, h)))
+                .collect();
+            let names = mapc_backends::texture_names(per_level.iter().flat_map(|(_, m)| m.all()));
+            let (textures, diags) =
+                textures_for(b, names.iter().map(String::as_str), texture_path, input);
+            texture_diags = diags;
+            for (h, m) in &per_level {
+                files.extend(mapc_backends::level_obj_files_from(b, *h, m));
+                files.extend(mapc_backends::level_texture_files(b, *h, m, &textures));
+            }
+        }
+    }
+    checked.diagnostics.extend(texture_diags);
+    emit(&checked, opts.format);
+    if opts.format == Format::Human {
+        summary_line(input, &checked);
+    }
+    if checked.failed(opts.deny_warnings) {
+        eprintln!("error: {}: nothing written", input.display());
+        return ExitCode::from(1);
+    }
+    match output::write_all(model_dir, &files) {
         Ok(()) => ExitCode::SUCCESS,
         Err(e) => {
             eprintln!("error: {e}");
