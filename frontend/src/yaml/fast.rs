@@ -314,7 +314,9 @@ impl<'a> P<'a> {
         loop {
             let key = self.key()?;
             self.skip_spaces()?;
-            if self.b.get(self.pos) != Some(&b':') {
+            // In block context the `:` of a key must be followed by a space or a line end,
+            // after quoted keys too (`'k':v` is not a mapping entry).
+            if self.b.get(self.pos) != Some(&b':') || !self.is_sep(self.pos + 1) {
                 return Err(Bail);
             }
             let colon = self.pos;
