@@ -1,0 +1,125 @@
+//! A small XML element tree for SDF and model.config output: attributes keep insertion
+//! order, text is escaped, output is deterministic (two-space indentation, one element per
+//! line, `<tag attr="v" />` for empty elements, as the reference's `xml.etree` writes).
+
+use std::fmt::Write;
+
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct Element {
+    pub name: String,
+    pub attrs: Vec<(String, String)>,
+    pub children: Vec<Element>,
+    pub text: Option<String>,
+}
+
+impl Element {
+    pub fn new(name: impl Into<String>) -> Element {
+        Element {
+            name: name.into(),
+            ..Element::default()
+        }
+    }
+    /// Adds an attribute (builder style).
+    pub fn attr(mut self, k: impl Into<String>, v: impl Into<String>) -> Element {
+        self.attrs.push((k.into(), v.into()));
+        self
+    }
+    /// Sets the text content (builder style).
+    pub fn text(mut self, t: impl Into<String>) -> Element {
+        self.text = Some(t.into());
+        self
+    }
+    /// Appends a child (builder style).
+    pub fn child(mut self, c: Element) -> Element {
+        self.children.push(c);
+        self
+    }
+    /// Appends a child `<name>text</name>` (builder style).
+    pub fn leaf(self, name: &str, text: impl Into<String>) -> Element {
+        self.child(Element::new(name).text(text))
+    }
+    pub fn push(&mut self, c: Element) {
+        self.children.push(c);
+    }
+    /// First child named `name`.
+    pub fn find(&self, name: &str) -> Option<&Element> {
+        self.children.iter().find(|c| c.name == name)
+    }
+
+    /// The element as an XML document. `declaration` adds the
+    /// `<?xml version='1.0' encoding='utf-8'?>` line (model.sdf, model.config).
+    pub fn to_document(&self, declaration: bool) -> String {
+        let mut out = String::new();
+        if declaration {
+            out.push_str("<?xml version='1.0' encoding='utf-8'?>\n");
+        }
+        self.write(&mut out, 0);
+        out
+    }
+
+    fn write(&self, out: &mut String, depth: usize) {
+        for _ in 0..depth {
+            out.push_str("  ");
+        }
+        out.push('<');
+        out.push_str(&self.name);
+        for (k, v) in &self.attrs {
+            let _ = write!(out, " {k}=\"{}\"", escape(v, true));
+        }
+        match (&self.text, self.children.is_empty()) {
+            (None, true) => out.push_str(" />\n"),
+            (Some(t), true) => {
+                let _ = writeln!(out, ">{}</{}>", escape(t, false), self.name);
+            }
+            (text, false) => {
+                out.push('>');
+                if let Some(t) = text {
+                    out.push_str(&escape(t, false));
+                }
+                out.push('\n');
+                for c in &self.children {
+                    c.write(out, depth + 1);
+                }
+                for _ in 0..depth {
+                    out.push_str("  ");
+                }
+                let _ = writeln!(out, "</{}>", self.name);
+            }
+        }
+    }
+}
+
+fn escape(s: &str, attr: bool) -> String {
+    let mut out = String::with_capacity(s.len());
+    for c in s.chars() {
+        match c {
+            '&' => out.push_str("&amp;"),
+            '<' => out.push_str("&lt;"),
+            '>' => out.push_str("&gt;"),
+            '"' if attr => out.push_str("&quot;"),
+            // Control characters other than tab and newline are not allowed in XML 1.0.
+            c if (c as u32) < 0x20 && c != '\t' && c != '\n' => out.push('\u{fffd}'),
+            c => out.push(c),
+        }
+    }
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn layout_and_escaping() {
+        let e = Element::new("sdf").attr("version", "1.7").child(
+            Element::new("model")
+                .attr("name", "a<b>&\"c\"")
+                .leaf("static", "true")
+                .child(Element::new("plugin").attr("name", "x")),
+        );
+        assert_eq!(
+            e.to_document(true),
+            "<?xml version='1.0' encoding='utf-8'?>\n<sdf version=\"1.7\">\n  <model name=\"a&lt;b&gt;&amp;&quot;c&quot;\">\n    <static>true</static>\n    <plugin name=\"x\" />\n  </model>\n</sdf>\n"
+        );
+    }
+}
