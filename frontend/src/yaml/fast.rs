@@ -503,6 +503,15 @@ impl<'a> P<'a> {
                 }
                 b'#' if b[i - 1] == b' ' => break,
                 c if in_flow && is_flow_indicator(c) => break,
+                // In flow context saphyr rejects `-`, `?` or `:` after a space when a flow
+                // indicator follows; leave such rare text to it.
+                b' ' if in_flow
+                    && matches!(b.get(i + 1), Some(b'-' | b'?' | b':'))
+                    && b.get(i + 2)
+                        .is_none_or(|&n| is_flow_indicator(n) || n == b' ') =>
+                {
+                    return Err(Bail)
+                }
                 b' ' => {}
                 _ => end = i + 1,
             }

@@ -724,7 +724,12 @@ mod differential {
             assert_eq!(check(text), Ok(false), "{text:?}");
         }
         // Found by yaml_diff too: a quoted key's `:` needs a space after it in block context.
-        for text in ["'a':\n'b':c\n", "a: 1\n\"b\":c\n"] {
+        for text in [
+            "'a':\n'b':c\n",
+            "a: 1\n\"b\":c\n",
+            "a: [3 -, 4]\n",
+            "a: [x ?]\n",
+        ] {
             assert_eq!(check(text), Ok(false), "{text:?}");
         }
         assert_eq!(check("a: caf\u{e9} \u{85}\n"), Ok(true));
