@@ -333,6 +333,16 @@ impl<'a> P<'a> {
                             && self.is_sep(self.pos + 1) =>
                     {
                         // An indentless sequence (`key:` then `- item` at the key's indent).
+                        // saphyr starts it at its first item; when that item is not on the
+                        // dash's line the position is subtle, so leave those to saphyr.
+                        let rest = &self.b[self.pos + 1..];
+                        let first_on_line = rest
+                            .iter()
+                            .position(|&c| c != b' ')
+                            .is_some_and(|i| !matches!(rest[i], b'\n' | b'#'));
+                        if !first_on_line {
+                            return Err(Bail);
+                        }
                         let mut seq = self.block_seq(indent, depth + 1)?;
                         // saphyr starts such a sequence at its first item.
                         if let Kind::Seq(items) = &seq.kind {
