@@ -111,6 +111,15 @@ static SPECIAL: [bool; 256] = {
     t
 };
 
+/// YAML limits implicit keys to 1024 characters; longer ones are left to saphyr, which
+/// reports them.
+fn check_key_length(k: &Node<'_>) -> R<()> {
+    if k.span.end - k.span.start > 1024 {
+        return Err(Bail);
+    }
+    Ok(())
+}
+
 fn is_flow_indicator(c: u8) -> bool {
     matches!(c, b',' | b'[' | b']' | b'{' | b'}')
 }
@@ -453,11 +462,13 @@ impl<'a> P<'a> {
     }
 
     fn key(&mut self) -> R<Node<'a>> {
-        match self.b.get(self.pos) {
+        let k = match self.b.get(self.pos) {
             Some(b'"') => self.double_quoted(),
             Some(b'\'') => self.single_quoted(),
             _ => self.plain(false),
-        }
+        }?;
+        check_key_length(&k)?;
+        Ok(k)
     }
 
     fn inline_value(&mut self, depth: usize) -> R<Node<'a>> {
@@ -689,6 +700,7 @@ impl<'a> P<'a> {
                     Some(b'[' | b'{') => return Err(Bail),
                     _ => self.flow_item(depth + 1)?,
                 };
+                check_key_length(&key)?;
                 self.flow_skip()?;
                 // `key:` must be followed by a space here (YAML forbids `a:[` in flow maps).
                 if self.b.get(self.pos) != Some(&b':') || self.b.get(self.pos + 1) != Some(&b' ') {
