@@ -1,10 +1,12 @@
 //! `mapc`: the command line. Exit codes: 0 ok (warnings allowed), 1 invalid map,
 //! 2 usage or I/O error.
 
+mod build;
 mod output;
 mod report;
 mod report_json;
 mod texture;
+mod world_cmd;
 
 use clap::{Parser, Subcommand, ValueEnum};
 use mapc_ir::Diagnostic;
@@ -15,9 +17,10 @@ use std::process::ExitCode;
 #[command(
     name = "mapc",
     version,
-    about = "Compiles RMF .building.yaml maps into navigation graphs and glTF scenes (and more to come)",
+    about = "Compiles RMF .building.yaml maps into navigation graphs, simulation worlds and glTF scenes",
     long_about = "mapc reads traffic_editor .building.yaml maps, checks them, and writes the \
-                  files RMF needs. `mapc nav` is a drop-in for `building_map_generator nav`.\n\n\
+                  files RMF needs. `mapc nav` and `mapc gazebo` are drop-ins for \
+                  `building_map_generator nav` and `gazebo`.\n\n\
                   Exit codes: 0 ok (warnings allowed), 1 invalid map, 2 usage or I/O error."
 )]
 struct Cli {
@@ -91,6 +94,22 @@ enum Command {
         #[command(flatten)]
         diag: DiagOpts,
     },
+    /// Build many maps to several targets at once: OUTDIR/<map>/nav_graphs/<graph_idx>.yaml,
+    /// OUTDIR/<map>/<building>.glb, OUTDIR/<map>/models/<building>_<level>/meshes/. Maps are
+    /// built in parallel; unchanged files are not rewritten; `--depfile` tells Make or Ninja
+    /// what was read.
+    Build(build::BuildArgs),
+    /// Write a gz-sim (Harmonic onwards) world and its level models, like today's
+    /// `building_map_generator gazebo`: OUTPUT_WORLD and
+    /// OUTPUT_MODEL_DIR/<building>_<level>/{model.sdf,model.config,meshes/}.
+    #[command(visible_alias = "gz")]
+    Gazebo(world_cmd::WorldArgs),
+    /// Write an Ignition Gazebo (Fortress era) world and its level models, like
+    /// `building_map_generator ignition` before 2024-05.
+    Ignition(world_cmd::WorldArgs),
+    /// Write a Gazebo classic world and its level models, like `building_map_generator
+    /// gazebo` before 2024-05.
+    Classic(world_cmd::WorldArgs),
     /// Check maps and report every problem found, without writing anything.
     Check {
         /// The .building.yaml (or legacy .project.yaml) files to read.
@@ -122,6 +141,10 @@ fn main() -> ExitCode {
             texture_path,
             diag,
         } => meshes(&input, &output_model_dir, &texture_path, &diag),
+        Command::Build(args) => build::build(args),
+        Command::Gazebo(args) => world_cmd::run(mapc_backends::sdf::Flavour::Gz, &args),
+        Command::Ignition(args) => world_cmd::run(mapc_backends::sdf::Flavour::Ignition, &args),
+        Command::Classic(args) => world_cmd::run(mapc_backends::sdf::Flavour::Classic, &args),
         Command::Check { inputs, diag } => check(&inputs, &diag),
     }
 }
@@ -242,21 +265,6 @@ fn file_stem(name: &str) -> String {
     }
 }
 
-/// Every level's meshes (floors, ceilings, walls), in document order.
-fn level_meshes(
-    b: &mapc_ir::Building,
-) -> Vec<(mapc_ir::Handle<mapc_ir::Level>, Vec<mapc_backends::Mesh>)> {
-    b.levels
-        .iter()
-        .map(|(h, _)| {
-            (
-                h,
-                mapc_backends::level_meshes(b, h).all().cloned().collect(),
-            )
-        })
-        .collect()
-}
-
 fn gltf(
     input: &Path,
     output_dir: &Path,
@@ -276,32 +284,12 @@ fn gltf(
     let mut texture_diags = Vec::new();
     if let Some(b) = checked.parsed.building.as_ref() {
         if !checked.diagnostics.iter().any(|d| d.is_error()) {
-            let meshes = level_meshes(b);
-            let names = mapc_backends::gltf_texture_names(meshes.iter().flat_map(|(_, m)| m));
+            let meshes = build::all_level_meshes(b);
+            let names = build::gltf_texture_names(&meshes);
             let (textures, diags) =
                 textures_for(b, names.iter().map(String::as_str), texture_path, input);
             texture_diags = diags;
-            let stem = file_stem(&b.name);
-            let sets: Vec<mapc_backends::LevelMeshSet> = meshes
-                .iter()
-                .map(|(h, m)| mapc_backends::LevelMeshSet {
-                    level: *h,
-                    meshes: m.iter().collect(),
-                })
-                .collect();
-            files.push(mapc_backends::OutputFile {
-                path: PathBuf::from(format!("{stem}.glb")),
-                contents: mapc_backends::building_gltf(b, &sets, &textures),
-            });
-            if per_level {
-                for (h, m) in &meshes {
-                    let level = file_stem(&b.levels[*h].name);
-                    files.push(mapc_backends::OutputFile {
-                        path: PathBuf::from(format!("{stem}_{level}.glb")),
-                        contents: mapc_backends::level_glb(b, *h, m, &textures),
-                    });
-                }
-            }
+            files = build::gltf_files(b, &meshes, &textures, per_level);
         }
     }
     checked.diagnostics.extend(texture_diags);
@@ -347,19 +335,12 @@ fn meshes(input: &Path, model_dir: &Path, texture_path: &[PathBuf], opts: &DiagO
     let mut texture_diags = Vec::new();
     if let Some(b) = checked.parsed.building.as_ref() {
         if !checked.diagnostics.iter().any(|d| d.is_error()) {
-            let per_level: Vec<_> = b
-                .levels
-                .iter()
-                .map(|(h, _)| (h, mapc_backends::level_meshes(b, h)))
-                .collect();
-            let names = mapc_backends::texture_names(per_level.iter().flat_map(|(_, m)| m.all()));
+            let meshes = build::all_level_meshes(b);
+            let names = build::mesh_texture_names(&meshes);
             let (textures, diags) =
                 textures_for(b, names.iter().map(String::as_str), texture_path, input);
             texture_diags = diags;
-            for (h, m) in &per_level {
-                files.extend(mapc_backends::level_obj_files_from(b, *h, m));
-                files.extend(mapc_backends::level_texture_files(b, *h, m, &textures));
-            }
+            files = build::mesh_files(b, &meshes, &textures);
         }
     }
     checked.diagnostics.extend(texture_diags);
@@ -404,21 +385,26 @@ fn check(inputs: &[PathBuf], opts: &DiagOpts) -> ExitCode {
         }
     }
     if opts.format == Format::Sarif {
-        // One log for all inputs: merge sources and re-base file ids.
-        let mut sources = Vec::new();
-        let mut diags = Vec::new();
-        for c in all {
-            let base = sources.len() as u32;
-            sources.extend(c.parsed.sources);
-            for mut d in c.diagnostics {
-                d.span.file.0 += base;
-                for l in &mut d.labels {
-                    l.span.file.0 += base;
-                }
-                diags.push(d);
-            }
-        }
-        print!("{}", report_json::sarif(&sources, &diags));
+        print_sarif(&all);
     }
     ExitCode::from(code)
+}
+
+/// One SARIF log for several maps: sources merged, file ids re-based.
+fn print_sarif<'a>(all: impl IntoIterator<Item = &'a Checked>) {
+    let mut sources = Vec::new();
+    let mut diags = Vec::new();
+    for c in all {
+        let base = sources.len() as u32;
+        sources.extend(c.parsed.sources.iter().cloned());
+        for d in &c.diagnostics {
+            let mut d = d.clone();
+            d.span.file.0 += base;
+            for l in &mut d.labels {
+                l.span.file.0 += base;
+            }
+            diags.push(d);
+        }
+    }
+    print!("{}", report_json::sarif(&sources, &diags));
 }

@@ -25,13 +25,19 @@ impl SearchPath {
 
     /// Contents of the first `file` (a plain file name) found in the search directories.
     pub fn find(&self, file: &str) -> Option<Vec<u8>> {
+        self.locate(file).map(|(_, bytes)| bytes)
+    }
+
+    /// As [`SearchPath::find`], with the path the file was read from (for depfiles).
+    pub fn locate(&self, file: &str) -> Option<(PathBuf, Vec<u8>)> {
         self.dirs.iter().find_map(|d| {
             let p = d.join(file);
             let meta = std::fs::metadata(&p).ok()?;
             if !meta.is_file() || meta.len() > MAX_TEXTURE_BYTES {
                 return None;
             }
-            std::fs::read(&p).ok()
+            let bytes = std::fs::read(&p).ok()?;
+            Some((p, bytes))
         })
     }
 }

@@ -429,7 +429,7 @@ pub fn model_material<'a>(meshes: impl IntoIterator<Item = &'a Mesh>) -> String 
 
 /// File name of a texture as the meshes refer to it: `<name>.png`, or the last path segment
 /// of a URL (as the reference names downloaded textures).
-fn obj_texture_file(name: &str) -> String {
+pub(crate) fn obj_texture_file(name: &str) -> String {
     if let Some(f) = crate::texture_file_name(name) {
         return f;
     }

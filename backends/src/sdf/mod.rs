@@ -1,6 +1,10 @@
 //! SDF output: level models, doors, lifts and worlds in the three flavours users have
 //! (generator.md §2 and §3).
 
+pub mod doors;
+pub mod level;
+pub mod lifts;
+pub mod world;
 pub mod xml;
 
 /// The simulator a world is written for.

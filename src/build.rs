@@ -1,0 +1,526 @@
+//! `mapc build`: many maps, several targets, one parse per map. Maps are built in parallel
+//! (`std::thread::scope`, `--jobs` workers pulling from a shared counter); the main thread
+//! prints each map's diagnostics in input order as soon as it and every earlier map are done,
+//! and keeps a progress line on stderr when stderr is a terminal. `--depfile` writes a
+//! Make/Ninja dependency file (outputs: the map, the files it includes, the textures found)
+//! so build systems rerun mapc only when an input changed.
+//!
+//! The per-target file producers (`gltf_files`, `mesh_files`, and `mapc_backends::nav_graphs`)
+//! are shared with the single-target commands of `main.rs`.
+
+use crate::{emit, load_and_check, output, summary_line, texture, Checked, DiagOpts, Format};
+use mapc_backends::sdf::Flavour;
+use mapc_backends::{LevelMeshes, OutputFile, Textures};
+use mapc_ir::{Building, Diagnostic, Handle, Level};
+use std::collections::BTreeMap;
+use std::io::{IsTerminal, Write};
+use std::num::NonZeroUsize;
+use std::path::{Path, PathBuf};
+use std::process::ExitCode;
+use std::sync::atomic::{AtomicUsize, Ordering};
+use std::sync::mpsc;
+
+/// What `mapc build` can write for a map.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, clap::ValueEnum)]
+pub(crate) enum Target {
+    /// Navigation graphs: `<map>/nav_graphs/<graph_idx>.yaml`.
+    Nav,
+    /// The whole building as one binary glTF: `<map>/<building>.glb`.
+    Gltf,
+    /// Level model meshes: `<map>/models/<building>_<level>/meshes/...`.
+    Meshes,
+    /// Gazebo classic world `<map>/<map>_classic.world` and level models in `<map>/models/`.
+    Classic,
+    /// Ignition (Fortress) world `<map>/<map>_ignition.world` and level models in
+    /// `<map>/models/`.
+    Ignition,
+    /// gz-sim (Harmonic onwards) world `<map>/<map>.world` and level models in
+    /// `<map>/models/` (the rmf_demos_maps layout).
+    Gz,
+}
+
+impl Target {
+    const ALL: [Target; 6] = [
+        Target::Nav,
+        Target::Gltf,
+        Target::Meshes,
+        Target::Classic,
+        Target::Ignition,
+        Target::Gz,
+    ];
+
+    fn flavour(self) -> Option<(Flavour, &'static str)> {
+        match self {
+            Target::Classic => Some((Flavour::Classic, "_classic")),
+            Target::Ignition => Some((Flavour::Ignition, "_ignition")),
+            Target::Gz => Some((Flavour::Gz, "")),
+            _ => None,
+        }
+    }
+}
+
+#[derive(clap::Args)]
+pub(crate) struct BuildArgs {
+    /// The .building.yaml (or legacy .project.yaml) files to read.
+    #[arg(required = true)]
+    inputs: Vec<PathBuf>,
+    /// Output directory: each map's files go to OUTDIR/<map>/ (<map> is the file name less
+    /// `.building.yaml`).
+    #[arg(short = 'o', long = "output", value_name = "OUTDIR")]
+    out_dir: PathBuf,
+    /// Comma-separated targets to write (default: all).
+    #[arg(long, value_enum, value_delimiter = ',', default_values_t = Target::ALL)]
+    targets: Vec<Target>,
+    /// A directory to search for `<texture>.png` (repeatable; searched in order, before
+    /// MAPC_TEXTURE_PATH and the map's directory).
+    #[arg(long = "texture-path", value_name = "DIR")]
+    texture_path: Vec<PathBuf>,
+    /// Write a Make/Ninja depfile: `OUTPUTS...: MAP TEXTURES...` (only when every map
+    /// succeeds).
+    #[arg(long, value_name = "FILE")]
+    depfile: Option<PathBuf>,
+    /// Touch FILE when every map succeeds, and name it as the depfile's only target (what
+    /// Ninja and CMake expect when the outputs are not known before the build).
+    #[arg(long, value_name = "FILE")]
+    stamp: Option<PathBuf>,
+    /// Maps built at once (default: the available parallelism).
+    #[arg(short = 'j', long, value_name = "N")]
+    jobs: Option<NonZeroUsize>,
+    #[command(flatten)]
+    diag: DiagOpts,
+}
+
+/// Every level's meshes, in document order.
+pub(crate) fn all_level_meshes(b: &Building) -> Vec<(Handle<Level>, LevelMeshes)> {
+    b.levels
+        .iter()
+        .map(|(h, _)| (h, mapc_backends::level_meshes(b, h)))
+        .collect()
+}
+
+/// The texture names the glTF target embeds.
+pub(crate) fn gltf_texture_names(
+    meshes: &[(Handle<Level>, LevelMeshes)],
+) -> std::collections::BTreeSet<String> {
+    mapc_backends::gltf_texture_names(meshes.iter().flat_map(|(_, m)| m.all()))
+}
+
+/// The texture names the meshes target copies.
+pub(crate) fn mesh_texture_names(
+    meshes: &[(Handle<Level>, LevelMeshes)],
+) -> std::collections::BTreeSet<String> {
+    mapc_backends::texture_names(meshes.iter().flat_map(|(_, m)| m.all()))
+}
+
+/// `<building>.glb` (and with `per_level`, `<building>_<level>.glb` per level).
+pub(crate) fn gltf_files(
+    b: &Building,
+    meshes: &[(Handle<Level>, LevelMeshes)],
+    textures: &Textures,
+    per_level: bool,
+) -> Vec<OutputFile> {
+    let stem = crate::file_stem(&b.name);
+    let sets: Vec<mapc_backends::LevelMeshSet> = meshes
+        .iter()
+        .map(|(h, m)| mapc_backends::LevelMeshSet {
+            level: *h,
+            meshes: m.all().collect(),
+        })
+        .collect();
+    let mut files = vec![OutputFile {
+        path: PathBuf::from(format!("{stem}.glb")),
+        contents: mapc_backends::building_gltf(b, &sets, textures),
+    }];
+    if per_level {
+        for (h, m) in meshes {
+            let level = crate::file_stem(&b.levels[*h].name);
+            files.push(OutputFile {
+                path: PathBuf::from(format!("{stem}_{level}.glb")),
+                contents: mapc_backends::level_glb(b, *h, m.all(), textures),
+            });
+        }
+    }
+    files
+}
+
+/// `<building>_<level>/meshes/`: OBJ + MTL, model.material and textures, per level.
+pub(crate) fn mesh_files(
+    b: &Building,
+    meshes: &[(Handle<Level>, LevelMeshes)],
+    textures: &Textures,
+) -> Vec<OutputFile> {
+    let mut files = Vec::new();
+    for (h, m) in meshes {
+        files.extend(mapc_backends::level_obj_files_from(b, *h, m));
+        files.extend(mapc_backends::level_texture_files(b, *h, m, textures));
+    }
+    files
+}
+
+/// The directory name of a map's outputs: the file name less `.building.yaml` (or
+/// `.project.yaml`, or its last extension), as rmf_demos_maps' CMake names maps.
+pub(crate) fn map_name(input: &Path) -> String {
+    let name = input
+        .file_name()
+        .map(|n| n.to_string_lossy().into_owned())
+        .unwrap_or_default();
+    let stem = [".building.yaml", ".project.yaml"]
+        .iter()
+        .find_map(|suffix| name.strip_suffix(suffix))
+        .map(str::to_owned)
+        .or_else(|| input.file_stem().map(|s| s.to_string_lossy().into_owned()))
+        .unwrap_or_default();
+    crate::file_stem(&stem)
+}
+
+/// One map's outcome.
+struct MapResult {
+    input: PathBuf,
+    /// `None` when the map could not be read at all (`error` says why).
+    checked: Option<Checked>,
+    /// An I/O problem (exit 2).
+    error: Option<String>,
+    /// 0 ok, 1 invalid map, 2 I/O error.
+    code: u8,
+    /// Files this map's outputs consist of (written or already up to date).
+    outputs: Vec<PathBuf>,
+    /// Files read: the map, the files it names, the textures found (and the texture search
+    /// directories when a texture was not found).
+    deps: Vec<PathBuf>,
+}
+
+/// Every file of the selected targets, paths relative to the map's directory, plus texture
+/// warnings and the texture files read.
+fn target_files(
+    b: &Building,
+    map: &str,
+    targets: &[Target],
+    texture_path: &[PathBuf],
+    input: &Path,
+) -> (Vec<OutputFile>, Vec<Diagnostic>, Vec<PathBuf>) {
+    let has = |t| targets.contains(&t);
+    let mut files = Vec::new();
+    if has(Target::Nav) {
+        for f in mapc_backends::nav_graphs(b) {
+            files.push(OutputFile {
+                path: Path::new("nav_graphs").join(f.path),
+                contents: f.contents,
+            });
+        }
+    }
+    let mut diags = Vec::new();
+    let mut found = Vec::new();
+    let mut missing = false;
+    let worlds: Vec<(Flavour, &str)> = targets.iter().filter_map(|t| t.flavour()).collect();
+    let models = has(Target::Meshes) || !worlds.is_empty();
+    if has(Target::Gltf) || models {
+        let meshes = all_level_meshes(b);
+        let mut names = std::collections::BTreeSet::new();
+        if has(Target::Gltf) {
+            names.extend(gltf_texture_names(&meshes));
+        }
+        if models {
+            names.extend(mesh_texture_names(&meshes));
+        }
+        let search =
+            texture::SearchPath::new(texture_path, std::env::var_os("MAPC_TEXTURE_PATH"), input);
+        let (textures, d) =
+            mapc_backends::resolve_textures(b, names.iter().map(String::as_str), &mut |f| {
+                let Some((path, bytes)) = search.locate(f) else {
+                    missing = true;
+                    return None;
+                };
+                found.push(path);
+                Some(bytes)
+            });
+        diags = d;
+        // A texture not found yet: the search directories change when it is added.
+        if missing {
+            found.extend(search.dirs.iter().filter(|d| d.is_dir()).cloned());
+        }
+        if has(Target::Gltf) {
+            files.extend(gltf_files(b, &meshes, &textures, false));
+        }
+        // Worlds through the function `mapc gazebo` uses, so the bytes are the same. Their
+        // level models (model.sdf, model.config, meshes, textures) are the same for every
+        // flavour and include the meshes target's files.
+        let opts = mapc_backends::sdf::world::WorldOptions::default();
+        let mut model_files = None;
+        for (flavour, suffix) in worlds {
+            let w = mapc_backends::sdf::world::world_files(b, flavour, &opts, &meshes, &textures);
+            files.push(OutputFile {
+                path: PathBuf::from(format!("{map}{suffix}.world")),
+                contents: w.world.into_bytes(),
+            });
+            model_files.get_or_insert(w.models);
+        }
+        let model_files = match model_files {
+            Some(m) => m,
+            None if has(Target::Meshes) => mesh_files(b, &meshes, &textures),
+            None => Vec::new(),
+        };
+        for f in model_files {
+            files.push(OutputFile {
+                path: Path::new("models").join(f.path),
+                contents: f.contents,
+            });
+        }
+    }
+    (files, diags, found)
+}
+
+fn build_one(input: &Path, args: &BuildArgs) -> MapResult {
+    let mut result = MapResult {
+        input: input.to_path_buf(),
+        checked: None,
+        error: None,
+        code: 0,
+        outputs: Vec::new(),
+        deps: vec![input.to_path_buf()],
+    };
+    let mut checked = match load_and_check(input) {
+        Ok(c) => c,
+        Err(e) => {
+            result.error = Some(e);
+            result.code = 2;
+            return result;
+        }
+    };
+    for s in checked.parsed.sources.iter().skip(1) {
+        result.deps.push(PathBuf::from(&s.name));
+    }
+    let mut files = Vec::new();
+    if let Some(b) = &checked.parsed.building {
+        if !checked.diagnostics.iter().any(|d| d.is_error()) {
+            let map = map_name(input);
+            let (f, diags, found) = target_files(b, &map, &args.targets, &args.texture_path, input);
+            files = f;
+            checked.diagnostics.extend(diags);
+            result.deps.extend(found);
+        }
+    }
+    if checked.failed(args.diag.deny_warnings) {
+        result.code = 1;
+    } else {
+        let dir = args.out_dir.join(map_name(input));
+        match output::write_all(&dir, &files) {
+            Ok(()) => result.outputs = files.iter().map(|f| dir.join(&f.path)).collect(),
+            Err(e) => {
+                result.error = Some(e);
+                result.code = 2;
+            }
+        }
+    }
+    result.checked = Some(checked);
+    result
+}
+
+/// The progress line: only on a terminal, redrawn in place, cleared before other output.
+struct Progress {
+    on: bool,
+    total: usize,
+}
+
+impl Progress {
+    fn draw(&self, done: usize, last: &Path) {
+        if self.on {
+            let mut e = std::io::stderr().lock();
+            let _ = write!(
+                e,
+                "\r\x1b[K[{done}/{}] built {}",
+                self.total,
+                last.display()
+            );
+            let _ = e.flush();
+        }
+    }
+    fn clear(&self) {
+        if self.on {
+            let _ = write!(std::io::stderr(), "\r\x1b[K");
+        }
+    }
+}
+
+fn report(r: &MapResult, format: Format) {
+    if let Some(c) = &r.checked {
+        if format != Format::Sarif {
+            emit(c, format);
+        }
+        if format == Format::Human {
+            summary_line(&r.input, c);
+        }
+    }
+    match (&r.error, r.code) {
+        (Some(e), _) => eprintln!("error: {e}"),
+        (None, 1) => eprintln!("error: {}: nothing written", r.input.display()),
+        _ => {}
+    }
+}
+
+/// Make/Ninja depfile text: `targets: deps`, one dependency per continuation line. No
+/// `gcc -MP` style empty rules: CMake's Makefile generator adds its own, and keeps rules it
+/// once read, so that a texture deleted later would rerun mapc on every build.
+pub(crate) fn depfile_text(targets: &[PathBuf], deps: &[PathBuf]) -> String {
+    let mut s = String::new();
+    let names: Vec<String> = targets.iter().map(|t| escape(t)).collect();
+    s.push_str(&names.join(" \\\n  "));
+    s.push(':');
+    for d in deps {
+        s.push_str(" \\\n  ");
+        s.push_str(&escape(d));
+    }
+    s.push('\n');
+    s
+}
+
+/// A path as Make and Ninja read it in a depfile: spaces and `#` backslash-escaped, `$`
+/// doubled.
+fn escape(p: &Path) -> String {
+    let mut out = String::new();
+    for c in p.to_string_lossy().chars() {
+        match c {
+            ' ' => out.push_str("\\ "),
+            '#' => out.push_str("\\#"),
+            '$' => out.push_str("$$"),
+            _ => out.push(c),
+        }
+    }
+    out
+}
+
+pub(crate) fn build(mut args: BuildArgs) -> ExitCode {
+    args.targets.sort();
+    args.targets.dedup();
+    let args = &args;
+    // Two inputs with the same name would write the same directory.
+    let mut seen: BTreeMap<String, &Path> = BTreeMap::new();
+    for input in &args.inputs {
+        if let Some(other) = seen.insert(map_name(input), input) {
+            eprintln!(
+                "error: `{}` and `{}` would both write {}/{}",
+                other.display(),
+                input.display(),
+                args.out_dir.display(),
+                map_name(input)
+            );
+            return ExitCode::from(2);
+        }
+    }
+    let n = args.inputs.len();
+    let jobs = args
+        .jobs
+        .or_else(|| std::thread::available_parallelism().ok())
+        .map_or(1, NonZeroUsize::get)
+        .min(n);
+    let progress = Progress {
+        on: std::io::stderr().is_terminal() && args.diag.format == Format::Human,
+        total: n,
+    };
+    let next = AtomicUsize::new(0);
+    let mut results: Vec<Option<MapResult>> = (0..n).map(|_| None).collect();
+    std::thread::scope(|s| {
+        let (tx, rx) = mpsc::channel();
+        for _ in 0..jobs {
+            let tx = tx.clone();
+            let next = &next;
+            s.spawn(move || loop {
+                let i = next.fetch_add(1, Ordering::Relaxed);
+                if i >= n {
+                    break;
+                }
+                let r = build_one(&args.inputs[i], args);
+                if tx.send((i, r)).is_err() {
+                    break;
+                }
+            });
+        }
+        drop(tx);
+        let mut printed = 0;
+        for (done, (i, r)) in rx.into_iter().enumerate() {
+            let last = r.input.clone();
+            results[i] = Some(r);
+            progress.clear();
+            while let Some(Some(r)) = results.get(printed) {
+                report(r, args.diag.format);
+                printed += 1;
+            }
+            progress.draw(done + 1, &last);
+        }
+        progress.clear();
+    });
+    let results: Vec<MapResult> = results.into_iter().flatten().collect();
+    if args.diag.format == Format::Sarif {
+        crate::print_sarif(results.iter().filter_map(|r| r.checked.as_ref()));
+    }
+    let code = results.iter().map(|r| r.code).max().unwrap_or(0);
+    if code == 0 {
+        if let Err(e) = finish(args, &results) {
+            eprintln!("error: {e}");
+            return ExitCode::from(2);
+        }
+    }
+    ExitCode::from(code)
+}
+
+/// The depfile and then the stamp, once every map succeeded.
+fn finish(args: &BuildArgs, results: &[MapResult]) -> Result<(), String> {
+    let outputs: Vec<PathBuf> = results.iter().flat_map(|r| r.outputs.clone()).collect();
+    if let Some(depfile) = &args.depfile {
+        let mut deps: Vec<PathBuf> = Vec::new();
+        for d in results.iter().flat_map(|r| &r.deps) {
+            if !deps.contains(d) {
+                deps.push(d.clone());
+            }
+        }
+        let targets = match &args.stamp {
+            Some(stamp) => vec![stamp.clone()],
+            None => outputs.clone(),
+        };
+        let text = depfile_text(&targets, &deps);
+        // Always rewritten, as compilers do: CMake's Makefile generator reads a depfile
+        // again only when it is newer than what it consolidated last time.
+        output::write_atomic(depfile, text.as_bytes())
+            .map_err(|e| format!("{}: {e}", depfile.display()))?;
+    }
+    if let Some(stamp) = &args.stamp {
+        // Always rewritten, last: its modification time is what build systems compare. In
+        // place rather than renamed, so its directory's time does not move past it.
+        let list: String = outputs
+            .iter()
+            .map(|p| format!("{}\n", p.display()))
+            .collect();
+        if let Some(dir) = stamp.parent().filter(|d| !d.as_os_str().is_empty()) {
+            std::fs::create_dir_all(dir).map_err(|e| format!("{}: {e}", dir.display()))?;
+        }
+        std::fs::write(stamp, list).map_err(|e| format!("{}: {e}", stamp.display()))?;
+    }
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn map_names() {
+        assert_eq!(map_name(Path::new("a/office.building.yaml")), "office");
+        assert_eq!(map_name(Path::new("old.project.yaml")), "old");
+        assert_eq!(map_name(Path::new("x/plain.yaml")), "plain");
+        assert_eq!(map_name(Path::new("..building.yaml")), "building");
+    }
+
+    #[test]
+    fn depfile_escapes() {
+        let t = depfile_text(
+            &[PathBuf::from("out/a b.stamp")],
+            &[
+                PathBuf::from("m#1.building.yaml"),
+                PathBuf::from("t/$x.png"),
+            ],
+        );
+        assert_eq!(
+            t,
+            "out/a\\ b.stamp: \\\n  m\\#1.building.yaml \\\n  t/$$x.png\n"
+        );
+    }
+}

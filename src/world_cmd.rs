@@ -1,0 +1,136 @@
+//! `mapc gazebo` (gz-sim, alias `gz`), `mapc ignition` and `mapc classic`: a simulation
+//! world and its level models, with `building_map_generator gazebo`'s arguments.
+
+use crate::{emit, load_and_check, output, summary_line, textures_for, DiagOpts, Format};
+use mapc_backends::sdf::world::{parse_template, world_files, WorldOptions};
+use mapc_backends::sdf::Flavour;
+use mapc_backends::OutputFile;
+use std::path::{Path, PathBuf};
+use std::process::ExitCode;
+
+#[derive(clap::Args)]
+pub(crate) struct WorldArgs {
+    /// The .building.yaml (or legacy .project.yaml) to read.
+    input: PathBuf,
+    /// The world file to write (its directory is created if missing).
+    output_world: PathBuf,
+    /// Directory for the level models, <building>_<level>/{model.sdf,model.config,meshes/};
+    /// created if missing. Point GZ_SIM_RESOURCE_PATH (or GAZEBO_MODEL_PATH) at it.
+    output_model_dir: PathBuf,
+    /// Use this SDF as the world skeleton instead of mapc's default for the simulator: root
+    /// <sdf> with a <world> child; unless --SKIP_CAMERA_POSE, its <gui> must hold a camera
+    /// pose (a MinimalScene or GzScene3D plugin's <camera_pose>, or <camera><pose>).
+    #[arg(long = "TEMPLATE_WORLD_FILE", value_name = "PATH")]
+    template_world_file: Option<PathBuf>,
+    /// Keep the template's camera pose instead of placing the camera over the first floor.
+    #[arg(long = "SKIP_CAMERA_POSE")]
+    skip_camera_pose: bool,
+    /// Accepted and ignored: building_map_generator's free-form options (before 2024-05
+    /// only the subcommand name was ever passed through them).
+    #[arg(short = 'o', long = "options", value_name = "OPT", num_args = 0..)]
+    _options: Vec<String>,
+    /// Accepted and ignored: building_map_generator's old no-download flag (model download
+    /// was removed in 2020; mapc never downloads models).
+    #[arg(short = 'n', long = "no_download")]
+    _no_download: bool,
+    /// Accepted and ignored: building_map_generator's old model path for downloads.
+    #[arg(short = 'm', long = "model_path", value_name = "PATH")]
+    _model_path: Option<PathBuf>,
+    /// Accepted and ignored: building_map_generator's old download cache.
+    #[arg(short = 'c', long = "cache", value_name = "PATH")]
+    _cache: Option<PathBuf>,
+    /// A directory to search for `<texture>.png` (repeatable; searched in order, before
+    /// MAPC_TEXTURE_PATH and the map's directory).
+    #[arg(long = "texture-path", value_name = "DIR")]
+    texture_path: Vec<PathBuf>,
+    #[command(flatten)]
+    diag: DiagOpts,
+}
+
+pub(crate) fn run(flavour: Flavour, args: &WorldArgs) -> ExitCode {
+    let template = match &args.template_world_file {
+        None => None,
+        Some(p) => {
+            let parsed = std::fs::read_to_string(p)
+                .map_err(|e| e.to_string())
+                .and_then(|t| parse_template(&t, args.skip_camera_pose));
+            match parsed {
+                Ok(t) => Some(t),
+                Err(e) => {
+                    eprintln!("error: --TEMPLATE_WORLD_FILE {}: {e}", p.display());
+                    return ExitCode::from(2);
+                }
+            }
+        }
+    };
+    let Some(world_name) = args.output_world.file_name() else {
+        eprintln!(
+            "error: OUTPUT_WORLD `{}` is not a file path",
+            args.output_world.display()
+        );
+        return ExitCode::from(2);
+    };
+    let world_dir = args
+        .output_world
+        .parent()
+        .filter(|p| !p.as_os_str().is_empty())
+        .unwrap_or(Path::new("."));
+
+    let mut checked = match load_and_check(&args.input) {
+        Ok(c) => c,
+        Err(e) => {
+            eprintln!("error: {e}");
+            return ExitCode::from(2);
+        }
+    };
+    let mut out = None;
+    let mut texture_diags = Vec::new();
+    if let Some(b) = checked.parsed.building.as_ref() {
+        if !checked.diagnostics.iter().any(|d| d.is_error()) {
+            let meshes: Vec<_> = b
+                .levels
+                .iter()
+                .map(|(h, _)| (h, mapc_backends::level_meshes(b, h)))
+                .collect();
+            let names = mapc_backends::texture_names(meshes.iter().flat_map(|(_, m)| m.all()));
+            let (textures, diags) = textures_for(
+                b,
+                names.iter().map(String::as_str),
+                &args.texture_path,
+                &args.input,
+            );
+            texture_diags = diags;
+            let opts = WorldOptions {
+                template,
+                skip_camera_pose: args.skip_camera_pose,
+            };
+            out = Some(world_files(b, flavour, &opts, &meshes, &textures));
+        }
+    }
+    checked.diagnostics.extend(texture_diags);
+    emit(&checked, args.diag.format);
+    if args.diag.format == Format::Human {
+        summary_line(&args.input, &checked);
+    }
+    if checked.failed(args.diag.deny_warnings) {
+        eprintln!("error: {}: nothing written", args.input.display());
+        return ExitCode::from(1);
+    }
+    let Some(out) = out else {
+        return ExitCode::from(1);
+    };
+    // Models first: the world refers to them.
+    let world = [OutputFile {
+        path: PathBuf::from(world_name),
+        contents: out.world.into_bytes(),
+    }];
+    let result = output::write_all(&args.output_model_dir, &out.models)
+        .and_then(|()| output::write_all(world_dir, &world));
+    match result {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(e) => {
+            eprintln!("error: {e}");
+            ExitCode::from(2)
+        }
+    }
+}
