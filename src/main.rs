@@ -218,13 +218,35 @@ fn summary_line(input: &Path, c: &Checked) {
 }
 
 fn nav(input: &Path, output_dir: &Path, opts: &DiagOpts) -> ExitCode {
-    let checked = match load_and_check(input) {
+    run_command(input, output_dir, opts, |b| {
+        (mapc_backends::nav_graphs(b), Vec::new())
+    })
+}
+
+/// The shape every single-map command shares: read and check `input`; when the map has no
+/// errors, `produce` builds the output files (its diagnostics, e.g. texture warnings, join
+/// the report); report; write the files under `out_dir` unless anything failed.
+fn run_command(
+    input: &Path,
+    out_dir: &Path,
+    opts: &DiagOpts,
+    produce: impl FnOnce(&mapc_ir::Building) -> (Vec<mapc_backends::OutputFile>, Vec<Diagnostic>),
+) -> ExitCode {
+    let mut checked = match load_and_check(input) {
         Ok(c) => c,
         Err(e) => {
             eprintln!("error: {e}");
             return ExitCode::from(2);
         }
     };
+    let mut files = Vec::new();
+    if let Some(b) = checked.parsed.building.as_ref() {
+        if !checked.diagnostics.iter().any(|d| d.is_error()) {
+            let (f, diags) = produce(b);
+            files = f;
+            checked.diagnostics.extend(diags);
+        }
+    }
     emit(&checked, opts.format);
     if opts.format == Format::Human {
         summary_line(input, &checked);
@@ -233,11 +255,7 @@ fn nav(input: &Path, output_dir: &Path, opts: &DiagOpts) -> ExitCode {
         eprintln!("error: {}: nothing written", input.display());
         return ExitCode::from(1);
     }
-    let Some(building) = &checked.parsed.building else {
-        return ExitCode::from(1);
-    };
-    let files = mapc_backends::nav_graphs(building);
-    match output::write_all(output_dir, &files) {
+    match output::write_all(out_dir, &files) {
         Ok(()) => ExitCode::SUCCESS,
         Err(e) => {
             eprintln!("error: {e}");
@@ -272,42 +290,13 @@ fn gltf(
     per_level: bool,
     opts: &DiagOpts,
 ) -> ExitCode {
-    let mut checked = match load_and_check(input) {
-        Ok(c) => c,
-        Err(e) => {
-            eprintln!("error: {e}");
-            return ExitCode::from(2);
-        }
-    };
-    // Meshes and textures only for a map without errors; texture warnings join the report.
-    let mut files = Vec::new();
-    let mut texture_diags = Vec::new();
-    if let Some(b) = checked.parsed.building.as_ref() {
-        if !checked.diagnostics.iter().any(|d| d.is_error()) {
-            let meshes = build::all_level_meshes(b);
-            let names = build::gltf_texture_names(&meshes);
-            let (textures, diags) =
-                textures_for(b, names.iter().map(String::as_str), texture_path, input);
-            texture_diags = diags;
-            files = build::gltf_files(b, &meshes, &textures, per_level);
-        }
-    }
-    checked.diagnostics.extend(texture_diags);
-    emit(&checked, opts.format);
-    if opts.format == Format::Human {
-        summary_line(input, &checked);
-    }
-    if checked.failed(opts.deny_warnings) {
-        eprintln!("error: {}: nothing written", input.display());
-        return ExitCode::from(1);
-    }
-    match output::write_all(output_dir, &files) {
-        Ok(()) => ExitCode::SUCCESS,
-        Err(e) => {
-            eprintln!("error: {e}");
-            ExitCode::from(2)
-        }
-    }
+    run_command(input, output_dir, opts, |b| {
+        let meshes = build::all_level_meshes(b);
+        let names = build::gltf_texture_names(&meshes);
+        let (textures, diags) =
+            textures_for(b, names.iter().map(String::as_str), texture_path, input);
+        (build::gltf_files(b, &meshes, &textures, per_level), diags)
+    })
 }
 
 /// Texture images for `names`, searched on the texture path (`--texture-path` directories,
@@ -324,41 +313,13 @@ fn textures_for<'a>(
 }
 
 fn meshes(input: &Path, model_dir: &Path, texture_path: &[PathBuf], opts: &DiagOpts) -> ExitCode {
-    let mut checked = match load_and_check(input) {
-        Ok(c) => c,
-        Err(e) => {
-            eprintln!("error: {e}");
-            return ExitCode::from(2);
-        }
-    };
-    let mut files = Vec::new();
-    let mut texture_diags = Vec::new();
-    if let Some(b) = checked.parsed.building.as_ref() {
-        if !checked.diagnostics.iter().any(|d| d.is_error()) {
-            let meshes = build::all_level_meshes(b);
-            let names = build::mesh_texture_names(&meshes);
-            let (textures, diags) =
-                textures_for(b, names.iter().map(String::as_str), texture_path, input);
-            texture_diags = diags;
-            files = build::mesh_files(b, &meshes, &textures);
-        }
-    }
-    checked.diagnostics.extend(texture_diags);
-    emit(&checked, opts.format);
-    if opts.format == Format::Human {
-        summary_line(input, &checked);
-    }
-    if checked.failed(opts.deny_warnings) {
-        eprintln!("error: {}: nothing written", input.display());
-        return ExitCode::from(1);
-    }
-    match output::write_all(model_dir, &files) {
-        Ok(()) => ExitCode::SUCCESS,
-        Err(e) => {
-            eprintln!("error: {e}");
-            ExitCode::from(2)
-        }
-    }
+    run_command(input, model_dir, opts, |b| {
+        let meshes = build::all_level_meshes(b);
+        let names = build::mesh_texture_names(&meshes);
+        let (textures, diags) =
+            textures_for(b, names.iter().map(String::as_str), texture_path, input);
+        (build::mesh_files(b, &meshes, &textures), diags)
+    })
 }
 
 fn check(inputs: &[PathBuf], opts: &DiagOpts) -> ExitCode {
