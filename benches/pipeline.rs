@@ -219,3 +219,26 @@ fn obj_files(bencher: Bencher, name: &str) {
             .collect::<Vec<_>>()
     });
 }
+
+/// What `mapc gazebo` computes for one map once it is read and checked: level meshes, then
+/// the gz-sim world text and every level-model file (model.sdf, model.config, OBJ/MTL,
+/// model.material, texture files). Textures are placeholders here, so texture reading and
+/// copying are excluded, as the target ("under 20 ms plus texture copying") states.
+#[divan::bench(args = shared_names())]
+fn gazebo_world(bencher: Bencher, name: &str) {
+    use mapc_backends::sdf::{world::world_files, world::WorldOptions, Flavour};
+    let parsed = mapc_frontend::parse_str(name, text(name));
+    let Some(b) = parsed.valid_building() else {
+        return;
+    };
+    let textures = mapc_backends::Textures::default();
+    let opts = WorldOptions::default();
+    bencher.bench(|| {
+        let meshes: Vec<_> = b
+            .levels
+            .iter()
+            .map(|(h, _)| (h, mapc_backends::level_meshes(black_box(b), h)))
+            .collect();
+        world_files(b, Flavour::Gz, &opts, &meshes, &textures)
+    });
+}
