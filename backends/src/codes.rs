@@ -1,13 +1,7 @@
 //! Diagnostic codes the backends report while producing output (W07xx). Each `///` block is
 //! gathered into docs/diagnostics.md (see tests/docs.rs), like frontend/src/codes.rs.
 
-/// A documented diagnostic code.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub struct Code {
-    pub code: &'static str,
-    pub name: &'static str,
-    pub summary: &'static str,
-}
+pub use mapc_ir::Code;
 
 /// # W0701 texture-not-found
 ///

@@ -2,13 +2,7 @@
 //! into docs/diagnostics.md (see tests/docs.rs); the validation rules of mapc-ir document
 //! themselves the same way.
 
-/// A documented diagnostic code.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub struct Code {
-    pub code: &'static str,
-    pub name: &'static str,
-    pub summary: &'static str,
-}
+pub use mapc_ir::Code;
 
 /// # E0001 invalid-yaml
 ///

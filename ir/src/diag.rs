@@ -15,6 +15,15 @@ pub struct Label {
     pub message: String,
 }
 
+/// A documented diagnostic code: each crate that reports diagnostics lists its codes as
+/// `Code` constants whose doc comments are gathered into docs/diagnostics.md.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Code {
+    pub code: &'static str,
+    pub name: &'static str,
+    pub summary: &'static str,
+}
+
 /// One problem found in a map. `code` is stable across releases (see docs/diagnostics.md).
 #[derive(Debug, Clone, PartialEq)]
 pub struct Diagnostic {
