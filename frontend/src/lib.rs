@@ -10,6 +10,12 @@ mod transform;
 mod yaml;
 
 pub use codes::{Code, CODES};
+
+/// The located YAML tree the frontend reads maps with, for other YAML inputs of mapc
+/// (simulation scenarios) that want the same limits, spans and YAML 1.2 scalars.
+pub mod yaml_tree {
+    pub use crate::yaml::{parse, Kind, Node, Scalar, MAX_ALIAS_NODES, MAX_DEPTH, MAX_NODES};
+}
 use mapc_ir::{Building, Diagnostic, FileId, Span};
 use std::path::{Path, PathBuf};
 

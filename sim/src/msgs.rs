@@ -1,0 +1,356 @@
+//! RMF messages (rmf_internal_msgs 4.1.0) with their field names, so that a trace line maps
+//! 1:1 to a ROS message. Floats are f64 here (RMF uses float32 for x, y, yaw); the trace
+//! therefore carries more digits than ROS would, never fewer.
+
+use serde::Serialize;
+
+/// builtin_interfaces/Time.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize)]
+pub struct Time {
+    pub sec: i32,
+    pub nanosec: u32,
+}
+
+impl Time {
+    /// `(trunc(t), frac(t)·1e9)`, as the plugins stamp their messages.
+    pub fn from_secs(t: f64) -> Time {
+        let sec = t.trunc();
+        let nanosec = ((t - sec) * 1e9).round().clamp(0.0, 999_999_999.0) as u32;
+        Time {
+            sec: sec as i32,
+            nanosec,
+        }
+    }
+    /// Whole seconds only (dispensers and ingestors use integer sim seconds).
+    pub fn whole(t: f64) -> Time {
+        Time {
+            sec: t.floor() as i32,
+            nanosec: 0,
+        }
+    }
+    pub fn as_secs(self) -> f64 {
+        self.sec as f64 + self.nanosec as f64 * 1e-9
+    }
+}
+
+#[derive(Debug, Clone, PartialEq, Default, Serialize)]
+pub struct Location {
+    pub t: Time,
+    pub x: f64,
+    pub y: f64,
+    pub yaw: f64,
+    pub obey_approach_speed_limit: bool,
+    pub approach_speed_limit: f64,
+    pub level_name: String,
+    pub index: u64,
+}
+
+pub mod robot_mode {
+    pub const IDLE: u32 = 0;
+    pub const CHARGING: u32 = 1;
+    pub const MOVING: u32 = 2;
+    pub const PAUSED: u32 = 3;
+    pub const WAITING: u32 = 4;
+    pub const EMERGENCY: u32 = 5;
+    pub const GOING_HOME: u32 = 6;
+    pub const DOCKING: u32 = 7;
+    pub const ADAPTER_ERROR: u32 = 8;
+    pub const CLEANING: u32 = 9;
+    pub const PERFORMING_ACTION: u32 = 10;
+    pub const ACTION_COMPLETED: u32 = 11;
+}
+
+#[derive(Debug, Clone, PartialEq, Default, Serialize)]
+pub struct RobotMode {
+    pub mode: u32,
+    pub mode_request_id: u64,
+    pub performing_action: String,
+}
+
+#[derive(Debug, Clone, PartialEq, Default, Serialize)]
+pub struct RobotState {
+    pub name: String,
+    pub model: String,
+    pub task_id: String,
+    pub seq: u64,
+    pub mode: RobotMode,
+    pub battery_percent: f64,
+    pub location: Location,
+    pub path: Vec<Location>,
+}
+
+#[derive(Debug, Clone, PartialEq, Default, Serialize)]
+pub struct FleetState {
+    pub name: String,
+    pub robots: Vec<RobotState>,
+}
+
+#[derive(Debug, Clone, PartialEq, Default, Serialize)]
+pub struct PathRequest {
+    pub fleet_name: String,
+    pub robot_name: String,
+    pub path: Vec<Location>,
+    pub task_id: String,
+}
+
+#[derive(Debug, Clone, PartialEq, Default, Serialize)]
+pub struct ModeParameter {
+    pub name: String,
+    pub value: String,
+}
+
+#[derive(Debug, Clone, PartialEq, Default, Serialize)]
+pub struct ModeRequest {
+    pub fleet_name: String,
+    pub robot_name: String,
+    pub mode: RobotMode,
+    pub task_id: String,
+    pub parameters: Vec<ModeParameter>,
+}
+
+pub mod pause_type {
+    pub const PAUSE_IMMEDIATELY: u32 = 0;
+    pub const PAUSE_AT_CHECKPOINT: u32 = 1;
+    pub const RESUME: u32 = 2;
+}
+
+#[derive(Debug, Clone, PartialEq, Default, Serialize)]
+pub struct PauseRequest {
+    pub fleet_name: String,
+    pub robot_name: String,
+    pub mode_request_id: u64,
+    #[serde(rename = "type")]
+    pub kind: u32,
+    pub at_checkpoint: u32,
+}
+
+pub mod door_mode {
+    pub const CLOSED: u32 = 0;
+    pub const MOVING: u32 = 1;
+    pub const OPEN: u32 = 2;
+    pub const OFFLINE: u32 = 3;
+    pub const UNKNOWN: u32 = 4;
+}
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize)]
+pub struct DoorMode {
+    pub value: u32,
+}
+
+#[derive(Debug, Clone, PartialEq, Default, Serialize)]
+pub struct DoorRequest {
+    pub request_time: Time,
+    pub requester_id: String,
+    pub door_name: String,
+    pub requested_mode: DoorMode,
+}
+
+#[derive(Debug, Clone, PartialEq, Default, Serialize)]
+pub struct DoorState {
+    pub door_time: Time,
+    pub door_name: String,
+    pub current_mode: DoorMode,
+}
+
+#[derive(Debug, Clone, PartialEq, Default, Serialize)]
+pub struct Session {
+    pub request_time: Time,
+    pub requester_id: String,
+}
+
+#[derive(Debug, Clone, PartialEq, Default, Serialize)]
+pub struct DoorSessions {
+    pub door_name: String,
+    pub sessions: Vec<Session>,
+}
+
+#[derive(Debug, Clone, PartialEq, Default, Serialize)]
+pub struct SupervisorHeartbeat {
+    pub all_sessions: Vec<DoorSessions>,
+}
+
+pub mod lift_request {
+    pub const END_SESSION: u8 = 0;
+    pub const AGV_MODE: u8 = 1;
+    pub const HUMAN_MODE: u8 = 2;
+    pub const DOOR_CLOSED: u8 = 0;
+    pub const DOOR_OPEN: u8 = 2;
+}
+
+pub mod lift_state {
+    pub const DOOR_CLOSED: u8 = 0;
+    pub const DOOR_MOVING: u8 = 1;
+    pub const DOOR_OPEN: u8 = 2;
+    pub const MOTION_STOPPED: u8 = 0;
+    pub const MOTION_UP: u8 = 1;
+    pub const MOTION_DOWN: u8 = 2;
+    pub const MOTION_UNKNOWN: u8 = 3;
+    pub const MODE_UNKNOWN: u8 = 0;
+    pub const MODE_HUMAN: u8 = 1;
+    pub const MODE_AGV: u8 = 2;
+}
+
+#[derive(Debug, Clone, PartialEq, Default, Serialize)]
+pub struct LiftRequest {
+    pub lift_name: String,
+    pub request_time: Time,
+    pub session_id: String,
+    pub request_type: u8,
+    pub destination_floor: String,
+    pub door_state: u8,
+}
+
+#[derive(Debug, Clone, PartialEq, Default, Serialize)]
+pub struct LiftState {
+    pub lift_time: Time,
+    pub lift_name: String,
+    pub available_floors: Vec<String>,
+    pub current_floor: String,
+    pub destination_floor: String,
+    pub door_state: u8,
+    pub motion_state: u8,
+    pub available_modes: Vec<u8>,
+    pub current_mode: u8,
+    pub session_id: String,
+}
+
+#[derive(Debug, Clone, PartialEq, Default, Serialize)]
+pub struct ItemType {
+    pub type_guid: String,
+    pub quantity: i32,
+    pub compartment_name: String,
+}
+
+/// `rmf_dispenser_msgs/DispenserRequest` and `rmf_ingestor_msgs/IngestorRequest` have the
+/// same fields.
+#[derive(Debug, Clone, PartialEq, Default, Serialize)]
+pub struct WorkcellRequest {
+    pub time: Time,
+    pub request_guid: String,
+    pub target_guid: String,
+    pub transporter_type: String,
+    pub items: Vec<ItemType>,
+}
+
+pub mod workcell_result {
+    pub const ACKNOWLEDGED: u8 = 0;
+    pub const SUCCESS: u8 = 1;
+    pub const FAILED: u8 = 2;
+}
+
+/// `DispenserResult` / `IngestorResult`.
+#[derive(Debug, Clone, PartialEq, Default, Serialize)]
+pub struct WorkcellResult {
+    pub time: Time,
+    pub request_guid: String,
+    pub source_guid: String,
+    pub status: u8,
+}
+
+pub mod workcell_mode {
+    pub const IDLE: i32 = 0;
+    pub const BUSY: i32 = 1;
+    pub const OFFLINE: i32 = 2;
+}
+
+/// `DispenserState` / `IngestorState`.
+#[derive(Debug, Clone, PartialEq, Default, Serialize)]
+pub struct WorkcellState {
+    pub time: Time,
+    pub guid: String,
+    pub mode: i32,
+    pub request_guid_queue: Vec<String>,
+    pub seconds_remaining: f64,
+}
+
+/// A task event of the fleet layer (not an RMF message; RMF reports task progress through
+/// its task API). `event` is one of `queued`, `assigned`, `started`, `phase`, `completed`,
+/// `failed`.
+#[derive(Debug, Clone, PartialEq, Default, Serialize)]
+pub struct TaskEvent {
+    pub time: Time,
+    pub task_id: String,
+    pub category: String,
+    pub event: String,
+    pub fleet: String,
+    pub robot: String,
+    pub detail: String,
+}
+
+/// A message on a topic: what the runtime publishes, what the trace records.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+#[serde(untagged)]
+pub enum Msg {
+    RobotState(RobotState),
+    FleetState(FleetState),
+    PathRequest(PathRequest),
+    ModeRequest(ModeRequest),
+    PauseRequest(PauseRequest),
+    DoorRequest(DoorRequest),
+    DoorState(DoorState),
+    DoorHeartbeat(SupervisorHeartbeat),
+    LiftRequest(LiftRequest),
+    LiftState(LiftState),
+    WorkcellRequest(WorkcellRequest),
+    WorkcellResult(WorkcellResult),
+    WorkcellState(WorkcellState),
+    TaskEvent(TaskEvent),
+}
+
+/// Topic names as RMF sees them (§0.1 of the runtime spec), plus `/task_events`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
+pub enum Topic {
+    RobotState,
+    FleetStates,
+    RobotPathRequests,
+    RobotModeRequests,
+    RobotPauseRequests,
+    AdapterDoorRequests,
+    DoorRequests,
+    DoorStates,
+    DoorSupervisorHeartbeat,
+    AdapterLiftRequests,
+    LiftRequests,
+    LiftStates,
+    DispenserRequests,
+    DispenserResults,
+    DispenserStates,
+    IngestorRequests,
+    IngestorResults,
+    IngestorStates,
+    TaskEvents,
+}
+
+impl Topic {
+    pub fn name(self) -> &'static str {
+        match self {
+            Topic::RobotState => "/robot_state",
+            Topic::FleetStates => "/fleet_states",
+            Topic::RobotPathRequests => "/robot_path_requests",
+            Topic::RobotModeRequests => "/robot_mode_requests",
+            Topic::RobotPauseRequests => "/robot_pause_requests",
+            Topic::AdapterDoorRequests => "/adapter_door_requests",
+            Topic::DoorRequests => "/door_requests",
+            Topic::DoorStates => "/door_states",
+            Topic::DoorSupervisorHeartbeat => "/door_supervisor_heartbeat",
+            Topic::AdapterLiftRequests => "/adapter_lift_requests",
+            Topic::LiftRequests => "/lift_requests",
+            Topic::LiftStates => "/lift_states",
+            Topic::DispenserRequests => "/dispenser_requests",
+            Topic::DispenserResults => "/dispenser_results",
+            Topic::DispenserStates => "/dispenser_states",
+            Topic::IngestorRequests => "/ingestor_requests",
+            Topic::IngestorResults => "/ingestor_results",
+            Topic::IngestorStates => "/ingestor_states",
+            Topic::TaskEvents => "/task_events",
+        }
+    }
+}
+
+/// One published message with its topic and the sim time it was published at.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Published {
+    pub t: f64,
+    pub topic: Topic,
+    pub msg: Msg,
+}
