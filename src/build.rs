@@ -9,6 +9,7 @@
 //! are shared with the single-target commands of `main.rs`.
 
 use crate::{emit, load_and_check, output, summary_line, texture, Checked, DiagOpts, Format};
+use mapc_backends::sdf::world::WorldOptions;
 use mapc_backends::sdf::Flavour;
 use mapc_backends::{LevelMeshes, OutputFile, Textures};
 use mapc_ir::{Building, Diagnostic, Handle, Level};
@@ -83,6 +84,15 @@ pub(crate) struct BuildArgs {
     /// Ninja and CMake expect when the outputs are not known before the build).
     #[arg(long, value_name = "FILE")]
     stamp: Option<PathBuf>,
+    /// As `mapc gazebo`'s: use this SDF as the skeleton of every world target instead of
+    /// mapc's default for the simulator (templates are simulator-specific, so select one
+    /// world target with --targets).
+    #[arg(long = "TEMPLATE_WORLD_FILE", value_name = "PATH")]
+    template_world_file: Option<PathBuf>,
+    /// As `mapc gazebo`'s: keep the template's camera pose instead of placing the camera
+    /// over the first floor.
+    #[arg(long = "SKIP_CAMERA_POSE")]
+    skip_camera_pose: bool,
     /// Maps built at once (default: the available parallelism).
     #[arg(short = 'j', long, value_name = "N")]
     jobs: Option<NonZeroUsize>,
@@ -197,6 +207,7 @@ fn target_files(
     targets: &[Target],
     texture_path: &[PathBuf],
     input: &Path,
+    opts: &WorldOptions,
 ) -> (Vec<OutputFile>, Vec<Diagnostic>, Vec<PathBuf>) {
     let has = |t| targets.contains(&t);
     let mut files = Vec::new();
@@ -244,16 +255,19 @@ fn target_files(
         // Worlds through the function `mapc gazebo` uses, so the bytes are the same. Their
         // level models (model.sdf, model.config, meshes, textures) are the same for every
         // flavour and include the meshes target's files.
-        let opts = mapc_backends::sdf::world::WorldOptions::default();
         let mut model_files = None;
+        let mut crowd_files = None;
         for (flavour, suffix) in worlds {
-            let w = mapc_backends::sdf::world::world_files(b, flavour, &opts, &meshes, &textures);
+            let w = mapc_backends::sdf::world::world_files(b, flavour, opts, &meshes, &textures);
             files.push(OutputFile {
                 path: PathBuf::from(format!("{map}{suffix}.world")),
                 contents: w.world.into_bytes(),
             });
             model_files.get_or_insert(w.models);
+            // The Menge files are the same for every flavour: once, next to the worlds.
+            crowd_files.get_or_insert(w.crowd);
         }
+        files.extend(crowd_files.unwrap_or_default());
         let model_files = match model_files {
             Some(m) => m,
             None if has(Target::Meshes) => mesh_files(b, &meshes, &textures),
@@ -269,7 +283,7 @@ fn target_files(
     (files, diags, found)
 }
 
-fn build_one(input: &Path, args: &BuildArgs) -> MapResult {
+fn build_one(input: &Path, args: &BuildArgs, opts: &WorldOptions) -> MapResult {
     let mut result = MapResult {
         input: input.to_path_buf(),
         checked: None,
@@ -293,7 +307,8 @@ fn build_one(input: &Path, args: &BuildArgs) -> MapResult {
     if let Some(b) = &checked.parsed.building {
         if !checked.diagnostics.iter().any(|d| d.is_error()) {
             let map = map_name(input);
-            let (f, diags, found) = target_files(b, &map, &args.targets, &args.texture_path, input);
+            let (f, diags, found) =
+                target_files(b, &map, &args.targets, &args.texture_path, input, opts);
             files = f;
             checked.diagnostics.extend(diags);
             result.deps.extend(found);
@@ -406,6 +421,21 @@ pub(crate) fn build(mut args: BuildArgs) -> ExitCode {
             return ExitCode::from(2);
         }
     }
+    // The template is read once for every map, as `mapc gazebo` reads it.
+    let template = match &args.template_world_file {
+        None => None,
+        Some(p) => match crate::world_cmd::read_template(p, args.skip_camera_pose) {
+            Ok(t) => Some(t),
+            Err(e) => {
+                eprintln!("error: --TEMPLATE_WORLD_FILE {}: {e}", p.display());
+                return ExitCode::from(2);
+            }
+        },
+    };
+    let opts = &WorldOptions {
+        template,
+        skip_camera_pose: args.skip_camera_pose,
+    };
     let n = args.inputs.len();
     let jobs = args
         .jobs
@@ -428,7 +458,7 @@ pub(crate) fn build(mut args: BuildArgs) -> ExitCode {
                 if i >= n {
                     break;
                 }
-                let r = build_one(&args.inputs[i], args);
+                let r = build_one(&args.inputs[i], args, opts);
                 if tx.send((i, r)).is_err() {
                     break;
                 }

@@ -12,7 +12,9 @@ use std::process::ExitCode;
 pub(crate) struct WorldArgs {
     /// The .building.yaml (or legacy .project.yaml) to read.
     input: PathBuf,
-    /// The world file to write (its directory is created if missing).
+    /// The world file to write (its directory is created if missing). With crowd_sim
+    /// enabled, the Menge files go to config_resource/ next to it: point
+    /// MENGE_RESOURCE_PATH there.
     output_world: PathBuf,
     /// Directory for the level models, <building>_<level>/{model.sdf,model.config,meshes/};
     /// created if missing. Point GZ_SIM_RESOURCE_PATH (or GAZEBO_MODEL_PATH) at it.
@@ -47,21 +49,26 @@ pub(crate) struct WorldArgs {
     diag: DiagOpts,
 }
 
+/// Reads and parses a `--TEMPLATE_WORLD_FILE` (`mapc gazebo` and `mapc build`).
+pub(crate) fn read_template(
+    p: &Path,
+    skip_camera_pose: bool,
+) -> Result<mapc_backends::sdf::xml::Element, String> {
+    std::fs::read_to_string(p)
+        .map_err(|e| e.to_string())
+        .and_then(|t| parse_template(&t, skip_camera_pose))
+}
+
 pub(crate) fn run(flavour: Flavour, args: &WorldArgs) -> ExitCode {
     let template = match &args.template_world_file {
         None => None,
-        Some(p) => {
-            let parsed = std::fs::read_to_string(p)
-                .map_err(|e| e.to_string())
-                .and_then(|t| parse_template(&t, args.skip_camera_pose));
-            match parsed {
-                Ok(t) => Some(t),
-                Err(e) => {
-                    eprintln!("error: --TEMPLATE_WORLD_FILE {}: {e}", p.display());
-                    return ExitCode::from(2);
-                }
+        Some(p) => match read_template(p, args.skip_camera_pose) {
+            Ok(t) => Some(t),
+            Err(e) => {
+                eprintln!("error: --TEMPLATE_WORLD_FILE {}: {e}", p.display());
+                return ExitCode::from(2);
             }
-        }
+        },
     };
     let Some(world_name) = args.output_world.file_name() else {
         eprintln!(
@@ -119,11 +126,13 @@ pub(crate) fn run(flavour: Flavour, args: &WorldArgs) -> ExitCode {
     let Some(out) = out else {
         return ExitCode::from(1);
     };
-    // Models first: the world refers to them.
-    let world = [OutputFile {
+    // Models first: the world refers to them. The crowd simulator's Menge files
+    // (config_resource/, next to the world) go with the world, before it.
+    let mut world = out.crowd;
+    world.push(OutputFile {
         path: PathBuf::from(world_name),
         contents: out.world.into_bytes(),
-    }];
+    });
     let result = output::write_all(&args.output_model_dir, &out.models)
         .and_then(|()| output::write_all(world_dir, &world));
     match result {

@@ -1,6 +1,7 @@
 //! SDF output: level models, doors, lifts and worlds in the three flavours users have
 //! (generator.md §2 and §3).
 
+pub mod crowd;
 pub mod doors;
 pub mod level;
 pub mod lifts;

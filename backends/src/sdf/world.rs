@@ -4,7 +4,8 @@
 //! The world starts from a template (mapc's default for the flavour, `templates/*.sdf`, or a
 //! user's `--TEMPLATE_WORLD_FILE` parsed by [`parse_template`]) and gets, in the reference's
 //! order: per level the model includes, the robot spawn includes, the door models and the
-//! level model include; the lifts; the chargers; the geo-reference; the GUI camera pose and
+//! level model include; the lifts; the chargers; the crowd simulator plugin (when
+//! crowd_sim is enabled; the reference generator ignores crowd_sim); the geo-reference; the GUI camera pose and
 //! the toggle_floors (and, for classic, toggle_charging) GUI plugins.
 //!
 //! **Offset.** Everything in the world has `Building::offset` subtracted: models, robots,
@@ -424,6 +425,11 @@ pub fn world(b: &Building, flavour: Flavour, opts: &WorldOptions) -> Element {
         }
     }
 
+    // The crowd simulator, when enabled (its Menge files are in `WorldFiles::crowd`).
+    if let Some(p) = super::crowd::crowd_plugin(b) {
+        world.push(p);
+    }
+
     // Geo-reference.
     if b.coordinate_system != CoordinateSystem::ReferenceImage {
         world.push(Element::new("offset").text(format!(
@@ -463,12 +469,14 @@ pub fn world_text(b: &Building, flavour: Flavour, opts: &WorldOptions) -> String
     world(b, flavour, opts).to_document(false)
 }
 
-/// What a world run writes: the world file's text and the level models (paths relative to
-/// the model directory).
+/// What a world run writes: the world file's text, the level models (paths relative to
+/// the model directory) and the crowd simulator's Menge files (paths relative to the
+/// world's directory, `config_resource/...`; empty without an enabled crowd_sim).
 #[derive(Debug, Clone)]
 pub struct WorldFiles {
     pub world: String,
     pub models: Vec<crate::OutputFile>,
+    pub crowd: Vec<crate::OutputFile>,
 }
 
 /// The world of `flavour` and every level model (model.sdf, model.config, meshes,
@@ -487,6 +495,7 @@ pub fn world_files(
     WorldFiles {
         world: world_text(b, flavour, opts),
         models,
+        crowd: super::crowd::crowd_files(b),
     }
 }
 
