@@ -123,6 +123,16 @@ fn builds_every_target_of_several_maps() {
         let f = format!("two_level_clinic/{w}");
         assert!(names.contains(f.as_str()), "{f} missing from {names:?}");
     }
+    // crowd_sim is enabled in the warehouse: its Menge files once, beside the worlds.
+    for f in [
+        "cartesian_warehouse/config_resource/scene_file.xml",
+        "cartesian_warehouse/config_resource/behavior_file.xml",
+    ] {
+        assert!(names.contains(f), "{f} missing from {names:?}");
+    }
+    assert!(!names
+        .iter()
+        .any(|n| n.starts_with("two_level_clinic/config_resource")));
     // Same bytes as the single-target commands.
     let nav = tmp.path().join("nav");
     assert_eq!(
@@ -188,6 +198,87 @@ fn builds_every_target_of_several_maps() {
     assert_eq!(code, 0, "{err}");
     assert_eq!(files(&out), first);
     assert_eq!(std::fs::read_to_string(&depfile).unwrap(), d);
+}
+
+/// `--TEMPLATE_WORLD_FILE` and `--SKIP_CAMERA_POSE` mean what they mean for `mapc gazebo`:
+/// the same world bytes with the same options, and a bad template is a usage error.
+#[test]
+fn template_and_skip_camera_pose() {
+    let tmp = tempfile::tempdir().unwrap();
+    let (clinic, _, textures) = setup(tmp.path());
+    let template = tmp.path().join("template.sdf");
+    std::fs::write(
+        &template,
+        "<sdf version=\"1.7\"><world name=\"mine\"><gui>\
+         <plugin filename=\"MinimalScene\" name=\"3D View\"><camera_pose>1 2 3 0 0 0</camera_pose>\
+         </plugin></gui></world></sdf>\n",
+    )
+    .unwrap();
+    let t = template.to_str().unwrap();
+    for extra in [
+        &["--TEMPLATE_WORLD_FILE", t][..],
+        &["--TEMPLATE_WORLD_FILE", t, "--SKIP_CAMERA_POSE"][..],
+        &["--SKIP_CAMERA_POSE"][..],
+    ] {
+        let out = tmp.path().join("out");
+        let mut args = vec![
+            "build",
+            clinic.to_str().unwrap(),
+            "-o",
+            out.to_str().unwrap(),
+            "--targets",
+            "gz",
+            "--texture-path",
+            textures.to_str().unwrap(),
+        ];
+        args.extend_from_slice(extra);
+        let (code, err) = mapc(&args);
+        assert_eq!(code, 0, "{extra:?}: {err}");
+        let built =
+            std::fs::read_to_string(out.join("two_level_clinic/two_level_clinic.world")).unwrap();
+
+        let world = tmp.path().join("gz/w.world");
+        let models = tmp.path().join("gz/models");
+        let mut args = vec![
+            "gazebo",
+            clinic.to_str().unwrap(),
+            world.to_str().unwrap(),
+            models.to_str().unwrap(),
+        ];
+        args.extend_from_slice(extra);
+        let (code, err) = mapc(&args);
+        assert_eq!(code, 0, "{extra:?}: {err}");
+        assert_eq!(built, std::fs::read_to_string(&world).unwrap(), "{extra:?}");
+
+        let templated = extra.contains(&"--TEMPLATE_WORLD_FILE");
+        assert_eq!(
+            built.contains("<world name=\"mine\">"),
+            templated,
+            "{extra:?}"
+        );
+        // The template's camera pose stays only with --SKIP_CAMERA_POSE.
+        let kept = built.contains("<camera_pose>1 2 3 0 0 0</camera_pose>");
+        assert_eq!(kept, templated && extra.contains(&"--SKIP_CAMERA_POSE"));
+        // Without a template, --SKIP_CAMERA_POSE keeps the default template's pose.
+        if !templated {
+            assert!(built.contains("<camera_pose>-6 0 6 0 0.5 0</camera_pose>"));
+        }
+        std::fs::remove_dir_all(&out).unwrap();
+    }
+    // A template without a camera pose to set is a usage error, and nothing is written.
+    std::fs::write(&template, "<sdf><world name=\"w\"><gui/></world></sdf>").unwrap();
+    let out = tmp.path().join("out");
+    let (code, err) = mapc(&[
+        "build",
+        clinic.to_str().unwrap(),
+        "-o",
+        out.to_str().unwrap(),
+        "--TEMPLATE_WORLD_FILE",
+        t,
+    ]);
+    assert_eq!(code, 2, "{err}");
+    assert!(err.contains("--SKIP_CAMERA_POSE"), "{err}");
+    assert!(!out.exists());
 }
 
 #[test]
