@@ -409,6 +409,7 @@ const FIXTURES: &[&str] = &[
     "wgs84_campus.building.yaml",
     "legacy_2019.building.yaml",
     "web_mercator_legacy.building.yaml",
+    "lift_doors.building.yaml",
 ];
 
 fn fixture_world(file: &str, flavour: Flavour) -> String {
@@ -718,4 +719,235 @@ fn failed_run_leaves_previous_outputs() {
     assert!(err.contains("nothing written"), "{err}");
     assert_eq!(std::fs::read(&world).unwrap(), before);
     assert_eq!(std::fs::read(&sdf).unwrap(), sdf_before);
+}
+
+/// A rotated lift with several doors (fixtures/lift_doors: two front doors opening on L1,
+/// listed there in the opposite order to the lift's `doors`, and a right-side door opening
+/// on L2), checked against generator.md §2.8 computed here: shaft-door poses, cabin-door
+/// poses, door pairs in the `doors` order, joint limits, wall segments with the door gaps,
+/// toggle_floors lists; and the Ignition cabin-door links (§3).
+#[test]
+fn lift_with_several_doors() {
+    let b = load(&root().join("fixtures/lift_doors.building.yaml"));
+    // The fixture's values.
+    let (lx, ly, psi, w, d) = (10.0, 5.0, 0.5_f64, 3.0, 2.0);
+    let (g, inset, hc) = (0.05, 0.025, 2.5);
+    // name, x, y, width, motion_axis_orientation, front (true) or right side.
+    let doors = [
+        ("front_a", -0.7, 1.0, 1.0, 0.0, true),
+        ("front_b", 0.8, 1.0, 0.8, 0.0, true),
+        ("east", 1.5, 0.0, 1.2, 1.5708, false),
+    ];
+    let levels = [
+        ("L1", 0.0, vec!["front_a", "front_b"]),
+        ("L2", 3.5, vec!["east"]),
+    ];
+    let door = |n: &str| *doors.iter().find(|x| x.0 == n).unwrap();
+
+    for (flavour, _, _) in FLAVOURS {
+        let doc = parse(&world_text(&b, flavour, &WorldOptions::default()));
+        let world = doc.find("world").unwrap();
+        let model = |name: &str| {
+            world
+                .children
+                .iter()
+                .find(|c| c.name == "model" && attr(c, "name") == name)
+                .unwrap_or_else(|| panic!("{flavour:?}: no model {name}"))
+        };
+        // Shaft doors: one per (level, listed door), in level order then `doors` order.
+        let shaft_names: Vec<String> = world
+            .children
+            .iter()
+            .filter(|c| c.name == "model" && attr(c, "name").starts_with("ShaftDoor_"))
+            .map(|c| attr(c, "name").to_string())
+            .collect();
+        let want: Vec<String> = levels
+            .iter()
+            .flat_map(|(l, _, ds)| ds.iter().map(move |n| format!("ShaftDoor_lift_1_{l}_{n}")))
+            .collect();
+        assert_eq!(shaft_names, want, "{flavour:?}");
+        for (l, elev, ds) in &levels {
+            for n in ds {
+                let (_, x, y, dw, mao, front) = door(n);
+                let (sx, sy) = if front {
+                    (x, d / 2.0 + g)
+                } else {
+                    (w / 2.0 + g, y)
+                };
+                let m = model(&format!("ShaftDoor_lift_1_{l}_{n}"));
+                let pose = nums(text(m, "pose"));
+                let want = [
+                    lx + sx * psi.cos() - sy * psi.sin(),
+                    ly + sx * psi.sin() + sy * psi.cos(),
+                    *elev,
+                    0.0,
+                    0.0,
+                    psi + mao,
+                ];
+                assert!(close(&pose, &want), "{flavour:?} {n}: {pose:?} vs {want:?}");
+                // Leaves w/2 wide; joints right [0, w/2], left [-w/2, 0].
+                let joint = |j: &str| {
+                    let j = m
+                        .children
+                        .iter()
+                        .find(|c| c.name == "joint" && attr(c, "name") == j)
+                        .unwrap();
+                    let lim = j.find("axis").unwrap().find("limit").unwrap();
+                    [text(lim, "lower"), text(lim, "upper")].map(|t| t.parse::<f64>().unwrap())
+                };
+                assert_eq!(joint("right_joint"), [0.0, dw / 2.0]);
+                assert_eq!(joint("left_joint"), [-dw / 2.0, 0.0]);
+            }
+        }
+
+        // The cabin at the lift's pose, door pairs per floor in the `doors` order.
+        let cabin = model("lift_1");
+        assert!(close(
+            &nums(text(cabin, "pose")),
+            &[lx, ly, 0.0, 0.0, 0.0, psi]
+        ));
+        let lift_params = match flavour {
+            Flavour::Gz => cabin
+                .children
+                .iter()
+                .filter(|c| c.name == "plugin")
+                .filter_map(|p| p.find("component"))
+                .find(|c| attr(c, "name") == "Lift")
+                .unwrap(),
+            _ => cabin
+                .children
+                .iter()
+                .find(|c| c.name == "plugin" && attr(c, "name") == "lift")
+                .unwrap(),
+        };
+        let floors: Vec<(String, f64, Vec<(String, String)>)> = lift_params
+            .children
+            .iter()
+            .filter(|c| c.name == "floor")
+            .map(|f| {
+                (
+                    attr(f, "name").to_string(),
+                    attr(f, "elevation").parse().unwrap(),
+                    f.children
+                        .iter()
+                        .map(|p| {
+                            (
+                                attr(p, "cabin_door").to_string(),
+                                attr(p, "shaft_door").to_string(),
+                            )
+                        })
+                        .collect(),
+                )
+            })
+            .collect();
+        let want: Vec<(String, f64, Vec<(String, String)>)> = levels
+            .iter()
+            .map(|(l, e, ds)| {
+                (
+                    l.to_string(),
+                    *e,
+                    ds.iter()
+                        .map(|n| {
+                            (
+                                format!("CabinDoor_lift_1_{n}"),
+                                format!("ShaftDoor_lift_1_{l}_{n}"),
+                            )
+                        })
+                        .collect(),
+                )
+            })
+            .collect();
+        assert_eq!(floors, want, "{flavour:?}");
+        assert_eq!(text(lift_params, "initial_floor"), "L2");
+
+        // Cabin doors: every lift door, at its cabin-door position.
+        for (n, x, y, dw, mao, front) in doors {
+            let (cx, cy) = if front {
+                (x, d / 2.0 - inset)
+            } else {
+                (w / 2.0 - inset, y)
+            };
+            let cname = format!("CabinDoor_lift_1_{n}");
+            if flavour == Flavour::Ignition {
+                // Links directly in the cabin, at the leaf centres.
+                for (leaf, sign) in [("right_door", 1.0), ("left_door", -1.0)] {
+                    let link = cabin
+                        .children
+                        .iter()
+                        .find(|c| c.name == "link" && attr(c, "name") == format!("{cname}_{leaf}"))
+                        .unwrap();
+                    let want = [
+                        cx + sign * mao.cos() * dw / 4.0,
+                        cy + sign * mao.sin() * dw / 4.0,
+                        hc / 2.0,
+                        0.0,
+                        0.0,
+                        mao,
+                    ];
+                    assert!(close(&nums(text(link, "pose")), &want), "{cname} {leaf}");
+                }
+            } else {
+                let nested = cabin
+                    .children
+                    .iter()
+                    .find(|c| c.name == "model" && attr(c, "name") == cname)
+                    .unwrap();
+                let want = [cx, cy, 0.0, 0.0, 0.0, mao];
+                assert!(
+                    close(&nums(text(nested, "pose")), &want),
+                    "{flavour:?} {cname}"
+                );
+            }
+        }
+
+        // Walls: front [-W/2, W/2] cut by both front doors, right [-D/2+tw, D/2-tw] by the
+        // east door.
+        let platform = cabin
+            .children
+            .iter()
+            .find(|c| c.name == "link" && attr(c, "name") == "platform")
+            .unwrap();
+        let walls: Vec<(String, f64)> = platform
+            .children
+            .iter()
+            .filter(|c| c.name == "visual" && attr(c, "name").contains("wall"))
+            .map(|v| {
+                let size = nums(text(
+                    v.find("geometry").unwrap().find("box").unwrap(),
+                    "size",
+                ));
+                (
+                    attr(v, "name").trim_end_matches("_visual").to_string(),
+                    size[0],
+                )
+            })
+            .collect();
+        let tw = 0.05;
+        let want = [
+            ("frontwall1", -1.2 - -1.5),
+            ("frontwall2", 0.4 - -0.2),
+            ("frontwall3", 1.5 - 1.2),
+            ("backwall1", w),
+            ("leftwall1", d - 2.0 * tw),
+            ("rightwall1", -0.6 - (-d / 2.0 + tw)),
+            ("rightwall2", (d / 2.0 - tw) - 0.6),
+        ];
+        assert_eq!(walls.len(), want.len(), "{walls:?}");
+        for ((n, l), (wn, wl)) in walls.iter().zip(want) {
+            assert_eq!(n, wn);
+            assert!((l - wl).abs() < 1e-9, "{n}: {l} vs {wl}");
+        }
+
+        // toggle_floors lists each level's shaft doors.
+        let m = meaning(&doc, &[]);
+        for (l, _, ds) in &levels {
+            let (_, _, listed) = m.toggle.iter().find(|t| t.0 == *l).unwrap();
+            for n in ds {
+                assert!(
+                    listed.contains(&format!("ShaftDoor_lift_1_{l}_{n}")),
+                    "{l}: {listed:?}"
+                );
+            }
+        }
+    }
 }
