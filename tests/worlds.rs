@@ -13,7 +13,9 @@
 //!   coordinates) and level includes (the reference puts wgs84 levels at −offset because it
 //!   does not shift their meshes; ours are shifted, so levels sit at 0 0);
 //! - `<static>` is `true`/`false` (the reference writes Python's `True`/`False`);
-//! - the classic world is named `sim_world` (libsdformat ≥ 1.8 reserves `world`).
+//! - the classic world is named `sim_world` (libsdformat ≥ 1.8 reserves `world`);
+//! - maps with crowd_sim enabled (airport_terminal) get the `crowd_simulation` world plugin
+//!   (the reference generator ignores crowd_sim; tests/crowd.rs checks the plugin).
 
 use mapc_backends::sdf::world::{parse_template, world_text, WorldOptions};
 use mapc_backends::sdf::xml::Element;
@@ -281,6 +283,25 @@ fn worlds_mean_what_the_reference_worlds_mean() {
             );
             assert_eq!(ours.offset, theirs.offset, "{what}: offset");
             assert_eq!(ours.crs, theirs.crs, "{what}: crs");
+
+            // Deliberate: the crowd simulator plugin when crowd_sim is enabled
+            // (airport_terminal); the reference generator ignores crowd_sim.
+            let crowd = |doc: &Element| {
+                doc.find("world").unwrap().children.iter().any(|c| {
+                    c.name == "plugin"
+                        && c.attrs
+                            .iter()
+                            .any(|(k, v)| k == "name" && v == "crowd_simulation")
+                })
+            };
+            let ours_doc = parse(&world_text(&b, flavour, &WorldOptions::default()));
+            let enabled = b.crowd_sim.as_ref().is_some_and(|c| c.enable);
+            assert_eq!(crowd(&ours_doc), enabled, "{what}: crowd plugin");
+            let theirs_doc = parse(
+                &std::fs::read_to_string(shared.join(format!("reference/{map}/{reference}.world")))
+                    .unwrap(),
+            );
+            assert!(!crowd(&theirs_doc), "{what}");
         }
     }
 }
