@@ -747,7 +747,12 @@ fn failed_run_leaves_previous_outputs() {
 /// on L2), checked against generator.md §2.8 computed here: shaft-door poses, cabin-door
 /// poses, door pairs in the `doors` order, joint limits, wall segments with the door gaps,
 /// toggle_floors lists; and the Ignition cabin-door links (§3).
+/// A lift's floors as the lift plugin lists them: (name, elevation, (cabin, shaft) pairs).
+type Floors = Vec<(String, f64, Vec<(String, String)>)>;
+
 #[test]
+// 1.5708 is the fixture's motion_axis_orientation, not an approximation of π/2 to fix.
+#[allow(clippy::approx_constant)]
 fn lift_with_several_doors() {
     let b = load(&root().join("fixtures/lift_doors.building.yaml"));
     // The fixture's values.
@@ -841,7 +846,7 @@ fn lift_with_several_doors() {
                 .find(|c| c.name == "plugin" && attr(c, "name") == "lift")
                 .unwrap(),
         };
-        let floors: Vec<(String, f64, Vec<(String, String)>)> = lift_params
+        let floors: Floors = lift_params
             .children
             .iter()
             .filter(|c| c.name == "floor")
@@ -861,7 +866,7 @@ fn lift_with_several_doors() {
                 )
             })
             .collect();
-        let want: Vec<(String, f64, Vec<(String, String)>)> = levels
+        let want: Floors = levels
             .iter()
             .map(|(l, e, ds)| {
                 (
