@@ -89,10 +89,11 @@ fn snapshot_plugin_and_menge_files() {
         names,
         [
             PathBuf::from("config_resource/behavior_file.xml"),
-            PathBuf::from("config_resource/scene_file.xml")
+            PathBuf::from("config_resource/scene_file.xml"),
+            PathBuf::from("config_resource/L1_navmesh.nav"),
         ]
     );
-    for f in &files {
+    for f in &files[..2] {
         let text = std::str::from_utf8(&f.contents).unwrap();
         assert_well_formed(&f.path.display().to_string(), text);
     }
@@ -301,4 +302,182 @@ fn airport_terminal() {
         .collect();
     assert_eq!(ext, want);
     assert_eq!(ext.len(), 11);
+    // The navmesh of L1's human lanes parses, with no degenerate obstacle.
+    let files = crowd_files(&b);
+    let nav = files
+        .iter()
+        .find(|f| f.path == Path::new("config_resource/L1_navmesh.nav"))
+        .expect("L1_navmesh.nav");
+    let m = parse_nav(std::str::from_utf8(&nav.contents).unwrap());
+    assert!(!m.nodes.is_empty() && !m.edges.is_empty());
+    assert_no_degenerate_obstacles(&m);
+}
+
+/// A parsed `.nav` file: vertices, edges (v0 v1 n0 n1), obstacles (v0 v1 node next),
+/// nodes (centre, ring, plane, edges, obstacles).
+struct Nav {
+    verts: Vec<(f64, f64)>,
+    edges: Vec<[usize; 4]>,
+    obstacles: Vec<(usize, usize, usize, i64)>,
+    nodes: Vec<(Vec<usize>, [f64; 3], Vec<usize>, Vec<usize>)>,
+}
+
+fn parse_nav(text: &str) -> Nav {
+    let mut t = text.split_whitespace();
+    let mut next = || t.next().expect("truncated .nav");
+    let mut n = |s: &str| -> usize { s.parse().unwrap() };
+    let nv = n(next());
+    let verts = (0..nv)
+        .map(|_| (next().parse().unwrap(), next().parse().unwrap()))
+        .collect();
+    let ne = n(next());
+    let edges = (0..ne)
+        .map(|_| [n(next()), n(next()), n(next()), n(next())])
+        .collect();
+    let no = n(next());
+    let obstacles = (0..no)
+        .map(|_| (n(next()), n(next()), n(next()), next().parse().unwrap()))
+        .collect();
+    assert_eq!(next(), "walkable");
+    let nn = n(next());
+    let mut nodes = Vec::new();
+    for _ in 0..nn {
+        let _centre: (f64, f64) = (next().parse().unwrap(), next().parse().unwrap());
+        let k = n(next());
+        let ring = (0..k).map(|_| n(next())).collect();
+        let plane = [(); 3].map(|_| next().parse::<f64>().unwrap());
+        let k = n(next());
+        let e = (0..k).map(|_| n(next())).collect();
+        let k = n(next());
+        let o = (0..k).map(|_| n(next())).collect();
+        nodes.push((ring, plane, e, o));
+    }
+    Nav {
+        verts,
+        edges,
+        obstacles,
+        nodes,
+    }
+}
+
+/// Every coordinate finite and every obstacle longer than zero (Menge normalises them).
+fn assert_no_degenerate_obstacles(m: &Nav) {
+    assert!(m.verts.iter().all(|v| v.0.is_finite() && v.1.is_finite()));
+    for o in &m.obstacles {
+        let (p, q) = (m.verts[o.0], m.verts[o.1]);
+        assert!((p.0 - q.0).hypot(p.1 - q.1) > 1e-6, "{o:?}");
+    }
+}
+
+/// A T of human lanes (three 1.2 m lanes meeting at (5, 5), at 90°, 90° and 180°) and a
+/// separate 0.8 m lane: lane rectangles of the lane widths, one junction shared by the T's
+/// rectangles, counter-clockwise convex nodes, closed obstacle chains on the outline, and
+/// lane ends pulled back from the junction by half the width / tan(45°).
+#[test]
+fn navmesh_from_human_lanes() {
+    let yaml = "coordinate_system: cartesian_meters
+crowd_sim: {enable: 1, update_time_step: 0.1}
+levels:
+  L1:
+    elevation: 2
+    human_lanes:
+      - [0, 1, {graph_idx: [2, 9], width: [3, 1.2]}]
+      - [0, 2, {graph_idx: [2, 9], width: [3, 1.2]}]
+      - [3, 0, {graph_idx: [2, 9], width: [3, 1.2]}]
+      - [4, 5, {graph_idx: [2, 9], width: [3, 0.8]}]
+    vertices:
+      - [5, 5, 0, c]
+      - [0, 5, 0, w]
+      - [10, 5, 0, e]
+      - [5, 10, 0, n]
+      - [20, 0, 0, a]
+      - [20, 8, 0, b]
+name: t
+";
+    let parsed = mapc_frontend::parse_str("t.building.yaml", yaml);
+    let b = parsed.building.clone().unwrap();
+    let files = crowd_files(&b);
+    let nav = files
+        .iter()
+        .find(|f| f.path == Path::new("config_resource/L1_navmesh.nav"))
+        .expect("L1_navmesh.nav");
+    let text = std::str::from_utf8(&nav.contents).unwrap();
+    let m = parse_nav(text);
+    // 4 lane rectangles + 1 junction (c); w, e, n, a, b are dead ends.
+    assert_eq!(m.nodes.len(), 5);
+    // Four corners per lane, less the two where the n arm meets the e and w arms.
+    assert_eq!(m.verts.len(), 4 * 4 - 2);
+    let area = |ring: &[usize]| {
+        let mut a = 0.0;
+        for k in 0..ring.len() {
+            let (p, q) = (m.verts[ring[k]], m.verts[ring[(k + 1) % ring.len()]]);
+            a += p.0 * q.1 - q.0 * p.1;
+        }
+        a / 2.0
+    };
+    for (ring, plane, _, _) in &m.nodes {
+        assert!(area(ring) > 0.0, "{ring:?} is not counter-clockwise");
+        assert_eq!(plane, &[0.0, 0.0, 2.0]);
+        // Convex: every turn is to the left.
+        for k in 0..ring.len() {
+            let [p, q, r] = [0, 1, 2].map(|j| m.verts[ring[(k + j) % ring.len()]]);
+            let cross = (q.0 - p.0) * (r.1 - q.1) - (q.1 - p.1) * (r.0 - q.0);
+            assert!(cross > -1e-9, "{ring:?} not convex");
+        }
+    }
+    // Lane rectangles: widths and lengths. The T's arms end h / tan(45°) = h = 0.6 m from
+    // c; the lone lane is 8 m long and 0.8 m wide.
+    let h = 0.6;
+    let areas: Vec<f64> = m.nodes[..4].iter().map(|n| area(&n.0)).collect();
+    for a in &areas[..3] {
+        assert!((a - 1.2 * (5.0 - h)).abs() < 1e-9, "{areas:?}");
+    }
+    assert!((areas[3] - 0.8 * 8.0).abs() < 1e-9, "{areas:?}");
+    // The junction: the arms' end corners, a 1.2 m square around c (the n arm's corners
+    // are the e and w arms' upper ones).
+    let junction = &m.nodes[4];
+    assert_eq!(junction.0.len(), 4);
+    assert!((area(&junction.0) - 1.2 * 1.2).abs() < 1e-9);
+    // Edges: each arm shares its end with the junction; nothing else is shared.
+    assert_eq!(m.edges.len(), 3);
+    for [v0, v1, n0, n1] in &m.edges {
+        assert_eq!(*n1, 4);
+        for n in [n0, n1] {
+            assert!(m.nodes[*n].0.contains(v0) && m.nodes[*n].0.contains(v1));
+            assert!(m.nodes[*n].2.contains(
+                &m.edges
+                    .iter()
+                    .position(|e| e == &[*v0, *v1, *n0, *n1])
+                    .unwrap()
+            ));
+        }
+    }
+    assert_no_degenerate_obstacles(&m);
+    // Obstacles: every side not shared, clockwise around its node, in closed chains.
+    let sides: usize = m.nodes.iter().map(|n| n.0.len()).sum();
+    assert_eq!(m.obstacles.len(), sides - 2 * m.edges.len());
+    for (k, &(v0, v1, node, next)) in m.obstacles.iter().enumerate() {
+        let ring = &m.nodes[node].0;
+        let i = ring.iter().position(|&v| v == v1).unwrap();
+        assert_eq!(ring[(i + 1) % ring.len()], v0, "obstacle {k} not clockwise");
+        assert!(m.nodes[node].3.contains(&k));
+        let next = usize::try_from(next).expect("outlines are closed");
+        assert_eq!(m.obstacles[next].0, v1);
+    }
+    // Two outlines: the T and the lone lane; following `next` closes each.
+    let mut seen = vec![false; m.obstacles.len()];
+    let mut loops = 0;
+    for s in 0..m.obstacles.len() {
+        if seen[s] {
+            continue;
+        }
+        loops += 1;
+        let mut k = s;
+        while !seen[k] {
+            seen[k] = true;
+            k = m.obstacles[k].3 as usize;
+        }
+        assert_eq!(k, s);
+    }
+    assert_eq!(loops, 2);
 }

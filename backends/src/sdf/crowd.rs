@@ -4,9 +4,10 @@
 //!
 //! The Menge files go to `config_resource/` next to the world ([`CROWD_DIR`]); the plugin
 //! resolves them against `MENGE_RESOURCE_PATH`, which must point at that directory (the
-//! plugin disables itself when the variable is unset). The navmesh `.nav` files the files
-//! name (`obstacle_set.file_name`, each state's `navmesh_file_name`) are **not** generated:
-//! the user supplies them in the same directory.
+//! plugin disables itself when the variable is unset). A navmesh `<level>_navmesh.nav` (the
+//! editor's name for them) is generated for every level with human lanes
+//! ([`super::navmesh`]); a navmesh the crowd_sim names otherwise is not generated and must
+//! be supplied in the same directory.
 //!
 //! Coordinates: the editor writes agent group `x`/`y` in map-frame metres already (in the
 //! airport_terminal demo, a reference_image map, the groups sit at about (131.5, -32.3), next
@@ -253,8 +254,9 @@ pub fn behavior_file(b: &Building, c: &CrowdSim) -> Element {
     e
 }
 
-/// The Menge files, paths relative to the world's directory (`config_resource/...`);
-/// empty when crowd_sim is absent or disabled.
+/// The Menge files, paths relative to the world's directory (`config_resource/...`): the
+/// behaviour and scene files, then `<level>_navmesh.nav` for every level with human lanes
+/// ([`super::navmesh`]); empty when crowd_sim is absent or disabled.
 pub fn crowd_files(b: &Building) -> Vec<crate::OutputFile> {
     let Some(c) = enabled(b) else {
         return Vec::new();
@@ -264,7 +266,7 @@ pub fn crowd_files(b: &Building) -> Vec<crate::OutputFile> {
         s.push_str(&e.to_document(false));
         s.into_bytes()
     };
-    vec![
+    let mut files = vec![
         crate::OutputFile {
             path: PathBuf::from(CROWD_DIR).join("behavior_file.xml"),
             contents: doc(behavior_file(b, c)),
@@ -273,7 +275,16 @@ pub fn crowd_files(b: &Building) -> Vec<crate::OutputFile> {
             path: PathBuf::from(CROWD_DIR).join("scene_file.xml"),
             contents: doc(scene_file(b, c)),
         },
-    ]
+    ];
+    for (h, _) in b.levels.iter() {
+        if let Some(text) = super::navmesh::level_navmesh(b, h) {
+            files.push(crate::OutputFile {
+                path: PathBuf::from(CROWD_DIR).join(super::navmesh::navmesh_file_name(b, h)),
+                contents: text.into_bytes(),
+            });
+        }
+    }
+    files
 }
 
 #[cfg(test)]

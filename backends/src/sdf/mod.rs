@@ -5,6 +5,7 @@ pub mod crowd;
 pub mod doors;
 pub mod level;
 pub mod lifts;
+pub mod navmesh;
 pub mod world;
 pub mod xml;
 
