@@ -313,19 +313,22 @@ fn airport_terminal() {
     assert_no_degenerate_obstacles(&m);
 }
 
+/// A navmesh node: vertex ring, plane (A B C), edge ids, obstacle ids.
+type NavNode = (Vec<usize>, [f64; 3], Vec<usize>, Vec<usize>);
+
 /// A parsed `.nav` file: vertices, edges (v0 v1 n0 n1), obstacles (v0 v1 node next),
 /// nodes (centre, ring, plane, edges, obstacles).
 struct Nav {
     verts: Vec<(f64, f64)>,
     edges: Vec<[usize; 4]>,
     obstacles: Vec<(usize, usize, usize, i64)>,
-    nodes: Vec<(Vec<usize>, [f64; 3], Vec<usize>, Vec<usize>)>,
+    nodes: Vec<NavNode>,
 }
 
 fn parse_nav(text: &str) -> Nav {
     let mut t = text.split_whitespace();
     let mut next = || t.next().expect("truncated .nav");
-    let mut n = |s: &str| -> usize { s.parse().unwrap() };
+    let n = |s: &str| -> usize { s.parse().unwrap() };
     let nv = n(next());
     let verts = (0..nv)
         .map(|_| (next().parse().unwrap(), next().parse().unwrap()))
