@@ -36,6 +36,7 @@ pub fn level_navmesh(b: &Building, level: Handle<Level>) -> Option<String> {
     let pos = |v: Handle<Vertex>| b.vertices[v].pos.minus(b.offset);
     // Lanes, one per unordered vertex pair (document order of the first).
     let mut lanes: Vec<Lane> = Vec::new();
+    let mut pairs = std::collections::BTreeSet::new();
     for &h in &lvl.human_lanes {
         let l = &b.human_lanes[h];
         let w = l
@@ -44,10 +45,8 @@ pub fn level_navmesh(b: &Building, level: Handle<Level>) -> Option<String> {
             .filter(|w| w.is_finite() && *w > 0.0)
             .unwrap_or(DEFAULT_WIDTH);
         let len = pos(l.end).minus(pos(l.start)).norm();
-        let dup = lanes
-            .iter()
-            .any(|o| (o.a, o.b) == (l.start, l.end) || (o.a, o.b) == (l.end, l.start));
-        if !dup && len.is_finite() && len > 1e-9 {
+        let pair = (l.start.min(l.end), l.start.max(l.end));
+        if len.is_finite() && len > 1e-9 && pairs.insert(pair) {
             lanes.push(Lane {
                 a: l.start,
                 b: l.end,
