@@ -17,7 +17,7 @@ pub(crate) struct Limits {
 
 /// The slotcar's profile (§1.6): next velocity to cover the displacement `s` starting at
 /// `v`, cruising at `min(|v_now|, v_max)` and arriving with `v_dest`.
-#[inline]
+#[inline(always)]
 pub(crate) fn robot(s: f64, v: f64, v_now: f64, v_dest: f64, p: Limits, dt: f64) -> f64 {
     let v = if v.abs() < 1e-4 { 0.0 } else { v };
     let opposite = v.abs() > 0.0 && v.is_sign_negative() != s.is_sign_negative();

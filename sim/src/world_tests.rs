@@ -806,3 +806,71 @@ fn robots_on_a_charger_charge_and_report_charging() {
         "{modes:?}"
     );
 }
+
+/// `n` robots shuttling along parallel 60 m lanes 2 m apart (staggered starts so some
+/// pass within each other's stop zones' reach), stepped for `secs` simulated seconds.
+/// Returns ns per step.
+fn bench(n: usize, secs: f64) -> f64 {
+    let b = parse(MAP);
+    let tiny = RobotParams::preset("TinyRobot").expect("preset");
+    let robots = (0..n)
+        .map(|i| {
+            spawn(
+                &b,
+                &format!("r{i}"),
+                tiny.clone(),
+                (i % 7) as f64,
+                2.0 * i as f64,
+                0.0,
+                "L1",
+            )
+        })
+        .collect();
+    let mut w = World::new(&b, &setup(robots));
+    let mut out = Vec::new();
+    let mut task = 0u64;
+    let steps = (secs / 0.01) as u64;
+    let start = std::time::Instant::now();
+    for k in 0..steps {
+        if k % 100 == 0 {
+            for i in 0..n {
+                let r = &w.robots[i];
+                if r.v == 0.0 && r.w == 0.0 {
+                    let (x, y) = (r.x, r.y);
+                    let gx = if x < 30.0 { 60.0 } else { 0.0 };
+                    task += 1;
+                    path(
+                        &mut w,
+                        &format!("r{i}"),
+                        &task.to_string(),
+                        &[(x, y, 0.0), (gx, y, 0.0)],
+                    );
+                }
+            }
+        }
+        out.clear();
+        w.step(&mut out);
+    }
+    start.elapsed().as_nanos() as f64 / steps as f64
+}
+
+/// `cargo test -p mapc-sim --release bench_world -- --ignored --nocapture`
+#[test]
+#[ignore]
+fn bench_world() {
+    // BENCH_ROBOTS=20 runs one size (e.g. under `perf stat`); the best of 3 runs is
+    // reported since the machine is shared.
+    let sizes: Vec<usize> = match std::env::var("BENCH_ROBOTS") {
+        Ok(v) => v.split(',').filter_map(|s| s.trim().parse().ok()).collect(),
+        Err(_) => vec![5, 20, 80],
+    };
+    for n in sizes {
+        let ns = (0..3)
+            .map(|_| bench(n, 2000.0))
+            .fold(f64::INFINITY, f64::min);
+        println!(
+            "{n} robots: {ns:.0} ns/step ({:.0}x real time at dt 0.01)",
+            1e7 / ns
+        );
+    }
+}
