@@ -107,7 +107,7 @@ impl Obstacles {
     fn cell_of(&self, v: f64) -> (i64, f64) {
         // `floor` without the libm call; bounded so that far-away or non-finite
         // positions still get a valid cell.
-        let q = (v * self.inv_cell).max(-1e15).min(1e15);
+        let q = (v * self.inv_cell).clamp(-1e15, 1e15);
         let mut i = q as i64;
         if (i as f64) > q {
             i -= 1;
