@@ -356,6 +356,43 @@ fn lift_trip_time_is_doors_close_plus_cabin_plus_doors_open() {
     assert_eq!(s.current_floor, "L2");
     assert_eq!(s.door_state, lift_state_open());
     assert_eq!(s.session_id, "s");
+    // The rider now reports the upper level.
+    let mut level = None;
+    run_until(&mut w, &mut out, 1.0, |_, out| {
+        for p in out {
+            if let Msg::RobotState(s) = &p.msg {
+                level = Some(s.location.level_name.clone());
+            }
+        }
+        false
+    });
+    assert_eq!(level.as_deref(), Some("L2"));
+}
+
+#[test]
+fn lift_start_floor_option() {
+    let text = std::fs::read_to_string(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../fixtures/two_level_clinic.building.yaml"
+    ))
+    .expect("fixture")
+    .replace("initial_floor_name: L1", "initial_floor_name: L2");
+    let b = parse(&text);
+    let mut s = setup(Vec::new());
+    let w = World::new(&b, &s);
+    assert_eq!(w.lifts[0].z, 4.0);
+    // Gazebo's behaviour: the cabin starts at z = 0 and drives up, doors closed.
+    s.lifts_start_at_initial_floor = false;
+    let mut w = World::new(&b, &s);
+    assert_eq!(w.lifts[0].z, 0.0);
+    let mut out = Vec::new();
+    let t = run_until(&mut w, &mut out, 20.0, |w, _| {
+        w.lifts[0].active_dest().is_none()
+    })
+    .expect("arrives");
+    // Two initialising updates, then the cabin trapezoid.
+    let want = 0.02 + time_to_band(4.0, 2.0, 1.0, 0.001);
+    assert!((t - want).abs() < 0.01 * want, "{t} vs {want}");
 }
 
 fn lift_state_open() -> u8 {
@@ -760,8 +797,33 @@ fn dispenser_robot_ingestor_item_loop() {
     assert_eq!(results(&out, Topic::IngestorResults), vec![0, 1]);
     assert_eq!(w.items[item].pos, [30.0, 0.0, 0.0]);
     assert!(w.items[item].attached.is_none());
-    // Five whole seconds later it is back home; the dispenser refills and serves again.
-    run_until(&mut w, &mut out, 9.0, |_, _| false);
+    // A request while the item is still held waits until it went home (five whole
+    // seconds), then fails: nothing left near the robot.
+    let t_ingest = w.time() - 0.01;
+    let (t, m) = workcell_req(Topic::IngestorRequests, "ing", "i2");
+    w.deliver(t, m);
+    let mut answers = Vec::new();
+    let mut states = 0;
+    run_until(&mut w, &mut out, 9.0, |_, out| {
+        for p in out {
+            match &p.msg {
+                Msg::WorkcellResult(r) if p.topic == Topic::IngestorResults => {
+                    answers.push((p.t, r.status))
+                }
+                Msg::WorkcellState(_) if p.topic == Topic::IngestorStates => states += 1,
+                _ => {}
+            }
+        }
+        false
+    });
+    let back = t_ingest.floor() + 5.0;
+    assert_eq!(answers.iter().map(|a| a.1).collect::<Vec<_>>(), vec![0, 2]);
+    assert!(
+        answers[0].0 >= back && answers[0].0 < back + 1.0,
+        "{answers:?}"
+    );
+    assert!(states <= 6, "{states} ingestor states in 9 s");
+    // Home again; the dispenser refills and serves again.
     assert_eq!(w.items[item].pos, [20.0, 0.0, 0.0]);
     path(&mut w, "r", "2", &[(30.0, 0.0, 0.0), (20.0, 0.0, 0.0)]);
     run_until(&mut w, &mut out, 40.0, |_, _| false);
