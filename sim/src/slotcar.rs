@@ -17,6 +17,9 @@
 //! - A reversing robot checks for obstacles behind it (the direction it drives), not in
 //!   front of its body.
 //! - Obstacles are the other robots only (no other non-static models exist headless).
+//! - Level lookup keeps the robot's current level (its spawn level at first) while its z
+//!   still matches it, so levels sharing an elevation are told apart; upstream takes the
+//!   first level in map order.
 //! - `PAUSE_AT_CHECKPOINT` with no remaining path entry (adapter-error hold) does not
 //!   pause (upstream reads past the end of the path).
 
@@ -260,7 +263,10 @@ pub(crate) struct Slotcar {
 }
 
 impl Slotcar {
-    pub fn new(name: String, p: RobotParams, x: f64, y: f64, z: f64, yaw: f64) -> Self {
+    /// A robot at rest at `(x, y, z, yaw)` on level `level` (index into the world's
+    /// levels, if known).
+    pub fn new(name: String, p: RobotParams, pose: [f64; 4], level: Option<usize>) -> Self {
+        let [x, y, z, yaw] = pose;
         let lin = Limits {
             v_max: p.nominal_drive_speed,
             a_max: p.max_drive_acceleration,
@@ -310,7 +316,7 @@ impl Slotcar {
             last_state_pub: 0.0,
             last_update: 0.0,
             seq: 0,
-            level: None,
+            level,
             level_z: f64::NAN,
             charger_ref: [f64::NAN; 3],
             charger_safe: -1.0,
@@ -386,11 +392,17 @@ impl Slotcar {
     fn level_name<'a>(&mut self, levels: &'a [(String, f64)]) -> Option<&'a str> {
         if self.z != self.level_z {
             self.level_z = self.z;
-            if let Some(i) = levels
-                .iter()
-                .position(|(_, e)| (e - self.z).abs() < LEVEL_TOL)
-            {
-                self.level = Some(i);
+            let on = |i: usize| {
+                levels
+                    .get(i)
+                    .is_some_and(|l| (l.1 - self.z).abs() < LEVEL_TOL)
+            };
+            // Keep the remembered level while it matches: levels sharing an elevation
+            // would otherwise all report the first of them.
+            if !self.level.is_some_and(on) {
+                if let Some(i) = (0..levels.len()).find(|&i| on(i)) {
+                    self.level = Some(i);
+                }
             }
         }
         self.level.and_then(|i| levels.get(i)).map(|l| l.0.as_str())
@@ -727,10 +739,8 @@ mod tests {
                     Slotcar::new(
                         format!("r{i}"),
                         p,
-                        rng.f64() * 20.0 - 10.0,
-                        rng.f64() * 20.0 - 10.0,
-                        z,
-                        0.0,
+                        [rng.f64() * 20.0 - 10.0, rng.f64() * 20.0 - 10.0, z, 0.0],
+                        None,
                     )
                 })
                 .collect();

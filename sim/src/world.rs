@@ -139,10 +139,8 @@ impl World {
             robots.push(Slotcar::new(
                 r.name.clone(),
                 r.params.clone(),
-                r.x,
-                r.y,
-                elev(r.level),
-                r.yaw,
+                [r.x, r.y, elev(r.level), r.yaw],
+                (r.level.index() < levels.len()).then_some(r.level.index()),
             ));
         }
 

@@ -936,3 +936,25 @@ fn bench_world() {
         );
     }
 }
+
+#[test]
+fn robot_reports_its_own_level_when_levels_share_an_elevation() {
+    let text = MAP.replace(
+        "name: test\n",
+        "  L1b:\n    elevation: 0\n    vertices:\n      - [0, 0, 0, \"\"]\nname: test\n",
+    );
+    let b = parse(&text);
+    let r = spawn(&b, "r", RobotParams::default(), 0.0, 0.0, 0.0, "L1b");
+    let mut w = World::new(&b, &setup(vec![r]));
+    let mut out = Vec::new();
+    let mut level = None;
+    run_until(&mut w, &mut out, 1.0, |_, out| {
+        for p in out {
+            if let Msg::RobotState(s) = &p.msg {
+                level = Some(s.location.level_name.clone());
+            }
+        }
+        false
+    });
+    assert_eq!(level.as_deref(), Some("L1b"));
+}
