@@ -108,20 +108,25 @@ impl Obstacles {
     /// Cell coordinate and the position inside the cell (0..1).
     #[inline]
     fn cell_of(&self, v: f64) -> (i64, f64) {
-        // `floor` without the libm call; bounded so that far-away or non-finite
-        // positions still get a valid cell.
-        let q = (v * self.inv_cell).clamp(-1e15, 1e15);
-        let mut i = q as i64;
-        if (i as f64) > q {
-            i -= 1;
-        }
+        // `floor` without the libm call (`as` saturates, NaN gives 0).
+        let q = v * self.inv_cell;
+        let t = q as i64;
+        let i = t - i64::from((t as f64) > q);
         (i, q - i as f64)
     }
 
     #[inline]
-    fn bucket_of(&self, col: i64, row: i64) -> usize {
-        let h = (col as u64).wrapping_mul(0x9E37_79B9_7F4A_7C15)
-            ^ (row as u64).wrapping_mul(0xC2B2_AE3D_27D4_EB4F);
+    fn col_hash(col: i64) -> u64 {
+        (col as u64).wrapping_mul(0x9E37_79B9_7F4A_7C15)
+    }
+
+    #[inline]
+    fn row_hash(row: i64) -> u64 {
+        (row as u64).wrapping_mul(0xC2B2_AE3D_27D4_EB4F)
+    }
+
+    #[inline]
+    fn bucket_of(&self, h: u64) -> usize {
         (h >> 32) as usize & self.mask
     }
 
@@ -146,7 +151,8 @@ impl Obstacles {
         self.start.fill(0);
         for i in 0..n {
             let p = self.pos[i];
-            let b = self.bucket_of(self.cell_of(p[0]).0, self.cell_of(p[1]).0);
+            let h = Self::col_hash(self.cell_of(p[0]).0) ^ Self::row_hash(self.cell_of(p[1]).0);
+            let b = self.bucket_of(h);
             self.bucket[i] = b as u32;
             self.start[b + 1] += 1;
         }
@@ -168,35 +174,33 @@ impl Obstacles {
     /// largest stop radius of the robots given to `rebuild` (the robots' own radii).
     pub fn any_within(&self, me: usize, p: [f64; 3], r: f64) -> bool {
         let r2 = r * r;
-        let hit = |i: usize| {
-            i != me
-                && self.pos.get(i).is_some_and(|q| {
-                    let (dx, dy, dz) = (q[0] - p[0], q[1] - p[1], q[2] - p[2]);
-                    dx * dx + dy * dy + dz * dz < r2
-                })
+        let hit = |i: usize, q: &[f64; 3]| {
+            let (dx, dy, dz) = (q[0] - p[0], q[1] - p[1], q[2] - p[2]);
+            dx * dx + dy * dy + dz * dz < r2 && i != me
         };
         if self.pos.len() <= BRUTE_FORCE_MAX {
-            return (0..self.pos.len()).any(hit);
+            return self.pos.iter().enumerate().any(|(i, q)| hit(i, q));
         }
         // A disc of radius r ≤ cell/2 touches at most the 2×2 cells on the sides of the
-        // point's cell that it is nearest to.
+        // point's cell that it is nearest to. (Two cells sharing a bucket are visited
+        // twice: harmless for "any".)
         let ((col, fx), (row, fy)) = (self.cell_of(p[0]), self.cell_of(p[1]));
-        let c0 = if fx < 0.5 { col - 1 } else { col };
-        let r0 = if fy < 0.5 { row - 1 } else { row };
-        let mut seen = [usize::MAX; 4];
-        for (k, (c, rw)) in [(c0, r0), (c0 + 1, r0), (c0, r0 + 1), (c0 + 1, r0 + 1)]
-            .into_iter()
-            .enumerate()
-        {
-            let b = self.bucket_of(c, rw);
-            // Two cells can share a bucket: visit it once.
-            if seen[..k].contains(&b) {
+        let c0 = col - i64::from(fx < 0.5);
+        let r0 = row - i64::from(fy < 0.5);
+        let (h0, h1) = (Self::col_hash(c0), Self::col_hash(c0 + 1));
+        let (v0, v1) = (Self::row_hash(r0), Self::row_hash(r0 + 1));
+        let (start, items, pos) = (&self.start[..], &self.items[..], &self.pos[..]);
+        for h in [h0 ^ v0, h1 ^ v0, h0 ^ v1, h1 ^ v1] {
+            let b = self.bucket_of(h);
+            let (Some(&s), Some(&e)) = (start.get(b), start.get(b + 1)) else {
                 continue;
-            }
-            seen[k] = b;
-            let (s, e) = (self.start[b] as usize, self.start[b + 1] as usize);
-            if self.items[s..e].iter().any(|&i| hit(i as usize)) {
-                return true;
+            };
+            for &i in items.get(s as usize..e as usize).unwrap_or(&[]) {
+                if let Some(q) = pos.get(i as usize) {
+                    if hit(i as usize, q) {
+                        return true;
+                    }
+                }
             }
         }
         false

@@ -927,9 +927,11 @@ fn bench_world() {
         Err(_) => vec![5, 20, 80],
     };
     for n in sizes {
-        let ns = (0..3)
-            .map(|_| bench(n, 2000.0))
-            .fold(f64::INFINITY, f64::min);
+        let secs = std::env::var("BENCH_SECS")
+            .ok()
+            .and_then(|s| s.parse().ok())
+            .unwrap_or(2000.0);
+        let ns = (0..3).map(|_| bench(n, secs)).fold(f64::INFINITY, f64::min);
         println!(
             "{n} robots: {ns:.0} ns/step ({:.0}x real time at dt 0.01)",
             1e7 / ns
