@@ -960,3 +960,18 @@ fn robot_reports_its_own_level_when_levels_share_an_elevation() {
     });
     assert_eq!(level.as_deref(), Some("L1b"));
 }
+
+#[test]
+fn charge_toggles_apply_to_every_robot() {
+    let b = parse(MAP);
+    let on_charger = spawn(&b, "a", RobotParams::default(), -100.0, -100.0, 0.0, "L1");
+    let away = spawn(&b, "b", RobotParams::default(), 0.0, 0.0, 0.0, "L1");
+    let mut w = World::new(&b, &setup(vec![on_charger, away]));
+    w.robots[0].soc = 0.5;
+    w.set_charging(true, true, false);
+    let mut out = Vec::new();
+    run_until(&mut w, &mut out, 1.0, |_, _| false);
+    assert_eq!(w.soc(0), Some(1.0), "instant charge");
+    assert_eq!(w.soc(1), Some(1.0), "no drain");
+    assert_eq!(w.soc(2), None);
+}
