@@ -5,12 +5,18 @@
 //!
 //! The only I/O is the trace writer handed to [`simulate`].
 
+mod door;
 mod fleet;
+mod lift;
 pub mod msgs;
 mod params;
+mod profile;
 mod report;
 mod scenario;
+mod slotcar;
+mod supervisor;
 mod trace;
+mod workcell;
 mod world;
 
 pub use params::RobotParams;
