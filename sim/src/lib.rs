@@ -6,11 +6,13 @@
 //! The only I/O is the trace writer handed to [`simulate`].
 
 mod fleet;
+mod graph;
 pub mod msgs;
 mod params;
 mod report;
 mod scenario;
 mod trace;
+mod traffic;
 mod world;
 
 pub use params::RobotParams;
