@@ -40,6 +40,8 @@ const EXTERNAL_TIMEOUT: f64 = 300.0;
 const STUCK_AFTER: f64 = 120.0;
 /// A wait-for cycle older than this is broken by backing a robot off.
 const DEADLOCK_AFTER: f64 = 3.0;
+/// How long a robot that backed off out of a deadlock waits before going on (s).
+const BACKOFF_WAIT: f64 = 5.0;
 /// Edges reserved ahead of a moving robot.
 const LOOKAHEAD: usize = 3;
 
@@ -1710,6 +1712,8 @@ impl Fleets {
                         if let Cur::GoTo { goal, .. } = r.cur {
                             r.steps.push_front(Step::GoTo(goal));
                         }
+                        // Wait there long enough for the others to take the way.
+                        r.steps.push_front(Step::Dwell(BACKOFF_WAIT));
                         r.steps.push_front(Step::GoTo(v));
                         r.cur = Cur::None;
                         r.route.clear();
@@ -1719,7 +1723,17 @@ impl Fleets {
                         r.dirty = true;
                         self.rehold(b);
                         resolved = true;
-                        let detail = format!("{} backs off to {}", names.join(","), v);
+                        let spot = &self.nav.vertices[v];
+                        let spot = if spot.name.is_empty() {
+                            format!("({:.2}, {:.2})", spot.pos.x, spot.pos.y)
+                        } else {
+                            spot.name.clone()
+                        };
+                        let detail = format!(
+                            "{}: {} backs off to {spot}",
+                            names.join(","),
+                            self.robots[b].name
+                        );
                         if let Some(ti) = self.robots[b].task {
                             self.event(t, ti, "deadlock", Some(b), detail, out);
                         }
@@ -1858,3 +1872,7 @@ fn unknown_waypoint(nav: &Nav, slot: usize, name: &str, span: Span, fleet: &str)
     )
     .with_help(help)
 }
+
+#[cfg(test)]
+#[path = "fleet_tests.rs"]
+mod tests;
