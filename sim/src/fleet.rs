@@ -1876,3 +1876,7 @@ fn unknown_waypoint(nav: &Nav, slot: usize, name: &str, span: Span, fleet: &str)
 #[cfg(test)]
 #[path = "fleet_tests.rs"]
 mod tests;
+
+#[cfg(test)]
+#[path = "fleet_world_tests.rs"]
+mod world_tests;
