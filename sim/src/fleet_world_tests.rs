@@ -75,6 +75,11 @@ fn run(b: &Building, s: &Scenario, seconds: f64) -> Run {
     run_checked(b, s, seconds, &mut |_, _| {})
 }
 
+thread_local! {
+    /// Keep running after every task ended (to watch charging).
+    static RUN_TO_END: std::cell::Cell<bool> = const { std::cell::Cell::new(false) };
+}
+
 /// Like `run`, calling `check(world, published this step)` after every step.
 fn run_checked(
     b: &Building,
@@ -127,7 +132,7 @@ fn run_checked(
                 }
             }
         }
-        if fleets.all_done(world.time()) && !events.is_empty() {
+        if fleets.all_done(world.time()) && !events.is_empty() && !RUN_TO_END.with(|c| c.get()) {
             break;
         }
     }
@@ -385,4 +390,104 @@ fn world_two_robots_share_the_lift() {
     for rb in r.world.robots() {
         assert!((rb.z - 4.0).abs() < 0.05, "{rb:?}");
     }
+}
+
+#[test]
+fn world_idle_robot_in_the_way_moves_aside() {
+    let b = load("two_level_clinic", None);
+    // `b_0` idles at the lobby, on the only way from the charger to the pharmacy.
+    let s = scenario(
+        vec![
+            fleet(
+                "a",
+                1,
+                SpawnSpec::Waypoints(vec!["tinyRobot1_charger".into()]),
+            ),
+            fleet("b", 1, SpawnSpec::Waypoints(vec!["lobby".into()])),
+        ],
+        vec![task(
+            0.5,
+            Some("a"),
+            TaskKind::GoToPlace {
+                place: "pharmacy".into(),
+            },
+        )],
+    );
+    let lobby = b
+        .vertices
+        .iter()
+        .find(|(_, v)| v.name == "lobby")
+        .map(|(_, v)| v.pos)
+        .expect("lobby");
+    let r = run(&b, &s, 1200.0);
+    let done = ended(&r.events);
+    assert_eq!(done.len(), 1, "{}", dump(&r.events));
+    assert_eq!(done[0].1, "completed", "{}", dump(&r.events));
+    assert!(r.min_gap > 0.0, "min gap {}", r.min_gap);
+    let idle = r.world.robots()[1];
+    assert!(
+        (idle.x - lobby.x).hypot(idle.y - lobby.y) > 1.0,
+        "b_0 did not move: {idle:?}"
+    );
+}
+
+#[test]
+fn world_low_battery_goes_charging() {
+    let b = load("two_level_clinic", None);
+    let mut f = fleet("tiny", 1, SpawnSpec::MapSpawnPoints);
+    // Charge as soon as the reported battery drops below 100 %, back to 100 %.
+    f.recharge_threshold = 0.999;
+    f.recharge_soc = 1.0;
+    let s = scenario(
+        vec![f],
+        vec![task(
+            0.5,
+            None,
+            TaskKind::Loop {
+                start: "corridor".into(),
+                finish: "lobby".into(),
+                loops: 2,
+            },
+        )],
+    );
+    RUN_TO_END.with(|c| c.set(true));
+    let r = run(&b, &s, 1500.0);
+    RUN_TO_END.with(|c| c.set(false));
+    assert_eq!(ended(&r.events)[0].1, "completed", "{}", dump(&r.events));
+    // Back on the charger, charged again (battery_percent = ceil(100·soc)).
+    let charger = b
+        .vertices
+        .iter()
+        .find(|(_, v)| v.roles.is_charger)
+        .map(|(_, v)| v.pos)
+        .expect("charger");
+    let truth = r.world.robots()[0];
+    assert!(
+        (truth.x - charger.x).hypot(truth.y - charger.y) < 0.05,
+        "{truth:?}"
+    );
+    let went = r.published.iter().any(|p| match &p.msg {
+        Msg::PathRequest(pr) => pr
+            .path
+            .last()
+            .is_some_and(|l| (l.x - charger.x).hypot(l.y - charger.y) < 1e-9),
+        _ => false,
+    });
+    assert!(went);
+    // It reported CHARGING after the task, and left only when back at 100 %.
+    let done_t = r
+        .events
+        .iter()
+        .find(|e| e.event == "completed")
+        .map(|e| e.time.as_secs())
+        .expect("done");
+    let charging = r.published.iter().any(|p| {
+        p.t > done_t
+            && matches!(&p.msg, Msg::RobotState(rs) if rs.mode.mode == crate::msgs::robot_mode::CHARGING)
+    });
+    assert!(charging);
+    let low = r.published.iter().any(|p| {
+        p.t > done_t && matches!(&p.msg, Msg::RobotState(rs) if rs.battery_percent < 99.9)
+    });
+    assert!(low, "battery never dropped below the threshold");
 }
