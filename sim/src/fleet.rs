@@ -128,6 +128,11 @@ struct Robot {
     wait_since: Option<f64>,
     blockers: Vec<usize>,
     stuck_reported: bool,
+    /// Since when nothing this robot waits for (directly or through others) moved.
+    stall_since: f64,
+    /// Last reported position that differed by more than 5 cm, and when.
+    last_pos: (f64, f64),
+    last_moved: f64,
     free_at: f64,
     end_vertex: usize,
     charger: Option<usize>,
@@ -347,7 +352,10 @@ impl Fleets {
                             chosen.len()
                         ),
                     )
-                    .with_help("lower `count`, list more waypoints, or use `spawn: auto`"),
+                    .with_help(match f.spawn {
+                        SpawnSpec::Auto => "lower `count` or add parking spots to the graph",
+                        _ => "lower `count`, list more waypoints, or use `spawn: auto`",
+                    }),
                 );
             }
             for (i, (v, name)) in chosen.into_iter().enumerate() {
@@ -484,6 +492,9 @@ impl Fleets {
                     wait_since: None,
                     blockers: Vec::new(),
                     stuck_reported: false,
+                    stall_since: 0.0,
+                    last_pos: (spawn.x, spawn.y),
+                    last_moved: 0.0,
                     free_at: 0.0,
                     end_vertex: at,
                     charger: None,
@@ -641,6 +652,11 @@ impl Fleets {
                 Msg::RobotState(s) => {
                     if let Some(&i) = self.by_name.get(&s.name) {
                         let r = &mut self.robots[i];
+                        let (x, y) = (s.location.x, s.location.y);
+                        if (x - r.last_pos.0).hypot(y - r.last_pos.1) > 0.05 {
+                            r.last_pos = (x, y);
+                            r.last_moved = t;
+                        }
                         r.state = Some(s.clone());
                         r.dirty = true;
                     }
@@ -1289,7 +1305,11 @@ impl Fleets {
         } else {
             let blockers = self.res.blockers(i, set);
             let r = &mut self.robots[i];
-            r.wait_since.get_or_insert(t);
+            if r.wait_since.is_none() {
+                r.wait_since = Some(t);
+                r.stall_since = t;
+                r.stuck_reported = false;
+            }
             r.blockers = blockers;
             false
         }
@@ -1653,13 +1673,9 @@ impl Fleets {
             }
             for b in self.robots[i].blockers.clone() {
                 if self.robots[b].idle() && self.robots[b].n_sent == 0 {
-                    let avoid: Vec<usize> = self.robots[i]
-                        .route
-                        .iter()
-                        .map(|&e| self.nav.edges[e].to)
-                        .chain([self.robots[i].at])
-                        .collect();
-                    if let Some(v) = self.free_spot(b, &avoid) {
+                    // Out of the waiter's way if possible, else anywhere it can go now.
+                    let spot = self.free_spot(b, &[i]).or_else(|| self.free_spot(b, &[]));
+                    if let Some(v) = spot {
                         let r = &mut self.robots[b];
                         r.steps.push_back(Step::GoTo(v));
                         r.dirty = true;
@@ -1691,22 +1707,17 @@ impl Fleets {
                     cycle.iter().map(|&r| self.robots[r].name.clone()).collect();
                 let mut resolved = false;
                 for &b in cycle.iter().rev() {
-                    if self.robots[b].gate != Gate::None || self.robots[b].n_sent > 0 {
+                    // Only a robot waiting at rest in the middle of a GoTo can back off.
+                    let rb = &self.robots[b];
+                    if rb.gate != Gate::None
+                        || rb.n_sent > 0
+                        || rb.wait_since.is_none()
+                        || !matches!(rb.cur, Cur::GoTo { .. })
+                    {
                         continue;
                     }
-                    let avoid: Vec<usize> = cycle
-                        .iter()
-                        .filter(|&&o| o != b)
-                        .flat_map(|&o| {
-                            let r = &self.robots[o];
-                            r.route
-                                .iter()
-                                .map(|&e| self.nav.edges[e].to)
-                                .chain([r.at])
-                                .collect::<Vec<_>>()
-                        })
-                        .collect();
-                    if let Some(v) = self.free_spot(b, &avoid) {
+                    let others: Vec<usize> = cycle.iter().copied().filter(|&o| o != b).collect();
+                    if let Some(v) = self.free_spot(b, &others) {
                         let r = &mut self.robots[b];
                         // Back off first, then resume the current GoTo from scratch.
                         if let Cur::GoTo { goal, .. } = r.cur {
@@ -1752,18 +1763,48 @@ impl Fleets {
                 }
             }
         }
+        // A waiting robot stalls only when nothing it waits for, directly or through
+        // other waiting robots, has moved lately (long lanes take minutes to drive).
+        let mut live: Vec<bool> = self
+            .robots
+            .iter()
+            .map(|r| r.wait_since.is_none() && t - r.last_moved < 2.0)
+            .collect();
+        for _ in 0..n {
+            let mut changed = false;
+            for i in 0..n {
+                if !live[i]
+                    && self.robots[i].wait_since.is_some()
+                    && self.robots[i]
+                        .blockers
+                        .iter()
+                        .any(|&b| live.get(b) == Some(&true))
+                {
+                    live[i] = true;
+                    changed = true;
+                }
+            }
+            if !changed {
+                break;
+            }
+        }
+        for (i, r) in self.robots.iter_mut().enumerate() {
+            if r.wait_since.is_none() || live[i] {
+                r.stall_since = t;
+            }
+        }
         // No progress for too long: report, then give up the task.
         for i in 0..n {
-            let Some(s) = self.robots[i].wait_since else {
+            if self.robots[i].wait_since.is_none() {
                 continue;
-            };
-            let waited = t - s;
+            }
+            let waited = t - self.robots[i].stall_since;
             if waited >= STUCK_AFTER && !self.robots[i].stuck_reported {
                 self.robots[i].stuck_reported = true;
                 let who: Vec<String> = self.robots[i]
                     .blockers
                     .iter()
-                    .map(|&b| self.robots[b].name.clone())
+                    .map(|&b| format!("{} ({})", self.robots[b].name, self.status(b)))
                     .collect();
                 if let Some(ti) = self.robots[i].task {
                     self.event(
@@ -1790,9 +1831,20 @@ impl Fleets {
         }
     }
 
-    /// A vertex robot `b` can go to that nobody holds and that is not in `avoid`: parking
-    /// spots, holding points, chargers first, then any, nearest first.
-    fn free_spot(&self, b: usize, avoid: &[usize]) -> Option<usize> {
+    /// A vertex robot `b` can go to where it is in nobody's way: nobody holds its standing
+    /// set, and the set is disjoint from what `others` need for their remaining routes.
+    /// Parking spots, holding points and chargers first, then any vertex; nearest first.
+    fn free_spot(&self, b: usize, others: &[usize]) -> Option<usize> {
+        let mut needed: Vec<Res> = Vec::new();
+        for &o in others {
+            let r = &self.robots[o];
+            needed.extend_from_slice(&self.conf.vertex[r.at]);
+            for &e in &r.route {
+                needed.extend_from_slice(&self.conf.edge[e]);
+            }
+        }
+        needed.sort_unstable();
+        needed.dedup();
         let r = &self.robots[b];
         let f = &self.fleets[r.fleet];
         let times = self.nav.times_from(f.slot, r.at, f.speed);
@@ -1804,23 +1856,51 @@ impl Fleets {
                 1
             }
         };
-        self.nav.members[f.slot]
+        let mut cands: Vec<usize> = self.nav.members[f.slot]
             .iter()
             .copied()
-            .filter(|&v| v != r.at && times[v].is_finite() && !avoid.contains(&v))
+            .filter(|&v| v != r.at && times[v].is_finite())
             .filter(|&v| self.nav.vertices[v].lift.is_none())
             .filter(|&v| self.res.is_free_for(b, &self.conf.vertex[v]))
             .filter(|&v| {
                 !self.conf.vertex[v]
                     .iter()
-                    .any(|&x| avoid.contains(&(x as usize)))
+                    .any(|x| needed.binary_search(x).is_ok())
             })
-            .min_by(|&a, &c| {
-                class(a)
-                    .cmp(&class(c))
-                    .then(times[a].total_cmp(&times[c]))
-                    .then(a.cmp(&c))
-            })
+            .collect();
+        cands.sort_by(|&a, &c| {
+            class(a)
+                .cmp(&class(c))
+                .then(times[a].total_cmp(&times[c]))
+                .then(a.cmp(&c))
+        });
+        // Only spots the robot can start driving to now (its first lane is free).
+        cands.into_iter().take(16).find(|&v| {
+            self.nav
+                .plan(f.slot, r.at, v, f.speed)
+                .and_then(|(_, route)| route.first().copied())
+                .is_some_and(|e| self.res.is_free_for(b, &self.conf.edge[e]))
+        })
+    }
+
+    /// What robot `i` is doing, for stuck reports.
+    fn status(&self, i: usize) -> &'static str {
+        let r = &self.robots[i];
+        if r.n_sent > 0 {
+            "moving"
+        } else if r.wait_since.is_some() {
+            "waiting"
+        } else {
+            match (&r.gate, &r.cur) {
+                (Gate::Door { .. }, _) => "at a door",
+                (Gate::Lift { .. }, _) => "at a lift",
+                (_, Cur::Workcell { .. }) => "at a workcell",
+                (_, Cur::Dwell { .. }) => "dwelling",
+                (_, Cur::Charge { .. }) => "charging",
+                _ if r.idle() => "idle",
+                _ => "busy",
+            }
+        }
     }
 }
 

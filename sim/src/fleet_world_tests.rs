@@ -491,3 +491,114 @@ fn world_low_battery_goes_charging() {
     });
     assert!(low, "battery never dropped below the threshold");
 }
+
+/// Timing of `update` with many robots on a demo map (run with `--release --ignored`).
+#[test]
+#[ignore]
+fn perf_many_robots_on_a_demo_map() {
+    let path = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../../shared/maps/airport_terminal/airport_terminal.building.yaml"
+    );
+    let Ok(text) = std::fs::read_to_string(path) else {
+        eprintln!("skipped: ../shared not found");
+        return;
+    };
+    let b = load("airport_terminal", Some(&text));
+    let nav = crate::graph::Nav::build(&b, &[2]);
+    let mut names: Vec<String> = nav.members[0]
+        .iter()
+        .map(|&v| nav.vertices[v].name.clone())
+        .filter(|n| !n.is_empty())
+        .collect();
+    names.sort();
+    names.dedup();
+    let mut f = fleet("tiny", 24, SpawnSpec::Auto);
+    f.graph = 2;
+    let mut s = scenario(vec![f], Vec::new());
+    // Busy: a task every second, waypoints in a scrambled but fixed order.
+    for k in 0..150usize {
+        let n = &names[(k * 37) % names.len()];
+        s.tasks.push(task(
+            1.0 + k as f64,
+            None,
+            TaskKind::GoToPlace { place: n.clone() },
+        ));
+    }
+    let placement = Fleets::place(&b, &s).expect("placement");
+    let mut fleets = Fleets::new(&b, &s, &placement).expect("fleets");
+    let setup = WorldSetup {
+        dt: s.step,
+        seed: s.seed,
+        robots: placement.robots.clone(),
+        workcells: placement.workcells.clone(),
+        lifts_start_at_initial_floor: true,
+    };
+    let mut world = World::new(&b, &setup);
+    let (mut inbox, mut out, mut events) = (Vec::new(), Vec::new(), Vec::new());
+    let (mut t_fleet, mut t_world) = (std::time::Duration::ZERO, std::time::Duration::ZERO);
+    let (mut idle_calls, mut t_idle) = (0u64, std::time::Duration::ZERO);
+    let mut min_gap = f64::INFINITY;
+    let steps = (1200.0 / s.step) as u64;
+    for _ in 0..steps {
+        let t = world.time();
+        out.clear();
+        let empty = inbox.is_empty();
+        let c = std::time::Instant::now();
+        fleets.update(t, &inbox, &mut out);
+        let d = c.elapsed();
+        t_fleet += d;
+        if empty {
+            idle_calls += 1;
+            t_idle += d;
+        }
+        inbox.clear();
+        for (topic, msg) in out.drain(..) {
+            if let Msg::TaskEvent(e) = &msg {
+                events.push(e.clone());
+            } else {
+                world.deliver(topic, msg);
+            }
+        }
+        let c = std::time::Instant::now();
+        world.step(&mut inbox);
+        t_world += c.elapsed();
+        let robots = world.robots();
+        for (i, a) in robots.iter().enumerate() {
+            for c in &robots[i + 1..] {
+                if (a.z - c.z).abs() < 0.5 {
+                    min_gap =
+                        min_gap.min((a.x - c.x).hypot(a.y - c.y) - (a.footprint + c.footprint));
+                }
+            }
+        }
+    }
+    let done = ended(&events);
+    let ok = done.iter().filter(|e| e.1 == "completed").count();
+    eprintln!(
+        "{} named waypoints, {} tasks: {} completed, {} failed; fleet {:?} ({:.2} µs/step, idle {:.3} µs over {} calls), world {:?}, min gap {:.3} m",
+        names.len(),
+        s.tasks.len(),
+        ok,
+        done.len() - ok,
+        t_fleet,
+        t_fleet.as_secs_f64() * 1e6 / steps as f64,
+        t_idle.as_secs_f64() * 1e6 / idle_calls.max(1) as f64,
+        idle_calls,
+        t_world,
+        min_gap
+    );
+    for e in events
+        .iter()
+        .filter(|e| e.event == "failed" || e.event == "stuck" || e.event == "deadlock")
+    {
+        eprintln!(
+            "{:.1} {} {} {} {}",
+            e.time.as_secs(),
+            e.task_id,
+            e.event,
+            e.robot,
+            e.detail
+        );
+    }
+}
