@@ -1674,8 +1674,35 @@ impl Fleets {
             for b in self.robots[i].blockers.clone() {
                 if self.robots[b].idle() && self.robots[b].n_sent == 0 {
                     // Out of the waiter's way if possible, else anywhere it can go now.
-                    let spot = self.free_spot(b, &[i]).or_else(|| self.free_spot(b, &[]));
+                    let needed = self.needed(&[i], &[]);
+                    let spot = self
+                        .free_spot(b, &needed, None)
+                        .or_else(|| self.free_spot(b, &[], None));
                     if let Some(v) = spot {
+                        let r = &mut self.robots[b];
+                        r.steps.push_back(Step::GoTo(v));
+                        r.dirty = true;
+                        continue;
+                    }
+                    // Hemmed in by the waiter itself (a dead end): choose the idle robot's
+                    // spot as if the waiter were gone, and back the waiter off its way.
+                    let Some(v) = self.free_spot(b, &[], Some(i)) else {
+                        continue;
+                    };
+                    let rb = &self.robots[b];
+                    let f = &self.fleets[rb.fleet];
+                    let route = self
+                        .nav
+                        .plan(f.slot, rb.at, v, f.speed)
+                        .map(|p| p.1)
+                        .unwrap_or_default();
+                    let needed = self.needed(&[b], &route);
+                    if !self.can_back_off(i) {
+                        continue;
+                    }
+                    if let Some(w) = self.free_spot(i, &needed, None) {
+                        let names = [self.robots[i].name.clone(), self.robots[b].name.clone()];
+                        self.back_off(i, w, &names, t, out);
                         let r = &mut self.robots[b];
                         r.steps.push_back(Step::GoTo(v));
                         r.dirty = true;
@@ -1707,47 +1734,14 @@ impl Fleets {
                     cycle.iter().map(|&r| self.robots[r].name.clone()).collect();
                 let mut resolved = false;
                 for &b in cycle.iter().rev() {
-                    // Only a robot waiting at rest in the middle of a GoTo can back off.
-                    let rb = &self.robots[b];
-                    if rb.gate != Gate::None
-                        || rb.n_sent > 0
-                        || rb.wait_since.is_none()
-                        || !matches!(rb.cur, Cur::GoTo { .. })
-                    {
+                    if !self.can_back_off(b) {
                         continue;
                     }
                     let others: Vec<usize> = cycle.iter().copied().filter(|&o| o != b).collect();
-                    if let Some(v) = self.free_spot(b, &others) {
-                        let r = &mut self.robots[b];
-                        // Back off first, then resume the current GoTo from scratch.
-                        if let Cur::GoTo { goal, .. } = r.cur {
-                            r.steps.push_front(Step::GoTo(goal));
-                        }
-                        // Wait there long enough for the others to take the way.
-                        r.steps.push_front(Step::Dwell(BACKOFF_WAIT));
-                        r.steps.push_front(Step::GoTo(v));
-                        r.cur = Cur::None;
-                        r.route.clear();
-                        r.n_res = 0;
-                        r.wait_since = None;
-                        r.blockers.clear();
-                        r.dirty = true;
-                        self.rehold(b);
+                    let needed = self.needed(&others, &[]);
+                    if let Some(v) = self.free_spot(b, &needed, None) {
+                        self.back_off(b, v, &names, t, out);
                         resolved = true;
-                        let spot = &self.nav.vertices[v];
-                        let spot = if spot.name.is_empty() {
-                            format!("({:.2}, {:.2})", spot.pos.x, spot.pos.y)
-                        } else {
-                            spot.name.clone()
-                        };
-                        let detail = format!(
-                            "{}: {} backs off to {spot}",
-                            names.join(","),
-                            self.robots[b].name
-                        );
-                        if let Some(ti) = self.robots[b].task {
-                            self.event(t, ti, "deadlock", Some(b), detail, out);
-                        }
                         break;
                     }
                 }
@@ -1831,20 +1825,77 @@ impl Fleets {
         }
     }
 
-    /// A vertex robot `b` can go to where it is in nobody's way: nobody holds its standing
-    /// set, and the set is disjoint from what `others` need for their remaining routes.
-    /// Parking spots, holding points and chargers first, then any vertex; nearest first.
-    fn free_spot(&self, b: usize, others: &[usize]) -> Option<usize> {
+    /// Only a robot waiting at rest in the middle of a GoTo can back off.
+    fn can_back_off(&self, b: usize) -> bool {
+        let rb = &self.robots[b];
+        rb.gate == Gate::None
+            && rb.n_sent == 0
+            && rb.wait_since.is_some()
+            && matches!(rb.cur, Cur::GoTo { .. })
+    }
+
+    /// Robot `b` drives to `v`, waits there, then resumes its GoTo from scratch.
+    fn back_off(
+        &mut self,
+        b: usize,
+        v: usize,
+        names: &[String],
+        t: f64,
+        out: &mut Vec<(Topic, Msg)>,
+    ) {
+        let r = &mut self.robots[b];
+        if let Cur::GoTo { goal, .. } = r.cur {
+            r.steps.push_front(Step::GoTo(goal));
+        }
+        // Wait there long enough for the others to take the way.
+        r.steps.push_front(Step::Dwell(BACKOFF_WAIT));
+        r.steps.push_front(Step::GoTo(v));
+        r.cur = Cur::None;
+        r.route.clear();
+        r.n_res = 0;
+        r.wait_since = None;
+        r.blockers.clear();
+        r.dirty = true;
+        self.rehold(b);
+        let spot = &self.nav.vertices[v];
+        let spot = if spot.name.is_empty() {
+            format!("({:.2}, {:.2})", spot.pos.x, spot.pos.y)
+        } else {
+            spot.name.clone()
+        };
+        let detail = format!(
+            "{}: {} backs off to {spot}",
+            names.join(","),
+            self.robots[b].name
+        );
+        if let Some(ti) = self.robots[b].task {
+            self.event(t, ti, "deadlock", Some(b), detail, out);
+        }
+    }
+
+    /// Resources robots `who` need: where they stand, their remaining routes, and `edges`.
+    fn needed(&self, who: &[usize], edges: &[usize]) -> Vec<Res> {
         let mut needed: Vec<Res> = Vec::new();
-        for &o in others {
+        for &o in who {
             let r = &self.robots[o];
             needed.extend_from_slice(&self.conf.vertex[r.at]);
             for &e in &r.route {
                 needed.extend_from_slice(&self.conf.edge[e]);
             }
         }
+        for &e in edges {
+            needed.extend_from_slice(&self.conf.edge[e]);
+        }
         needed.sort_unstable();
         needed.dedup();
+        needed
+    }
+
+    /// A vertex robot `b` can go to where it is in nobody's way: nobody (but `ignore`)
+    /// holds its standing set, the set is disjoint from `needed` (sorted), and the first
+    /// lane there is free now. Parking spots, holding points and chargers first, then any
+    /// vertex; nearest first.
+    fn free_spot(&self, b: usize, needed: &[Res], ignore: Option<usize>) -> Option<usize> {
         let r = &self.robots[b];
         let f = &self.fleets[r.fleet];
         let times = self.nav.times_from(f.slot, r.at, f.speed);
@@ -1861,7 +1912,7 @@ impl Fleets {
             .copied()
             .filter(|&v| v != r.at && times[v].is_finite())
             .filter(|&v| self.nav.vertices[v].lift.is_none())
-            .filter(|&v| self.res.is_free_for(b, &self.conf.vertex[v]))
+            .filter(|&v| self.res.is_free_ignoring(b, &self.conf.vertex[v], ignore))
             .filter(|&v| {
                 !self.conf.vertex[v]
                     .iter()
@@ -1879,7 +1930,7 @@ impl Fleets {
             self.nav
                 .plan(f.slot, r.at, v, f.speed)
                 .and_then(|(_, route)| route.first().copied())
-                .is_some_and(|e| self.res.is_free_for(b, &self.conf.edge[e]))
+                .is_some_and(|e| self.res.is_free_ignoring(b, &self.conf.edge[e], ignore))
         })
     }
 

@@ -177,6 +177,16 @@ impl Reservations {
         })
     }
 
+    /// Like [`Reservations::is_free_for`], not counting what `ignore` holds.
+    pub fn is_free_ignoring(&self, r: usize, set: &[Res], ignore: Option<usize>) -> bool {
+        set.iter().all(|&x| {
+            self.holders.get(x as usize).is_none_or(|h| {
+                h.iter()
+                    .all(|&o| o as usize == r || Some(o as usize) == ignore)
+            })
+        })
+    }
+
     /// Replaces what `r` holds with `set` (sorted, deduplicated), unconditionally.
     pub fn set_held(&mut self, r: usize, mut set: Vec<Res>) {
         set.sort_unstable();
