@@ -1732,18 +1732,24 @@ impl Fleets {
                 // The robot with the highest index backs off (lowest priority).
                 let names: Vec<String> =
                     cycle.iter().map(|&r| self.robots[r].name.clone()).collect();
-                let mut resolved = false;
+                // The robot with the nearest spot out of the others' way backs off; on a
+                // tie the one with the highest index (lowest priority).
+                let mut best: Option<(f64, usize, usize)> = None;
                 for &b in cycle.iter().rev() {
                     if !self.can_back_off(b) {
                         continue;
                     }
                     let others: Vec<usize> = cycle.iter().copied().filter(|&o| o != b).collect();
                     let needed = self.needed(&others, &[]);
-                    if let Some(v) = self.free_spot(b, &needed, None) {
-                        self.back_off(b, v, &names, t, out);
-                        resolved = true;
-                        break;
+                    if let Some((v, time)) = self.free_spot_timed(b, &needed, None) {
+                        if best.is_none_or(|(bt, _, _)| time < bt) {
+                            best = Some((time, b, v));
+                        }
                     }
+                }
+                let resolved = best.is_some();
+                if let Some((_, b, v)) = best {
+                    self.back_off(b, v, &names, t, out);
                 }
                 if !resolved {
                     for &r in &cycle {
@@ -1896,6 +1902,16 @@ impl Fleets {
     /// lane there is free now. Parking spots, holding points and chargers first, then any
     /// vertex; nearest first.
     fn free_spot(&self, b: usize, needed: &[Res], ignore: Option<usize>) -> Option<usize> {
+        self.free_spot_timed(b, needed, ignore).map(|x| x.0)
+    }
+
+    /// [`Fleets::free_spot`] with the travel time there.
+    fn free_spot_timed(
+        &self,
+        b: usize,
+        needed: &[Res],
+        ignore: Option<usize>,
+    ) -> Option<(usize, f64)> {
         let r = &self.robots[b];
         let f = &self.fleets[r.fleet];
         let times = self.nav.times_from(f.slot, r.at, f.speed);
@@ -1926,12 +1942,16 @@ impl Fleets {
                 .then(a.cmp(&c))
         });
         // Only spots the robot can start driving to now (its first lane is free).
-        cands.into_iter().take(16).find(|&v| {
-            self.nav
-                .plan(f.slot, r.at, v, f.speed)
-                .and_then(|(_, route)| route.first().copied())
-                .is_some_and(|e| self.res.is_free_ignoring(b, &self.conf.edge[e], ignore))
-        })
+        cands
+            .into_iter()
+            .take(16)
+            .find(|&v| {
+                self.nav
+                    .plan(f.slot, r.at, v, f.speed)
+                    .and_then(|(_, route)| route.first().copied())
+                    .is_some_and(|e| self.res.is_free_ignoring(b, &self.conf.edge[e], ignore))
+            })
+            .map(|v| (v, times[v]))
     }
 
     /// What robot `i` is doing, for stuck reports.
