@@ -2,7 +2,7 @@
 //! supervisors, workcells), checking ground truth every step.
 
 use super::*;
-use crate::msgs::{Msg, Published, TaskEvent};
+use crate::msgs::{LiftRequest, Msg, Published, TaskEvent};
 use crate::params::RobotParams;
 use crate::scenario::{FleetSpec, SimOptions, TaskSpec, WorkcellSpec};
 use crate::world::{World, WorldSetup};
@@ -85,7 +85,7 @@ fn run_checked(
     b: &Building,
     s: &Scenario,
     seconds: f64,
-    check: &mut dyn FnMut(&World, &[Published]),
+    check: &mut dyn FnMut(&mut World, &[Published]),
 ) -> Run {
     let placement = Fleets::place(b, s).expect("placement");
     let mut fleets = Fleets::new(b, s, &placement).expect("fleets");
@@ -121,7 +121,7 @@ fn run_checked(
             }
         }
         world.step(&mut inbox);
-        check(&world, &inbox);
+        check(&mut world, &inbox);
         published.extend(inbox.iter().cloned());
         let robots = world.robots();
         for (i, a) in robots.iter().enumerate() {
@@ -601,4 +601,68 @@ fn perf_many_robots_on_a_demo_map() {
             e.detail
         );
     }
+}
+
+#[test]
+fn world_lift_busy_with_someone_else_is_waited_for() {
+    let b = load("two_level_clinic", None);
+    let s = scenario(
+        vec![fleet("tiny", 1, SpawnSpec::MapSpawnPoints)],
+        vec![task(
+            0.5,
+            None,
+            TaskKind::GoToPlace {
+                place: "ward_a".into(),
+            },
+        )],
+    );
+    let request = |kind: u8, floor: &str| LiftRequest {
+        lift_name: "lift_1".into(),
+        session_id: "visitor".into(),
+        request_type: kind,
+        destination_floor: floor.into(),
+        door_state: lift_request::DOOR_OPEN,
+        ..LiftRequest::default()
+    };
+    let release_at = 120.0;
+    let mut sent = (false, false);
+    let r = run_checked(&b, &s, 1200.0, &mut |w, _| {
+        // A visitor takes the lift to L2 at once and keeps it for two minutes.
+        if !sent.0 {
+            sent.0 = true;
+            w.deliver(
+                Topic::AdapterLiftRequests,
+                Msg::LiftRequest(request(lift_request::AGV_MODE, "L2")),
+            );
+        }
+        if !sent.1 && w.time() >= release_at {
+            sent.1 = true;
+            w.deliver(
+                Topic::AdapterLiftRequests,
+                Msg::LiftRequest(request(lift_request::END_SESSION, "L2")),
+            );
+        }
+    });
+    let done = ended(&r.events);
+    assert_eq!(done.len(), 1, "{}", dump(&r.events));
+    assert_eq!(done[0].1, "completed", "{}", dump(&r.events));
+    // The robot asked before the visitor left, and got the lift only after.
+    let first_ask = r.published.iter().find_map(|p| match &p.msg {
+        Msg::LiftRequest(l)
+            if p.topic == Topic::AdapterLiftRequests && l.session_id == "tinyRobot1" =>
+        {
+            Some(p.t)
+        }
+        _ => None,
+    });
+    let first_owned = r.published.iter().find_map(|p| match &p.msg {
+        Msg::LiftState(l) if l.session_id == "tinyRobot1" => Some(p.t),
+        _ => None,
+    });
+    let (ask, owned) = (first_ask.expect("asked"), first_owned.expect("owned"));
+    assert!(
+        ask < release_at && owned >= release_at,
+        "asked {ask}, owned {owned}"
+    );
+    assert!((r.world.robots()[0].z - 4.0).abs() < 0.05);
 }
