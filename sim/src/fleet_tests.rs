@@ -784,3 +784,22 @@ fn generator_ids_and_idle_update_is_cheap() {
         "{events:#?}"
     );
 }
+
+#[test]
+fn clean_without_dock_waits_clean_duration() {
+    let b = cross();
+    let mut s = scenario(
+        vec![fleet("a", 1, SpawnSpec::Waypoints(vec!["w".into()]))],
+        vec![task(0.5, TaskKind::Clean { zone: "e".into() })],
+    );
+    s.options.clean_duration = 30.0;
+    let (events, mock, _) = run(&b, &s, 300.0);
+    let done: Vec<&TaskEvent> = events.iter().filter(|e| e.event == "completed").collect();
+    assert_eq!(done.len(), 1, "{events:#?}");
+    // 10 m at 0.5 m/s, then 30 s of cleaning; the fleet sees arrival through RobotState
+    // (2 Hz) and acts on the next update.
+    let t = done[0].time.as_secs();
+    let expect = 0.5 + 10.0 / 0.5 + 30.0;
+    assert!(t >= expect - 1e-6 && t <= expect + 1.0, "{t} vs {expect}");
+    assert!((mock.robots[0].pos.x - 10.0).abs() < 1e-9);
+}
