@@ -17,6 +17,9 @@
 //! - A reversing robot checks for obstacles behind it (the direction it drives), not in
 //!   front of its body.
 //! - Obstacles are the other robots only (no other non-static models exist headless).
+//! - Level lookup keeps the robot's current level (its spawn level at first) while its z
+//!   still matches it, so levels sharing an elevation are told apart; upstream takes the
+//!   first level in map order.
 //! - `PAUSE_AT_CHECKPOINT` with no remaining path entry (adapter-error hold) does not
 //!   pause (upstream reads past the end of the path).
 
@@ -84,18 +87,49 @@ impl Default for ChargeFlags {
 }
 
 /// Robot positions at the start of a step, for the obstacle test (§1.8). Above 8 robots
-/// they are kept sorted by x (insertion sort: nearly sorted from one step to the next, so
-/// linear) and a query only visits the robots whose x is within the stop radius.
+/// they are bucketed by a spatial hash over a uniform grid whose cells are twice the
+/// largest stop radius (a counting sort into ~2n buckets, rebuilt every step: linear);
+/// a query visits the 2×2 cells a stop disc can touch.
 #[derive(Debug, Default)]
 pub(crate) struct Obstacles {
     pos: Vec<[f64; 3]>,
-    order: Vec<u32>,
-    xs: Vec<f64>,
+    inv_cell: f64,
+    mask: usize,
+    /// Bucket b holds `items[start[b]..start[b + 1]]`.
+    start: Vec<u32>,
+    cursor: Vec<u32>,
+    items: Vec<u32>,
+    bucket: Vec<u32>,
 }
 
 const BRUTE_FORCE_MAX: usize = 8;
 
 impl Obstacles {
+    /// Cell coordinate and the position inside the cell (0..1).
+    #[inline]
+    fn cell_of(&self, v: f64) -> (i64, f64) {
+        // `floor` without the libm call (`as` saturates, NaN gives 0).
+        let q = v * self.inv_cell;
+        let t = q as i64;
+        let i = t - i64::from((t as f64) > q);
+        (i, q - i as f64)
+    }
+
+    #[inline]
+    fn col_hash(col: i64) -> u64 {
+        (col as u64).wrapping_mul(0x9E37_79B9_7F4A_7C15)
+    }
+
+    #[inline]
+    fn row_hash(row: i64) -> u64 {
+        (row as u64).wrapping_mul(0xC2B2_AE3D_27D4_EB4F)
+    }
+
+    #[inline]
+    fn bucket_of(&self, h: u64) -> usize {
+        (h >> 32) as usize & self.mask
+    }
+
     pub fn rebuild(&mut self, cars: &[Slotcar]) {
         self.pos.clear();
         self.pos.extend(cars.iter().map(|c| [c.x, c.y, c.z]));
@@ -103,44 +137,73 @@ impl Obstacles {
         if n <= BRUTE_FORCE_MAX {
             return;
         }
-        if self.order.len() != n {
-            self.order = (0..n as u32).collect();
+        if self.items.len() != n {
+            // Cells twice the largest stop radius: a stop disc then touches ≤ 2×2 cells.
+            let cell = 2.0 * cars.iter().map(|c| c.p.stop_radius).fold(0.25, f64::max);
+            self.inv_cell = 1.0 / cell;
+            let buckets = (2 * n).next_power_of_two();
+            self.mask = buckets - 1;
+            self.start = vec![0; buckets + 1];
+            self.cursor = vec![0; buckets];
+            self.items = vec![0; n];
+            self.bucket = vec![0; n];
         }
-        let pos = &self.pos;
-        let key = |i: u32| pos.get(i as usize).map_or(0.0, |p| p[0]);
-        for k in 1..n {
-            let cur = self.order[k];
-            let kx = key(cur);
-            let mut j = k;
-            while j > 0 && key(self.order[j - 1]) > kx {
-                self.order[j] = self.order[j - 1];
-                j -= 1;
+        self.start.fill(0);
+        for i in 0..n {
+            let p = self.pos[i];
+            let h = Self::col_hash(self.cell_of(p[0]).0) ^ Self::row_hash(self.cell_of(p[1]).0);
+            let b = self.bucket_of(h);
+            self.bucket[i] = b as u32;
+            self.start[b + 1] += 1;
+        }
+        for b in 0..self.mask + 1 {
+            self.start[b + 1] += self.start[b];
+        }
+        self.cursor.copy_from_slice(&self.start[..self.mask + 1]);
+        for i in 0..n {
+            let b = self.bucket[i] as usize;
+            let k = self.cursor[b] as usize;
+            self.cursor[b] += 1;
+            if let Some(slot) = self.items.get_mut(k) {
+                *slot = i as u32;
             }
-            self.order[j] = cur;
         }
-        self.xs.clear();
-        self.xs.extend(self.order.iter().map(|&i| key(i)));
     }
 
-    /// Is any robot other than `me` closer than `r` (3-D) to `p`?
+    /// Is any robot other than `me` closer than `r` (3-D) to `p`? `r` must not exceed the
+    /// largest stop radius of the robots given to `rebuild` (the robots' own radii).
     pub fn any_within(&self, me: usize, p: [f64; 3], r: f64) -> bool {
         let r2 = r * r;
-        let hit = |i: usize| {
-            i != me
-                && self.pos.get(i).is_some_and(|q| {
-                    let (dx, dy, dz) = (q[0] - p[0], q[1] - p[1], q[2] - p[2]);
-                    dx * dx + dy * dy + dz * dz < r2
-                })
+        let hit = |i: usize, q: &[f64; 3]| {
+            let (dx, dy, dz) = (q[0] - p[0], q[1] - p[1], q[2] - p[2]);
+            dx * dx + dy * dy + dz * dz < r2 && i != me
         };
         if self.pos.len() <= BRUTE_FORCE_MAX {
-            return (0..self.pos.len()).any(hit);
+            return self.pos.iter().enumerate().any(|(i, q)| hit(i, q));
         }
-        let lo = self.xs.partition_point(|&x| x < p[0] - r);
-        self.xs[lo..]
-            .iter()
-            .zip(&self.order[lo..])
-            .take_while(|(&x, _)| x <= p[0] + r)
-            .any(|(_, &i)| hit(i as usize))
+        // A disc of radius r ≤ cell/2 touches at most the 2×2 cells on the sides of the
+        // point's cell that it is nearest to. (Two cells sharing a bucket are visited
+        // twice: harmless for "any".)
+        let ((col, fx), (row, fy)) = (self.cell_of(p[0]), self.cell_of(p[1]));
+        let c0 = col - i64::from(fx < 0.5);
+        let r0 = row - i64::from(fy < 0.5);
+        let (h0, h1) = (Self::col_hash(c0), Self::col_hash(c0 + 1));
+        let (v0, v1) = (Self::row_hash(r0), Self::row_hash(r0 + 1));
+        let (start, items, pos) = (&self.start[..], &self.items[..], &self.pos[..]);
+        for h in [h0 ^ v0, h1 ^ v0, h0 ^ v1, h1 ^ v1] {
+            let b = self.bucket_of(h);
+            let (Some(&s), Some(&e)) = (start.get(b), start.get(b + 1)) else {
+                continue;
+            };
+            for &i in items.get(s as usize..e as usize).unwrap_or(&[]) {
+                if let Some(q) = pos.get(i as usize) {
+                    if hit(i as usize, q) {
+                        return true;
+                    }
+                }
+            }
+        }
+        false
     }
 }
 
@@ -199,10 +262,15 @@ pub(crate) struct Slotcar {
     charger_safe: f64,
     /// Index of the cart attached by `attach_cart` (§1.11).
     cart: Option<usize>,
+    /// State of charge per joule: 1 / (V · Ah · 3600).
+    per_joule: f64,
 }
 
 impl Slotcar {
-    pub fn new(name: String, p: RobotParams, x: f64, y: f64, z: f64, yaw: f64) -> Self {
+    /// A robot at rest at `(x, y, z, yaw)` on level `level` (index into the world's
+    /// levels, if known).
+    pub fn new(name: String, p: RobotParams, pose: [f64; 4], level: Option<usize>) -> Self {
+        let [x, y, z, yaw] = pose;
         let lin = Limits {
             v_max: p.nominal_drive_speed,
             a_max: p.max_drive_acceleration,
@@ -215,6 +283,7 @@ impl Slotcar {
         };
         let yaw = wrap(yaw);
         let (sin, cos) = yaw.sin_cos();
+        let per_joule = 1.0 / (p.nominal_voltage * p.nominal_capacity * 3600.0);
         Slotcar {
             name,
             p,
@@ -251,11 +320,12 @@ impl Slotcar {
             last_state_pub: 0.0,
             last_update: 0.0,
             seq: 0,
-            level: None,
+            level,
             level_z: f64::NAN,
             charger_ref: [f64::NAN; 3],
             charger_safe: -1.0,
             cart: None,
+            per_joule,
         }
     }
 
@@ -326,11 +396,17 @@ impl Slotcar {
     fn level_name<'a>(&mut self, levels: &'a [(String, f64)]) -> Option<&'a str> {
         if self.z != self.level_z {
             self.level_z = self.z;
-            if let Some(i) = levels
-                .iter()
-                .position(|(_, e)| (e - self.z).abs() < LEVEL_TOL)
-            {
-                self.level = Some(i);
+            let on = |i: usize| {
+                levels
+                    .get(i)
+                    .is_some_and(|l| (l.1 - self.z).abs() < LEVEL_TOL)
+            };
+            // Keep the remembered level while it matches: levels sharing an elevation
+            // would otherwise all report the first of them.
+            if !self.level.is_some_and(on) {
+                if let Some(i) = (0..levels.len()).find(|&i| on(i)) {
+                    self.level = Some(i);
+                }
             }
         }
         self.level.and_then(|i| levels.get(i)).map(|l| l.0.as_str())
@@ -404,6 +480,11 @@ impl Slotcar {
         }
         let cross = self.cos * ty - self.sin * tx;
         let dot = self.cos * tx + self.sin * ty;
+        // Nearly aligned (the common case while driving): atan2(c, d) = c/d − (c/d)³/3 + …,
+        // so c/d is exact to 1e-12 relative; saves the libm call.
+        if dot > 0.0 && cross.abs() < 1e-4 * dot {
+            return (cross / dot, dir);
+        }
         (cross.atan2(dot), dir)
     }
 
@@ -519,9 +600,10 @@ impl Slotcar {
 
     /// Battery and mode from the motion measured since the last update (§1.7, §1.9).
     fn bookkeeping(&mut self, ctx: &Ctx, dt_u: f64, me: usize, items: &mut [Item]) {
-        let vx = (self.old[0] - self.x) / dt_u;
-        let vy = (self.old[1] - self.y) / dt_u;
-        let ang_vel = wrap(self.yaw - self.old[2]) / dt_u;
+        let inv = 1.0 / dt_u;
+        let vx = (self.old[0] - self.x) * inv;
+        let vy = (self.old[1] - self.y) * inv;
+        let ang_vel = wrap(self.yaw - self.old[2]) * inv;
         let lin_speed = (vx * vx + vy * vy).sqrt();
         let stationary = lin_speed < STATIONARY && ang_vel.abs() < STATIONARY;
         let near = self.near_charger(ctx.chargers);
@@ -540,14 +622,12 @@ impl Slotcar {
             let v = lin_speed.min(p.nominal_drive_speed);
             let w = ang_vel.abs().min(p.nominal_turn_speed);
             let (ax, ay) = (vx - self.old_lin_vel[0], vy - self.old_lin_vel[1]);
-            let a = ((ax * ax + ay * ay).sqrt() / dt_u).min(p.max_drive_acceleration);
-            let alpha = ((ang_vel - self.old_ang_vel).abs() / dt_u).min(p.max_turn_acceleration);
+            let a = ((ax * ax + ay * ay).sqrt() * inv).min(p.max_drive_acceleration);
+            let alpha = ((ang_vel - self.old_ang_vel).abs() * inv).min(p.max_turn_acceleration);
             let e_acc = (p.mass * a * v + p.inertia * alpha * w) * dt_u;
             let e_fric = p.friction_coefficient * p.mass * 9.81 * v * dt_u;
             let e_dev = p.nominal_power * dt_u;
-            self.soc = (self.soc
-                - (e_acc + e_fric + e_dev) / p.nominal_voltage / (p.nominal_capacity * 3600.0))
-                .max(0.0);
+            self.soc = (self.soc - (e_acc + e_fric + e_dev) * self.per_joule).max(0.0);
         }
         self.old_lin_vel = [vx, vy];
         self.old_ang_vel = ang_vel;
@@ -610,10 +690,19 @@ impl Slotcar {
     #[inline]
     pub fn integrate(&mut self, dt: f64) {
         if self.w != 0.0 {
-            self.yaw = wrap(self.yaw + self.w * dt);
-            let (s, c) = self.yaw.sin_cos();
-            self.sin = s;
-            self.cos = c;
+            let d = self.w * dt;
+            self.yaw = wrap(self.yaw + d);
+            if d.abs() < 1e-7 {
+                // First-order rotation of the heading (error < d²/2 < 5e-15 per step);
+                // tiny yaw rates are the rule while driving straight.
+                let (s, c) = (self.sin, self.cos);
+                self.sin = s + c * d;
+                self.cos = c - s * d;
+            } else {
+                let (s, c) = self.yaw.sin_cos();
+                self.sin = s;
+                self.cos = c;
+            }
         }
         if self.v != 0.0 {
             self.x += self.v * self.cos * dt;
@@ -622,6 +711,67 @@ impl Slotcar {
         if self.vz != 0.0 {
             self.z += self.vz * dt;
             self.vz = 0.0;
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn wrap_stays_in_half_open_interval() {
+        for a in [0.0, PI, -PI, 3.0 * PI, -3.0 * PI, 7.5, -7.5, 1e-12] {
+            let w = wrap(a);
+            assert!(w > -PI && w <= PI, "{a} -> {w}");
+            assert!(((w - a) / (2.0 * PI)).round() * 2.0 * PI - (w - a) < 1e-9);
+        }
+    }
+
+    /// The spatial hash finds exactly what brute force finds.
+    #[test]
+    fn obstacle_grid_matches_brute_force() {
+        let mut rng = fastrand::Rng::with_seed(3);
+        for n in [9, 30, 100] {
+            let mut cars: Vec<Slotcar> = (0..n)
+                .map(|i| {
+                    let p = RobotParams {
+                        stop_radius: if i % 3 == 0 { 1.5 } else { 0.75 },
+                        ..RobotParams::default()
+                    };
+                    let z = if i % 5 == 0 { 4.0 } else { 0.0 };
+                    Slotcar::new(
+                        format!("r{i}"),
+                        p,
+                        [rng.f64() * 20.0 - 10.0, rng.f64() * 20.0 - 10.0, z, 0.0],
+                        None,
+                    )
+                })
+                .collect();
+            let mut obs = Obstacles::default();
+            for round in 0..3 {
+                for c in &mut cars {
+                    c.x += rng.f64() - 0.5;
+                    c.y += rng.f64() - 0.5;
+                }
+                obs.rebuild(&cars);
+                for _ in 0..2000 {
+                    let me = rng.usize(0..n);
+                    let p = [rng.f64() * 24.0 - 12.0, rng.f64() * 24.0 - 12.0, 0.0];
+                    let r = if rng.bool() { 1.5 } else { 0.75 };
+                    let brute = cars.iter().enumerate().any(|(i, c)| {
+                        let d =
+                            ((c.x - p[0]).powi(2) + (c.y - p[1]).powi(2) + (c.z - p[2]).powi(2))
+                                .sqrt();
+                        i != me && d < r
+                    });
+                    assert_eq!(
+                        obs.any_within(me, p, r),
+                        brute,
+                        "n={n} round={round} p={p:?} r={r}"
+                    );
+                }
+            }
         }
     }
 }

@@ -98,6 +98,8 @@ pub(crate) struct Workcell {
     filled: bool,
     last_pub: i64,
     pending: Option<WorkcellRequest>,
+    /// The pending request has been listed in a state message.
+    announced: bool,
     results: BTreeMap<String, bool>,
     /// Ingestor: integer second of the last ingestion while holding an item.
     holding_since: Option<i64>,
@@ -133,6 +135,7 @@ impl Workcell {
             item,
             last_pub: 0,
             pending: None,
+            announced: false,
             results: BTreeMap::new(),
             holding_since: None,
         }
@@ -161,6 +164,7 @@ impl Workcell {
             return;
         }
         self.pending = Some(msg.clone());
+        self.announced = false;
     }
 
     fn in_vicinity(&self, p: [f64; 3]) -> bool {
@@ -192,8 +196,12 @@ impl Workcell {
         }
         // Ingestor: a request waits while the previous item is still held.
         let serve = self.pending.is_some() && (dispenser || self.holding_since.is_none());
-        if due || self.pending.is_some() {
+        // A new request is announced at once; one waiting for the held item only at the
+        // regular period.
+        let fresh = self.pending.is_some() && !self.announced;
+        if due || fresh {
             self.last_pub = tsec;
+            self.announced = self.pending.is_some();
             let queue: Vec<String> = self
                 .pending
                 .iter()

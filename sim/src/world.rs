@@ -93,10 +93,10 @@ pub struct World {
     first_step: bool,
 }
 
-fn door_joints(
-    b: &Building,
-    d: &mapc_ir::Door,
-) -> Option<((f64, f64), Option<(f64, f64)>, door::DoorParams)> {
+/// `(lower, upper)` of the right joint, of the left joint if any, and the door family.
+type DoorJoints = ((f64, f64), Option<(f64, f64)>, door::DoorParams);
+
+fn door_joints(b: &Building, d: &mapc_ir::Door) -> Option<DoorJoints> {
     let s = b.vertices[d.start].pos;
     let e = b.vertices[d.end].pos;
     let l = s.minus(e).norm();
@@ -139,10 +139,8 @@ impl World {
             robots.push(Slotcar::new(
                 r.name.clone(),
                 r.params.clone(),
-                r.x,
-                r.y,
-                elev(r.level),
-                r.yaw,
+                [r.x, r.y, elev(r.level), r.yaw],
+                (r.level.index() < levels.len()).then_some(r.level.index()),
             ));
         }
 
@@ -338,6 +336,7 @@ impl World {
     }
 
     /// Sets the world-wide `/charge_state` toggles (§1.9, §8).
+    #[allow(dead_code)] // for the fleet layer and scenarios; no caller yet
     pub fn set_charging(&mut self, enable_charge: bool, instant_charge: bool, enable_drain: bool) {
         self.flags = ChargeFlags {
             enable_charge,
@@ -480,6 +479,7 @@ impl World {
     }
 
     /// State of charge (0..1) of robot `i` (spawn order).
+    #[allow(dead_code)] // for the report and tests
     pub fn soc(&self, i: usize) -> Option<f64> {
         self.robots.get(i).map(|r| r.soc)
     }
