@@ -666,3 +666,77 @@ fn world_lift_busy_with_someone_else_is_waited_for() {
     );
     assert!((r.world.robots()[0].z - 4.0).abs() < 0.05);
 }
+
+/// Every demo map and graph: robots spawned automatically drive to named waypoints; no
+/// contact, and report how many tasks ended (run with `--release --ignored`).
+#[test]
+#[ignore]
+fn demo_maps_all_graphs() {
+    let root = concat!(env!("CARGO_MANIFEST_DIR"), "/../../shared/maps");
+    let Ok(dir) = std::fs::read_dir(root) else {
+        eprintln!("skipped: ../shared not found");
+        return;
+    };
+    let mut maps: Vec<_> = dir
+        .filter_map(|e| e.ok())
+        .map(|e| e.file_name().to_string_lossy().to_string())
+        .collect();
+    maps.sort();
+    for m in maps {
+        let Ok(text) = std::fs::read_to_string(format!("{root}/{m}/{m}.building.yaml")) else {
+            continue;
+        };
+        let parsed = mapc_frontend::parse_str(&m, &text);
+        let Some(b) = parsed.valid_building().cloned() else {
+            eprintln!("{m}: map has errors");
+            continue;
+        };
+        for g in b.graph_indices() {
+            let nav = crate::graph::Nav::build(&b, &[g]);
+            let mut names: Vec<String> = nav.members[0]
+                .iter()
+                .map(|&v| nav.vertices[v].name.clone())
+                .filter(|n| !n.is_empty())
+                .collect();
+            names.sort();
+            names.dedup();
+            if names.is_empty() {
+                continue;
+            }
+            let mut f = fleet("f", 6, SpawnSpec::Auto);
+            f.graph = g;
+            let mut s = scenario(vec![f], Vec::new());
+            for k in 0..24usize {
+                let n = &names[(k * 7) % names.len()];
+                s.tasks.push(task(
+                    1.0 + 10.0 * k as f64,
+                    None,
+                    TaskKind::GoToPlace { place: n.clone() },
+                ));
+            }
+            if Fleets::place(&b, &s).is_err() {
+                eprintln!("{m} graph {g}: not enough spawn points for 6 robots");
+                continue;
+            }
+            let c = std::time::Instant::now();
+            let r = run(&b, &s, 1500.0);
+            let done = ended(&r.events);
+            let ok = done.iter().filter(|e| e.1 == "completed").count();
+            let fails: Vec<String> = done
+                .iter()
+                .filter(|e| e.1 == "failed")
+                .map(|e| e.2.clone())
+                .collect();
+            eprintln!(
+                "{m} graph {g}: {} tasks, {ok} completed, {} failed {:?}, min gap {:.2} m, {:.0} s simulated in {:?}",
+                s.tasks.len(),
+                fails.len(),
+                fails.iter().take(3).collect::<Vec<_>>(),
+                r.min_gap,
+                r.world.time(),
+                c.elapsed()
+            );
+            assert!(r.min_gap > 0.0, "{m} graph {g}: robots touched");
+        }
+    }
+}
