@@ -1294,8 +1294,15 @@ impl Fleets {
         let Some(&e) = r.route.get(r.n_res) else {
             return false;
         };
-        let set = &self.conf.edge[e];
-        if self.res.is_free_for(i, set) {
+        // What the robot's standing set already shares (robots spawned closer than their
+        // clearance) must not keep it from driving away.
+        let standing = &self.conf.vertex[r.at];
+        let set: Vec<Res> = self.conf.edge[e]
+            .iter()
+            .copied()
+            .filter(|x| standing.binary_search(x).is_err())
+            .collect();
+        if self.res.is_free_for(i, &set) {
             let r = &mut self.robots[i];
             r.n_res += 1;
             r.wait_since = None;
@@ -1303,7 +1310,7 @@ impl Fleets {
             self.rehold(i);
             true
         } else {
-            let blockers = self.res.blockers(i, set);
+            let blockers = self.res.blockers(i, &set);
             let r = &mut self.robots[i];
             if r.wait_since.is_none() {
                 r.wait_since = Some(t);

@@ -803,3 +803,56 @@ fn clean_without_dock_waits_clean_duration() {
     assert!(t >= expect - 1e-6 && t <= expect + 1.0, "{t} vs {expect}");
     assert!((mock.robots[0].pos.x - 10.0).abs() < 1e-9);
 }
+
+#[test]
+fn robots_spawned_too_close_can_drive_apart() {
+    let text = r#"
+coordinate_system: cartesian_meters
+name: close
+levels:
+  L1:
+    elevation: 0
+    vertices:
+      - [0, 0, 0, a]
+      - [0.7, 0, 0, b]
+      - [-10, 0, 0, far_a]
+      - [10.7, 0, 0, far_b]
+    lanes:
+      - [0, 2, {bidirectional: [4, true], graph_idx: [2, 0]}]
+      - [1, 3, {bidirectional: [4, true], graph_idx: [2, 0]}]
+      - [0, 1, {bidirectional: [4, true], graph_idx: [2, 0]}]
+"#;
+    let b = mapc_frontend::parse_str("close", text)
+        .building
+        .expect("parses");
+    let s = scenario(
+        vec![
+            fleet("a", 1, SpawnSpec::Waypoints(vec!["a".into()])),
+            fleet("b", 1, SpawnSpec::Waypoints(vec!["b".into()])),
+        ],
+        vec![
+            TaskSpec {
+                fleet: Some("a".into()),
+                ..task(
+                    0.5,
+                    TaskKind::GoToPlace {
+                        place: "far_a".into(),
+                    },
+                )
+            },
+            TaskSpec {
+                fleet: Some("b".into()),
+                ..task(
+                    0.5,
+                    TaskKind::GoToPlace {
+                        place: "far_b".into(),
+                    },
+                )
+            },
+        ],
+    );
+    let (events, _, _) = run(&b, &s, 200.0);
+    let done = ended(&events);
+    assert_eq!(done.len(), 2, "{events:#?}");
+    assert!(done.iter().all(|e| e.1 == "completed"), "{events:#?}");
+}
