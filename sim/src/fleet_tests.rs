@@ -6,7 +6,7 @@
 use super::*;
 use crate::graph::{segment_segment, Nav};
 use crate::msgs::*;
-use crate::scenario::{FleetSpec, GeneratorSpec, SimOptions, TaskSpec, WorkcellSpec};
+use crate::scenario::{FleetSpec, GeneratorSpec, SimOptions, TaskCategory, TaskSpec, WorkcellSpec};
 use crate::traffic::{find_cycle, Clearance, Conflicts, Reservations};
 use mapc_ir::{Building, Span, Vec2};
 
@@ -437,8 +437,12 @@ impl Mock {
                 Msg::WorkcellResult(WorkcellResult {
                     time: Time::whole(self.t),
                     request_guid: w.request_guid,
+                    status: if w.target_guid == "broken" {
+                        workcell_result::FAILED
+                    } else {
+                        workcell_result::SUCCESS
+                    },
                     source_guid: w.target_guid,
-                    status: workcell_result::SUCCESS,
                 }),
             ),
             (Topic::IngestorRequests, Msg::WorkcellRequest(w)) => self.publish(
@@ -855,4 +859,69 @@ levels:
     let done = ended(&events);
     assert_eq!(done.len(), 2, "{events:#?}");
     assert!(done.iter().all(|e| e.1 == "completed"), "{events:#?}");
+}
+
+#[test]
+fn assignment_by_category_and_soonest_start() {
+    let b = cross();
+    let mut a = fleet("a", 1, SpawnSpec::Waypoints(vec!["w".into()]));
+    a.task_kinds = vec![TaskCategory::Loop];
+    let c = fleet(
+        "c",
+        2,
+        SpawnSpec::Waypoints(vec!["far_w".into(), "far_e".into()]),
+    );
+    let s = scenario(
+        vec![a, c],
+        vec![
+            // c_1 stands at far_e: no travel, c_0 would drive 10 m.
+            task(
+                0.5,
+                TaskKind::GoToPlace {
+                    place: "far_e".into(),
+                },
+            ),
+            // c_1 is busy now; c_0 stands at the pickup. The dispenser fails.
+            task(
+                0.6,
+                TaskKind::Delivery {
+                    pickup: "far_w".into(),
+                    dropoff: "far_e".into(),
+                    dispenser: Some("broken".into()),
+                    ingestor: Some("sink".into()),
+                },
+            ),
+            // Only fleet a reaches e, and it takes loops only.
+            task(0.7, TaskKind::GoToPlace { place: "e".into() }),
+        ],
+    );
+    let (events, _, _) = run(&b, &s, 300.0);
+    let assigned: Vec<(&str, &str)> = events
+        .iter()
+        .filter(|e| e.event == "assigned")
+        .map(|e| (e.task_id.as_str(), e.robot.as_str()))
+        .collect();
+    assert_eq!(assigned, [("go_to_place_0", "c_1"), ("delivery_0", "c_0")]);
+    let mut done: Vec<(String, String)> = ended(&events);
+    done.sort();
+    let expect = [
+        ("delivery_0", "failed"),
+        ("go_to_place_0", "completed"),
+        ("go_to_place_1", "failed"),
+    ];
+    assert_eq!(
+        done,
+        expect.map(|(a, b)| (a.to_string(), b.to_string())).to_vec()
+    );
+    let detail = |id: &str| {
+        events
+            .iter()
+            .find(|e| e.task_id == id && e.event == "failed")
+            .map(|e| e.detail.clone())
+    };
+    assert_eq!(detail("delivery_0").as_deref(), Some("broken failed"));
+    assert_eq!(
+        detail("go_to_place_1").as_deref(),
+        Some("no robot can reach the task")
+    );
 }
