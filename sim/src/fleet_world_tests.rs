@@ -740,3 +740,41 @@ fn demo_maps_all_graphs() {
         }
     }
 }
+
+#[test]
+fn world_runs_are_deterministic() {
+    let b = load("two_level_clinic", None);
+    let s = scenario(
+        vec![fleet(
+            "tiny",
+            2,
+            SpawnSpec::Waypoints(vec!["tinyRobot1_charger".into(), "pharmacy".into()]),
+        )],
+        vec![
+            task(
+                0.5,
+                None,
+                TaskKind::GoToPlace {
+                    place: "ward_a".into(),
+                },
+            ),
+            task(
+                0.5,
+                None,
+                TaskKind::GoToPlace {
+                    place: "lobby".into(),
+                },
+            ),
+            task(
+                3.0,
+                None,
+                TaskKind::GoToPlace {
+                    place: "ward_b".into(),
+                },
+            ),
+        ],
+    );
+    let (a, c) = (run(&b, &s, 900.0), run(&b, &s, 900.0));
+    assert_eq!(a.events, c.events);
+    assert_eq!(a.published, c.published);
+}
