@@ -303,6 +303,7 @@ struct Mock {
     pending: Vec<Published>,
     min_gap: f64,
     door_open_log: Vec<(f64, String, usize)>,
+    paths: Vec<PathRequest>,
 }
 
 impl Mock {
@@ -348,6 +349,7 @@ impl Mock {
             pending: Vec::new(),
             min_gap: f64::INFINITY,
             door_open_log: Vec::new(),
+            paths: Vec::new(),
         }
     }
 
@@ -362,6 +364,7 @@ impl Mock {
     fn deliver(&mut self, topic: Topic, msg: Msg) {
         match (topic, msg) {
             (Topic::RobotPathRequests, Msg::PathRequest(p)) => {
+                self.paths.push(p.clone());
                 let Some(r) = self.robots.iter_mut().find(|r| r.name == p.robot_name) else {
                     return;
                 };
@@ -924,4 +927,44 @@ fn assignment_by_category_and_soonest_start() {
         detail("go_to_place_1").as_deref(),
         Some("no robot can reach the task")
     );
+}
+
+#[test]
+fn speed_limits_reach_the_path() {
+    let text = r#"
+coordinate_system: cartesian_meters
+name: slow
+levels:
+  L1:
+    elevation: 0
+    vertices:
+      - [0, 0, 0, a]
+      - [10, 0, 0, b]
+      - [20, 0, 0, c]
+    lanes:
+      - [0, 1, {bidirectional: [4, true], graph_idx: [2, 0], speed_limit: [3, 0.2]}]
+      - [1, 2, {bidirectional: [4, true], graph_idx: [2, 0]}]
+"#;
+    let b = mapc_frontend::parse_str("slow", text)
+        .building
+        .expect("parses");
+    let s = scenario(
+        vec![fleet("a", 1, SpawnSpec::Waypoints(vec!["a".into()]))],
+        vec![task(0.5, TaskKind::GoToPlace { place: "c".into() })],
+    );
+    let (events, mock, _) = run(&b, &s, 200.0);
+    let done = events
+        .iter()
+        .find(|e| e.event == "completed")
+        .expect("completed");
+    // 10 m at 0.2 m/s, then 10 m at 0.5 m/s (TinyRobot), plus up to one RobotState period.
+    let expect = 0.5 + 10.0 / 0.2 + 10.0 / 0.5;
+    let t = done.time.as_secs();
+    assert!(t >= expect - 1e-6 && t <= expect + 1.0, "{t} vs {expect}");
+    let first = &mock.paths[0];
+    assert_eq!((first.path[0].x, first.path[0].y), (0.0, 0.0));
+    assert!(first.path[1].obey_approach_speed_limit);
+    assert_eq!(first.path[1].approach_speed_limit, 0.2);
+    assert!(!first.path[2].obey_approach_speed_limit);
+    assert_eq!(first.path[2].level_name, "L1");
 }
