@@ -3,6 +3,15 @@
 //! the world only through messages.
 //!
 //! Event driven: `update` returns at once unless a message arrived or a timer expired.
+//!
+//! A robot follows its route in PathRequests of up to `LOOKAHEAD` lanes it has reserved
+//! (see traffic.rs); a lane through a controlled door, into a lift cabin, or a lift ride is
+//! driven alone, after the door is open (DoorState OPEN and our heartbeat session) or the
+//! lift is at the floor with its doors open in our session. Progress is read from
+//! RobotState (`path` = waypoints not yet reached). Waiting robots are watched once a
+//! second: idle robots in the way move aside, wait-for cycles are broken by backing one
+//! robot off, and a robot whose wait chain has not moved for `STUCK_AFTER` is reported,
+//! then its task fails.
 
 use crate::graph::{EdgeKind, Nav};
 use crate::msgs::{
