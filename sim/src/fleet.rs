@@ -1354,7 +1354,27 @@ impl Fleets {
                 return Some(false);
             }
             let speed = self.fleets[r.fleet].speed;
-            let (_, edges) = self.nav.plan(r.slot, r.at, goal, speed)?;
+            // Around robots parked on the graph when there is a way, else through them
+            // (they will be asked to move aside).
+            let mut parked: Vec<Res> = Vec::new();
+            for (o, x) in self.robots.iter().enumerate() {
+                if o != i && x.idle() && x.n_sent == 0 {
+                    parked.extend_from_slice(self.res.held(o));
+                }
+            }
+            parked.sort_unstable();
+            parked.dedup();
+            let clear = |e: usize| {
+                !self.conf.edge[e]
+                    .iter()
+                    .any(|x| parked.binary_search(x).is_ok())
+            };
+            let (_, edges) = if parked.is_empty() {
+                None
+            } else {
+                self.nav.plan_with(r.slot, r.at, goal, speed, &clear)
+            }
+            .or_else(|| self.nav.plan(r.slot, r.at, goal, speed))?;
             let r = &mut self.robots[i];
             // Keep edges already reserved (they are a prefix only if the plan agrees).
             r.route = edges.into();

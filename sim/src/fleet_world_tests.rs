@@ -703,13 +703,13 @@ fn demo_maps_all_graphs() {
             if names.is_empty() {
                 continue;
             }
-            let mut f = fleet("f", 6, SpawnSpec::Auto);
+            let mut f = fleet("f", 12, SpawnSpec::Auto);
             f.graph = g;
             let mut s = scenario(vec![f], Vec::new());
             for k in 0..24usize {
                 let n = &names[(k * 7) % names.len()];
                 s.tasks.push(task(
-                    1.0 + 10.0 * k as f64,
+                    1.0 + 2.0 * k as f64,
                     None,
                     TaskKind::GoToPlace { place: n.clone() },
                 ));
@@ -738,6 +738,64 @@ fn demo_maps_all_graphs() {
             );
             assert!(r.min_gap > 0.0, "{m} graph {g}: robots touched");
         }
+        // All graphs at once: fleets of different graphs share the floor space.
+        let graphs = b.graph_indices();
+        if graphs.len() < 2 {
+            continue;
+        }
+        let mut s = scenario(Vec::new(), Vec::new());
+        for &g in &graphs {
+            let nav = crate::graph::Nav::build(&b, &[g]);
+            let mut names: Vec<String> = nav.members[0]
+                .iter()
+                .map(|&v| nav.vertices[v].name.clone())
+                .filter(|n| !n.is_empty())
+                .collect();
+            names.sort();
+            names.dedup();
+            let name = format!("g{g}");
+            let mut f = fleet(&name, 4, SpawnSpec::Auto);
+            f.graph = g;
+            s.fleets.push(f);
+            for k in 0..8usize {
+                if let Some(n) = names.get((k * 7) % names.len().max(1)) {
+                    s.tasks.push(task(
+                        1.0 + 3.0 * k as f64,
+                        Some(&name),
+                        TaskKind::GoToPlace { place: n.clone() },
+                    ));
+                }
+            }
+        }
+        if Fleets::place(&b, &s).is_err() {
+            eprintln!("{m} all graphs: not enough spawn points");
+            continue;
+        }
+        let r = run(&b, &s, 1500.0);
+        let done = ended(&r.events);
+        let ok = done.iter().filter(|e| e.1 == "completed").count();
+        eprintln!(
+            "{m} all graphs {graphs:?}: {} tasks, {ok} completed, {} failed, min gap {:.2} m, {:.0} s",
+            s.tasks.len(),
+            done.len() - ok,
+            r.min_gap,
+            r.world.time()
+        );
+        for e in r
+            .events
+            .iter()
+            .filter(|e| matches!(e.event.as_str(), "stuck" | "deadlock"))
+        {
+            eprintln!(
+                "  {:.1} {} {} {} {}",
+                e.time.as_secs(),
+                e.task_id,
+                e.event,
+                e.robot,
+                e.detail
+            );
+        }
+        assert!(r.min_gap > 0.0, "{m} all graphs: robots touched");
     }
 }
 

@@ -261,6 +261,21 @@ impl Nav {
         speed: f64,
         avoid: &[usize],
     ) -> Option<(f64, Vec<usize>)> {
+        self.plan_with(slot, from, to, speed, &|e| {
+            let w = self.edges[e].to;
+            w == to || !avoid.contains(&w)
+        })
+    }
+
+    /// Like [`Nav::plan`], using only the edges `allow` accepts.
+    pub fn plan_with(
+        &self,
+        slot: usize,
+        from: usize,
+        to: usize,
+        speed: f64,
+        allow: &dyn Fn(usize) -> bool,
+    ) -> Option<(f64, Vec<usize>)> {
         let out = self.out.get(slot)?;
         let n = self.vertices.len();
         if from >= n || to >= n {
@@ -283,7 +298,7 @@ impl Nav {
             }
             for &e in &out[v] {
                 let w = self.edges[e].to;
-                if w != to && avoid.contains(&w) {
+                if !allow(e) {
                     continue;
                 }
                 let nd = d + self.edge_cost(e, speed);
