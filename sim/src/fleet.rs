@@ -49,6 +49,8 @@ const EXTERNAL_TIMEOUT: f64 = 300.0;
 const STUCK_AFTER: f64 = 120.0;
 /// A wait-for cycle older than this is broken by backing a robot off.
 const DEADLOCK_AFTER: f64 = 3.0;
+/// Back-offs towards one goal before its task fails.
+const MAX_BACKOFFS: u32 = 10;
 /// How long a robot that backed off out of a deadlock waits before going on (s).
 const BACKOFF_WAIT: f64 = 5.0;
 /// Edges reserved ahead of a moving robot.
@@ -137,6 +139,9 @@ struct Robot {
     wait_since: Option<f64>,
     blockers: Vec<usize>,
     stuck_reported: bool,
+    /// Back-offs on the way to `backoff_goal` (a livelock guard).
+    backoffs: u32,
+    backoff_goal: usize,
     /// Since when nothing this robot waits for (directly or through others) moved.
     stall_since: f64,
     /// Last reported position that differed by more than 5 cm, and when.
@@ -501,6 +506,8 @@ impl Fleets {
                     wait_since: None,
                     blockers: Vec::new(),
                     stuck_reported: false,
+                    backoffs: 0,
+                    backoff_goal: usize::MAX,
                     stall_since: 0.0,
                     last_pos: (spawn.x, spawn.y),
                     last_moved: 0.0,
@@ -1042,7 +1049,12 @@ impl Fleets {
                     continue;
                 }
                 Cur::GoTo { goal, planned } => match self.drive(i, goal, planned, t, out) {
-                    Some(true) => true,
+                    Some(true) => {
+                        if goal == self.robots[i].backoff_goal {
+                            self.robots[i].backoffs = 0;
+                        }
+                        true
+                    }
                     Some(false) => return,
                     None => {
                         self.end_task(i, t, false, "no route".into(), out);
@@ -1885,6 +1897,27 @@ impl Fleets {
         t: f64,
         out: &mut Vec<(Topic, Msg)>,
     ) {
+        if let Cur::GoTo { goal, .. } = self.robots[b].cur {
+            let r = &mut self.robots[b];
+            if r.backoff_goal != goal {
+                r.backoff_goal = goal;
+                r.backoffs = 0;
+            }
+            r.backoffs += 1;
+            if r.backoffs > MAX_BACKOFFS {
+                // The same robots keep meeting: give up rather than loop forever.
+                r.backoffs = 0;
+                let detail = format!("deadlock with {} not resolved", names.join(","));
+                if r.task.is_some() {
+                    self.end_task(b, t, false, detail, out);
+                } else {
+                    r.cur = Cur::None;
+                    r.steps.clear();
+                    self.abandon_route(b, t, out);
+                }
+                return;
+            }
+        }
         let r = &mut self.robots[b];
         if let Cur::GoTo { goal, .. } = r.cur {
             r.steps.push_front(Step::GoTo(goal));
