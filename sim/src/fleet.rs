@@ -606,7 +606,7 @@ impl Fleets {
         let base = scenario.tasks.len();
         for (g, gen) in scenario.generators.iter().enumerate() {
             check(&gen.kind, &gen.fleet, gen.span, &mut diags);
-            if gen.every.is_nan() || gen.every <= 0.0 {
+            if !(gen.every.is_finite() && gen.start.is_finite()) || gen.every <= 0.0 {
                 continue;
             }
             let end = gen.end.unwrap_or(scenario.duration).min(scenario.duration);
