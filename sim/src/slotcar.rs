@@ -256,10 +256,12 @@ pub(crate) struct Slotcar {
     seq: u64,
     level: Option<usize>,
     level_z: f64,
-    /// Near-charger cache: no charger is within 0.3 m while the robot stays within
-    /// `charger_safe` of `charger_ref` (triangle inequality).
+    /// Near-charger cache: while the robot stays within `charger_safe` (the distance of
+    /// the nearest charger from the 0.3 m radius) of `charger_ref`, the answer stays
+    /// `charger_near` (triangle inequality).
     charger_ref: [f64; 3],
     charger_safe: f64,
+    charger_near: bool,
     /// Index of the cart attached by `attach_cart` (§1.11).
     cart: Option<usize>,
     /// State of charge per joule: 1 / (V · Ah · 3600).
@@ -323,7 +325,8 @@ impl Slotcar {
             level,
             level_z: f64::NAN,
             charger_ref: [f64::NAN; 3],
-            charger_safe: -1.0,
+            charger_safe: 0.0,
+            charger_near: false,
             cart: None,
             per_joule,
         }
@@ -451,18 +454,16 @@ impl Slotcar {
             let (a, b, c) = (q[0] - p[0], q[1] - p[1], q[2] - p[2]);
             a * a + b * b + c * c
         };
-        if self.charger_safe >= 0.0 && d2(&self.charger_ref) < self.charger_safe * self.charger_safe
-        {
-            return false;
+        // Cached answer while the robot stays within `charger_safe` of where it was
+        // computed (NaN at first: recompute).
+        if d2(&self.charger_ref) < self.charger_safe * self.charger_safe {
+            return self.charger_near;
         }
         let d = chargers.iter().map(d2).fold(f64::INFINITY, f64::min).sqrt();
-        if d < CHARGER_RADIUS {
-            self.charger_safe = -1.0;
-            return true;
-        }
         self.charger_ref = p;
-        self.charger_safe = d - CHARGER_RADIUS;
-        false
+        self.charger_near = d < CHARGER_RADIUS;
+        self.charger_safe = (d - CHARGER_RADIUS).abs();
+        self.charger_near
     }
 
     /// Heading error toward the vector `(dx, dy)` of length `d` (§1.4, with `atan2`):

@@ -6,7 +6,16 @@
 //! first (ROS callbacks; a supervisor's answer to an adapter request reaches the plugins
 //! in the same step), then slotcars, the door manager, the lift manager, dispensers and
 //! ingestors; then the poses are integrated, and the supervisors react to the states
-//! published in this step (their requests reach the plugins in the next step).
+//! published in this step (their requests reach the plugins in the next step). Messages
+//! are stamped with the time at the start of the step; `time()` is `steps · dt`.
+//!
+//! What is simulated: doors with a controller (`plugin` not `none`, known type), lifts
+//! with `plugins` and at least one served level (cabin doors `CabinDoor_<lift>_<door>`,
+//! shaft doors `ShaftDoor_<lift>_<level>_<door>`, floors in `level_doors` order),
+//! `TeleportDispenser`/`TeleportIngestor` map models plus the scenario's workcells, one
+//! item `<dispenser>_item` per dispenser, the map's non-static models as items (carts),
+//! and chargers at the nav-graph vertices with `is_charger` true (any graph). Obstacles
+//! for the slotcars' stop test are the other robots only.
 
 use crate::door::{self, DoorSim};
 use crate::lift::{Floor, LiftSim};

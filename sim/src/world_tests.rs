@@ -960,3 +960,137 @@ fn robot_reports_its_own_level_when_levels_share_an_elevation() {
     });
     assert_eq!(level.as_deref(), Some("L1b"));
 }
+
+#[test]
+fn charge_toggles_apply_to_every_robot() {
+    let b = parse(MAP);
+    let on_charger = spawn(&b, "a", RobotParams::default(), -100.0, -100.0, 0.0, "L1");
+    let away = spawn(&b, "b", RobotParams::default(), 0.0, 0.0, 0.0, "L1");
+    let mut w = World::new(&b, &setup(vec![on_charger, away]));
+    w.robots[0].soc = 0.5;
+    w.set_charging(true, true, false);
+    let mut out = Vec::new();
+    run_until(&mut w, &mut out, 1.0, |_, _| false);
+    assert_eq!(w.soc(0), Some(1.0), "instant charge");
+    assert_eq!(w.soc(1), Some(1.0), "no drain");
+    assert_eq!(w.soc(2), None);
+}
+
+/// Every demo map: a world with one robot per charger steps for a simulated minute
+/// without panicking, every ROS door publishes its state and every lift its state.
+#[test]
+fn demo_maps_step() {
+    let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../shared/maps");
+    let Ok(dirs) = std::fs::read_dir(&root) else {
+        println!("skipped: ../shared not found");
+        return;
+    };
+    let mut names: Vec<_> = dirs.filter_map(|d| d.ok()).map(|d| d.file_name()).collect();
+    names.sort();
+    for name in names {
+        let name = name.to_string_lossy().to_string();
+        let path = root.join(&name).join(format!("{name}.building.yaml"));
+        let Ok(text) = std::fs::read_to_string(&path) else {
+            continue;
+        };
+        let parsed = mapc_frontend::parse_str(&name, &text);
+        let Some(b) = parsed.building else {
+            continue;
+        };
+        let robots = b
+            .vertices
+            .iter()
+            .filter(|(_, v)| v.roles.is_charger)
+            .enumerate()
+            .map(|(i, (_, v))| RobotSpawn {
+                name: format!("r{i}"),
+                fleet: "f".into(),
+                params: RobotParams::default(),
+                x: v.pos.x,
+                y: v.pos.y,
+                yaw: 0.0,
+                level: v.level,
+            })
+            .collect();
+        let mut w = World::new(&b, &setup(robots));
+        let mut out = Vec::new();
+        let mut doors = std::collections::BTreeSet::new();
+        let mut lifts = std::collections::BTreeSet::new();
+        run_until(&mut w, &mut out, 60.0, |_, out| {
+            for p in out {
+                match &p.msg {
+                    Msg::DoorState(s) => {
+                        doors.insert(s.door_name.clone());
+                    }
+                    Msg::LiftState(s) => {
+                        lifts.insert(s.lift_name.clone());
+                    }
+                    _ => {}
+                }
+            }
+            false
+        });
+        assert_eq!(doors.len(), w.door_index.len(), "{name}");
+        assert_eq!(lifts.len(), w.lifts.len(), "{name}");
+        for r in w.robots() {
+            assert!(
+                r.x.is_finite() && r.y.is_finite() && r.z.is_finite(),
+                "{name}"
+            );
+        }
+    }
+}
+
+/// Idle cost on each demo map (robots parked on chargers, doors and lifts at rest):
+/// `cargo test -p mapc-sim --release bench_demo_idle -- --ignored --nocapture`
+#[test]
+#[ignore]
+fn bench_demo_idle() {
+    let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../shared/maps");
+    let Ok(dirs) = std::fs::read_dir(&root) else {
+        println!("skipped: ../shared not found");
+        return;
+    };
+    let mut names: Vec<_> = dirs.filter_map(|d| d.ok()).map(|d| d.file_name()).collect();
+    names.sort();
+    for name in names {
+        let name = name.to_string_lossy().to_string();
+        let path = root.join(&name).join(format!("{name}.building.yaml"));
+        let Some(b) = std::fs::read_to_string(&path)
+            .ok()
+            .and_then(|t| mapc_frontend::parse_str(&name, &t).building)
+        else {
+            continue;
+        };
+        let robots: Vec<RobotSpawn> = b
+            .vertices
+            .iter()
+            .filter(|(_, v)| v.roles.is_charger)
+            .enumerate()
+            .map(|(i, (_, v))| RobotSpawn {
+                name: format!("r{i}"),
+                fleet: "f".into(),
+                params: RobotParams::default(),
+                x: v.pos.x,
+                y: v.pos.y,
+                yaw: 0.0,
+                level: v.level,
+            })
+            .collect();
+        let n = robots.len();
+        let mut w = World::new(&b, &setup(robots));
+        let mut out = Vec::new();
+        let steps = 100_000;
+        let start = std::time::Instant::now();
+        for _ in 0..steps {
+            out.clear();
+            w.step(&mut out);
+        }
+        let ns = start.elapsed().as_nanos() as f64 / steps as f64;
+        println!(
+            "{name}: {n} robots, {} doors, {} lifts: {ns:.0} ns/step",
+            w.doors.len(),
+            w.lifts.len()
+        );
+    }
+}
