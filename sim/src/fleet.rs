@@ -39,6 +39,8 @@ pub mod codes {
     pub const NO_FLEET: &str = "S0205";
     /// A delivery has no dispenser/ingestor (neither given nor a waypoint param).
     pub const NO_WORKCELL: &str = "S0206";
+    /// A task waypoint lies inside a lift cabin.
+    pub const IN_LIFT: &str = "S0207";
 }
 
 /// Seconds between re-sent door, lift and workcell requests.
@@ -554,7 +556,11 @@ impl Fleets {
                 return;
             }
             for name in waypoint_names(kind) {
-                if !cands.iter().any(|f| nav.find(f.slot, name).is_some()) {
+                let found: Vec<usize> = cands
+                    .iter()
+                    .filter_map(|f| nav.find(f.slot, name))
+                    .collect();
+                if found.is_empty() {
                     diags.push(unknown_waypoint(
                         &nav,
                         cands[0].slot,
@@ -562,6 +568,16 @@ impl Fleets {
                         span,
                         &cands[0].name,
                     ));
+                } else if found.iter().any(|&v| nav.vertices[v].lift.is_some()) {
+                    // A robot parked in a cabin would keep the lift's session forever.
+                    diags.push(
+                        Diagnostic::error(
+                            codes::IN_LIFT,
+                            span,
+                            format!("waypoint `{name}` is inside a lift cabin"),
+                        )
+                        .with_help("use a waypoint in front of the lift"),
+                    );
                 }
             }
             if let TaskKind::Delivery {
@@ -1207,7 +1223,9 @@ impl Fleets {
         let best = self.nav.members[f.slot]
             .iter()
             .copied()
-            .filter(|&v| self.nav.vertices[v].roles.is_charger)
+            .filter(|&v| {
+                self.nav.vertices[v].roles.is_charger && self.nav.vertices[v].lift.is_none()
+            })
             .filter(|v| self.chargers.get(v).is_none_or(|&o| o == i))
             .filter(|&v| times[v].is_finite())
             .min_by(|&a, &b| times[a].total_cmp(&times[b]).then(a.cmp(&b)));

@@ -968,3 +968,27 @@ levels:
     assert!(!first.path[2].obey_approach_speed_limit);
     assert_eq!(first.path[2].level_name, "L1");
 }
+
+#[test]
+fn task_waypoint_in_a_lift_cabin_is_refused() {
+    let mut b = clinic();
+    let cabin = b
+        .vertices
+        .iter()
+        .find(|(_, v)| v.roles.lift_cabin.is_some())
+        .map(|(h, _)| h)
+        .expect("cabin vertex");
+    b.vertices[cabin].name = "cabin".into();
+    let s = scenario(
+        vec![fleet("tiny", 1, SpawnSpec::MapSpawnPoints)],
+        vec![task(
+            0.0,
+            TaskKind::GoToPlace {
+                place: "cabin".into(),
+            },
+        )],
+    );
+    let p = Fleets::place(&b, &s).expect("placement");
+    let e = Fleets::new(&b, &s, &p).err().expect("error");
+    assert_eq!(e[0].code, codes::IN_LIFT);
+}
