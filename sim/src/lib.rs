@@ -7,6 +7,7 @@
 
 mod door;
 mod fleet;
+mod graph;
 mod lift;
 pub mod msgs;
 mod params;
@@ -16,6 +17,7 @@ mod scenario;
 mod slotcar;
 mod supervisor;
 mod trace;
+mod traffic;
 mod workcell;
 mod world;
 
