@@ -5,6 +5,7 @@
 //!
 //! The only I/O is the trace writer handed to [`simulate`].
 
+pub mod codes;
 mod fleet;
 pub mod msgs;
 mod params;

@@ -1,9 +1,11 @@
 //! Scenario files: what to simulate on a map (fleets, workcells, tasks, duration, seed).
 //! Read with the frontend's located YAML tree so that every problem gets file:line:col.
 
+use crate::codes::{self, Code};
 use crate::params::RobotParams;
-use mapc_ir::{Diagnostic, Span};
-use std::path::PathBuf;
+use mapc_frontend::yaml_tree::{self, Node, Scalar};
+use mapc_ir::{Diagnostic, FileId, Span};
+use std::path::{Path, PathBuf};
 
 #[derive(Debug, Clone, PartialEq)]
 pub struct Scenario {
@@ -163,12 +165,1275 @@ impl Default for SimOptions {
     }
 }
 
+/// Largest fleet (and largest total of robots) a scenario may ask for.
+pub const MAX_ROBOTS: i64 = 10_000;
+/// Longest run (s): one year.
+pub const MAX_DURATION: f64 = 365.0 * 24.0 * 3600.0;
+/// Most task requests (listed plus generated) and most loops in one task.
+pub const MAX_TASKS: f64 = 1_000_000.0;
+/// Largest step (s); see S0107.
+pub const MAX_STEP: f64 = 0.1;
+
+const TOP_KEYS: &[&str] = &[
+    "map",
+    "seed",
+    "duration",
+    "step",
+    "fleets",
+    "workcells",
+    "tasks",
+    "generators",
+    "options",
+    "description",
+];
+const FLEET_KEYS: &[&str] = &[
+    "name",
+    "graph",
+    "robot",
+    "count",
+    "spawn",
+    "recharge_threshold",
+    "recharge_soc",
+    "tasks",
+];
+const WORKCELL_KEYS: &[&str] = &["name", "kind", "waypoint"];
+const TASK_KEYS: &[&str] = &["at", "fleet"];
+const GENERATOR_KEYS: &[&str] = &["every", "start", "end", "fleet"];
+const KINDS: &[&str] = &["loop", "delivery", "clean", "go_to_place"];
+const OPTION_KEYS: &[&str] = &[
+    "lifts_start_at_initial_floor",
+    "clean_duration",
+    "stop_when_done",
+];
+
+/// Robot parameters a `robot:` mapping may set, and whether they must be > 0 (else ≥ 0).
+const ROBOT_NUMBERS: &[(&str, bool)] = &[
+    ("nominal_drive_speed", true),
+    ("nominal_drive_acceleration", true),
+    ("max_drive_acceleration", true),
+    ("nominal_turn_speed", true),
+    ("nominal_turn_acceleration", true),
+    ("max_turn_acceleration", true),
+    ("stop_distance", false),
+    ("stop_radius", false),
+    ("nominal_voltage", true),
+    ("nominal_capacity", true),
+    ("charging_current", false),
+    ("mass", true),
+    ("inertia", true),
+    ("friction_coefficient", false),
+    ("nominal_power", false),
+    ("footprint", true),
+];
+
+fn robot_number<'p>(p: &'p mut RobotParams, key: &str) -> Option<&'p mut f64> {
+    Some(match key {
+        "nominal_drive_speed" => &mut p.nominal_drive_speed,
+        "nominal_drive_acceleration" => &mut p.nominal_drive_acceleration,
+        "max_drive_acceleration" => &mut p.max_drive_acceleration,
+        "nominal_turn_speed" => &mut p.nominal_turn_speed,
+        "nominal_turn_acceleration" => &mut p.nominal_turn_acceleration,
+        "max_turn_acceleration" => &mut p.max_turn_acceleration,
+        "stop_distance" => &mut p.stop_distance,
+        "stop_radius" => &mut p.stop_radius,
+        "nominal_voltage" => &mut p.nominal_voltage,
+        "nominal_capacity" => &mut p.nominal_capacity,
+        "charging_current" => &mut p.charging_current,
+        "mass" => &mut p.mass,
+        "inertia" => &mut p.inertia,
+        "friction_coefficient" => &mut p.friction_coefficient,
+        "nominal_power" => &mut p.nominal_power,
+        "footprint" => &mut p.footprint,
+        _ => return None,
+    })
+}
+
+/// Parses a duration: a number of seconds, or `<number><unit>` parts with units `d`, `h`,
+/// `min`, `s`, `ms` (`1h30min`, `2.5h`, `90s`), optionally separated by spaces.
+pub fn parse_duration(text: &str) -> Result<f64, String> {
+    let t = text.trim();
+    if t.is_empty() {
+        return Err("the duration is empty".into());
+    }
+    if let Ok(v) = t.parse::<f64>() {
+        if t.chars().all(|c| c.is_ascii_digit() || c == '.') {
+            return Ok(v);
+        }
+    }
+    let b = t.as_bytes();
+    let mut i = 0;
+    let mut total = 0.0;
+    while i < b.len() {
+        while i < b.len() && b[i] == b' ' {
+            i += 1;
+        }
+        let start = i;
+        while i < b.len() && (b[i].is_ascii_digit() || b[i] == b'.') {
+            i += 1;
+        }
+        let num = &t[start..i];
+        let ustart = i;
+        while i < b.len() && b[i].is_ascii_alphabetic() {
+            i += 1;
+        }
+        let unit = &t[ustart..i];
+        if num.is_empty() {
+            return Err(format!("expected a number at `{}`", &t[start..]));
+        }
+        let v: f64 = num
+            .parse()
+            .map_err(|_| format!("`{num}` is not a number"))?;
+        let scale = match unit {
+            "d" => 86_400.0,
+            "h" => 3600.0,
+            "min" => 60.0,
+            "s" => 1.0,
+            "ms" => 0.001,
+            "" => {
+                return Err(format!(
+                    "`{num}` has no unit; numbers in a duration string need one"
+                ))
+            }
+            "m" => return Err("`m` is ambiguous; write `min` for minutes".into()),
+            u => return Err(format!("unknown unit `{u}`")),
+        };
+        total += v * scale;
+        while i < b.len() && b[i] == b' ' {
+            i += 1;
+        }
+    }
+    Ok(total)
+}
+
+/// Levenshtein distance, for "did you mean" hints on short names.
+fn distance(a: &str, b: &str) -> usize {
+    let b: Vec<char> = b.chars().collect();
+    let mut prev: Vec<usize> = (0..=b.len()).collect();
+    for (i, ca) in a.chars().enumerate() {
+        let mut cur = vec![i + 1; b.len() + 1];
+        for (j, cb) in b.iter().enumerate() {
+            let sub = prev[j] + usize::from(ca != *cb);
+            cur[j + 1] = sub.min(prev[j + 1] + 1).min(cur[j] + 1);
+        }
+        prev = cur;
+    }
+    prev[b.len()]
+}
+
+/// The closest of `names` to `word`, when close enough to be a likely typo.
+fn closest<'n>(word: &str, names: impl IntoIterator<Item = &'n str>) -> Option<&'n str> {
+    let w = word.to_ascii_lowercase();
+    names
+        .into_iter()
+        .map(|n| (distance(&w, &n.to_ascii_lowercase()), n))
+        .filter(|(d, n)| *d <= 2.max(n.len() / 3))
+        .min_by_key(|(d, _)| *d)
+        .map(|(_, n)| n)
+}
+
+fn list(names: &[&str]) -> String {
+    names
+        .iter()
+        .map(|n| format!("`{n}`"))
+        .collect::<Vec<_>>()
+        .join(", ")
+}
+
+/// A mapping's entries with their key text (keys that are not strings are reported).
+struct Entries<'n, 'a> {
+    span: Span,
+    items: Vec<(&'n str, &'n Node<'a>, &'n Node<'a>)>,
+}
+
+impl<'n, 'a> Entries<'n, 'a> {
+    /// The last value of `key` (duplicates are warned about when the entries are read).
+    fn get(&self, key: &str) -> Option<&'n Node<'a>> {
+        self.items.iter().rev().find(|e| e.0 == key).map(|e| e.2)
+    }
+}
+
+struct P<'d> {
+    diags: &'d mut Vec<Diagnostic>,
+}
+
+impl P<'_> {
+    fn error(&mut self, code: Code, span: Span, msg: impl Into<String>) -> &mut Diagnostic {
+        self.diags.push(Diagnostic::error(code.code, span, msg));
+        self.diags.last_mut().expect("just pushed")
+    }
+    fn warning(&mut self, code: Code, span: Span, msg: impl Into<String>) -> &mut Diagnostic {
+        self.diags.push(Diagnostic::warning(code.code, span, msg));
+        self.diags.last_mut().expect("just pushed")
+    }
+    fn help(&mut self, help: impl Into<String>) {
+        if let Some(d) = self.diags.last_mut() {
+            d.help = Some(help.into());
+        }
+    }
+
+    fn wrong_type(&mut self, v: &Node, what: &str, expected: &str) {
+        self.error(
+            codes::WRONG_TYPE,
+            v.span,
+            format!("{what} must be {expected}, found {}", v.type_name()),
+        );
+    }
+
+    /// Reads a mapping; warns about duplicate keys and, when `known` is given, unknown
+    /// ones (`unknown_code` picks the warning).
+    fn entries<'n, 'a>(
+        &mut self,
+        v: &'n Node<'a>,
+        what: &str,
+        known: Option<(&[&str], Code)>,
+    ) -> Option<Entries<'n, 'a>> {
+        let Some(m) = v.as_map() else {
+            self.wrong_type(v, what, "a mapping");
+            return None;
+        };
+        let mut items: Vec<(&'n str, &'n Node<'a>, &'n Node<'a>)> = Vec::with_capacity(m.len());
+        for (k, val) in m {
+            let Some(key) = k.key_text() else {
+                self.wrong_type(k, &format!("a key of {what}"), "a string");
+                continue;
+            };
+            if let Some(first) = items.iter().find(|e| e.0 == key) {
+                let first_span = first.1.span;
+                self.warning(
+                    codes::DUPLICATE_KEY,
+                    k.span,
+                    format!("duplicate key `{key}` in {what}; the last one is used"),
+                )
+                .labels
+                .push(mapc_ir::Label {
+                    span: first_span,
+                    message: "first defined here".into(),
+                });
+                self.help("remove one of the two");
+            }
+            items.push((key, k, val));
+        }
+        if let Some((names, code)) = known {
+            for (key, k, _) in &items {
+                if !names.contains(key) {
+                    self.warning(
+                        code,
+                        k.span,
+                        format!("unknown key `{key}` in {what}; it is ignored"),
+                    );
+                    match closest(key, names.iter().copied()) {
+                        Some(c) => self.help(format!("did you mean `{c}`?")),
+                        None => self.help(format!("known keys: {}", list(names))),
+                    }
+                }
+            }
+        }
+        Some(Entries {
+            span: v.span,
+            items,
+        })
+    }
+
+    fn required<'n, 'a>(
+        &mut self,
+        e: &Entries<'n, 'a>,
+        key: &str,
+        what: &str,
+    ) -> Option<&'n Node<'a>> {
+        let v = e.get(key);
+        if v.is_none() {
+            self.error(codes::MISSING_KEY, e.span, format!("{what} has no `{key}`"));
+        }
+        v
+    }
+
+    /// A name: any non-empty scalar but null (`1` is the name "1").
+    fn name(&mut self, v: &Node, what: &str) -> Option<String> {
+        match v.key_text() {
+            Some(t) if !t.trim().is_empty() && v.as_seq().is_none() => Some(t.to_string()),
+            _ => {
+                self.wrong_type(v, what, "a non-empty name");
+                None
+            }
+        }
+    }
+
+    fn number(&mut self, v: &Node, what: &str) -> Option<f64> {
+        let Some(x) = v.as_f64() else {
+            self.wrong_type(v, what, "a number");
+            return None;
+        };
+        if !x.is_finite() {
+            self.error(
+                codes::OUT_OF_RANGE,
+                v.span,
+                format!("{what} must be finite"),
+            );
+            return None;
+        }
+        Some(x)
+    }
+
+    /// An integer; integral floats beyond i64 are clamped so range checks report them.
+    fn int(&mut self, v: &Node, what: &str) -> Option<i64> {
+        if let Some(i) = v.as_i64() {
+            return Some(i);
+        }
+        match v.as_f64() {
+            Some(f) if f.is_finite() && f.fract() == 0.0 => {
+                Some(if f > 0.0 { i64::MAX } else { i64::MIN })
+            }
+            _ => {
+                self.wrong_type(v, what, "an integer");
+                None
+            }
+        }
+    }
+
+    fn bool(&mut self, v: &Node, what: &str) -> Option<bool> {
+        let b = v.as_bool();
+        if b.is_none() {
+            self.wrong_type(v, what, "true or false");
+        }
+        b
+    }
+
+    /// A time: seconds as a number, or a duration string. Never negative.
+    fn duration(&mut self, v: &Node, what: &str) -> Option<f64> {
+        let x = match v.scalar() {
+            Some(Scalar::Int(i)) => i as f64,
+            Some(Scalar::Float(f)) => f,
+            Some(Scalar::Str(s)) => match parse_duration(s) {
+                Ok(x) => x,
+                Err(e) => {
+                    self.error(
+                        codes::BAD_DURATION,
+                        v.span,
+                        format!("{what} `{s}` is not a duration: {e}"),
+                    );
+                    self.help("write seconds as a number, or a duration such as `90s`, `15min`, `8h`, `1h30min`");
+                    return None;
+                }
+            },
+            _ => {
+                self.error(
+                    codes::BAD_DURATION,
+                    v.span,
+                    format!("{what} must be a duration, found {}", v.type_name()),
+                );
+                self.help("write seconds as a number, or a duration such as `90s`, `15min`, `8h`, `1h30min`");
+                return None;
+            }
+        };
+        if !x.is_finite() || x < 0.0 {
+            self.error(
+                codes::BAD_DURATION,
+                v.span,
+                format!("{what} must be a finite time of 0 s or more"),
+            );
+            return None;
+        }
+        Some(x)
+    }
+
+    fn positive(&mut self, v: &Node, x: f64, what: &str) -> Option<f64> {
+        if x > 0.0 {
+            Some(x)
+        } else {
+            self.error(
+                codes::NOT_POSITIVE,
+                v.span,
+                format!("{what} must be greater than 0"),
+            );
+            None
+        }
+    }
+
+    // ---- the document ----
+
+    fn scenario(&mut self, root: &Node, base: &Path) -> Option<Scenario> {
+        let top = self.entries(root, "the scenario", Some((TOP_KEYS, codes::UNKNOWN_KEY)))?;
+        let mut ok = true;
+
+        let map = match top.get("map") {
+            None => None,
+            Some(v) => match self.name(v, "`map`") {
+                Some(m) => Some(base.join(m)),
+                None => {
+                    ok = false;
+                    None
+                }
+            },
+        };
+        if let Some(v) = top.get("description") {
+            if v.key_text().is_none() && !v.is_null() {
+                self.wrong_type(v, "`description`", "a string");
+            }
+        }
+        let seed = match top.get("seed") {
+            None => Some(0),
+            Some(v) => match self.int(v, "`seed`") {
+                Some(i) if i >= 0 => Some(i as u64),
+                Some(_) => {
+                    self.error(codes::OUT_OF_RANGE, v.span, "`seed` must be 0 or more");
+                    None
+                }
+                None => None,
+            },
+        };
+        let duration = self
+            .required(&top, "duration", "the scenario")
+            .and_then(|v| {
+                let d = self.duration(v, "`duration`")?;
+                let d = self.positive(v, d, "`duration`")?;
+                if d > MAX_DURATION {
+                    self.error(
+                        codes::TOO_LARGE,
+                        v.span,
+                        format!("`duration` of {d} s is longer than one year ({MAX_DURATION} s)"),
+                    );
+                    self.help("check the unit; split very long studies into several runs");
+                    return None;
+                }
+                Some(d)
+            });
+        let step = match top.get("step") {
+            None => Some(0.01),
+            Some(v) => self.duration(v, "`step`").and_then(|s| {
+                let s = self.positive(v, s, "`step`")?;
+                if s > MAX_STEP {
+                    self.error(
+                        codes::STEP_TOO_LARGE,
+                        v.span,
+                        format!("`step` of {s} s is larger than {MAX_STEP} s"),
+                    );
+                    self.help(
+                        "the plugins run at 100 Hz; leave `step` out (0.01 s) or use at most 0.1 s",
+                    );
+                    return None;
+                }
+                Some(s)
+            }),
+        };
+
+        let fleets = match self.required(&top, "fleets", "the scenario") {
+            Some(v) => self.fleets(v),
+            None => None,
+        };
+        let workcells = match top.get("workcells") {
+            Some(v) if !v.is_null() => self.workcells(v),
+            _ => Some(Vec::new()),
+        };
+        let tasks = match top.get("tasks") {
+            Some(v) if !v.is_null() => self.seq(v, "`tasks`", |p, n| p.task(n, duration)),
+            _ => Some(Vec::new()),
+        };
+        let generators = match top.get("generators") {
+            Some(v) if !v.is_null() => self.seq(v, "`generators`", |p, n| p.generator(n, duration)),
+            _ => Some(Vec::new()),
+        };
+        let options = match top.get("options") {
+            Some(v) if !v.is_null() => self.options(v),
+            _ => Some(SimOptions::default()),
+        };
+
+        if let (Some(fleets), Some(tasks), Some(gens)) = (&fleets, &tasks, &generators) {
+            self.cross_check(fleets, tasks, gens);
+            ok &= self.count_tasks(tasks, gens, duration);
+        }
+
+        let errors = self.diags.iter().any(|d| d.is_error());
+        if errors || !ok {
+            return None;
+        }
+        Some(Scenario {
+            map,
+            seed: seed?,
+            duration: duration?,
+            step: step?,
+            fleets: fleets?,
+            workcells: workcells?,
+            tasks: tasks?,
+            generators: generators?,
+            options: options?,
+        })
+    }
+
+    /// Reads every element of a sequence (all of them, even after a bad one).
+    fn seq<T>(
+        &mut self,
+        v: &Node,
+        what: &str,
+        mut one: impl FnMut(&mut Self, &Node) -> Option<T>,
+    ) -> Option<Vec<T>> {
+        let Some(items) = v.as_seq() else {
+            self.wrong_type(v, what, "a list");
+            return None;
+        };
+        let mut out = Vec::with_capacity(items.len());
+        let mut ok = true;
+        for n in items {
+            match one(self, n) {
+                Some(x) => out.push(x),
+                None => ok = false,
+            }
+        }
+        ok.then_some(out)
+    }
+
+    fn fleets(&mut self, v: &Node) -> Option<Vec<FleetSpec>> {
+        let fleets = self.seq(v, "`fleets`", |p, n| p.fleet(n))?;
+        if fleets.is_empty() {
+            self.error(
+                codes::MISSING_KEY,
+                v.span,
+                "`fleets` is empty; a scenario needs at least one fleet",
+            );
+            return None;
+        }
+        let total: usize = fleets.iter().map(|f| f.count).sum();
+        if total as i64 > MAX_ROBOTS {
+            self.error(
+                codes::TOO_LARGE,
+                v.span,
+                format!("the fleets have {total} robots in all, more than {MAX_ROBOTS}"),
+            );
+            return None;
+        }
+        let mut ok = true;
+        for (i, f) in fleets.iter().enumerate() {
+            if let Some(first) = fleets[..i].iter().find(|g| g.name == f.name) {
+                let first_span = first.span;
+                self.error(
+                    codes::DUPLICATE_FLEET,
+                    f.span,
+                    format!("a fleet named `{}` is already defined", f.name),
+                )
+                .labels
+                .push(mapc_ir::Label {
+                    span: first_span,
+                    message: "first defined here".into(),
+                });
+                self.help("give every fleet its own name");
+                ok = false;
+            }
+        }
+        ok.then_some(fleets)
+    }
+
+    fn fleet(&mut self, v: &Node) -> Option<FleetSpec> {
+        let e = self.entries(v, "a fleet", Some((FLEET_KEYS, codes::UNKNOWN_KEY)))?;
+        let name = self
+            .required(&e, "name", "a fleet")
+            .and_then(|n| self.name(n, "a fleet's `name`"));
+        let graph = match e.get("graph") {
+            None => Some(0),
+            Some(g) => self.int(g, "`graph`").and_then(|i| {
+                if i < 0 {
+                    self.error(codes::OUT_OF_RANGE, g.span, "`graph` must be 0 or more");
+                    None
+                } else {
+                    Some(i)
+                }
+            }),
+        };
+        let robot = self
+            .required(&e, "robot", "a fleet")
+            .and_then(|r| self.robot(r));
+        let spawn = match e.get("spawn") {
+            None => Some(SpawnSpec::Auto),
+            Some(s) => self.spawn(s),
+        };
+        let count = match e.get("count") {
+            Some(c) => self.int(c, "`count`").and_then(|i| {
+                if i <= 0 {
+                    self.error(
+                        codes::NOT_POSITIVE,
+                        c.span,
+                        "`count` must be greater than 0",
+                    );
+                    self.help("a fleet needs at least one robot; remove the fleet instead");
+                    None
+                } else if i > MAX_ROBOTS {
+                    self.error(
+                        codes::TOO_LARGE,
+                        c.span,
+                        format!("`count` must be at most {MAX_ROBOTS}"),
+                    );
+                    None
+                } else {
+                    Some(i as usize)
+                }
+            }),
+            None => match &spawn {
+                Some(SpawnSpec::Waypoints(w)) => Some(w.len()),
+                Some(_) => {
+                    self.error(codes::MISSING_KEY, e.span, "a fleet has no `count`");
+                    self.help("set `count`, or list one spawn waypoint per robot under `spawn`");
+                    None
+                }
+                None => None,
+            },
+        };
+        if let (Some(SpawnSpec::Waypoints(w)), Some(n), Some(s)) = (&spawn, count, e.get("spawn")) {
+            if w.len() != n {
+                self.error(
+                    codes::SPAWN_COUNT,
+                    s.span,
+                    format!("`spawn` names {} waypoint(s) for {n} robot(s)", w.len()),
+                );
+                self.help("list one waypoint per robot, leave `count` out, or use `spawn: auto`");
+            }
+        }
+        let threshold = match e.get("recharge_threshold") {
+            None => Some(0.2),
+            Some(t) => self.number(t, "`recharge_threshold`").and_then(|x| {
+                if (0.0..1.0).contains(&x) {
+                    Some(x)
+                } else {
+                    self.error(
+                        codes::OUT_OF_RANGE,
+                        t.span,
+                        format!("`recharge_threshold` is {x}; it must be in [0, 1)"),
+                    );
+                    self.help("it is a fraction of the battery: 0.2 means 20 %");
+                    None
+                }
+            }),
+        };
+        let soc = match e.get("recharge_soc") {
+            None => Some(1.0),
+            Some(t) => self.number(t, "`recharge_soc`").and_then(|x| {
+                if x > 0.0 && x <= 1.0 {
+                    Some(x)
+                } else {
+                    self.error(
+                        codes::OUT_OF_RANGE,
+                        t.span,
+                        format!("`recharge_soc` is {x}; it must be in (0, 1]"),
+                    );
+                    self.help("it is a fraction of the battery: 1.0 means full");
+                    None
+                }
+            }),
+        };
+        if let (Some(t), Some(s)) = (threshold, soc) {
+            if t >= s {
+                let span = e
+                    .get("recharge_soc")
+                    .or(e.get("recharge_threshold"))
+                    .map_or(e.span, |n| n.span);
+                self.error(
+                    codes::OUT_OF_RANGE,
+                    span,
+                    format!("`recharge_soc` ({s}) must be above `recharge_threshold` ({t})"),
+                );
+                self.help("a robot leaves the charger at recharge_soc and goes back below recharge_threshold");
+            }
+        }
+        let kinds = match e.get("tasks") {
+            None => Some(Vec::new()),
+            Some(t) => self.categories(t),
+        };
+        Some(FleetSpec {
+            name: name?,
+            graph: graph?,
+            robot: robot?,
+            count: count?,
+            spawn: spawn?,
+            recharge_threshold: threshold?,
+            recharge_soc: soc?,
+            task_kinds: kinds?,
+            span: v.span,
+        })
+    }
+
+    fn robot(&mut self, v: &Node) -> Option<RobotParams> {
+        if v.as_map().is_none() {
+            let name = self.name(v, "`robot`")?;
+            return self.preset(v, &name);
+        }
+        let mut known: Vec<&str> = vec!["preset", "model", "reversible"];
+        known.extend(ROBOT_NUMBERS.iter().map(|r| r.0));
+        let e = self.entries(v, "`robot`", Some((&known, codes::UNKNOWN_KEY)))?;
+        let mut p = match e.get("preset") {
+            Some(n) => {
+                let name = self.name(n, "`preset`")?;
+                self.preset(n, &name)?
+            }
+            None => RobotParams::default(),
+        };
+        let mut ok = true;
+        if let Some(m) = e.get("model") {
+            match self.name(m, "`model`") {
+                Some(n) => p.model = n,
+                None => ok = false,
+            }
+        }
+        if let Some(r) = e.get("reversible") {
+            match self.bool(r, "`reversible`") {
+                Some(b) => p.reversible = b,
+                None => ok = false,
+            }
+        }
+        for &(key, strictly) in ROBOT_NUMBERS {
+            let Some(n) = e.get(key) else { continue };
+            let what = format!("`{key}`");
+            let Some(x) = self.number(n, &what) else {
+                ok = false;
+                continue;
+            };
+            if strictly && x <= 0.0 {
+                self.error(
+                    codes::NOT_POSITIVE,
+                    n.span,
+                    format!("{what} must be greater than 0"),
+                );
+                ok = false;
+            } else if x < 0.0 {
+                self.error(
+                    codes::OUT_OF_RANGE,
+                    n.span,
+                    format!("{what} must be 0 or more"),
+                );
+                ok = false;
+            } else if let Some(slot) = robot_number(&mut p, key) {
+                *slot = x;
+            }
+        }
+        ok.then_some(p)
+    }
+
+    fn preset(&mut self, v: &Node, name: &str) -> Option<RobotParams> {
+        let p = RobotParams::preset(name);
+        if p.is_none() {
+            let names: Vec<&str> = RobotParams::preset_names().collect();
+            self.error(
+                codes::UNKNOWN_PRESET,
+                v.span,
+                format!("unknown robot preset `{name}`"),
+            );
+            let hint = closest(name, names.iter().copied())
+                .map(|c| format!("did you mean `{c}`? "))
+                .unwrap_or_default();
+            self.help(format!(
+                "{hint}presets: {}; or describe the robot as a mapping of parameters",
+                list(&names)
+            ));
+        }
+        p
+    }
+
+    fn spawn(&mut self, v: &Node) -> Option<SpawnSpec> {
+        if let Some(items) = v.as_seq() {
+            let mut names: Vec<String> = Vec::with_capacity(items.len());
+            let mut ok = true;
+            for n in items {
+                match self.name(n, "a spawn waypoint") {
+                    Some(s) if names.contains(&s) => {
+                        self.error(
+                            codes::SPAWN_COUNT,
+                            n.span,
+                            format!("waypoint `{s}` is listed twice; two robots would start on it"),
+                        );
+                        ok = false;
+                    }
+                    Some(s) => names.push(s),
+                    None => ok = false,
+                }
+            }
+            return ok.then_some(SpawnSpec::Waypoints(names));
+        }
+        match v.scalar() {
+            Some(Scalar::Str("spawn_points")) => Some(SpawnSpec::MapSpawnPoints),
+            Some(Scalar::Str("auto")) => Some(SpawnSpec::Auto),
+            _ => {
+                self.error(
+                    codes::WRONG_TYPE,
+                    v.span,
+                    format!(
+                        "`spawn` must be `spawn_points`, `auto` or a list of waypoint names, found {}",
+                        v.type_name()
+                    ),
+                );
+                None
+            }
+        }
+    }
+
+    fn categories(&mut self, v: &Node) -> Option<Vec<TaskCategory>> {
+        let mut out: Vec<TaskCategory> = self.seq(v, "a fleet's `tasks`", |p, n| {
+            let s = p.name(n, "a task category")?;
+            let c = category(&s);
+            if c.is_none() {
+                p.error(
+                    codes::UNKNOWN_TASK_KIND,
+                    n.span,
+                    format!("unknown task category `{s}`"),
+                );
+                p.help(format!("categories: {}", list(KINDS)));
+            }
+            c
+        })?;
+        if out.is_empty() {
+            self.wrong_type(
+                v,
+                "a fleet's `tasks`",
+                "a non-empty list (leave it out to accept every category)",
+            );
+            return None;
+        }
+        out.sort();
+        out.dedup();
+        Some(out)
+    }
+
+    fn workcells(&mut self, v: &Node) -> Option<Vec<WorkcellSpec>> {
+        let cells = self.seq(v, "`workcells`", |p, n| {
+            let e = p.entries(n, "a workcell", Some((WORKCELL_KEYS, codes::UNKNOWN_KEY)))?;
+            let name = p
+                .required(&e, "name", "a workcell")
+                .and_then(|x| p.name(x, "a workcell's `name`"));
+            let kind = p
+                .required(&e, "kind", "a workcell")
+                .and_then(|k| match k.scalar() {
+                    Some(Scalar::Str("dispenser")) => Some(WorkcellKind::Dispenser),
+                    Some(Scalar::Str("ingestor")) => Some(WorkcellKind::Ingestor),
+                    _ => {
+                        p.wrong_type(k, "a workcell's `kind`", "`dispenser` or `ingestor`");
+                        None
+                    }
+                });
+            let waypoint = p
+                .required(&e, "waypoint", "a workcell")
+                .and_then(|x| p.name(x, "a workcell's `waypoint`"));
+            Some(WorkcellSpec {
+                name: name?,
+                kind: kind?,
+                waypoint: waypoint?,
+                span: n.span,
+            })
+        })?;
+        let mut ok = true;
+        for (i, c) in cells.iter().enumerate() {
+            if let Some(first) = cells[..i].iter().find(|d| d.name == c.name) {
+                let first_span = first.span;
+                self.error(
+                    codes::DUPLICATE_WORKCELL,
+                    c.span,
+                    format!("a workcell named `{}` is already defined", c.name),
+                )
+                .labels
+                .push(mapc_ir::Label {
+                    span: first_span,
+                    message: "first defined here".into(),
+                });
+                ok = false;
+            }
+        }
+        ok.then_some(cells)
+    }
+
+    /// The task kind among a task's or generator's keys (`plain` are the other known keys).
+    fn kind(&mut self, e: &Entries, plain: &[&str], what: &str) -> Option<TaskKind> {
+        let kinds: Vec<_> = e.items.iter().filter(|i| KINDS.contains(&i.0)).collect();
+        let others: Vec<_> = e
+            .items
+            .iter()
+            .filter(|i| !KINDS.contains(&i.0) && !plain.contains(&i.0))
+            .collect();
+        for (n, (key, k, _)) in others.iter().enumerate() {
+            if n == 0 && kinds.is_empty() {
+                self.error(
+                    codes::UNKNOWN_TASK_KIND,
+                    k.span,
+                    format!("`{key}` is not a task kind"),
+                );
+                let hint = closest(key, KINDS.iter().copied())
+                    .map(|c| format!("did you mean `{c}`? "))
+                    .unwrap_or_default();
+                self.help(format!("{hint}kinds: {}", list(KINDS)));
+            } else {
+                self.warning(
+                    codes::UNKNOWN_KEY,
+                    k.span,
+                    format!("unknown key `{key}` in {what}; it is ignored"),
+                );
+                let mut known: Vec<&str> = plain.to_vec();
+                known.extend(KINDS);
+                if let Some(c) = closest(key, known.iter().copied()) {
+                    self.help(format!("did you mean `{c}`?"));
+                }
+            }
+        }
+        match kinds.as_slice() {
+            [] => {
+                if others.is_empty() {
+                    self.error(codes::MISSING_KEY, e.span, format!("{what} has no kind"));
+                    self.help(format!("add one of {}", list(KINDS)));
+                }
+                None
+            }
+            [(key, _, v)] => self.kind_body(key, v),
+            [_, (key, k, _), ..] => {
+                self.error(
+                    codes::SEVERAL_TASK_KINDS,
+                    k.span,
+                    format!("{what} has more than one kind (`{key}` is the second)"),
+                );
+                self.help("one request is one task; split it into several tasks");
+                None
+            }
+        }
+    }
+
+    fn kind_body(&mut self, key: &str, v: &Node) -> Option<TaskKind> {
+        // `go_to_place: lobby` and `clean: zone_1` are short forms.
+        if v.as_map().is_none() && matches!(key, "go_to_place" | "clean") {
+            let n = self.name(v, &format!("`{key}`"))?;
+            return Some(if key == "clean" {
+                TaskKind::Clean { zone: n }
+            } else {
+                TaskKind::GoToPlace { place: n }
+            });
+        }
+        let what = format!("`{key}`");
+        let fields: &[&str] = match key {
+            "loop" => &["start", "finish", "loops"],
+            "delivery" => &["pickup", "dropoff", "dispenser", "ingestor"],
+            "clean" => &["zone"],
+            _ => &["place"],
+        };
+        let e = self.entries(v, &what, Some((fields, codes::UNKNOWN_KEY)))?;
+        let req = |p: &mut Self, f: &str| {
+            p.required(&e, f, &what)
+                .and_then(|n| p.name(n, &format!("`{key}.{f}`")))
+        };
+        Some(match key {
+            "loop" => {
+                let start = req(self, "start");
+                let finish = req(self, "finish");
+                let loops = match e.get("loops") {
+                    None => Some(1),
+                    Some(n) => self.int(n, "`loops`").and_then(|i| {
+                        if i <= 0 {
+                            self.error(
+                                codes::NOT_POSITIVE,
+                                n.span,
+                                "`loops` must be greater than 0",
+                            );
+                            None
+                        } else if i as f64 > MAX_TASKS {
+                            self.error(
+                                codes::TOO_LARGE,
+                                n.span,
+                                format!("`loops` must be at most {MAX_TASKS}"),
+                            );
+                            None
+                        } else {
+                            Some(i as u32)
+                        }
+                    }),
+                };
+                TaskKind::Loop {
+                    start: start?,
+                    finish: finish?,
+                    loops: loops?,
+                }
+            }
+            "delivery" => {
+                let pickup = req(self, "pickup");
+                let dropoff = req(self, "dropoff");
+                let opt = |p: &mut Self, f: &str| match e.get(f) {
+                    None => Some(None),
+                    Some(n) => p.name(n, &format!("`delivery.{f}`")).map(Some),
+                };
+                let dispenser = opt(self, "dispenser");
+                let ingestor = opt(self, "ingestor");
+                TaskKind::Delivery {
+                    pickup: pickup?,
+                    dropoff: dropoff?,
+                    dispenser: dispenser?,
+                    ingestor: ingestor?,
+                }
+            }
+            "clean" => TaskKind::Clean {
+                zone: req(self, "zone")?,
+            },
+            _ => TaskKind::GoToPlace {
+                place: req(self, "place")?,
+            },
+        })
+    }
+
+    fn fleet_ref(&mut self, e: &Entries) -> Option<Option<String>> {
+        match e.get("fleet") {
+            None => Some(None),
+            Some(f) if f.is_null() => Some(None),
+            Some(f) => self.name(f, "`fleet`").map(Some),
+        }
+    }
+
+    fn task(&mut self, v: &Node, duration: Option<f64>) -> Option<TaskSpec> {
+        let e = self.entries(v, "a task", None)?;
+        let at = match e.get("at") {
+            None => Some(0.0),
+            Some(a) => self.duration(a, "`at`"),
+        };
+        let kind = self.kind(&e, TASK_KEYS, "a task");
+        let fleet = self.fleet_ref(&e);
+        if let (Some(a), Some(d), Some(n)) = (at, duration, e.get("at")) {
+            if a >= d {
+                self.warning(
+                    codes::TASK_AFTER_END,
+                    n.span,
+                    format!(
+                        "the task is requested at {a} s, at or after the end of the run ({d} s)"
+                    ),
+                );
+                self.help("request it earlier or lengthen `duration`; it is never requested");
+            }
+        }
+        Some(TaskSpec {
+            at: at?,
+            kind: kind?,
+            fleet: fleet?,
+            span: v.span,
+        })
+    }
+
+    fn generator(&mut self, v: &Node, duration: Option<f64>) -> Option<GeneratorSpec> {
+        let e = self.entries(v, "a generator", None)?;
+        let every = self.required(&e, "every", "a generator").and_then(|n| {
+            self.duration(n, "`every`")
+                .and_then(|x| self.positive(n, x, "`every`"))
+        });
+        let start = match e.get("start") {
+            None => Some(0.0),
+            Some(n) => self.duration(n, "`start`"),
+        };
+        let end = match e.get("end") {
+            None => Some(None),
+            Some(n) if n.is_null() => Some(None),
+            Some(n) => self.duration(n, "`end`").map(Some),
+        };
+        if let (Some(s), Some(Some(en)), Some(n)) = (start, end, e.get("end")) {
+            if en < s {
+                self.error(
+                    codes::OUT_OF_RANGE,
+                    n.span,
+                    format!("`end` ({en} s) comes before `start` ({s} s)"),
+                );
+                return None;
+            }
+        }
+        if let (Some(s), Some(d)) = (start, duration) {
+            if s >= d {
+                self.warning(
+                    codes::TASK_AFTER_END,
+                    e.get("start").map_or(v.span, |n| n.span),
+                    format!(
+                        "the generator starts at {s} s, at or after the end of the run ({d} s)"
+                    ),
+                );
+                self.help("start it earlier or lengthen `duration`; it generates nothing");
+            }
+        }
+        let kind = self.kind(&e, GENERATOR_KEYS, "a generator");
+        let fleet = self.fleet_ref(&e);
+        Some(GeneratorSpec {
+            every: every?,
+            start: start?,
+            end: end?,
+            kind: kind?,
+            fleet: fleet?,
+            span: v.span,
+        })
+    }
+
+    fn options(&mut self, v: &Node) -> Option<SimOptions> {
+        let e = self.entries(v, "`options`", Some((OPTION_KEYS, codes::UNKNOWN_OPTION)))?;
+        let mut o = SimOptions::default();
+        let mut ok = true;
+        if let Some(n) = e.get("lifts_start_at_initial_floor") {
+            match self.bool(n, "`lifts_start_at_initial_floor`") {
+                Some(b) => o.lifts_start_at_initial_floor = b,
+                None => ok = false,
+            }
+        }
+        if let Some(n) = e.get("stop_when_done") {
+            match self.bool(n, "`stop_when_done`") {
+                Some(b) => o.stop_when_done = b,
+                None => ok = false,
+            }
+        }
+        if let Some(n) = e.get("clean_duration") {
+            match self
+                .duration(n, "`clean_duration`")
+                .and_then(|x| self.positive(n, x, "`clean_duration`"))
+            {
+                Some(x) => o.clean_duration = x,
+                None => ok = false,
+            }
+        }
+        ok.then_some(o)
+    }
+
+    /// Fleets named by tasks exist and accept the task's category.
+    fn cross_check(&mut self, fleets: &[FleetSpec], tasks: &[TaskSpec], gens: &[GeneratorSpec]) {
+        let accepts =
+            |f: &FleetSpec, c: TaskCategory| f.task_kinds.is_empty() || f.task_kinds.contains(&c);
+        let items = tasks
+            .iter()
+            .map(|t| (&t.fleet, t.kind.category(), t.span))
+            .chain(gens.iter().map(|g| (&g.fleet, g.kind.category(), g.span)));
+        for (fleet, cat, span) in items {
+            match fleet {
+                Some(name) => {
+                    match fleets.iter().find(|f| &f.name == name) {
+                        None => {
+                            self.error(
+                                codes::UNKNOWN_FLEET,
+                                span,
+                                format!("no fleet is named `{name}`"),
+                            );
+                            let names: Vec<&str> = fleets.iter().map(|f| f.name.as_str()).collect();
+                            let hint = closest(name, names.iter().copied())
+                                .map(|c| format!("did you mean `{c}`? "))
+                                .unwrap_or_default();
+                            self.help(format!("{hint}fleets: {}", list(&names)));
+                        }
+                        Some(f) if !accepts(f, cat) => {
+                            let fspan = f.span;
+                            self.error(
+                                codes::NO_FLEET_FOR_TASK,
+                                span,
+                                format!("fleet `{name}` does not accept {} tasks", cat.as_str()),
+                            )
+                            .labels
+                            .push(mapc_ir::Label {
+                                span: fspan,
+                                message: "the fleet".into(),
+                            });
+                            self.help(format!("add `{}` to the fleet's `tasks`, or send the task to another fleet", cat.as_str()));
+                        }
+                        Some(_) => {}
+                    }
+                }
+                None if !fleets.iter().any(|f| accepts(f, cat)) => {
+                    self.error(
+                        codes::NO_FLEET_FOR_TASK,
+                        span,
+                        format!("no fleet accepts {} tasks", cat.as_str()),
+                    );
+                    self.help(format!("add `{}` to a fleet's `tasks`", cat.as_str()));
+                }
+                None => {}
+            }
+        }
+    }
+
+    /// Bounds the number of task requests, generators included (S0109).
+    fn count_tasks(
+        &mut self,
+        tasks: &[TaskSpec],
+        gens: &[GeneratorSpec],
+        duration: Option<f64>,
+    ) -> bool {
+        let mut total = tasks.len() as f64;
+        for g in gens {
+            let end = match (g.end, duration) {
+                (Some(e), Some(d)) => e.min(d),
+                (Some(e), None) => e,
+                (None, Some(d)) => d,
+                (None, None) => continue,
+            };
+            // Requests at start, start + every, ... while before `end`.
+            let n = if end > g.start {
+                ((end - g.start) / g.every).ceil()
+            } else {
+                0.0
+            };
+            total += n;
+            if total > MAX_TASKS {
+                self.error(
+                    codes::TOO_LARGE,
+                    g.span,
+                    format!(
+                        "this generator requests {n} tasks, more than {MAX_TASKS} task requests in all"
+                    ),
+                );
+                self.help("check the unit of `every` (1ms instead of 1min?)");
+                return false;
+            }
+        }
+        true
+    }
+}
+
+fn category(s: &str) -> Option<TaskCategory> {
+    Some(match s {
+        "loop" => TaskCategory::Loop,
+        "delivery" => TaskCategory::Delivery,
+        "clean" => TaskCategory::Clean,
+        "go_to_place" => TaskCategory::GoToPlace,
+        _ => return None,
+    })
+}
+
 /// Reads a scenario. `base` is the scenario file's directory (for `map`). Returns the
 /// scenario when there are no errors, and all diagnostics (warnings too).
-pub fn parse(
-    _file: mapc_ir::FileId,
-    _text: &str,
-    _base: &std::path::Path,
-) -> (Option<Scenario>, Vec<Diagnostic>) {
-    todo!("scenario parser")
+pub fn parse(file: FileId, text: &str, base: &Path) -> (Option<Scenario>, Vec<Diagnostic>) {
+    let mut diags = Vec::new();
+    let whole = Span {
+        file,
+        start: 0,
+        end: 0,
+        line: 1,
+        col: 1,
+    };
+    if text.len() as u64 > mapc_frontend::MAX_FILE_BYTES {
+        diags.push(
+            Diagnostic::error(
+                codes::INPUT_LIMIT.code,
+                whole,
+                format!(
+                    "the file is larger than the input limit of {} bytes",
+                    mapc_frontend::MAX_FILE_BYTES
+                ),
+            )
+            .with_help("scenarios are a few dozen lines; check that this is the right file"),
+        );
+        return (None, diags);
+    }
+    let root = match yaml_tree::parse(text, file) {
+        Ok(r) => r,
+        Err(mut d) => {
+            // The reader reports map codes; say it is the scenario's YAML.
+            d.code = if d.code == "E0002" {
+                codes::INPUT_LIMIT.code
+            } else {
+                codes::INVALID_YAML.code
+            };
+            if !d.span.is_known() {
+                d.span = whole;
+            }
+            diags.push(d);
+            return (None, diags);
+        }
+    };
+    if root.is_null() {
+        let span = if root.span.is_known() {
+            root.span
+        } else {
+            whole
+        };
+        diags.push(
+            Diagnostic::error(codes::INVALID_YAML.code, span, "the scenario file is empty")
+                .with_help("a scenario needs at least `duration` and `fleets`; see docs/sim.md"),
+        );
+        return (None, diags);
+    }
+    let scenario = P { diags: &mut diags }.scenario(&root, base);
+    (scenario, diags)
 }
