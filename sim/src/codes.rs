@@ -1,6 +1,7 @@
-//! Diagnostic codes of scenario files (`S` codes). Each `///` block is gathered into
-//! docs/diagnostics.md by tests/docs.rs; a `**Severity:** warning` line marks the warnings
-//! (the `S` prefix alone does not say).
+//! Diagnostic codes of scenario files (`S` codes): S00xx reading the file, S01xx values,
+//! S02xx the scenario against the map (reported by the fleet layer), S03xx the scenario's
+//! own consistency. Each `///` block is gathered into docs/diagnostics.md by tests/docs.rs;
+//! a `**Severity:** warning` line marks the warnings (the `S` prefix alone does not say).
 
 pub use mapc_ir::Code;
 
@@ -260,7 +261,138 @@ pub const TOO_LARGE: Code = Code {
     summary: "the scenario asks for an absurd number of robots, tasks or time",
 };
 
-/// # S0201 unknown-robot-preset
+// The fleet layer (sim/src/fleet.rs) checks the scenario against the map and reports the
+// S02xx codes below; they are documented here so that every S code is in one table.
+
+/// # S0201 unknown-waypoint
+///
+/// **What:** a waypoint named by the scenario (a spawn waypoint, a workcell's `waypoint`, a
+/// task's `start`, `finish`, `pickup`, `dropoff`, `place` or `zone`) is not on the fleet's
+/// nav graph (or, for workcells, anywhere in the map). The help names close matches.
+///
+/// **Why it matters:** the robot cannot be placed there or sent there.
+///
+/// **Fix:** use the waypoint's name as it is in the map (`mapc check` lists problems with
+/// names; the traffic editor shows them), or put the waypoint on the fleet's graph.
+///
+/// **Example:**
+/// ```yaml
+/// tasks:
+///   - {go_to_place: {place: lobyy}}   # S0201: lobby
+/// ```
+pub const UNKNOWN_WAYPOINT: Code = Code {
+    code: "S0201",
+    name: "unknown-waypoint",
+    summary: "a waypoint named by the scenario is not on the fleet's nav graph",
+};
+
+/// # S0202 not-enough-spawns
+///
+/// **What:** a fleet has more robots than places to start them: fewer free spawn waypoints
+/// (`spawn_robot_type` params) than `count` with `spawn: spawn_points`, or fewer free
+/// waypoints far enough apart with `spawn: auto`.
+///
+/// **Why it matters:** every robot needs its own start waypoint; two robots on one start in
+/// contact.
+///
+/// **Fix:** lower `count`, list the waypoints under `spawn`, or use `spawn: auto`.
+///
+/// **Example:**
+/// ```yaml
+/// fleets:
+///   - {name: tinyRobot, robot: TinyRobot, count: 9, spawn: spawn_points}   # S0202 on a map with 2
+/// ```
+pub const NOT_ENOUGH_SPAWNS: Code = Code {
+    code: "S0202",
+    name: "not-enough-spawns",
+    summary: "a fleet has more robots than free start waypoints",
+};
+
+/// # S0203 empty-graph
+///
+/// **What:** a fleet's `graph` has no lanes in the map.
+///
+/// **Why it matters:** the fleet's robots could not move anywhere.
+///
+/// **Fix:** use the index of a graph that has lanes (the help lists them).
+///
+/// **Example:**
+/// ```yaml
+/// fleets:
+///   - {name: a, robot: TinyRobot, count: 1, graph: 5}   # S0203: the map has graphs 0 and 1
+/// ```
+pub const EMPTY_GRAPH: Code = Code {
+    code: "S0203",
+    name: "empty-graph",
+    summary: "a fleet drives on a nav graph that has no lanes",
+};
+
+/// # S0204 spawn-clash
+///
+/// **What:** two robots would start on the same waypoint (or too close to each other), or
+/// would get the same name (spawn waypoints name their robot with `spawn_robot_name`).
+///
+/// **Why it matters:** robots are addressed by name, and robots starting on top of each
+/// other are in contact from the first step.
+///
+/// **Fix:** give each robot its own spawn waypoint.
+///
+/// **Example:**
+/// ```yaml
+/// fleets:
+///   - {name: a, robot: TinyRobot, spawn: [lobby]}
+///   - {name: b, robot: TinyRobot, spawn: [lobby]}   # S0204
+/// ```
+pub const SPAWN_CLASH: Code = Code {
+    code: "S0204",
+    name: "spawn-clash",
+    summary: "two robots would start on one waypoint or share a name",
+};
+
+/// # S0205 no-fleet-on-map
+///
+/// **What:** after placing the fleets on the map, no fleet can take a task: the fleets
+/// that accept its category (or the one it names) are not there.
+///
+/// **Why it matters:** the task could never be assigned. The scenario reader already
+/// reports most such tasks as S0305 or S0306; this is the fleet layer's own check.
+///
+/// **Fix:** send the task to a fleet that accepts its category.
+///
+/// **Example:**
+/// ```yaml
+/// tasks:
+///   - {clean: zone_1}   # S0205 when no fleet accepts clean tasks
+/// ```
+pub const NO_FLEET_ON_MAP: Code = Code {
+    code: "S0205",
+    name: "no-fleet-on-map",
+    summary: "no placed fleet can take the task",
+};
+
+/// # S0206 no-workcell
+///
+/// **What:** a delivery names no `dispenser` (or `ingestor`) and its `pickup` (or
+/// `dropoff`) waypoint has no `pickup_dispenser` (or `dropoff_ingestor`) parameter.
+///
+/// **Why it matters:** the robot would wait at the pickup for a dispenser that does not
+/// exist, and the delivery could never complete.
+///
+/// **Fix:** add `dispenser: <name>` / `ingestor: <name>` to the task, set the waypoint
+/// parameter in the map, or add a workcell under `workcells`.
+///
+/// **Example:**
+/// ```yaml
+/// tasks:
+///   - {delivery: {pickup: lobby, dropoff: room_1}}   # S0206: lobby has no pickup_dispenser
+/// ```
+pub const NO_WORKCELL: Code = Code {
+    code: "S0206",
+    name: "no-workcell",
+    summary: "a delivery has no dispenser or ingestor",
+};
+
+/// # S0301 unknown-robot-preset
 ///
 /// **What:** a fleet's `robot` (or `robot.preset`) names no known robot type. The presets
 /// are the rmf_demos robot models: `TinyRobot`, `DeliveryRobot`, `CleanerBotA`,
@@ -274,15 +406,15 @@ pub const TOO_LARGE: Code = Code {
 /// **Example:**
 /// ```yaml
 /// fleets:
-///   - {name: a, robot: TinyBot, count: 1}   # S0201: TinyRobot is meant
+///   - {name: a, robot: TinyBot, count: 1}   # S0301: TinyRobot is meant
 /// ```
 pub const UNKNOWN_PRESET: Code = Code {
-    code: "S0201",
+    code: "S0301",
     name: "unknown-robot-preset",
     summary: "a fleet names a robot preset that does not exist",
 };
 
-/// # S0202 unknown-task-kind
+/// # S0302 unknown-task-kind
 ///
 /// **What:** a task or generator has a key that is not a task kind where the kind is
 /// expected, or a fleet's `tasks` list names an unknown category. The kinds are `loop`,
@@ -295,15 +427,15 @@ pub const UNKNOWN_PRESET: Code = Code {
 /// **Example:**
 /// ```yaml
 /// tasks:
-///   - {at: 0, patrol: {start: lobby, finish: room_1}}   # S0202: use loop
+///   - {at: 0, patrol: {start: lobby, finish: room_1}}   # S0302: use loop
 /// ```
 pub const UNKNOWN_TASK_KIND: Code = Code {
-    code: "S0202",
+    code: "S0302",
     name: "unknown-task-kind",
     summary: "a task kind or category is not loop, delivery, clean or go_to_place",
 };
 
-/// # S0203 several-task-kinds
+/// # S0303 several-task-kinds
 ///
 /// **What:** a task or generator has more than one kind key (for example both `loop` and
 /// `delivery`).
@@ -315,15 +447,15 @@ pub const UNKNOWN_TASK_KIND: Code = Code {
 /// **Example:**
 /// ```yaml
 /// tasks:
-///   - {at: 0, loop: {start: a, finish: b}, go_to_place: {place: c}}   # S0203
+///   - {at: 0, loop: {start: a, finish: b}, go_to_place: {place: c}}   # S0303
 /// ```
 pub const SEVERAL_TASK_KINDS: Code = Code {
-    code: "S0203",
+    code: "S0303",
     name: "several-task-kinds",
     summary: "a task has more than one kind",
 };
 
-/// # S0204 duplicate-fleet
+/// # S0304 duplicate-fleet
 ///
 /// **What:** two fleets have the same `name`.
 ///
@@ -336,15 +468,15 @@ pub const SEVERAL_TASK_KINDS: Code = Code {
 /// ```yaml
 /// fleets:
 ///   - {name: tinyRobot, robot: TinyRobot, count: 1}
-///   - {name: tinyRobot, robot: DeliveryRobot, count: 1}   # S0204
+///   - {name: tinyRobot, robot: DeliveryRobot, count: 1}   # S0304
 /// ```
 pub const DUPLICATE_FLEET: Code = Code {
-    code: "S0204",
+    code: "S0304",
     name: "duplicate-fleet",
     summary: "two fleets have the same name",
 };
 
-/// # S0205 unknown-fleet
+/// # S0305 unknown-fleet
 ///
 /// **What:** a task or generator names a `fleet` that the scenario does not define.
 ///
@@ -356,15 +488,15 @@ pub const DUPLICATE_FLEET: Code = Code {
 /// **Example:**
 /// ```yaml
 /// tasks:
-///   - {at: 0, go_to_place: {place: lobby}, fleet: tinyRobots}   # S0205: tinyRobot
+///   - {at: 0, go_to_place: {place: lobby}, fleet: tinyRobots}   # S0305: tinyRobot
 /// ```
 pub const UNKNOWN_FLEET: Code = Code {
-    code: "S0205",
+    code: "S0305",
     name: "unknown-fleet",
     summary: "a task names a fleet that the scenario does not define",
 };
 
-/// # S0206 no-fleet-for-task
+/// # S0306 no-fleet-for-task
 ///
 /// **What:** no fleet accepts the task's category: the named fleet's `tasks` list does not
 /// include it, or no fleet at all does.
@@ -378,15 +510,15 @@ pub const UNKNOWN_FLEET: Code = Code {
 /// fleets:
 ///   - {name: cleaners, robot: CleanerBotA, count: 1, tasks: [clean]}
 /// tasks:
-///   - {at: 0, delivery: {pickup: a, dropoff: b}, fleet: cleaners}   # S0206
+///   - {at: 0, delivery: {pickup: a, dropoff: b}, fleet: cleaners}   # S0306
 /// ```
 pub const NO_FLEET_FOR_TASK: Code = Code {
-    code: "S0206",
+    code: "S0306",
     name: "no-fleet-for-task",
     summary: "no fleet accepts the task's category",
 };
 
-/// # S0207 unknown-option
+/// # S0307 unknown-option
 ///
 /// **Severity:** warning
 ///
@@ -400,15 +532,15 @@ pub const NO_FLEET_FOR_TASK: Code = Code {
 ///
 /// **Example:**
 /// ```yaml
-/// options: {stop_when_finished: true}   # S0207: stop_when_done
+/// options: {stop_when_finished: true}   # S0307: stop_when_done
 /// ```
 pub const UNKNOWN_OPTION: Code = Code {
-    code: "S0207",
+    code: "S0307",
     name: "unknown-option",
     summary: "an option is not known and is ignored",
 };
 
-/// # S0208 duplicate-workcell
+/// # S0308 duplicate-workcell
 ///
 /// **What:** two workcells of the scenario have the same `name`.
 ///
@@ -421,15 +553,15 @@ pub const UNKNOWN_OPTION: Code = Code {
 /// ```yaml
 /// workcells:
 ///   - {name: pantry, kind: dispenser, waypoint: pantry}
-///   - {name: pantry, kind: ingestor, waypoint: kitchen}   # S0208
+///   - {name: pantry, kind: ingestor, waypoint: kitchen}   # S0308
 /// ```
 pub const DUPLICATE_WORKCELL: Code = Code {
-    code: "S0208",
+    code: "S0308",
     name: "duplicate-workcell",
     summary: "two workcells have the same name",
 };
 
-/// # S0209 spawn-count-mismatch
+/// # S0309 spawn-count-mismatch
 ///
 /// **What:** a fleet's `spawn` list names a different number of waypoints than `count`, or
 /// names one waypoint twice.
@@ -443,15 +575,15 @@ pub const DUPLICATE_WORKCELL: Code = Code {
 /// **Example:**
 /// ```yaml
 /// fleets:
-///   - {name: a, robot: TinyRobot, count: 3, spawn: [lobby, pantry]}   # S0209
+///   - {name: a, robot: TinyRobot, count: 3, spawn: [lobby, pantry]}   # S0309
 /// ```
 pub const SPAWN_COUNT: Code = Code {
-    code: "S0209",
+    code: "S0309",
     name: "spawn-count-mismatch",
     summary: "a fleet's spawn list does not name one distinct waypoint per robot",
 };
 
-/// # S0210 task-after-end
+/// # S0310 task-after-end
 ///
 /// **Severity:** warning
 ///
@@ -466,10 +598,10 @@ pub const SPAWN_COUNT: Code = Code {
 /// ```yaml
 /// duration: 1h
 /// tasks:
-///   - {at: 2h, go_to_place: {place: lobby}}   # S0210
+///   - {at: 2h, go_to_place: {place: lobby}}   # S0310
 /// ```
 pub const TASK_AFTER_END: Code = Code {
-    code: "S0210",
+    code: "S0310",
     name: "task-after-end",
     summary: "a task or generator starts after the end of the run",
 };
@@ -488,6 +620,12 @@ pub static CODES: &[Code] = &[
     STEP_TOO_LARGE,
     OUT_OF_RANGE,
     TOO_LARGE,
+    UNKNOWN_WAYPOINT,
+    NOT_ENOUGH_SPAWNS,
+    EMPTY_GRAPH,
+    SPAWN_CLASH,
+    NO_FLEET_ON_MAP,
+    NO_WORKCELL,
     UNKNOWN_PRESET,
     UNKNOWN_TASK_KIND,
     SEVERAL_TASK_KINDS,

@@ -1644,7 +1644,7 @@ options: {lifts_start_at_initial_floor: false, clean_duration: 2min, stop_when_d
     fn unknown_preset_lists_presets() {
         let (_, d) = run(&MIN.replace("TinyRobot", "TinyBot"));
         assert_eq!(d.len(), 1);
-        assert_eq!(d[0].code, "S0201");
+        assert_eq!(d[0].code, "S0301");
         let help = d[0].help.as_deref().unwrap();
         assert!(help.contains("did you mean `TinyRobot`"), "{help}");
         for p in RobotParams::preset_names() {
@@ -1661,7 +1661,7 @@ options: {lifts_start_at_initial_floor: false, clean_duration: 2min, stop_when_d
         let (s, d) = run(&text);
         assert!(s.is_some());
         let codes: Vec<_> = d.iter().map(|x| x.code).collect();
-        assert_eq!(codes, ["S0103", "S0103", "S0207"]);
+        assert_eq!(codes, ["S0103", "S0103", "S0307"]);
         assert!(d.iter().all(|x| !x.is_error()));
         // Top-level keys are read before the fleets.
         assert_eq!(d[0].help.as_deref(), Some("did you mean `seed`?"));
@@ -1694,7 +1694,7 @@ tasks:
 ";
         let codes = codes_of(text);
         for want in [
-            "S0101", "S0105", "S0107", "S0106", "S0108", "S0102", "S0202", "S0203",
+            "S0101", "S0105", "S0107", "S0106", "S0108", "S0102", "S0302", "S0303",
         ] {
             assert!(codes.contains(&want), "{want} missing from {codes:?}");
         }
@@ -1707,10 +1707,10 @@ tasks:
     fn fleet_cross_checks() {
         let base = "duration: 1h\nfleets:\n  - {name: tinyRobot, robot: TinyRobot, count: 1}\n  - {name: cleaners, robot: CleanerBotA, count: 1, tasks: [clean]}\n";
         let t = |task: &str| codes_of(&format!("{base}tasks:\n  - {task}\n"));
-        assert_eq!(t("{go_to_place: lobby, fleet: tinyRobots}"), ["S0205"]);
+        assert_eq!(t("{go_to_place: lobby, fleet: tinyRobots}"), ["S0305"]);
         assert_eq!(
             t("{delivery: {pickup: a, dropoff: b}, fleet: cleaners}"),
-            ["S0206"]
+            ["S0306"]
         );
         assert!(t("{clean: zone_1, fleet: cleaners}").is_empty());
         let (_, d) = run(&format!(
@@ -1722,7 +1722,7 @@ tasks:
         );
         assert_eq!(
             codes_of(&base.replace("name: cleaners", "name: tinyRobot")),
-            ["S0204"]
+            ["S0304"]
         );
         let only_cleaners =
             "duration: 1h\nfleets: [{name: c, robot: CleanerBotA, count: 1, tasks: [clean]}]\n";
@@ -1730,15 +1730,15 @@ tasks:
             codes_of(&format!(
                 "{only_cleaners}tasks: [{{loop: {{start: a, finish: b}}}}]\n"
             )),
-            ["S0206"]
+            ["S0306"]
         );
         assert_eq!(
             codes_of(&MIN.replace("count: 1", "count: 3, spawn: [a, b]")),
-            ["S0209"]
+            ["S0309"]
         );
         assert_eq!(
             codes_of(&MIN.replace("count: 1", "spawn: [a, a]")),
-            ["S0209"]
+            ["S0309"]
         );
         assert_eq!(
             codes_of(&MIN.replace("count: 1", "count: 1, spawn: anywhere")),
@@ -1746,7 +1746,7 @@ tasks:
         );
         assert_eq!(
             codes_of(&format!("{MIN}workcells:\n  - {{name: w, kind: dispenser, waypoint: a}}\n  - {{name: w, kind: ingestor, waypoint: b}}\n")),
-            ["S0208"]
+            ["S0308"]
         );
         assert_eq!(
             codes_of(&format!(
@@ -1822,7 +1822,7 @@ tasks:
         );
         assert_eq!(
             codes_of(&format!("{MIN}tasks: [{{at: 2h, go_to_place: a}}]\n")),
-            ["S0210"]
+            ["S0310"]
         );
         assert_eq!(
             codes_of(&format!(
