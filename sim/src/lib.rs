@@ -6,12 +6,20 @@
 //! The only I/O is the trace writer handed to [`simulate`].
 
 pub mod codes;
+mod door;
 mod fleet;
+mod graph;
+mod lift;
 pub mod msgs;
 mod params;
+mod profile;
 mod report;
 mod scenario;
+mod slotcar;
+mod supervisor;
 mod trace;
+mod traffic;
+mod workcell;
 mod world;
 
 pub use params::RobotParams;

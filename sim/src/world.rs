@@ -1,9 +1,23 @@
 //! The simulated building: slotcars, doors, lifts, dispensers and ingestors, and the door
 //! and lift supervisors, stepped in the order the Gazebo plugins run (runtime spec §0).
+//!
+//! Positions are in the map frame (nav-graph coordinates; `Building::offset` is not
+//! subtracted), z = level elevation. Within one step: buffered requests are handled
+//! first (ROS callbacks; a supervisor's answer to an adapter request reaches the plugins
+//! in the same step), then slotcars, the door manager, the lift manager, dispensers and
+//! ingestors; then the poses are integrated, and the supervisors react to the states
+//! published in this step (their requests reach the plugins in the next step).
 
-use crate::msgs::{Msg, Published, Topic};
+use crate::door::{self, DoorSim};
+use crate::lift::{Floor, LiftSim};
+use crate::msgs::{DoorRequest, LiftRequest, Msg, Published, Topic, WorkcellRequest};
 use crate::params::RobotParams;
-use mapc_ir::{Building, Handle, Level};
+use crate::scenario::WorkcellKind;
+use crate::slotcar::{ChargeFlags, Ctx, Obstacles, Slotcar};
+use crate::supervisor::{DoorSupervisor, LiftSupervisor};
+use crate::workcell::{Item, Workcell};
+use mapc_ir::{Building, DoorKind, Handle, Level};
+use std::collections::BTreeMap;
 
 /// A robot placed in the world at start-up.
 #[derive(Debug, Clone, PartialEq)]
@@ -50,27 +64,427 @@ pub struct RobotTruth {
     pub footprint: f64,
 }
 
-pub struct World {}
+pub struct World {
+    dt: f64,
+    steps: u64,
+    t: f64,
+    levels: Vec<(String, f64)>,
+    chargers: Vec<[f64; 3]>,
+    flags: ChargeFlags,
+    robots: Vec<Slotcar>,
+    robot_index: BTreeMap<String, usize>,
+    obstacles: Obstacles,
+    doors: Vec<DoorSim>,
+    /// ROS doors by name (lift doors have no ROS interface).
+    door_index: BTreeMap<String, usize>,
+    lifts: Vec<LiftSim>,
+    lift_index: BTreeMap<String, usize>,
+    workcells: Vec<Workcell>,
+    items: Vec<Item>,
+    /// Robot indices per fleet name, from the last `/fleet_states`.
+    fleets: BTreeMap<String, Vec<usize>>,
+    door_supervisor: DoorSupervisor,
+    lift_supervisor: LiftSupervisor,
+    /// Messages for the supervisors and workcells, handled at the start of the next step.
+    inbox: Vec<(Topic, Msg)>,
+    /// Supervisor requests for the plugins, applied at the start of the next step.
+    to_doors: Vec<DoorRequest>,
+    to_lifts: Vec<LiftRequest>,
+    first_step: bool,
+}
+
+fn door_joints(
+    b: &Building,
+    d: &mapc_ir::Door,
+) -> Option<((f64, f64), Option<(f64, f64)>, door::DoorParams)> {
+    let s = b.vertices[d.start].pos;
+    let e = b.vertices[d.end].pos;
+    let l = s.minus(e).norm();
+    // The generator's swing limit uses 3.14, not π (§2.1).
+    #[allow(clippy::approx_constant)]
+    let mu = 3.14 * d.motion_degrees / 180.0;
+    let k = d.right_left_ratio;
+    let l_r = k / (1.0 + k) * l;
+    let l_l = l - l_r;
+    Some(match d.kind {
+        DoorKind::Sliding => ((0.0, l), None, door::SLIDING),
+        DoorKind::DoubleSliding => ((0.0, l_r), Some((-l_l, 0.0)), door::SLIDING),
+        DoorKind::Hinged => ((0.0, mu), None, door::SWING),
+        DoorKind::DoubleHinged => ((0.0, mu), Some((-mu, 0.0)), door::SWING),
+        DoorKind::Other(_) => return None,
+    })
+}
 
 impl World {
-    pub fn new(_building: &Building, _setup: &WorldSetup) -> World {
-        todo!()
+    pub fn new(building: &Building, setup: &WorldSetup) -> World {
+        let b = building;
+        let mut rng = fastrand::Rng::with_seed(setup.seed);
+        let levels: Vec<(String, f64)> = b
+            .levels
+            .iter()
+            .map(|(_, l)| (l.name.clone(), l.elevation))
+            .collect();
+        let elev = |h: Handle<Level>| levels.get(h.index()).map_or(0.0, |l| l.1);
+        let chargers = b
+            .vertices
+            .iter()
+            .filter(|(_, v)| v.roles.is_charger)
+            .map(|(_, v)| [v.pos.x, v.pos.y, elev(v.level)])
+            .collect();
+
+        let mut robots = Vec::new();
+        let mut robot_index = BTreeMap::new();
+        for (i, r) in setup.robots.iter().enumerate() {
+            robot_index.entry(r.name.clone()).or_insert(i);
+            robots.push(Slotcar::new(
+                r.name.clone(),
+                r.params.clone(),
+                r.x,
+                r.y,
+                elev(r.level),
+                r.yaw,
+            ));
+        }
+
+        let mut doors = Vec::new();
+        let mut door_index = BTreeMap::new();
+        for (_, d) in b.doors.iter() {
+            if !d.plugin {
+                continue;
+            }
+            let Some((right, left, params)) = door_joints(b, d) else {
+                continue;
+            };
+            let mut door = DoorSim::new(d.name.clone(), true, right, left, params);
+            door.set_phase(rng.f64());
+            door_index.entry(d.name.clone()).or_insert(doors.len());
+            doors.push(door);
+        }
+
+        let mut lifts = Vec::new();
+        let mut lift_index = BTreeMap::new();
+        for (_, l) in b.lifts.iter() {
+            if !l.plugins || l.level_doors.is_empty() {
+                continue;
+            }
+            let mut cabin_doors = Vec::new();
+            for ld in &l.doors {
+                let half = ld.width / 2.0;
+                cabin_doors.push(doors.len());
+                doors.push(DoorSim::new(
+                    format!("CabinDoor_{}_{}", l.name, ld.name),
+                    false,
+                    (0.0, half),
+                    Some((-half, 0.0)),
+                    door::LIFT_DOOR,
+                ));
+            }
+            let mut floors = Vec::new();
+            for lvl in &l.level_doors {
+                let (lname, lelev) = levels.get(lvl.level.index()).cloned().unwrap_or_default();
+                let mut fd = Vec::new();
+                for (k, ld) in l.doors.iter().enumerate() {
+                    if lvl.doors.iter().any(|(n, _)| *n == ld.name) {
+                        let half = ld.width / 2.0;
+                        fd.push(doors.len());
+                        doors.push(DoorSim::new(
+                            format!("ShaftDoor_{}_{}_{}", l.name, lname, ld.name),
+                            false,
+                            (0.0, half),
+                            Some((-half, 0.0)),
+                            door::LIFT_DOOR,
+                        ));
+                        fd.push(cabin_doors[k]);
+                    }
+                }
+                floors.push(Floor {
+                    name: lname,
+                    elevation: lelev,
+                    doors: fd,
+                });
+            }
+            let initial = l
+                .initial_floor()
+                .and_then(|h| levels.get(h.index()))
+                .and_then(|(n, _)| floors.iter().position(|f| f.name == *n))
+                .unwrap_or(0);
+            let z = if setup.lifts_start_at_initial_floor {
+                floors.get(initial).map_or(0.0, |f| f.elevation)
+            } else {
+                0.0
+            };
+            // Axis-aligned hull of the rotated cabin footprint.
+            let (s, c) = l.yaw.sin_cos();
+            let hx = (c * l.width / 2.0).abs() + (s * l.depth / 2.0).abs();
+            let hy = (s * l.width / 2.0).abs() + (c * l.depth / 2.0).abs();
+            let aabb = [l.pos.x - hx, l.pos.x + hx, l.pos.y - hy, l.pos.y + hy];
+            let mut lift = LiftSim::new(l.name.clone(), floors, initial, z, aabb);
+            lift.set_phase(rng.f64());
+            lift_index.entry(l.name.clone()).or_insert(lifts.len());
+            lifts.push(lift);
+        }
+
+        let mut items = Vec::new();
+        let mut workcells = Vec::new();
+        let mut add_workcell = |name: String, kind: WorkcellKind, pos: [f64; 3]| {
+            let item = (kind == WorkcellKind::Dispenser).then(|| {
+                items.push(Item::new(format!("{name}_item"), pos, 0.0));
+                items.len() - 1
+            });
+            workcells.push(Workcell::new(name, kind, pos, item));
+        };
+        for (_, m) in b.models.iter() {
+            let kind = if m.model_name.ends_with("TeleportDispenser") {
+                WorkcellKind::Dispenser
+            } else if m.model_name.ends_with("TeleportIngestor") {
+                WorkcellKind::Ingestor
+            } else {
+                continue;
+            };
+            add_workcell(
+                m.name.clone(),
+                kind,
+                [m.pos.x, m.pos.y, elev(m.level) + m.z],
+            );
+        }
+        for w in &setup.workcells {
+            add_workcell(w.name.clone(), w.kind, [w.x, w.y, elev(w.level)]);
+        }
+        // Non-static map models (carts, boxes) can be attached and ingested too.
+        for (_, m) in b.models.iter() {
+            if !m.is_static
+                && !m.model_name.ends_with("TeleportDispenser")
+                && !m.model_name.ends_with("TeleportIngestor")
+            {
+                items.push(Item::new(
+                    m.name.clone(),
+                    [m.pos.x, m.pos.y, elev(m.level) + m.z],
+                    m.yaw,
+                ));
+            }
+        }
+
+        World {
+            dt: setup.dt,
+            steps: 0,
+            t: 0.0,
+            levels,
+            chargers,
+            flags: ChargeFlags::default(),
+            robots,
+            robot_index,
+            obstacles: Obstacles::default(),
+            doors,
+            door_index,
+            lifts,
+            lift_index,
+            workcells,
+            items,
+            fleets: BTreeMap::new(),
+            door_supervisor: DoorSupervisor::default(),
+            lift_supervisor: LiftSupervisor::default(),
+            inbox: Vec::new(),
+            to_doors: Vec::new(),
+            to_lifts: Vec::new(),
+            first_step: true,
+        }
     }
+
     /// Current sim time (s).
     pub fn time(&self) -> f64 {
-        todo!()
+        self.t
     }
+
     /// A message from outside (fleet layer) on an input topic: handled like a ROS callback,
-    /// i.e. before the next step.
-    pub fn deliver(&mut self, _topic: Topic, _msg: Msg) {
-        todo!()
+    /// i.e. before the next step. Messages on other topics, and requests for unknown
+    /// robots, doors, lifts or workcells, are ignored.
+    pub fn deliver(&mut self, topic: Topic, msg: Msg) {
+        let robot = |w: &mut World, name: &str| w.robot_index.get(name).copied();
+        match (topic, msg) {
+            (Topic::RobotPathRequests, Msg::PathRequest(m)) => {
+                if let Some(i) = robot(self, &m.robot_name) {
+                    self.robots[i].path_request(m);
+                }
+            }
+            (Topic::RobotModeRequests, Msg::ModeRequest(m)) => {
+                if let Some(i) = robot(self, &m.robot_name) {
+                    self.robots[i].mode_request(m.mode);
+                }
+            }
+            (Topic::RobotPauseRequests, Msg::PauseRequest(m)) => {
+                if let Some(i) = robot(self, &m.robot_name) {
+                    self.robots[i].pause_request(m.kind, m.mode_request_id, m.at_checkpoint);
+                }
+            }
+            (Topic::FleetStates, Msg::FleetState(f)) => {
+                let members = f
+                    .robots
+                    .iter()
+                    .filter_map(|r| self.robot_index.get(&r.name).copied())
+                    .collect();
+                self.fleets.insert(f.name, members);
+            }
+            (Topic::DoorRequests, Msg::DoorRequest(m)) => self.to_doors.push(m),
+            (Topic::LiftRequests, Msg::LiftRequest(m)) => self.to_lifts.push(m),
+            (
+                t @ (Topic::AdapterDoorRequests
+                | Topic::AdapterLiftRequests
+                | Topic::DispenserRequests
+                | Topic::IngestorRequests),
+                m,
+            ) => self.inbox.push((t, m)),
+            _ => {}
+        }
     }
+
+    /// Sets the world-wide `/charge_state` toggles (§1.9, §8).
+    pub fn set_charging(&mut self, enable_charge: bool, instant_charge: bool, enable_drain: bool) {
+        self.flags = ChargeFlags {
+            enable_charge,
+            enable_instant_charge: instant_charge,
+            enable_drain,
+        };
+    }
+
+    fn callbacks(&mut self, t: f64, out: &mut Vec<Published>) {
+        let mut inbox = std::mem::take(&mut self.inbox);
+        for (topic, msg) in inbox.drain(..) {
+            match (topic, &msg) {
+                (Topic::AdapterDoorRequests, Msg::DoorRequest(m)) => self
+                    .door_supervisor
+                    .adapter_request(t, m, out, &mut self.to_doors),
+                (Topic::AdapterLiftRequests, Msg::LiftRequest(m)) => self
+                    .lift_supervisor
+                    .adapter_request(t, m, out, &mut self.to_lifts),
+                (Topic::DispenserRequests, Msg::WorkcellRequest(m)) => {
+                    self.workcell_request(t, WorkcellKind::Dispenser, m, out)
+                }
+                (Topic::IngestorRequests, Msg::WorkcellRequest(m)) => {
+                    self.workcell_request(t, WorkcellKind::Ingestor, m, out)
+                }
+                _ => {}
+            }
+        }
+        self.inbox = inbox;
+        for r in self.to_doors.drain(..) {
+            if let Some(&i) = self.door_index.get(&r.door_name) {
+                if let Some(d) = self.doors.get_mut(i) {
+                    d.command(r.requested_mode.value == crate::msgs::door_mode::OPEN);
+                }
+            }
+        }
+        for r in self.to_lifts.drain(..) {
+            if let Some(&i) = self.lift_index.get(&r.lift_name) {
+                if let Some(l) = self.lifts.get_mut(i) {
+                    l.request(&r);
+                }
+            }
+        }
+    }
+
+    fn workcell_request(
+        &mut self,
+        t: f64,
+        kind: WorkcellKind,
+        m: &WorkcellRequest,
+        out: &mut Vec<Published>,
+    ) {
+        for w in self.workcells.iter_mut().filter(|w| w.kind == kind) {
+            w.request(t, m, out);
+        }
+    }
+
     /// Advances one step; appends everything published during it.
-    pub fn step(&mut self, _out: &mut Vec<Published>) {
-        todo!()
+    pub fn step(&mut self, out: &mut Vec<Published>) {
+        let t = self.t;
+        let dt = self.dt;
+        let start = out.len();
+        self.callbacks(t, out);
+
+        // Slotcars read the poses at the start of the step.
+        self.obstacles.rebuild(&self.robots);
+        let ctx = Ctx {
+            t,
+            dt,
+            levels: &self.levels,
+            chargers: &self.chargers,
+            obstacles: &self.obstacles,
+            flags: self.flags,
+        };
+        for (i, r) in self.robots.iter_mut().enumerate() {
+            r.update(&ctx, i, &mut self.items, out);
+        }
+        // Door manager; its first update only initialises (§2.3).
+        if !self.first_step {
+            for d in &mut self.doors {
+                d.update(t, dt, out);
+            }
+        }
+        for l in &mut self.lifts {
+            l.update(t, dt, &mut self.doors, &mut self.robots, out);
+        }
+        for w in &mut self.workcells {
+            w.update(t, &self.robots, &mut self.items, &self.fleets, out);
+        }
+        self.first_step = false;
+
+        // Physics.
+        for r in &mut self.robots {
+            r.integrate(dt);
+        }
+        for d in &mut self.doors {
+            d.integrate(dt);
+        }
+        for l in &mut self.lifts {
+            l.integrate(dt);
+        }
+        for it in &mut self.items {
+            it.follow(&self.robots);
+        }
+
+        // Supervisors react to this step's states; their requests apply next step.
+        for k in start..out.len() {
+            match &out[k].msg {
+                Msg::DoorState(s) => {
+                    let s = s.clone();
+                    self.door_supervisor
+                        .door_state(t, &s, out, &mut self.to_doors);
+                }
+                Msg::LiftState(s) => {
+                    let s = s.clone();
+                    self.lift_supervisor
+                        .lift_state(t, &s, out, &mut self.to_lifts);
+                }
+                _ => {}
+            }
+        }
+
+        self.steps += 1;
+        // Whole steps times dt: no drift from summing dt.
+        self.t = self.steps as f64 * dt;
     }
+
     /// Robots in spawn order.
     pub fn robots(&self) -> Vec<RobotTruth> {
-        todo!()
+        self.robots
+            .iter()
+            .map(|r| RobotTruth {
+                x: r.x,
+                y: r.y,
+                z: r.z,
+                yaw: r.yaw,
+                v: r.v,
+                footprint: r.footprint(),
+            })
+            .collect()
+    }
+
+    /// State of charge (0..1) of robot `i` (spawn order).
+    pub fn soc(&self, i: usize) -> Option<f64> {
+        self.robots.get(i).map(|r| r.soc)
     }
 }
+
+#[cfg(test)]
+#[path = "world_tests.rs"]
+mod tests;

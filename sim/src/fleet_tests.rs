@@ -1,0 +1,786 @@
+//! Tests of the fleet layer: graphs, conflict sets, the wait-for cycle detector, spawn
+//! placement, and runs against a small kinematic stand-in of the world (robots drive
+//! straight lines at constant speed and stop at every waypoint; the door and lift
+//! supervisors' session rules; instant workcells) until the real World is merged.
+
+use super::*;
+use crate::graph::{segment_segment, Nav};
+use crate::msgs::*;
+use crate::scenario::{FleetSpec, GeneratorSpec, SimOptions, TaskSpec, WorkcellSpec};
+use crate::traffic::{find_cycle, Clearance, Conflicts, Reservations};
+use mapc_ir::{Building, Span, Vec2};
+
+fn clinic() -> Building {
+    let path = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../fixtures/two_level_clinic.building.yaml"
+    );
+    let text = std::fs::read_to_string(path).expect("fixture");
+    let parsed = mapc_frontend::parse_str("clinic", &text);
+    parsed.building.expect("clinic parses")
+}
+
+fn fleet(name: &str, count: usize, spawn: SpawnSpec) -> FleetSpec {
+    FleetSpec {
+        name: name.into(),
+        graph: 0,
+        robot: RobotParams::preset("TinyRobot").expect("preset"),
+        count,
+        spawn,
+        recharge_threshold: 0.2,
+        recharge_soc: 0.9,
+        task_kinds: Vec::new(),
+        span: Span::UNKNOWN,
+    }
+}
+
+fn scenario(fleets: Vec<FleetSpec>, tasks: Vec<TaskSpec>) -> Scenario {
+    Scenario {
+        map: None,
+        seed: 1,
+        duration: 600.0,
+        step: 0.01,
+        fleets,
+        workcells: Vec::new(),
+        tasks,
+        generators: Vec::new(),
+        options: SimOptions::default(),
+    }
+}
+
+fn task(at: f64, kind: TaskKind) -> TaskSpec {
+    TaskSpec {
+        at,
+        kind,
+        fleet: None,
+        span: Span::UNKNOWN,
+    }
+}
+
+fn vertex(nav: &Nav, name: &str) -> usize {
+    nav.find(0, name).unwrap_or_else(|| panic!("vertex {name}"))
+}
+
+use crate::params::RobotParams;
+
+#[test]
+fn routes_respect_directions_doors_and_lifts() {
+    let b = clinic();
+    let nav = Nav::build(&b, &[0]);
+    let (charger, pharmacy, ward_a) = (
+        vertex(&nav, "tinyRobot1_charger"),
+        vertex(&nav, "pharmacy"),
+        vertex(&nav, "ward_a"),
+    );
+    let (cost, route) = nav.plan(0, charger, pharmacy, 0.5).expect("route");
+    let doors: Vec<&str> = route
+        .iter()
+        .filter_map(|&e| nav.edges[e].door)
+        .map(|d| nav.doors[d].name.as_str())
+        .collect();
+    assert_eq!(doors, ["L1_lobby_door", "L1_pharmacy_door"]);
+    // Cost = sum of lengths / speed + stops + doors.
+    let len: f64 = route.iter().map(|&e| nav.edges[e].length).sum();
+    let expect =
+        len / 0.5 + route.len() as f64 * crate::graph::STOP_COST + 2.0 * crate::graph::DOOR_COST;
+    assert!((cost - expect).abs() < 1e-9, "{cost} vs {expect}");
+    // Contiguous.
+    for w in route.windows(2) {
+        assert_eq!(nav.edges[w[0]].to, nav.edges[w[1]].from);
+    }
+    // Between levels: through the lift, exactly one ride.
+    let (_, route) = nav.plan(0, charger, ward_a, 0.5).expect("lift route");
+    let rides: Vec<usize> = route
+        .iter()
+        .filter(|&&e| matches!(nav.edges[e].kind, EdgeKind::Lift(_)))
+        .copied()
+        .collect();
+    assert_eq!(rides.len(), 1);
+    let ride = &nav.edges[rides[0]];
+    assert_eq!(nav.vertices[ride.from].level_name, "L1");
+    assert_eq!(nav.vertices[ride.to].level_name, "L2");
+    assert_eq!(
+        nav.vertices[*route.last().map(|e| &nav.edges[*e].to).unwrap()].name,
+        "ward_a"
+    );
+}
+
+#[test]
+fn one_way_lanes_are_not_driven_backwards() {
+    let mut b = clinic();
+    // Make lobby→corridor one way (from lobby to corridor).
+    let (lh, _) = b
+        .lanes
+        .iter()
+        .find(|(_, l)| b.vertices[l.start].name == "lobby" && b.vertices[l.end].name == "corridor")
+        .expect("lane");
+    b.lanes[lh].bidirectional = false;
+    let nav = Nav::build(&b, &[0]);
+    let (lobby, corridor) = (vertex(&nav, "lobby"), vertex(&nav, "corridor"));
+    assert!(nav.plan(0, lobby, corridor, 0.5).is_some());
+    assert!(nav.plan(0, corridor, lobby, 0.5).is_none());
+}
+
+/// Two lanes crossing in an X, and one far away.
+const CROSS: &str = r#"
+coordinate_system: cartesian_meters
+name: cross
+levels:
+  L1:
+    elevation: 0
+    vertices:
+      - [0, 5, 0, w]
+      - [10, 5, 0, e]
+      - [5, 0, 0, s]
+      - [5, 10, 0, n]
+      - [0, 30, 0, far_w]
+      - [10, 30, 0, far_e]
+      - [0, 8, 0, park_w, {is_parking_spot: [4, true]}]
+      - [10, 8, 0, park_e, {is_parking_spot: [4, true]}]
+    lanes:
+      - [0, 1, {bidirectional: [4, true], graph_idx: [2, 0]}]
+      - [2, 3, {bidirectional: [4, true], graph_idx: [2, 0]}]
+      - [4, 5, {bidirectional: [4, true], graph_idx: [2, 0]}]
+      - [0, 6, {bidirectional: [4, true], graph_idx: [2, 0]}]
+      - [1, 7, {bidirectional: [4, true], graph_idx: [2, 0]}]
+"#;
+
+fn cross() -> Building {
+    let parsed = mapc_frontend::parse_str("cross", CROSS);
+    assert!(!parsed.has_errors(), "{:?}", parsed.diagnostics);
+    parsed.building.expect("cross parses")
+}
+
+#[test]
+fn crossing_lanes_conflict_and_far_ones_do_not() {
+    let b = cross();
+    let nav = Nav::build(&b, &[0]);
+    let c = Clearance {
+        footprint: 0.3,
+        stop_distance: 0.75,
+        stop_radius: 0.75,
+    };
+    let conf = Conflicts::build(&nav, c);
+    let edge = |a: &str, z: &str| {
+        let (a, z) = (vertex(&nav, a), vertex(&nav, z));
+        nav.edges
+            .iter()
+            .position(|e| e.from == a && e.to == z)
+            .expect("edge")
+    };
+    let (we, sn, far) = (edge("w", "e"), edge("s", "n"), edge("far_w", "far_e"));
+    let shares = |x: usize, y: usize| conf.edge[x].iter().any(|r| conf.edge[y].contains(r));
+    assert!(shares(we, sn));
+    assert!(!shares(we, far));
+    // The geometric reason: the segments cross (distance 0), the far one is 25 m away.
+    let p = |n: &str| nav.vertices[vertex(&nav, n)].pos;
+    assert_eq!(segment_segment(p("w"), p("e"), p("s"), p("n")), 0.0);
+    assert!((segment_segment(p("w"), p("e"), p("far_w"), p("far_e")) - 25.0).abs() < 1e-9);
+    // Reservations are exclusive: once robot 0 holds w→e, robot 1 cannot take s→n.
+    let mut res = Reservations::new(conf.n_res, 2);
+    assert!(res.is_free_for(0, &conf.edge[we]));
+    res.set_held(0, conf.edge[we].clone());
+    assert!(!res.is_free_for(1, &conf.edge[sn]));
+    assert_eq!(res.blockers(1, &conf.edge[sn]), vec![0]);
+    assert!(res.is_free_for(1, &conf.edge[far]));
+    res.set_held(0, Vec::new());
+    assert!(res.is_free_for(1, &conf.edge[sn]));
+}
+
+#[test]
+fn wait_for_cycles() {
+    assert_eq!(find_cycle(&[vec![1], vec![2], vec![]]), None);
+    assert_eq!(
+        find_cycle(&[vec![1], vec![2], vec![0]]),
+        Some(vec![0, 1, 2])
+    );
+    assert_eq!(
+        find_cycle(&[vec![], vec![2], vec![3], vec![1]]),
+        Some(vec![1, 2, 3])
+    );
+    assert_eq!(find_cycle(&[vec![0]]), Some(vec![0]));
+    // Out-of-range entries are ignored.
+    assert_eq!(find_cycle(&[vec![7]]), None);
+}
+
+#[test]
+fn spawn_placement() {
+    let b = clinic();
+    // Map spawn points: the one named in the map.
+    let p = Fleets::place(
+        &b,
+        &scenario(vec![fleet("tiny", 1, SpawnSpec::MapSpawnPoints)], vec![]),
+    )
+    .expect("placement");
+    assert_eq!(p.robots[0].name, "tinyRobot1");
+    // Not enough spawn points.
+    let e = Fleets::place(
+        &b,
+        &scenario(vec![fleet("tiny", 2, SpawnSpec::MapSpawnPoints)], vec![]),
+    )
+    .err()
+    .expect("error");
+    assert!(
+        e.iter().any(|d| d.code == codes::NOT_ENOUGH_SPAWNS),
+        "{e:?}"
+    );
+    // Unknown waypoint, with a suggestion.
+    let e = Fleets::place(
+        &b,
+        &scenario(
+            vec![fleet(
+                "tiny",
+                1,
+                SpawnSpec::Waypoints(vec!["lobbby".into()]),
+            )],
+            vec![],
+        ),
+    )
+    .err()
+    .expect("error");
+    assert_eq!(e[0].code, codes::UNKNOWN_WAYPOINT);
+    // Auto: chargers first, never closer than the footprints + 0.5 m.
+    let p = Fleets::place(
+        &b,
+        &scenario(vec![fleet("tiny", 3, SpawnSpec::Auto)], vec![]),
+    )
+    .expect("auto");
+    assert_eq!(p.robots.len(), 3);
+    assert_eq!(p.robots[0].name, "tiny_0");
+    let nav = Nav::build(&b, &[0]);
+    assert_eq!(
+        (p.robots[0].x, p.robots[0].y),
+        (
+            nav.vertices[vertex(&nav, "tinyRobot1_charger")].pos.x,
+            nav.vertices[vertex(&nav, "tinyRobot1_charger")].pos.y
+        )
+    );
+    for (i, a) in p.robots.iter().enumerate() {
+        for c in &p.robots[i + 1..] {
+            if a.level == c.level {
+                assert!((a.x - c.x).hypot(a.y - c.y) >= 2.0 * 0.3 + 0.5);
+            }
+        }
+    }
+    // A task naming an unknown waypoint is refused by `new`.
+    let s = scenario(
+        vec![fleet("tiny", 1, SpawnSpec::MapSpawnPoints)],
+        vec![task(
+            0.0,
+            TaskKind::GoToPlace {
+                place: "nowhere".into(),
+            },
+        )],
+    );
+    let p = Fleets::place(&b, &s).expect("placement");
+    let e = Fleets::new(&b, &s, &p).err().expect("error");
+    assert_eq!(e[0].code, codes::UNKNOWN_WAYPOINT);
+}
+
+// ----- a kinematic stand-in of the world -----
+
+struct MockRobot {
+    name: String,
+    pos: Vec2,
+    yaw: f64,
+    level: String,
+    path: Vec<Location>,
+    task_id: String,
+    speed: f64,
+    footprint: f64,
+    seq: u64,
+}
+
+struct Mock {
+    t: f64,
+    robots: Vec<MockRobot>,
+    levels: Vec<(String, f64)>,
+    door_sessions: BTreeMap<String, Vec<String>>,
+    door_open_at: BTreeMap<String, f64>,
+    /// lift name → (floor, session, busy until, destination)
+    lifts: BTreeMap<String, (String, String, f64, String)>,
+    lift_cabins: Vec<(String, Vec2, f64)>,
+    pending: Vec<Published>,
+    min_gap: f64,
+    door_open_log: Vec<(f64, String, usize)>,
+}
+
+impl Mock {
+    fn new(b: &Building, placement: &Placement) -> Mock {
+        let levels = b
+            .levels
+            .iter()
+            .map(|(_, l)| (l.name.clone(), l.elevation))
+            .collect();
+        let robots = placement
+            .robots
+            .iter()
+            .map(|r| MockRobot {
+                name: r.name.clone(),
+                pos: Vec2::new(r.x, r.y),
+                yaw: r.yaw,
+                level: b.levels[r.level].name.clone(),
+                path: Vec::new(),
+                task_id: String::new(),
+                speed: r.params.nominal_drive_speed,
+                footprint: r.params.footprint,
+                seq: 0,
+            })
+            .collect();
+        let mut lifts = BTreeMap::new();
+        let mut lift_cabins = Vec::new();
+        for (_, l) in b.lifts.iter() {
+            let floor = l
+                .initial_floor()
+                .map(|h| b.levels[h].name.clone())
+                .unwrap_or_default();
+            lifts.insert(l.name.clone(), (floor, String::new(), 0.0, String::new()));
+            lift_cabins.push((l.name.clone(), l.pos, l.width.max(l.depth)));
+        }
+        Mock {
+            t: 0.0,
+            robots,
+            levels,
+            door_sessions: BTreeMap::new(),
+            door_open_at: BTreeMap::new(),
+            lifts,
+            lift_cabins,
+            pending: Vec::new(),
+            min_gap: f64::INFINITY,
+            door_open_log: Vec::new(),
+        }
+    }
+
+    fn publish(&mut self, topic: Topic, msg: Msg) {
+        self.pending.push(Published {
+            t: self.t,
+            topic,
+            msg,
+        });
+    }
+
+    fn deliver(&mut self, topic: Topic, msg: Msg) {
+        match (topic, msg) {
+            (Topic::RobotPathRequests, Msg::PathRequest(p)) => {
+                let Some(r) = self.robots.iter_mut().find(|r| r.name == p.robot_name) else {
+                    return;
+                };
+                if p.task_id == r.task_id || p.path.is_empty() {
+                    return;
+                }
+                r.task_id = p.task_id.clone();
+                let d0 = (p.path[0].x - r.pos.x).hypot(p.path[0].y - r.pos.y);
+                assert!(d0 <= 1.0, "path starts {d0} m from {}", r.name);
+                r.path = p.path[1..].to_vec();
+            }
+            (Topic::AdapterDoorRequests, Msg::DoorRequest(d)) => {
+                let s = self.door_sessions.entry(d.door_name.clone()).or_default();
+                if d.requested_mode.value == door_mode::OPEN {
+                    if !s.contains(&d.requester_id) {
+                        s.push(d.requester_id.clone());
+                    }
+                    self.door_open_at
+                        .entry(d.door_name.clone())
+                        .or_insert(self.t + 1.0);
+                } else {
+                    s.retain(|x| *x != d.requester_id);
+                    if s.is_empty() {
+                        self.door_open_at.remove(&d.door_name);
+                    }
+                }
+                let all_sessions = self
+                    .door_sessions
+                    .iter()
+                    .map(|(k, v)| DoorSessions {
+                        door_name: k.clone(),
+                        sessions: v
+                            .iter()
+                            .map(|r| Session {
+                                request_time: Time::default(),
+                                requester_id: r.clone(),
+                            })
+                            .collect(),
+                    })
+                    .collect();
+                self.publish(
+                    Topic::DoorSupervisorHeartbeat,
+                    Msg::DoorHeartbeat(SupervisorHeartbeat { all_sessions }),
+                );
+            }
+            (Topic::AdapterLiftRequests, Msg::LiftRequest(l)) => {
+                let t = self.t;
+                let Some(lift) = self.lifts.get_mut(&l.lift_name) else {
+                    return;
+                };
+                if l.request_type == lift_request::END_SESSION {
+                    if lift.1 == l.session_id {
+                        lift.1.clear();
+                    }
+                    return;
+                }
+                // First come owns the lift; others are ignored (the adapter retries).
+                if !lift.1.is_empty() && lift.1 != l.session_id {
+                    return;
+                }
+                lift.1 = l.session_id.clone();
+                if lift.3 != l.destination_floor {
+                    lift.3 = l.destination_floor.clone();
+                    lift.2 = t + if lift.0 == l.destination_floor {
+                        0.5
+                    } else {
+                        4.0
+                    };
+                }
+            }
+            (Topic::DispenserRequests, Msg::WorkcellRequest(w)) => self.publish(
+                Topic::DispenserResults,
+                Msg::WorkcellResult(WorkcellResult {
+                    time: Time::whole(self.t),
+                    request_guid: w.request_guid,
+                    source_guid: w.target_guid,
+                    status: workcell_result::SUCCESS,
+                }),
+            ),
+            (Topic::IngestorRequests, Msg::WorkcellRequest(w)) => self.publish(
+                Topic::IngestorResults,
+                Msg::WorkcellResult(WorkcellResult {
+                    time: Time::whole(self.t),
+                    request_guid: w.request_guid,
+                    source_guid: w.target_guid,
+                    status: workcell_result::SUCCESS,
+                }),
+            ),
+            _ => {}
+        }
+    }
+
+    fn step(&mut self, dt: f64, out: &mut Vec<Published>) {
+        self.t += dt;
+        let t = self.t;
+        let open_doors: Vec<String> = self
+            .door_open_at
+            .iter()
+            .filter(|(_, &at)| at <= t)
+            .map(|(k, _)| k.clone())
+            .collect();
+        for r in &mut self.robots {
+            if let Some(target) = r.path.first() {
+                let d = Vec2::new(target.x - r.pos.x, target.y - r.pos.y);
+                let n = d.norm();
+                let v = if target.obey_approach_speed_limit {
+                    r.speed.min(target.approach_speed_limit)
+                } else {
+                    r.speed
+                };
+                if n <= v * dt {
+                    r.pos = Vec2::new(target.x, target.y);
+                    r.yaw = target.yaw;
+                    r.path.remove(0);
+                } else {
+                    r.pos = r.pos.plus(d.scale(v * dt / n));
+                }
+            }
+        }
+        // Lifts: move after their delay; carry the robots in the cabin.
+        let names: Vec<String> = self.lifts.keys().cloned().collect();
+        for name in names {
+            let (floor, session, until, dest) = self.lifts[&name].clone();
+            if !dest.is_empty() && t >= until && floor != dest {
+                let cabin = self
+                    .lift_cabins
+                    .iter()
+                    .find(|c| c.0 == name)
+                    .map(|c| (c.1, c.2));
+                if let Some((p, size)) = cabin {
+                    for r in &mut self.robots {
+                        if r.level == floor && r.pos.minus(p).norm() < size / 2.0 {
+                            r.level = dest.clone();
+                        }
+                    }
+                }
+                if let Some(l) = self.lifts.get_mut(&name) {
+                    l.0 = dest.clone();
+                }
+            }
+            let (floor, ..) = self.lifts[&name].clone();
+            if (t * 100.0).round() as i64 % 50 == 0 {
+                let arrived = !dest.is_empty() && t >= until && floor == dest;
+                self.publish(
+                    Topic::LiftStates,
+                    Msg::LiftState(LiftState {
+                        lift_name: name.clone(),
+                        current_floor: floor.clone(),
+                        destination_floor: dest.clone(),
+                        door_state: if arrived {
+                            lift_state::DOOR_OPEN
+                        } else {
+                            lift_state::DOOR_CLOSED
+                        },
+                        session_id: session.clone(),
+                        ..LiftState::default()
+                    }),
+                );
+            }
+        }
+        let tick = (t * 100.0).round() as i64;
+        if tick % 100 == 0 {
+            let doors: Vec<String> = self.door_sessions.keys().cloned().collect();
+            for d in doors {
+                let open = open_doors.contains(&d);
+                if open {
+                    let users = self.door_sessions.get(&d).map_or(0, |s| s.len());
+                    self.door_open_log.push((t, d.clone(), users));
+                }
+                self.publish(
+                    Topic::DoorStates,
+                    Msg::DoorState(DoorState {
+                        door_time: Time::from_secs(t),
+                        door_name: d,
+                        current_mode: DoorMode {
+                            value: if open {
+                                door_mode::OPEN
+                            } else {
+                                door_mode::CLOSED
+                            },
+                        },
+                    }),
+                );
+            }
+        }
+        if tick % 50 == 0 {
+            let states: Vec<RobotState> = self
+                .robots
+                .iter_mut()
+                .map(|r| {
+                    r.seq += 1;
+                    RobotState {
+                        name: r.name.clone(),
+                        seq: r.seq,
+                        task_id: r.task_id.clone(),
+                        battery_percent: 100.0,
+                        mode: RobotMode {
+                            mode: if r.path.is_empty() {
+                                robot_mode::IDLE
+                            } else {
+                                robot_mode::MOVING
+                            },
+                            ..RobotMode::default()
+                        },
+                        location: Location {
+                            x: r.pos.x,
+                            y: r.pos.y,
+                            yaw: r.yaw,
+                            level_name: r.level.clone(),
+                            ..Location::default()
+                        },
+                        path: r.path.clone(),
+                        ..RobotState::default()
+                    }
+                })
+                .collect();
+            for s in states {
+                self.publish(Topic::RobotState, Msg::RobotState(s));
+            }
+        }
+        for (i, a) in self.robots.iter().enumerate() {
+            for c in &self.robots[i + 1..] {
+                if a.level == c.level {
+                    let gap = a.pos.minus(c.pos).norm() - (a.footprint + c.footprint);
+                    self.min_gap = self.min_gap.min(gap);
+                }
+            }
+        }
+        let _ = &self.levels;
+        out.append(&mut self.pending);
+    }
+}
+
+/// Runs `s` on `b` against the mock for `seconds`; returns the task events and the mock.
+fn run(b: &Building, s: &Scenario, seconds: f64) -> (Vec<TaskEvent>, Mock, Fleets) {
+    let placement = Fleets::place(b, s).expect("placement");
+    let mut fleets = Fleets::new(b, s, &placement).expect("fleets");
+    let mut mock = Mock::new(b, &placement);
+    let mut inbox = Vec::new();
+    let mut out = Vec::new();
+    let mut events = Vec::new();
+    let steps = (seconds / s.step).round() as u64;
+    for _ in 0..steps {
+        let t = mock.t;
+        out.clear();
+        fleets.update(t, &inbox, &mut out);
+        inbox.clear();
+        for (topic, msg) in out.drain(..) {
+            if let Msg::TaskEvent(e) = &msg {
+                events.push(e.clone());
+            } else {
+                mock.deliver(topic, msg);
+            }
+        }
+        mock.step(s.step, &mut inbox);
+        if fleets.all_done(mock.t) && !events.is_empty() {
+            break;
+        }
+    }
+    (events, mock, fleets)
+}
+
+fn ended(events: &[TaskEvent]) -> Vec<(String, String)> {
+    events
+        .iter()
+        .filter(|e| e.event == "completed" || e.event == "failed")
+        .map(|e| (e.task_id.clone(), e.event.clone()))
+        .collect()
+}
+
+#[test]
+fn delivery_through_doors_and_lift_completes() {
+    let b = clinic();
+    let mut s = scenario(
+        vec![fleet("tiny", 1, SpawnSpec::MapSpawnPoints)],
+        vec![task(
+            1.0,
+            TaskKind::Delivery {
+                pickup: "pharmacy".into(),
+                dropoff: "ward_a".into(),
+                dispenser: None,
+                ingestor: None,
+            },
+        )],
+    );
+    s.workcells.push(WorkcellSpec {
+        name: "ward_a_ingestor".into(),
+        kind: crate::scenario::WorkcellKind::Ingestor,
+        waypoint: "ward_a".into(),
+        span: Span::UNKNOWN,
+    });
+    let (events, mock, _) = run(&b, &s, 600.0);
+    for e in &events {
+        eprintln!(
+            "{:.1} {} {} {} {}",
+            e.time.as_secs(),
+            e.task_id,
+            e.event,
+            e.robot,
+            e.detail
+        );
+    }
+    eprintln!("{:?}", mock.door_open_log);
+    assert_eq!(
+        ended(&events),
+        vec![("delivery_0".to_string(), "completed".to_string())],
+        "{events:#?}"
+    );
+    let r = &mock.robots[0];
+    assert_eq!(r.level, "L2");
+    let nav = Nav::build(&b, &[0]);
+    let goal = nav.vertices[vertex(&nav, "ward_a")].pos;
+    assert!(r.pos.minus(goal).norm() < 1e-6);
+    // Every door that was opened was opened for the robot, and all are closed again.
+    assert!(mock
+        .door_open_log
+        .iter()
+        .any(|(_, d, _)| d == "L1_lobby_door"));
+    assert!(mock.door_sessions.values().all(|s| s.is_empty()));
+    // The lift session was ended.
+    assert!(mock.lifts.values().all(|l| l.1.is_empty()));
+}
+
+#[test]
+fn crossing_robots_keep_apart() {
+    let b = cross();
+    let s = scenario(
+        vec![
+            fleet("a", 1, SpawnSpec::Waypoints(vec!["w".into()])),
+            fleet("b", 1, SpawnSpec::Waypoints(vec!["s".into()])),
+        ],
+        vec![
+            TaskSpec {
+                fleet: Some("a".into()),
+                ..task(0.5, TaskKind::GoToPlace { place: "e".into() })
+            },
+            TaskSpec {
+                fleet: Some("b".into()),
+                ..task(0.5, TaskKind::GoToPlace { place: "n".into() })
+            },
+        ],
+    );
+    let (events, mock, _) = run(&b, &s, 200.0);
+    assert_eq!(ended(&events).len(), 2, "{events:#?}");
+    assert!(ended(&events).iter().all(|e| e.1 == "completed"));
+    // Without reservations the two would meet at (5, 5) at the same time (same speed,
+    // same distance); with them they never touch.
+    assert!(mock.min_gap > 0.0, "min gap {}", mock.min_gap);
+}
+
+#[test]
+fn head_on_swap_resolves_deadlock() {
+    let b = cross();
+    // a: w → e, b: e → w on the same lane: one must wait or step aside into a parking spot.
+    let s = scenario(
+        vec![
+            fleet("a", 1, SpawnSpec::Waypoints(vec!["w".into()])),
+            fleet("b", 1, SpawnSpec::Waypoints(vec!["e".into()])),
+        ],
+        vec![
+            TaskSpec {
+                fleet: Some("a".into()),
+                ..task(0.5, TaskKind::GoToPlace { place: "e".into() })
+            },
+            TaskSpec {
+                fleet: Some("b".into()),
+                ..task(0.5, TaskKind::GoToPlace { place: "w".into() })
+            },
+        ],
+    );
+    let (events, mock, _) = run(&b, &s, 400.0);
+    for e in &events {
+        eprintln!(
+            "{:.1} {} {} {} {}",
+            e.time.as_secs(),
+            e.task_id,
+            e.event,
+            e.robot,
+            e.detail
+        );
+    }
+    let done = ended(&events);
+    assert_eq!(done.len(), 2, "{events:#?}");
+    assert!(done.iter().all(|e| e.1 == "completed"), "{events:#?}");
+    let deadlocks: Vec<&TaskEvent> = events.iter().filter(|e| e.event == "deadlock").collect();
+    assert_eq!(deadlocks.len(), 1, "{events:#?}");
+    assert_eq!(deadlocks[0].detail, "a_0,b_0: b_0 backs off to park_e");
+    assert!(mock.min_gap > 0.0, "min gap {}", mock.min_gap);
+}
+
+#[test]
+fn generator_ids_and_idle_update_is_cheap() {
+    let b = clinic();
+    let mut s = scenario(vec![fleet("tiny", 1, SpawnSpec::MapSpawnPoints)], vec![]);
+    s.duration = 100.0;
+    s.generators.push(GeneratorSpec {
+        every: 30.0,
+        start: 0.0,
+        end: Some(70.0),
+        kind: TaskKind::Loop {
+            start: "lobby".into(),
+            finish: "tinyRobot1_charger".into(),
+            loops: 1,
+        },
+        fleet: None,
+        span: Span::UNKNOWN,
+    });
+    let (events, _, fleets) = run(&b, &s, 300.0);
+    let queued: Vec<&str> = events
+        .iter()
+        .filter(|e| e.event == "queued")
+        .map(|e| e.task_id.as_str())
+        .collect();
+    // Requests at 0, 30, 60 (70 excluded: 90 > 70).
+    assert_eq!(queued, ["loop_0", "loop_1", "loop_2"]);
+    assert!(fleets.all_done(300.0));
+    assert_eq!(
+        ended(&events).iter().filter(|e| e.1 == "completed").count(),
+        3,
+        "{events:#?}"
+    );
+}

@@ -1,0 +1,493 @@
+//! End-to-end runs of the fleet layer against the real World (slotcars, doors, lifts,
+//! supervisors, workcells), checking ground truth every step.
+
+use super::*;
+use crate::msgs::{Msg, Published, TaskEvent};
+use crate::params::RobotParams;
+use crate::scenario::{FleetSpec, SimOptions, TaskSpec, WorkcellSpec};
+use crate::world::{World, WorldSetup};
+use mapc_ir::{Building, Span};
+
+fn load(name: &str, text: Option<&str>) -> Building {
+    let owned;
+    let text = match text {
+        Some(t) => t,
+        None => {
+            let path = format!(
+                "{}/../fixtures/{name}.building.yaml",
+                env!("CARGO_MANIFEST_DIR")
+            );
+            owned = std::fs::read_to_string(path).expect("fixture");
+            &owned
+        }
+    };
+    let parsed = mapc_frontend::parse_str(name, text);
+    assert!(!parsed.has_errors(), "{:?}", parsed.diagnostics);
+    parsed.building.expect("map parses")
+}
+
+fn fleet(name: &str, count: usize, spawn: SpawnSpec) -> FleetSpec {
+    FleetSpec {
+        name: name.into(),
+        graph: 0,
+        robot: RobotParams::preset("TinyRobot").expect("preset"),
+        count,
+        spawn,
+        recharge_threshold: 0.1,
+        recharge_soc: 0.9,
+        task_kinds: Vec::new(),
+        span: Span::UNKNOWN,
+    }
+}
+
+fn scenario(fleets: Vec<FleetSpec>, tasks: Vec<TaskSpec>) -> Scenario {
+    Scenario {
+        map: None,
+        seed: 7,
+        duration: 1200.0,
+        step: 0.01,
+        fleets,
+        workcells: Vec::new(),
+        tasks,
+        generators: Vec::new(),
+        options: SimOptions::default(),
+    }
+}
+
+fn task(at: f64, fleet: Option<&str>, kind: TaskKind) -> TaskSpec {
+    TaskSpec {
+        at,
+        kind,
+        fleet: fleet.map(str::to_string),
+        span: Span::UNKNOWN,
+    }
+}
+
+struct Run {
+    events: Vec<TaskEvent>,
+    published: Vec<Published>,
+    /// Smallest (centre distance − footprint sum) between robots on one floor.
+    min_gap: f64,
+    world: World,
+}
+
+fn run(b: &Building, s: &Scenario, seconds: f64) -> Run {
+    run_checked(b, s, seconds, &mut |_, _| {})
+}
+
+thread_local! {
+    /// Keep running after every task ended (to watch charging).
+    static RUN_TO_END: std::cell::Cell<bool> = const { std::cell::Cell::new(false) };
+}
+
+/// Like `run`, calling `check(world, published this step)` after every step.
+fn run_checked(
+    b: &Building,
+    s: &Scenario,
+    seconds: f64,
+    check: &mut dyn FnMut(&World, &[Published]),
+) -> Run {
+    let placement = Fleets::place(b, s).expect("placement");
+    let mut fleets = Fleets::new(b, s, &placement).expect("fleets");
+    let setup = WorldSetup {
+        dt: s.step,
+        seed: s.seed,
+        robots: placement.robots.clone(),
+        workcells: placement.workcells.clone(),
+        lifts_start_at_initial_floor: true,
+    };
+    let mut world = World::new(b, &setup);
+    let mut inbox = Vec::new();
+    let mut out = Vec::new();
+    let mut events = Vec::new();
+    let mut published = Vec::new();
+    let mut min_gap = f64::INFINITY;
+    let steps = (seconds / s.step).round() as u64;
+    for _ in 0..steps {
+        let t = world.time();
+        out.clear();
+        fleets.update(t, &inbox, &mut out);
+        inbox.clear();
+        for (topic, msg) in out.drain(..) {
+            if let Msg::TaskEvent(e) = &msg {
+                events.push(e.clone());
+            } else {
+                published.push(Published {
+                    t,
+                    topic,
+                    msg: msg.clone(),
+                });
+                world.deliver(topic, msg);
+            }
+        }
+        world.step(&mut inbox);
+        check(&world, &inbox);
+        published.extend(inbox.iter().cloned());
+        let robots = world.robots();
+        for (i, a) in robots.iter().enumerate() {
+            for c in &robots[i + 1..] {
+                if (a.z - c.z).abs() < 0.5 {
+                    let gap = (a.x - c.x).hypot(a.y - c.y) - (a.footprint + c.footprint);
+                    min_gap = min_gap.min(gap);
+                }
+            }
+        }
+        if fleets.all_done(world.time()) && !events.is_empty() && !RUN_TO_END.with(|c| c.get()) {
+            break;
+        }
+    }
+    Run {
+        events,
+        published,
+        min_gap,
+        world,
+    }
+}
+
+fn ended(events: &[TaskEvent]) -> Vec<(String, String, String)> {
+    events
+        .iter()
+        .filter(|e| e.event == "completed" || e.event == "failed")
+        .map(|e| (e.task_id.clone(), e.event.clone(), e.detail.clone()))
+        .collect()
+}
+
+fn dump(events: &[TaskEvent]) -> String {
+    events
+        .iter()
+        .map(|e| {
+            format!(
+                "{:.1} {} {} {} {}",
+                e.time.as_secs(),
+                e.task_id,
+                e.event,
+                e.robot,
+                e.detail
+            )
+        })
+        .collect::<Vec<_>>()
+        .join("\n")
+}
+
+#[test]
+fn world_delivery_through_doors_and_lift_completes() {
+    let b = load("two_level_clinic", None);
+    let mut s = scenario(
+        vec![fleet("tiny", 1, SpawnSpec::MapSpawnPoints)],
+        vec![task(
+            1.0,
+            None,
+            TaskKind::Delivery {
+                pickup: "pharmacy".into(),
+                dropoff: "ward_a".into(),
+                dispenser: None,
+                ingestor: None,
+            },
+        )],
+    );
+    s.workcells.push(WorkcellSpec {
+        name: "ward_a_ingestor".into(),
+        kind: crate::scenario::WorkcellKind::Ingestor,
+        waypoint: "ward_a".into(),
+        span: Span::UNKNOWN,
+    });
+    let r = run(&b, &s, 1200.0);
+    eprintln!("{}\nt={}", dump(&r.events), r.world.time());
+    assert_eq!(
+        ended(&r.events),
+        vec![("delivery_0".into(), "completed".into(), String::new())],
+        "{}",
+        dump(&r.events)
+    );
+    // The robot ends at ward_a on L2 (elevation 4 m).
+    let truth = r.world.robots()[0];
+    let ward_a = b
+        .vertices
+        .iter()
+        .find(|(_, v)| v.name == "ward_a")
+        .map(|(_, v)| v.pos)
+        .expect("ward_a");
+    assert!(
+        (truth.x - ward_a.x).hypot(truth.y - ward_a.y) < 0.1,
+        "{truth:?}"
+    );
+    assert!((truth.z - 4.0).abs() < 0.05, "{truth:?}");
+    // The lift was released: the last adapter lift request is END_SESSION.
+    let last_lift = r.published.iter().rev().find_map(|p| match &p.msg {
+        Msg::LiftRequest(l) if p.topic == Topic::AdapterLiftRequests => Some(l.request_type),
+        _ => None,
+    });
+    assert_eq!(last_lift, Some(lift_request::END_SESSION));
+}
+
+/// Two lanes crossing in an X (w→e and s→n), parking spots off the crossing.
+const CROSS: &str = r#"
+coordinate_system: cartesian_meters
+name: cross
+levels:
+  L1:
+    elevation: 0
+    vertices:
+      - [0, 5, 0, w]
+      - [10, 5, 0, e]
+      - [5, 0, 0, s]
+      - [5, 10, 0, n]
+      - [0, 8, 0, park_w, {is_parking_spot: [4, true]}]
+      - [8, 0, 0, park_s, {is_parking_spot: [4, true]}]
+    lanes:
+      - [0, 1, {bidirectional: [4, true], graph_idx: [2, 0]}]
+      - [2, 3, {bidirectional: [4, true], graph_idx: [2, 0]}]
+      - [0, 4, {bidirectional: [4, true], graph_idx: [2, 0]}]
+      - [2, 5, {bidirectional: [4, true], graph_idx: [2, 0]}]
+"#;
+
+#[test]
+fn world_crossing_robots_never_touch() {
+    let b = load("cross", Some(CROSS));
+    let s = scenario(
+        vec![
+            fleet("a", 1, SpawnSpec::Waypoints(vec!["w".into()])),
+            fleet("b", 1, SpawnSpec::Waypoints(vec!["s".into()])),
+        ],
+        vec![
+            task(0.5, Some("a"), TaskKind::GoToPlace { place: "e".into() }),
+            task(0.5, Some("b"), TaskKind::GoToPlace { place: "n".into() }),
+        ],
+    );
+    let r = run(&b, &s, 300.0);
+    let done = ended(&r.events);
+    assert_eq!(done.len(), 2, "{}", dump(&r.events));
+    assert!(
+        done.iter().all(|e| e.1 == "completed"),
+        "{}",
+        dump(&r.events)
+    );
+    // Same speed, same distance to the crossing: unmanaged they would collide there.
+    assert!(r.min_gap > 0.0, "min gap {}", r.min_gap);
+}
+
+/// A 3 m wide door at x = 5 crossed by two parallel lanes 1.2 m apart.
+const WIDE_DOOR: &str = r#"
+coordinate_system: cartesian_meters
+name: wide_door
+levels:
+  L1:
+    elevation: 0
+    vertices:
+      - [0, 4.4, 0, a0]
+      - [10, 4.4, 0, a1]
+      - [0, 5.6, 0, b0]
+      - [16, 5.6, 0, b1]
+      - [5, 3.5, 0, d0]
+      - [5, 6.5, 0, d1]
+    lanes:
+      - [0, 1, {bidirectional: [4, true], graph_idx: [2, 0]}]
+      - [2, 3, {bidirectional: [4, true], graph_idx: [2, 0]}]
+    doors:
+      - [4, 5, {motion_axis: [1, start], motion_degrees: [3, 90], motion_direction: [2, 1], name: [1, wide], plugin: [1, normal], right_left_ratio: [3, 1], type: [1, double_sliding]}]
+"#;
+
+#[test]
+fn world_door_stays_open_until_both_robots_passed() {
+    let b = load("wide_door", Some(WIDE_DOOR));
+    let s = scenario(
+        vec![
+            fleet("a", 1, SpawnSpec::Waypoints(vec!["a0".into()])),
+            fleet("b", 1, SpawnSpec::Waypoints(vec!["b0".into()])),
+        ],
+        vec![
+            task(0.5, Some("a"), TaskKind::GoToPlace { place: "a1".into() }),
+            task(0.5, Some("b"), TaskKind::GoToPlace { place: "b1".into() }),
+        ],
+    );
+    let mut door_mode = door_mode::CLOSED;
+    let mut violations = Vec::new();
+    let mut both_requested = false;
+    let mut sessions_max = 0;
+    let r = run_checked(&b, &s, 300.0, &mut |w, published| {
+        for p in published {
+            match &p.msg {
+                Msg::DoorState(d) if d.door_name == "wide" => door_mode = d.current_mode.value,
+                Msg::DoorHeartbeat(h) => {
+                    for ds in &h.all_sessions {
+                        sessions_max = sessions_max.max(ds.sessions.len());
+                    }
+                }
+                _ => {}
+            }
+        }
+        both_requested |= sessions_max == 2;
+        for (i, rb) in w.robots().iter().enumerate() {
+            // In the doorway (centre within a footprint of the door line).
+            if (rb.x - 5.0).abs() < rb.footprint && door_mode != door_mode::OPEN {
+                violations.push((w.time(), i, door_mode));
+            }
+        }
+    });
+    let done = ended(&r.events);
+    assert_eq!(done.len(), 2, "{}", dump(&r.events));
+    assert!(
+        done.iter().all(|e| e.1 == "completed"),
+        "{}",
+        dump(&r.events)
+    );
+    assert!(
+        both_requested,
+        "the two robots never held the door together"
+    );
+    assert!(
+        violations.is_empty(),
+        "robot in the doorway while the door was not open: {violations:?}"
+    );
+}
+
+#[test]
+fn world_two_robots_share_the_lift() {
+    let b = load("two_level_clinic", None);
+    let s = scenario(
+        vec![fleet(
+            "tiny",
+            2,
+            SpawnSpec::Waypoints(vec!["tinyRobot1_charger".into(), "pharmacy".into()]),
+        )],
+        vec![
+            task(
+                0.5,
+                None,
+                TaskKind::GoToPlace {
+                    place: "ward_a".into(),
+                },
+            ),
+            task(
+                0.5,
+                None,
+                TaskKind::GoToPlace {
+                    place: "ward_b".into(),
+                },
+            ),
+        ],
+    );
+    let r = run(&b, &s, 1200.0);
+    let done = ended(&r.events);
+    assert_eq!(done.len(), 2, "{}", dump(&r.events));
+    assert!(
+        done.iter().all(|e| e.1 == "completed"),
+        "{}",
+        dump(&r.events)
+    );
+    assert!(r.min_gap > 0.0, "min gap {}", r.min_gap);
+    // Both rode: two AGV sessions, one after the other (never two owners at once).
+    let mut owners: Vec<String> = r
+        .published
+        .iter()
+        .filter_map(|p| match &p.msg {
+            Msg::LiftState(l) if !l.session_id.is_empty() => Some(l.session_id.clone()),
+            _ => None,
+        })
+        .collect();
+    owners.dedup();
+    assert_eq!(owners.len(), 2, "{owners:?}");
+    for rb in r.world.robots() {
+        assert!((rb.z - 4.0).abs() < 0.05, "{rb:?}");
+    }
+}
+
+#[test]
+fn world_idle_robot_in_the_way_moves_aside() {
+    let b = load("two_level_clinic", None);
+    // `b_0` idles at the lobby, on the only way from the charger to the pharmacy.
+    let s = scenario(
+        vec![
+            fleet(
+                "a",
+                1,
+                SpawnSpec::Waypoints(vec!["tinyRobot1_charger".into()]),
+            ),
+            fleet("b", 1, SpawnSpec::Waypoints(vec!["lobby".into()])),
+        ],
+        vec![task(
+            0.5,
+            Some("a"),
+            TaskKind::GoToPlace {
+                place: "pharmacy".into(),
+            },
+        )],
+    );
+    let lobby = b
+        .vertices
+        .iter()
+        .find(|(_, v)| v.name == "lobby")
+        .map(|(_, v)| v.pos)
+        .expect("lobby");
+    let r = run(&b, &s, 1200.0);
+    let done = ended(&r.events);
+    assert_eq!(done.len(), 1, "{}", dump(&r.events));
+    assert_eq!(done[0].1, "completed", "{}", dump(&r.events));
+    assert!(r.min_gap > 0.0, "min gap {}", r.min_gap);
+    let idle = r.world.robots()[1];
+    assert!(
+        (idle.x - lobby.x).hypot(idle.y - lobby.y) > 1.0,
+        "b_0 did not move: {idle:?}"
+    );
+}
+
+#[test]
+fn world_low_battery_goes_charging() {
+    let b = load("two_level_clinic", None);
+    let mut f = fleet("tiny", 1, SpawnSpec::MapSpawnPoints);
+    // Charge as soon as the reported battery drops below 100 %, back to 100 %.
+    f.recharge_threshold = 0.999;
+    f.recharge_soc = 1.0;
+    let s = scenario(
+        vec![f],
+        vec![task(
+            0.5,
+            None,
+            TaskKind::Loop {
+                start: "corridor".into(),
+                finish: "lobby".into(),
+                loops: 2,
+            },
+        )],
+    );
+    RUN_TO_END.with(|c| c.set(true));
+    let r = run(&b, &s, 1500.0);
+    RUN_TO_END.with(|c| c.set(false));
+    assert_eq!(ended(&r.events)[0].1, "completed", "{}", dump(&r.events));
+    // Back on the charger, charged again (battery_percent = ceil(100·soc)).
+    let charger = b
+        .vertices
+        .iter()
+        .find(|(_, v)| v.roles.is_charger)
+        .map(|(_, v)| v.pos)
+        .expect("charger");
+    let truth = r.world.robots()[0];
+    assert!(
+        (truth.x - charger.x).hypot(truth.y - charger.y) < 0.05,
+        "{truth:?}"
+    );
+    let went = r.published.iter().any(|p| match &p.msg {
+        Msg::PathRequest(pr) => pr
+            .path
+            .last()
+            .is_some_and(|l| (l.x - charger.x).hypot(l.y - charger.y) < 1e-9),
+        _ => false,
+    });
+    assert!(went);
+    // It reported CHARGING after the task, and left only when back at 100 %.
+    let done_t = r
+        .events
+        .iter()
+        .find(|e| e.event == "completed")
+        .map(|e| e.time.as_secs())
+        .expect("done");
+    let charging = r.published.iter().any(|p| {
+        p.t > done_t
+            && matches!(&p.msg, Msg::RobotState(rs) if rs.mode.mode == crate::msgs::robot_mode::CHARGING)
+    });
+    assert!(charging);
+    let low = r.published.iter().any(|p| {
+        p.t > done_t && matches!(&p.msg, Msg::RobotState(rs) if rs.battery_percent < 99.9)
+    });
+    assert!(low, "battery never dropped below the threshold");
+}

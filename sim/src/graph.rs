@@ -1,0 +1,376 @@
+//! Navigation graphs of the fleets, derived from the IR the way backends/src/nav.rs derives
+//! the nav graph RMF fleet adapters read (lanes of the fleet's `graph_idx`, both directions
+//! for bidirectional lanes, doors crossed by a lane, lift cabins), plus lift edges between
+//! the cabin vertices of one lift on different levels. One vertex table serves all fleets so
+//! that traffic reservations of robots of different fleets share one resource space.
+
+use mapc_ir::{Building, Handle, Lane, Level, Orientation, Vec2, Vertex, WaypointRoles};
+use std::cmp::Ordering;
+use std::collections::{BTreeMap, BinaryHeap};
+
+/// Fixed time charged for a door on a lane (open + close wait), seconds.
+pub const DOOR_COST: f64 = 8.0;
+/// Fixed time charged for a lift ride (call, doors), plus the travel at LIFT_SPEED.
+pub const LIFT_COST: f64 = 20.0;
+pub const LIFT_SPEED: f64 = 0.5;
+/// Time lost stopping at a waypoint (the slotcar stops at every waypoint), seconds.
+pub const STOP_COST: f64 = 1.0;
+
+#[derive(Debug, Clone)]
+pub struct NavVertex {
+    pub name: String,
+    pub pos: Vec2,
+    pub level: Handle<Level>,
+    pub level_name: String,
+    pub elevation: f64,
+    /// Index into `Nav::lifts` when the vertex lies in a lift cabin.
+    pub lift: Option<usize>,
+    pub roles: WaypointRoles,
+}
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum EdgeKind {
+    Lane,
+    /// A ride in lift `Nav::lifts[i]` between two cabin vertices.
+    Lift(usize),
+}
+
+#[derive(Debug, Clone)]
+pub struct NavEdge {
+    /// Slot in `Nav::graphs`.
+    pub graph: usize,
+    pub from: usize,
+    pub to: usize,
+    pub kind: EdgeKind,
+    /// IR lane index (for lane resources).
+    pub lane: Option<usize>,
+    pub length: f64,
+    pub speed_limit: Option<f64>,
+    /// Index into `Nav::doors` of the door the lane crosses.
+    pub door: Option<usize>,
+    pub mutex: Option<String>,
+    pub orientation: Orientation,
+}
+
+#[derive(Debug, Clone)]
+pub struct NavLift {
+    pub name: String,
+}
+
+#[derive(Debug, Clone)]
+pub struct NavDoor {
+    pub name: String,
+    /// Doors with `plugin: none` have no controller: nothing to request.
+    pub controlled: bool,
+}
+
+/// All fleets' graphs over one vertex table.
+#[derive(Debug, Clone, Default)]
+pub struct Nav {
+    pub vertices: Vec<NavVertex>,
+    pub edges: Vec<NavEdge>,
+    pub lifts: Vec<NavLift>,
+    pub doors: Vec<NavDoor>,
+    /// Graph index (`graph_idx`) of each slot.
+    pub graphs: Vec<i64>,
+    /// Per graph slot, per vertex: outgoing edges (in edge order).
+    pub out: Vec<Vec<Vec<usize>>>,
+    /// Per graph slot: vertices that the graph uses, ascending.
+    pub members: Vec<Vec<usize>>,
+    /// Number of IR lanes (lane resources follow the vertices).
+    pub ir_lanes: usize,
+}
+
+impl Nav {
+    /// Builds the graphs `graphs` (graph indices) of `b`.
+    pub fn build(b: &Building, graphs: &[i64]) -> Nav {
+        let mut nav = Nav {
+            graphs: graphs.to_vec(),
+            ir_lanes: b.lanes.len(),
+            ..Nav::default()
+        };
+        for (_, l) in b.lifts.iter() {
+            nav.lifts.push(NavLift {
+                name: l.name.clone(),
+            });
+        }
+        for (_, d) in b.doors.iter() {
+            nav.doors.push(NavDoor {
+                name: d.name.clone(),
+                controlled: d.plugin,
+            });
+        }
+        let mut index: BTreeMap<Handle<Vertex>, usize> = BTreeMap::new();
+        let mut add_vertex = |nav: &mut Nav, vh: Handle<Vertex>| -> usize {
+            *index.entry(vh).or_insert_with(|| {
+                let v = &b.vertices[vh];
+                let level = &b.levels[v.level];
+                let lift = b
+                    .lifts_on_level(v.level)
+                    .find(|&lh| {
+                        let l = &b.lifts[lh];
+                        l.shaft_contains(v.pos) || v.roles.lift_cabin.as_deref() == Some(&l.name)
+                    })
+                    .map(|lh| lh.index());
+                nav.vertices.push(NavVertex {
+                    name: v.name.clone(),
+                    pos: v.pos,
+                    level: v.level,
+                    level_name: level.name.clone(),
+                    elevation: level.elevation,
+                    lift,
+                    roles: v.roles.clone(),
+                });
+                nav.vertices.len() - 1
+            })
+        };
+        let mut per_graph_lanes: Vec<Vec<(Handle<Lane>, &Lane)>> = vec![Vec::new(); graphs.len()];
+        for (lh, lane) in b.lanes.iter() {
+            if let Some(slot) = graphs.iter().position(|&g| g == lane.graph) {
+                per_graph_lanes[slot].push((lh, lane));
+            }
+        }
+        for (slot, lanes) in per_graph_lanes.iter().enumerate() {
+            for &(lh, lane) in lanes {
+                let s = add_vertex(&mut nav, lane.start);
+                let e = add_vertex(&mut nav, lane.end);
+                let dirs: &[bool] = if lane.bidirectional {
+                    &[false, true]
+                } else {
+                    &[false]
+                };
+                for &rev in dirs {
+                    let (from, to) = if rev { (e, s) } else { (s, e) };
+                    let (a, z) = (nav.vertices[from].pos, nav.vertices[to].pos);
+                    let door = b.crossed_door(lane.level, a, z).map(|d| d.index());
+                    nav.edges.push(NavEdge {
+                        graph: slot,
+                        from,
+                        to,
+                        kind: EdgeKind::Lane,
+                        lane: Some(lh.index()),
+                        length: z.minus(a).norm(),
+                        speed_limit: lane.speed_limit,
+                        door,
+                        mutex: lane.mutex.clone(),
+                        orientation: if rev {
+                            lane.orientation.reversed()
+                        } else {
+                            lane.orientation.clone()
+                        },
+                    });
+                }
+            }
+        }
+        nav.members = vec![Vec::new(); graphs.len()];
+        for e in &nav.edges {
+            nav.members[e.graph].push(e.from);
+            nav.members[e.graph].push(e.to);
+        }
+        for m in &mut nav.members {
+            m.sort_unstable();
+            m.dedup();
+        }
+        // Lift rides: every pair of cabin vertices of one lift on different levels.
+        for slot in 0..graphs.len() {
+            let cabins: Vec<usize> = nav.members[slot]
+                .iter()
+                .copied()
+                .filter(|&v| nav.vertices[v].lift.is_some())
+                .collect();
+            for &a in &cabins {
+                for &z in &cabins {
+                    let (va, vz) = (&nav.vertices[a], &nav.vertices[z]);
+                    if a == z || va.lift != vz.lift || va.level == vz.level {
+                        continue;
+                    }
+                    let Some(l) = va.lift else { continue };
+                    nav.edges.push(NavEdge {
+                        graph: slot,
+                        from: a,
+                        to: z,
+                        kind: EdgeKind::Lift(l),
+                        lane: None,
+                        length: (vz.elevation - va.elevation).abs(),
+                        speed_limit: None,
+                        door: None,
+                        mutex: None,
+                        orientation: Orientation::Any,
+                    });
+                }
+            }
+        }
+        nav.out = vec![vec![Vec::new(); nav.vertices.len()]; graphs.len()];
+        for (i, e) in nav.edges.iter().enumerate() {
+            nav.out[e.graph][e.from].push(i);
+        }
+        nav
+    }
+
+    pub fn slot(&self, graph: i64) -> Option<usize> {
+        self.graphs.iter().position(|&g| g == graph)
+    }
+
+    /// The vertex called `name` in graph slot `slot` (first in vertex order).
+    pub fn find(&self, slot: usize, name: &str) -> Option<usize> {
+        if name.is_empty() {
+            return None;
+        }
+        self.members
+            .get(slot)?
+            .iter()
+            .copied()
+            .find(|&v| self.vertices[v].name == name)
+    }
+
+    /// Travel time estimate of an edge at nominal speed `speed`.
+    pub fn edge_cost(&self, e: usize, speed: f64) -> f64 {
+        let edge = &self.edges[e];
+        match edge.kind {
+            EdgeKind::Lane => {
+                let v = edge.speed_limit.map_or(speed, |l| l.min(speed)).max(0.05);
+                let door = if edge.door.is_some_and(|d| self.doors[d].controlled) {
+                    DOOR_COST
+                } else {
+                    0.0
+                };
+                edge.length / v + STOP_COST + door
+            }
+            EdgeKind::Lift(_) => LIFT_COST + edge.length / LIFT_SPEED,
+        }
+    }
+
+    /// Shortest-time route from `from` to `to` on graph slot `slot`: (time, edges).
+    /// Dijkstra with ties broken by vertex index, so routes are deterministic.
+    pub fn plan(
+        &self,
+        slot: usize,
+        from: usize,
+        to: usize,
+        speed: f64,
+    ) -> Option<(f64, Vec<usize>)> {
+        self.plan_avoiding(slot, from, to, speed, &[])
+    }
+
+    /// Like [`Nav::plan`], never entering the vertices in `avoid` (except `to`).
+    pub fn plan_avoiding(
+        &self,
+        slot: usize,
+        from: usize,
+        to: usize,
+        speed: f64,
+        avoid: &[usize],
+    ) -> Option<(f64, Vec<usize>)> {
+        let out = self.out.get(slot)?;
+        let n = self.vertices.len();
+        if from >= n || to >= n {
+            return None;
+        }
+        if from == to {
+            return Some((0.0, Vec::new()));
+        }
+        let mut dist = vec![f64::INFINITY; n];
+        let mut prev: Vec<Option<usize>> = vec![None; n];
+        let mut heap = BinaryHeap::new();
+        dist[from] = 0.0;
+        heap.push(QItem(0.0, from));
+        while let Some(QItem(d, v)) = heap.pop() {
+            if d > dist[v] {
+                continue;
+            }
+            if v == to {
+                break;
+            }
+            for &e in &out[v] {
+                let w = self.edges[e].to;
+                if w != to && avoid.contains(&w) {
+                    continue;
+                }
+                let nd = d + self.edge_cost(e, speed);
+                if nd < dist[w] {
+                    dist[w] = nd;
+                    prev[w] = Some(e);
+                    heap.push(QItem(nd, w));
+                }
+            }
+        }
+        if !dist[to].is_finite() {
+            return None;
+        }
+        let mut edges = Vec::new();
+        let mut v = to;
+        while v != from {
+            let e = prev[v]?;
+            edges.push(e);
+            v = self.edges[e].from;
+        }
+        edges.reverse();
+        Some((dist[to], edges))
+    }
+
+    /// Travel times from `from` to every vertex of slot `slot` (Dijkstra).
+    pub fn times_from(&self, slot: usize, from: usize, speed: f64) -> Vec<f64> {
+        let n = self.vertices.len();
+        let mut dist = vec![f64::INFINITY; n];
+        let Some(out) = self.out.get(slot) else {
+            return dist;
+        };
+        if from >= n {
+            return dist;
+        }
+        let mut heap = BinaryHeap::new();
+        dist[from] = 0.0;
+        heap.push(QItem(0.0, from));
+        while let Some(QItem(d, v)) = heap.pop() {
+            if d > dist[v] {
+                continue;
+            }
+            for &e in &out[v] {
+                let w = self.edges[e].to;
+                let nd = d + self.edge_cost(e, speed);
+                if nd < dist[w] {
+                    dist[w] = nd;
+                    heap.push(QItem(nd, w));
+                }
+            }
+        }
+        dist
+    }
+}
+
+/// Min-heap item: smaller time first, then smaller vertex index.
+#[derive(Debug, Clone, Copy, PartialEq)]
+struct QItem(f64, usize);
+impl Eq for QItem {}
+impl Ord for QItem {
+    fn cmp(&self, o: &Self) -> Ordering {
+        o.0.total_cmp(&self.0).then_with(|| o.1.cmp(&self.1))
+    }
+}
+impl PartialOrd for QItem {
+    fn partial_cmp(&self, o: &Self) -> Option<Ordering> {
+        Some(self.cmp(o))
+    }
+}
+
+/// Distance from `p` to segment `a→b`.
+pub fn point_segment(p: Vec2, a: Vec2, b: Vec2) -> f64 {
+    let ab = b.minus(a);
+    let l2 = ab.dot(ab);
+    if l2 <= 1e-18 {
+        return p.minus(a).norm();
+    }
+    let t = (p.minus(a).dot(ab) / l2).clamp(0.0, 1.0);
+    p.minus(a.plus(ab.scale(t))).norm()
+}
+
+/// Distance between segments `a→b` and `p→q` (0 when they cross).
+pub fn segment_segment(a: Vec2, b: Vec2, p: Vec2, q: Vec2) -> f64 {
+    if mapc_ir::segment_intersection(a, b, p, q).is_some() {
+        return 0.0;
+    }
+    point_segment(a, p, q)
+        .min(point_segment(b, p, q))
+        .min(point_segment(p, a, b))
+        .min(point_segment(q, a, b))
+}

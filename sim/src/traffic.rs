@@ -1,0 +1,248 @@
+//! Traffic reservations: a robot drives an edge only while it holds the edge's conflict set
+//! (all-or-nothing), and always holds the set of the vertex it stands on. Conflict sets are
+//! precomputed from geometry with the largest footprint and stop zone of all fleets, so one
+//! table serves every robot.
+
+use crate::graph::{point_segment, segment_segment, EdgeKind, Nav};
+use std::collections::BTreeMap;
+
+/// Clearance added to the footprint sum (m).
+pub const MARGIN: f64 = 0.25;
+
+/// Geometry that sizes the conflict sets (the largest over all fleets).
+#[derive(Debug, Clone, Copy)]
+pub struct Clearance {
+    pub footprint: f64,
+    pub stop_distance: f64,
+    pub stop_radius: f64,
+}
+
+pub type Res = u32;
+
+#[derive(Debug, Clone, Default)]
+pub struct Conflicts {
+    /// Per edge: sorted resources needed to drive it.
+    pub edge: Vec<Vec<Res>>,
+    /// Per vertex: sorted resources a robot standing there holds.
+    pub vertex: Vec<Vec<Res>>,
+    pub n_res: usize,
+}
+
+impl Conflicts {
+    pub fn build(nav: &Nav, c: Clearance) -> Conflicts {
+        let nv = nav.vertices.len();
+        let lane_base = nv;
+        let lift_base = lane_base + nav.ir_lanes;
+        let mut mutexes: BTreeMap<&str, usize> = BTreeMap::new();
+        for e in &nav.edges {
+            if let Some(m) = &e.mutex {
+                let n = mutexes.len();
+                mutexes.entry(m).or_insert(n);
+            }
+        }
+        for v in &nav.vertices {
+            if let Some(m) = &v.roles.mutex {
+                let n = mutexes.len();
+                mutexes.entry(m).or_insert(n);
+            }
+        }
+        let mutex_base = lift_base + nav.lifts.len();
+        let n_res = mutex_base + mutexes.len();
+        let body = 2.0 * c.footprint + MARGIN;
+        // Lanes closer than this interact (contact, or one robot's stop zone reaching the
+        // other's centre).
+        let lane_gap = body.max(c.stop_radius);
+        let same_level = |a: usize, b: usize| nav.vertices[a].level == nav.vertices[b].level;
+
+        let mut vertex = Vec::with_capacity(nv);
+        for (i, v) in nav.vertices.iter().enumerate() {
+            let mut set = vec![i as Res];
+            for (j, w) in nav.vertices.iter().enumerate() {
+                if j != i && same_level(i, j) && w.pos.minus(v.pos).norm() < body {
+                    set.push(j as Res);
+                }
+            }
+            if let Some(m) = v.roles.mutex.as_deref().and_then(|m| mutexes.get(m)) {
+                set.push((mutex_base + m) as Res);
+            }
+            // Standing in a cabin owns the lift: nobody else may call it meanwhile.
+            if let Some(l) = v.lift {
+                set.push((lift_base + l) as Res);
+            }
+            set.sort_unstable();
+            set.dedup();
+            vertex.push(set);
+        }
+
+        let mut edge = Vec::with_capacity(nav.edges.len());
+        for e in &nav.edges {
+            let mut set: Vec<Res> = vertex[e.to].clone();
+            set.push(e.from as Res);
+            match e.kind {
+                EdgeKind::Lift(l) => set.push((lift_base + l) as Res),
+                EdgeKind::Lane => {
+                    let (a, z) = (nav.vertices[e.from].pos, nav.vertices[e.to].pos);
+                    let d = z.minus(a);
+                    let len = d.norm();
+                    let h = if len > 1e-9 { d.scale(1.0 / len) } else { d };
+                    // Where the slotcar probes for obstacles while driving this lane.
+                    let (pa, pz) = (
+                        a.plus(h.scale(c.stop_distance)),
+                        z.plus(h.scale(c.stop_distance)),
+                    );
+                    for (j, w) in nav.vertices.iter().enumerate() {
+                        if !same_level(j, e.from) {
+                            continue;
+                        }
+                        if point_segment(w.pos, a, z) < body
+                            || point_segment(w.pos, pa, pz) < c.stop_radius + 0.05
+                        {
+                            set.push(j as Res);
+                        }
+                    }
+                    if let Some(lane) = e.lane {
+                        set.push((lane_base + lane) as Res);
+                    }
+                    for o in &nav.edges {
+                        let (Some(ol), EdgeKind::Lane) = (o.lane, o.kind) else {
+                            continue;
+                        };
+                        if !same_level(o.from, e.from) {
+                            continue;
+                        }
+                        let (p, q) = (nav.vertices[o.from].pos, nav.vertices[o.to].pos);
+                        if segment_segment(a, z, p, q) < lane_gap {
+                            set.push((lane_base + ol) as Res);
+                        }
+                    }
+                    if let Some(m) = e.mutex.as_deref().and_then(|m| mutexes.get(m)) {
+                        set.push((mutex_base + m) as Res);
+                    }
+                }
+            }
+            // A lift ride or a lane into a cabin needs the lift itself.
+            for v in [e.from, e.to] {
+                if let Some(l) = nav.vertices[v].lift {
+                    set.push((lift_base + l) as Res);
+                }
+            }
+            set.sort_unstable();
+            set.dedup();
+            edge.push(set);
+        }
+        Conflicts {
+            edge,
+            vertex,
+            n_res,
+        }
+    }
+}
+
+/// Who holds what. A resource normally has one holder; robots spawned close together may
+/// share their standing sets.
+#[derive(Debug, Clone, Default)]
+pub struct Reservations {
+    holders: Vec<Vec<u16>>,
+    /// Per robot: what it holds now (sorted).
+    held: Vec<Vec<Res>>,
+}
+
+impl Reservations {
+    pub fn new(n_res: usize, n_robots: usize) -> Reservations {
+        Reservations {
+            holders: vec![Vec::new(); n_res],
+            held: vec![Vec::new(); n_robots],
+        }
+    }
+
+    /// Robots other than `r` holding any of `set`, ascending, deduplicated.
+    pub fn blockers(&self, r: usize, set: &[Res]) -> Vec<usize> {
+        let mut b: Vec<usize> = set
+            .iter()
+            .filter_map(|&x| self.holders.get(x as usize))
+            .flatten()
+            .map(|&h| h as usize)
+            .filter(|&h| h != r)
+            .collect();
+        b.sort_unstable();
+        b.dedup();
+        b
+    }
+
+    pub fn is_free_for(&self, r: usize, set: &[Res]) -> bool {
+        set.iter().all(|&x| {
+            self.holders
+                .get(x as usize)
+                .is_none_or(|h| h.iter().all(|&o| o as usize == r))
+        })
+    }
+
+    /// Replaces what `r` holds with `set` (sorted, deduplicated), unconditionally.
+    pub fn set_held(&mut self, r: usize, mut set: Vec<Res>) {
+        set.sort_unstable();
+        set.dedup();
+        let Some(old) = self.held.get_mut(r) else {
+            return;
+        };
+        for &x in old.iter() {
+            if let Some(h) = self.holders.get_mut(x as usize) {
+                h.retain(|&o| o as usize != r);
+            }
+        }
+        for &x in &set {
+            if let Some(h) = self.holders.get_mut(x as usize) {
+                h.push(r as u16);
+            }
+        }
+        *old = set;
+    }
+
+    pub fn held(&self, r: usize) -> &[Res] {
+        self.held.get(r).map_or(&[], |v| v.as_slice())
+    }
+}
+
+/// A cycle in the wait-for graph (`waits[r]` = robots `r` waits for), as the robots on it
+/// in the order found, starting from the smallest index; `None` if there is none.
+pub fn find_cycle(waits: &[Vec<usize>]) -> Option<Vec<usize>> {
+    // 0 unvisited, 1 on the stack, 2 done.
+    let n = waits.len();
+    let mut mark = vec![0u8; n];
+    let mut stack: Vec<(usize, usize)> = Vec::new();
+    for s in 0..n {
+        if mark[s] != 0 {
+            continue;
+        }
+        stack.push((s, 0));
+        mark[s] = 1;
+        while let Some(&mut (v, ref mut i)) = stack.last_mut() {
+            let next = waits[v].get(*i).copied();
+            *i += 1;
+            match next {
+                Some(w) if w < n => {
+                    if mark[w] == 1 {
+                        let pos = stack.iter().position(|&(x, _)| x == w).unwrap_or(0);
+                        let mut cyc: Vec<usize> = stack[pos..].iter().map(|&(x, _)| x).collect();
+                        let k = cyc
+                            .iter()
+                            .enumerate()
+                            .min_by_key(|&(_, &x)| x)
+                            .map_or(0, |(k, _)| k);
+                        cyc.rotate_left(k);
+                        return Some(cyc);
+                    }
+                    if mark[w] == 0 {
+                        mark[w] = 1;
+                        stack.push((w, 0));
+                    }
+                }
+                Some(_) => {}
+                None => {
+                    mark[v] = 2;
+                    stack.pop();
+                }
+            }
+        }
+    }
+    None
+}
