@@ -630,7 +630,12 @@ impl Report {
         use std::fmt::Write;
         let mut s = String::new();
         let count = |r: &str| self.tasks.iter().filter(|k| k.result == r).count();
-        let _ = writeln!(s, "simulated {} ({} s)", hms(self.end_time), self.end_time);
+        let _ = writeln!(
+            s,
+            "simulated {} ({:.2} s)",
+            hms(self.end_time),
+            self.end_time
+        );
         let _ = writeln!(
             s,
             "tasks: {} seen, {} completed, {} failed, {} unfinished",
