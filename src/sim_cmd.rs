@@ -156,9 +156,20 @@ pub(crate) fn run(args: &SimArgs) -> ExitCode {
         Ok(c) => c,
         Err(e) => return failed(e),
     };
-    emit(&checked.parsed.sources, &checked.diagnostics, args.format);
+    // Map errors are shown in full; map warnings (demo maps have dozens) only as a count,
+    // so that they do not bury the run's own output: `mapc check` shows them.
+    let map_errors: Vec<Diagnostic> = checked
+        .diagnostics
+        .iter()
+        .filter(|d| d.is_error())
+        .cloned()
+        .collect();
+    emit(&checked.parsed.sources, &map_errors, args.format);
     if args.format == SimFormat::Human {
         summary_line(&map, &checked);
+        if map_errors.is_empty() && !checked.diagnostics.is_empty() {
+            eprintln!("  (run `mapc check {}` to see the warnings)", map.display());
+        }
     }
     let building = match checked.parsed.building.as_ref() {
         Some(b) if !checked.failed(false) => b,

@@ -19,6 +19,9 @@ pub const SAME_LEVEL_DZ: f64 = 0.5;
 /// `STUCK_AFTER` seconds is reported as stuck.
 pub const STUCK_AFTER: f64 = 300.0;
 pub const STILL_TOLERANCE: f64 = 0.1;
+/// Stuck or deadlock events of one robot with the same detail less than this apart (s) are
+/// one episode.
+pub const STUCK_EVENT_GAP: f64 = 30.0;
 
 #[derive(Debug, Clone, Default, PartialEq, Serialize)]
 pub struct Report {
@@ -148,6 +151,11 @@ pub struct StuckReport {
     pub task_id: String,
     /// When it got stuck: the event time, or when the robot stopped moving.
     pub t: f64,
+    /// The end of the episode as far as seen: the last of its repeated events (the fleet
+    /// layer repeats them while the condition lasts), or the last sample without motion.
+    pub until: f64,
+    /// Events merged into this episode (1 for `no_motion`).
+    pub events: usize,
     /// `stuck` or `deadlock` (task events), or `no_motion` (from ground truth).
     pub reason: String,
     pub detail: String,
@@ -164,8 +172,8 @@ struct RobotAcc {
     busy_s: f64,
     /// Where and since when the robot has been still (within STILL_TOLERANCE).
     anchor: Option<(f64, f64, f64)>,
-    /// The still-since time already reported as stuck.
-    flagged: Option<f64>,
+    /// The still-since time already reported as stuck, and its entry in `stuck`.
+    flagged: Option<(f64, usize)>,
 }
 
 #[derive(Default)]
@@ -353,14 +361,29 @@ impl ReportBuilder {
 
     fn task_event(&mut self, t: f64, e: &crate::msgs::TaskEvent) {
         if matches!(e.event.as_str(), "stuck" | "deadlock") {
-            self.stuck.push(StuckReport {
-                robot: e.robot.clone(),
-                fleet: e.fleet.clone(),
-                task_id: e.task_id.clone(),
-                t,
-                reason: e.event.clone(),
-                detail: e.detail.clone(),
+            // One episode per robot and condition: repeats of the same event continue it.
+            let episode = self.stuck.iter_mut().rev().find(|s| {
+                s.robot == e.robot
+                    && s.reason == e.event
+                    && s.detail == e.detail
+                    && t - s.until <= STUCK_EVENT_GAP
             });
+            match episode {
+                Some(s) => {
+                    s.until = t;
+                    s.events += 1;
+                }
+                None => self.stuck.push(StuckReport {
+                    robot: e.robot.clone(),
+                    fleet: e.fleet.clone(),
+                    task_id: e.task_id.clone(),
+                    t,
+                    until: t,
+                    events: 1,
+                    reason: e.event.clone(),
+                    detail: e.detail.clone(),
+                }),
+            }
             return;
         }
         let i = slot(&mut self.tasks, &mut self.task_index, &e.task_id, |r| {
@@ -430,7 +453,6 @@ impl ReportBuilder {
     pub fn sample(&mut self, t: f64, robots: &[RobotTruth]) {
         self.last_sample = Some(t);
         let n = robots.len().min(self.robots.len());
-        let mut stuck = Vec::new();
         for (acc, r) in self.robots.iter_mut().zip(robots) {
             if let Some((x, y)) = acc.last {
                 acc.distance += (r.x - x).hypot(r.y - y);
@@ -443,23 +465,32 @@ impl ReportBuilder {
             }
             if let (Some(busy), Some((_, _, still))) = (acc.busy_since, acc.anchor) {
                 let since = still.max(busy);
-                if t - since > STUCK_AFTER && acc.flagged != Some(since) {
-                    acc.flagged = Some(since);
-                    let task = acc.open_tasks.iter().next().cloned().unwrap_or_default();
-                    stuck.push(StuckReport {
-                        robot: acc.name.clone(),
-                        fleet: acc.fleet.clone(),
-                        task_id: task.clone(),
-                        t: since,
-                        reason: "no_motion".into(),
-                        detail: format!(
-                            "did not move for more than {STUCK_AFTER} s while assigned task `{task}`"
-                        ),
-                    });
+                match acc.flagged {
+                    Some((s, i)) if s == since => {
+                        if let Some(entry) = self.stuck.get_mut(i) {
+                            entry.until = t;
+                        }
+                    }
+                    _ if t - since > STUCK_AFTER => {
+                        acc.flagged = Some((since, self.stuck.len()));
+                        let task = acc.open_tasks.iter().next().cloned().unwrap_or_default();
+                        self.stuck.push(StuckReport {
+                            robot: acc.name.clone(),
+                            fleet: acc.fleet.clone(),
+                            task_id: task.clone(),
+                            t: since,
+                            until: t,
+                            events: 1,
+                            reason: "no_motion".into(),
+                            detail: format!(
+                                "did not move for more than {STUCK_AFTER} s while assigned task `{task}`"
+                            ),
+                        });
+                    }
+                    _ => {}
                 }
             }
         }
-        self.stuck.extend(stuck);
         self.encounters(t, &robots[..n]);
     }
 
@@ -711,16 +742,21 @@ impl Report {
             );
         }
         let _ = writeln!(s);
-        let _ = writeln!(s, "stuck robots: {}", self.stuck.len());
-        for k in &self.stuck {
+        let _ = writeln!(s, "stuck episodes: {}", self.stuck.len());
+        const SHOWN: usize = 10;
+        for k in self.stuck.iter().take(SHOWN) {
             let _ = writeln!(
                 s,
-                "  {} at {}: {} {}",
+                "  {} {}..{}: {} ({})",
                 k.robot,
                 hms(k.t),
+                hms(k.until),
                 k.reason,
                 k.detail
             );
+        }
+        if self.stuck.len() > SHOWN {
+            let _ = writeln!(s, "  ... {} more in the report", self.stuck.len() - SHOWN);
         }
         s
     }
@@ -1036,6 +1072,10 @@ mod tests {
             event(60.0, "t3", "queued", "", ""),
             event(70.0, "t3", "assigned", "b0", "b"),
             event(80.0, "t3", "deadlock", "b0", "b"),
+            // Repeats of the same condition continue the episode; after a gap, a new one.
+            event(84.0, "t3", "deadlock", "b0", "b"),
+            event(88.0, "t3", "deadlock", "b0", "b"),
+            event(200.0, "t3", "deadlock", "b0", "b"),
         ];
         for p in &seq {
             b.observe(p);
@@ -1073,16 +1113,24 @@ mod tests {
             .collect();
         assert_eq!(
             reasons,
-            [("b0", "no_motion", 70.0), ("b0", "deadlock", 80.0)]
+            [
+                ("b0", "no_motion", 70.0),
+                ("b0", "deadlock", 80.0),
+                ("b0", "deadlock", 200.0)
+            ]
         );
         assert_eq!(r.stuck[0].task_id, "t3");
+        // Still motionless at the last sample (the end of the run).
+        assert_eq!((r.stuck[0].until, r.stuck[0].events), (600.0, 1));
+        assert_eq!((r.stuck[1].until, r.stuck[1].events), (88.0, 3));
+        assert_eq!((r.stuck[2].until, r.stuck[2].events), (200.0, 1));
         // The summary names the numbers.
         let s = r.summary();
         assert!(
             s.contains("tasks: 3 seen, 1 completed, 1 failed, 1 unfinished"),
             "{s}"
         );
-        assert!(s.contains("stuck robots: 2"), "{s}");
+        assert!(s.contains("stuck episodes: 3"), "{s}");
     }
 
     #[test]
