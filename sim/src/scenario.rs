@@ -1938,4 +1938,54 @@ tasks:
             }
         }
     }
+
+    #[test]
+    fn json_schema_lists_the_keys_the_parser_reads() {
+        let schema: serde_json::Value =
+            serde_json::from_str(include_str!("../../docs/scenario.schema.json")).unwrap();
+        assert_eq!(
+            schema["$schema"],
+            "https://json-schema.org/draft/2020-12/schema"
+        );
+        let keys = |v: &serde_json::Value| -> Vec<String> {
+            let mut k: Vec<String> = v["properties"]
+                .as_object()
+                .unwrap_or_else(|| panic!("no properties in {v}"))
+                .keys()
+                .cloned()
+                .collect();
+            k.sort();
+            k
+        };
+        let want = |names: &[&str], more: &[&str]| -> Vec<String> {
+            let mut k: Vec<String> = names.iter().chain(more).map(|s| s.to_string()).collect();
+            k.sort();
+            k
+        };
+        let defs = &schema["$defs"];
+        assert_eq!(keys(&schema), want(TOP_KEYS, &[]));
+        assert_eq!(keys(&defs["fleet"]), want(FLEET_KEYS, &[]));
+        assert_eq!(keys(&defs["workcell"]), want(WORKCELL_KEYS, &[]));
+        assert_eq!(keys(&defs["options"]), want(OPTION_KEYS, &[]));
+        assert_eq!(keys(&defs["task"]), want(TASK_KEYS, KINDS));
+        assert_eq!(keys(&defs["generator"]), want(GENERATOR_KEYS, KINDS));
+        let robot: Vec<&str> = ROBOT_NUMBERS.iter().map(|r| r.0).collect();
+        assert_eq!(
+            keys(&defs["robot"]["oneOf"][1]),
+            want(&robot, &["preset", "model", "reversible"])
+        );
+        // Strictly positive robot numbers have exclusiveMinimum 0, the others minimum 0.
+        for (k, strict) in ROBOT_NUMBERS {
+            let p = &defs["robot"]["oneOf"][1]["properties"][k];
+            let bound = if *strict {
+                "exclusiveMinimum"
+            } else {
+                "minimum"
+            };
+            assert_eq!(p[bound], 0, "{k}");
+        }
+        for p in RobotParams::preset_names() {
+            assert!(defs["preset"]["pattern"].as_str().unwrap().contains(p));
+        }
+    }
 }
