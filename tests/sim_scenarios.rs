@@ -396,3 +396,56 @@ fn waypoints(s: &mapc_sim::Scenario) -> Vec<String> {
     }
     out
 }
+
+/// Truncations and byte mutations of every fixture scenario: the parser never panics, and
+/// every diagnostic has a position in the file.
+#[test]
+fn mutated_scenarios_never_panic() {
+    let mut seed: u64 = 0x9E37_79B9_7F4A_7C15;
+    let mut next = move || {
+        seed ^= seed << 13;
+        seed ^= seed >> 7;
+        seed ^= seed << 17;
+        seed
+    };
+    let mut cases = 0;
+    for entry in std::fs::read_dir(root().join("fixtures")).unwrap() {
+        let path = entry.unwrap().path();
+        if !path.to_string_lossy().ends_with(".scenario.yaml") {
+            continue;
+        }
+        let text = std::fs::read_to_string(&path).unwrap();
+        let mut inputs: Vec<String> = Vec::new();
+        for cut in (0..text.len()).step_by(5) {
+            if text.is_char_boundary(cut) {
+                inputs.push(text[..cut].to_string());
+            }
+        }
+        let pieces = [
+            "", ":", "-", "[", "]", "{", "}", "&a", "*a", "!!str ", "\t", "\n", "1e999", "-1", "~",
+            "0", "TinyBot", "\"", "'", "#", "?", ",",
+        ];
+        for _ in 0..400 {
+            let mut bytes = text.clone().into_bytes();
+            for _ in 0..(next() % 4 + 1) {
+                let at = (next() as usize) % (bytes.len() + 1);
+                let piece = pieces[(next() as usize) % pieces.len()].as_bytes();
+                let del = ((next() % 6) as usize).min(bytes.len() - at.min(bytes.len()));
+                bytes.splice(at..at + del, piece.iter().copied());
+            }
+            inputs.push(String::from_utf8_lossy(&bytes).into_owned());
+        }
+        for input in inputs {
+            let (s, d) = mapc_sim::parse_scenario(mapc_ir::FileId(0), &input, root());
+            for x in &d {
+                assert!(
+                    x.span.line >= 1 && x.span.col >= 1 && (x.span.end as usize) <= input.len(),
+                    "{x:?} in {input:?}"
+                );
+            }
+            assert_eq!(s.is_some(), !mapc_ir::has_errors(&d), "{input:?}");
+            cases += 1;
+        }
+    }
+    assert!(cases > 1000, "{cases}");
+}
