@@ -449,3 +449,54 @@ fn mutated_scenarios_never_panic() {
     }
     assert!(cases > 1000, "{cases}");
 }
+
+#[test]
+fn outputs_are_all_or_nothing() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("out");
+    std::fs::create_dir(&out).unwrap();
+    let trace = out.join("trace.jsonl");
+    let report = out.join("report.json");
+    // A scenario that does not fit the map: the run never starts, nothing is left behind
+    // (the trace's temporary file is removed).
+    let map = root().join("fixtures/two_level_clinic.building.yaml");
+    let text = format!(
+        "map: {}\nduration: 1min\nfleets: [{{name: a, robot: TinyRobot, spawn: [nowhere]}}]\n",
+        map.display()
+    );
+    let p = write(dir.path(), "s.scenario.yaml", text.as_bytes());
+    let args = [
+        p.to_str().unwrap(),
+        "--trace",
+        trace.to_str().unwrap(),
+        "--report",
+        report.to_str().unwrap(),
+    ];
+    let r = run(&args);
+    assert_eq!(r.code, 1, "{}", r.stderr);
+    let left: Vec<_> = std::fs::read_dir(&out).unwrap().collect();
+    assert!(left.is_empty(), "{left:?}");
+    // A trace path under a regular file cannot be created: I/O error, exit 2.
+    let blocker = write(dir.path(), "file", b"x");
+    let r = run(&[
+        "fixtures/legacy_2019.scenario.yaml",
+        "--trace",
+        blocker.join("trace.jsonl").to_str().unwrap(),
+    ]);
+    assert_eq!(r.code, 2, "{}", r.stderr);
+    // A successful run leaves exactly the two files.
+    let r = run(&[
+        "fixtures/legacy_2019.scenario.yaml",
+        "--trace",
+        trace.to_str().unwrap(),
+        "--report",
+        report.to_str().unwrap(),
+    ]);
+    assert_eq!(r.code, 0, "{}", r.stderr);
+    let mut left: Vec<String> = std::fs::read_dir(&out)
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .collect();
+    left.sort();
+    assert_eq!(left, ["report.json", "trace.jsonl"]);
+}
