@@ -5,6 +5,7 @@ use crate::codes::{self, Code};
 use crate::params::RobotParams;
 use mapc_frontend::yaml_tree::{self, Node, Scalar};
 use mapc_ir::{Diagnostic, FileId, Span};
+use std::collections::{BTreeMap, BTreeSet};
 use std::path::{Path, PathBuf};
 
 #[derive(Debug, Clone, PartialEq)]
@@ -352,21 +353,45 @@ impl<'n, 'a> Entries<'n, 'a> {
     }
 }
 
+/// Most diagnostics reported for one scenario; the rest are counted (S0002). A garbage
+/// file can have a problem per node, and a million rendered diagnostics help nobody.
+pub const MAX_DIAGNOSTICS: usize = 1000;
+
 struct P<'d> {
     diags: &'d mut Vec<Diagnostic>,
+    /// Diagnostics past MAX_DIAGNOSTICS, not kept.
+    suppressed: usize,
+    /// Where diagnostics past the limit are written (and forgotten).
+    scratch: Diagnostic,
+    had_error: bool,
 }
 
 impl P<'_> {
+    fn push(&mut self, d: Diagnostic) -> &mut Diagnostic {
+        self.had_error |= d.is_error();
+        if self.diags.len() >= MAX_DIAGNOSTICS {
+            self.suppressed += 1;
+            self.scratch = d;
+            return &mut self.scratch;
+        }
+        self.diags.push(d);
+        let last = self.diags.len() - 1;
+        &mut self.diags[last]
+    }
+    fn full(&self) -> bool {
+        self.diags.len() >= MAX_DIAGNOSTICS
+    }
     fn error(&mut self, code: Code, span: Span, msg: impl Into<String>) -> &mut Diagnostic {
-        self.diags.push(Diagnostic::error(code.code, span, msg));
-        self.diags.last_mut().expect("just pushed")
+        self.push(Diagnostic::error(code.code, span, msg))
     }
     fn warning(&mut self, code: Code, span: Span, msg: impl Into<String>) -> &mut Diagnostic {
-        self.diags.push(Diagnostic::warning(code.code, span, msg));
-        self.diags.last_mut().expect("just pushed")
+        self.push(Diagnostic::warning(code.code, span, msg))
     }
+    /// Sets the help of the diagnostic just reported.
     fn help(&mut self, help: impl Into<String>) {
-        if let Some(d) = self.diags.last_mut() {
+        if self.suppressed > 0 {
+            self.scratch.help = Some(help.into());
+        } else if let Some(d) = self.diags.last_mut() {
             d.help = Some(help.into());
         }
     }
@@ -392,13 +417,14 @@ impl P<'_> {
             return None;
         };
         let mut items: Vec<(&'n str, &'n Node<'a>, &'n Node<'a>)> = Vec::with_capacity(m.len());
+        // First span of each key: duplicates in O(n log n) even for huge mappings.
+        let mut seen: BTreeMap<&'n str, Span> = BTreeMap::new();
         for (k, val) in m {
             let Some(key) = k.key_text() else {
                 self.wrong_type(k, &format!("a key of {what}"), "a string");
                 continue;
             };
-            if let Some(first) = items.iter().find(|e| e.0 == key) {
-                let first_span = first.1.span;
+            if let Some(&first_span) = seen.get(key) {
                 self.warning(
                     codes::DUPLICATE_KEY,
                     k.span,
@@ -411,6 +437,7 @@ impl P<'_> {
                 });
                 self.help("remove one of the two");
             }
+            seen.entry(key).or_insert(k.span);
             items.push((key, k, val));
         }
         if let Some((names, code)) = known {
@@ -642,8 +669,7 @@ impl P<'_> {
             ok &= self.count_tasks(tasks, gens, duration);
         }
 
-        let errors = self.diags.iter().any(|d| d.is_error());
-        if errors || !ok {
+        if self.had_error || self.suppressed > 0 || !ok {
             return None;
         }
         Some(Scenario {
@@ -701,9 +727,9 @@ impl P<'_> {
             return None;
         }
         let mut ok = true;
-        for (i, f) in fleets.iter().enumerate() {
-            if let Some(first) = fleets[..i].iter().find(|g| g.name == f.name) {
-                let first_span = first.span;
+        let mut seen: BTreeMap<&str, Span> = BTreeMap::new();
+        for f in &fleets {
+            if let Some(&first_span) = seen.get(f.name.as_str()) {
                 self.error(
                     codes::DUPLICATE_FLEET,
                     f.span,
@@ -717,6 +743,7 @@ impl P<'_> {
                 self.help("give every fleet its own name");
                 ok = false;
             }
+            seen.entry(&f.name).or_insert(f.span);
         }
         ok.then_some(fleets)
     }
@@ -930,10 +957,11 @@ impl P<'_> {
     fn spawn(&mut self, v: &Node) -> Option<SpawnSpec> {
         if let Some(items) = v.as_seq() {
             let mut names: Vec<String> = Vec::with_capacity(items.len());
+            let mut seen: BTreeSet<String> = BTreeSet::new();
             let mut ok = true;
             for n in items {
                 match self.name(n, "a spawn waypoint") {
-                    Some(s) if names.contains(&s) => {
+                    Some(s) if seen.contains(&s) => {
                         self.error(
                             codes::SPAWN_COUNT,
                             n.span,
@@ -941,7 +969,10 @@ impl P<'_> {
                         );
                         ok = false;
                     }
-                    Some(s) => names.push(s),
+                    Some(s) => {
+                        seen.insert(s.clone());
+                        names.push(s);
+                    }
                     None => ok = false,
                 }
             }
@@ -1018,9 +1049,9 @@ impl P<'_> {
             })
         })?;
         let mut ok = true;
-        for (i, c) in cells.iter().enumerate() {
-            if let Some(first) = cells[..i].iter().find(|d| d.name == c.name) {
-                let first_span = first.span;
+        let mut seen: BTreeMap<&str, Span> = BTreeMap::new();
+        for c in &cells {
+            if let Some(&first_span) = seen.get(c.name.as_str()) {
                 self.error(
                     codes::DUPLICATE_WORKCELL,
                     c.span,
@@ -1033,6 +1064,7 @@ impl P<'_> {
                 });
                 ok = false;
             }
+            seen.entry(&c.name).or_insert(c.span);
         }
         ok.then_some(cells)
     }
@@ -1282,56 +1314,76 @@ impl P<'_> {
         ok.then_some(o)
     }
 
-    /// Fleets named by tasks exist and accept the task's category.
+    /// Fleets named by tasks exist and accept the task's category. Lookups are by map, so
+    /// that a million tasks against ten thousand fleets stay fast.
     fn cross_check(&mut self, fleets: &[FleetSpec], tasks: &[TaskSpec], gens: &[GeneratorSpec]) {
         let accepts =
             |f: &FleetSpec, c: TaskCategory| f.task_kinds.is_empty() || f.task_kinds.contains(&c);
+        let by_name: BTreeMap<&str, &FleetSpec> =
+            fleets.iter().map(|f| (f.name.as_str(), f)).collect();
+        let all = [
+            TaskCategory::Loop,
+            TaskCategory::Delivery,
+            TaskCategory::Clean,
+            TaskCategory::GoToPlace,
+        ];
+        let accepted: BTreeSet<TaskCategory> = all
+            .into_iter()
+            .filter(|&c| fleets.iter().any(|f| accepts(f, c)))
+            .collect();
+        let names: Vec<&str> = fleets.iter().map(|f| f.name.as_str()).collect();
         let items = tasks
             .iter()
             .map(|t| (&t.fleet, t.kind.category(), t.span))
             .chain(gens.iter().map(|g| (&g.fleet, g.kind.category(), g.span)));
         for (fleet, cat, span) in items {
-            match fleet {
-                Some(name) => {
-                    match fleets.iter().find(|f| &f.name == name) {
-                        None => {
-                            self.error(
-                                codes::UNKNOWN_FLEET,
-                                span,
-                                format!("no fleet is named `{name}`"),
-                            );
-                            let names: Vec<&str> = fleets.iter().map(|f| f.name.as_str()).collect();
-                            let hint = closest(name, names.iter().copied())
-                                .map(|c| format!("did you mean `{c}`? "))
-                                .unwrap_or_default();
-                            self.help(format!("{hint}fleets: {}", list(&names)));
-                        }
-                        Some(f) if !accepts(f, cat) => {
-                            let fspan = f.span;
-                            self.error(
-                                codes::NO_FLEET_FOR_TASK,
-                                span,
-                                format!("fleet `{name}` does not accept {} tasks", cat.as_str()),
-                            )
-                            .labels
-                            .push(mapc_ir::Label {
-                                span: fspan,
-                                message: "the fleet".into(),
-                            });
-                            self.help(format!("add `{}` to the fleet's `tasks`, or send the task to another fleet", cat.as_str()));
-                        }
-                        Some(_) => {}
+            let cat_name = cat.as_str();
+            match fleet.as_deref().map(|n| (n, by_name.get(n))) {
+                Some((name, None)) => {
+                    self.error(
+                        codes::UNKNOWN_FLEET,
+                        span,
+                        format!("no fleet is named `{name}`"),
+                    );
+                    // The hint costs an edit distance per fleet: only while reporting.
+                    if !self.full() {
+                        let hint = closest(name, names.iter().copied())
+                            .map(|c| format!("did you mean `{c}`? "))
+                            .unwrap_or_default();
+                        let shown: Vec<&str> = names.iter().copied().take(20).collect();
+                        let more = if names.len() > shown.len() {
+                            ", ..."
+                        } else {
+                            ""
+                        };
+                        self.help(format!("{hint}fleets: {}{more}", list(&shown)));
                     }
                 }
-                None if !fleets.iter().any(|f| accepts(f, cat)) => {
+                Some((name, Some(f))) if !accepts(f, cat) => {
+                    let fspan = f.span;
                     self.error(
                         codes::NO_FLEET_FOR_TASK,
                         span,
-                        format!("no fleet accepts {} tasks", cat.as_str()),
-                    );
-                    self.help(format!("add `{}` to a fleet's `tasks`", cat.as_str()));
+                        format!("fleet `{name}` does not accept {cat_name} tasks"),
+                    )
+                    .labels
+                    .push(mapc_ir::Label {
+                        span: fspan,
+                        message: "the fleet".into(),
+                    });
+                    self.help(format!(
+                        "add `{cat_name}` to the fleet's `tasks`, or send the task to another fleet"
+                    ));
                 }
-                None => {}
+                None if !accepted.contains(&cat) => {
+                    self.error(
+                        codes::NO_FLEET_FOR_TASK,
+                        span,
+                        format!("no fleet accepts {cat_name} tasks"),
+                    );
+                    self.help(format!("add `{cat_name}` to a fleet's `tasks`"));
+                }
+                _ => {}
             }
         }
     }
@@ -1437,7 +1489,26 @@ pub fn parse(file: FileId, text: &str, base: &Path) -> (Option<Scenario>, Vec<Di
         );
         return (None, diags);
     }
-    let scenario = P { diags: &mut diags }.scenario(&root, base);
+    let mut p = P {
+        diags: &mut diags,
+        suppressed: 0,
+        scratch: Diagnostic::error("", whole, ""),
+        had_error: false,
+    };
+    let scenario = p.scenario(&root, base);
+    let suppressed = p.suppressed;
+    if suppressed > 0 {
+        diags.push(
+            Diagnostic::error(
+                codes::INPUT_LIMIT.code,
+                whole,
+                format!(
+                    "{suppressed} more problem(s) not shown: a scenario with more than {MAX_DIAGNOSTICS} problems is refused"
+                ),
+            )
+            .with_help("this is probably not a scenario file; fix the problems above first"),
+        );
+    }
     (scenario, diags)
 }
 
@@ -1987,5 +2058,40 @@ tasks:
         for p in RobotParams::preset_names() {
             assert!(defs["preset"]["pattern"].as_str().unwrap().contains(p));
         }
+    }
+
+    #[test]
+    fn huge_garbage_is_capped_and_fast() {
+        // 100,000 unknown keys and 100,000 tasks naming unknown fleets: at most
+        // MAX_DIAGNOSTICS are kept, then one S0002; quadratic checks would take minutes.
+        let mut text = String::from(MIN);
+        for i in 0..100_000 {
+            text.push_str(&format!("k{i}: 1\n"));
+        }
+        text.push_str("tasks:\n");
+        for i in 0..100_000 {
+            text.push_str(&format!("  - {{go_to_place: p, fleet: g{i}}}\n"));
+        }
+        let start = std::time::Instant::now();
+        let (s, d) = run(&text);
+        assert!(s.is_none());
+        assert_eq!(d.len(), MAX_DIAGNOSTICS + 1);
+        let last = d.last().unwrap();
+        assert_eq!(last.code, "S0002");
+        assert!(
+            last.message.starts_with("199000 more problem(s)"),
+            "{}",
+            last.message
+        );
+        // Generous even for a debug build on a loaded machine.
+        assert!(start.elapsed().as_secs() < 30, "{:?}", start.elapsed());
+        // Warnings alone past the limit still refuse the file.
+        let mut text = String::from(MIN);
+        for i in 0..1500 {
+            text.push_str(&format!("k{i}: 1\n"));
+        }
+        let (s, d) = run(&text);
+        assert!(s.is_none());
+        assert_eq!(d.last().unwrap().code, "S0002");
     }
 }
