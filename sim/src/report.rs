@@ -210,6 +210,8 @@ pub struct ReportBuilder {
     near_misses: Vec<Encounter>,
     contacts: Vec<Encounter>,
     stuck: Vec<StuckReport>,
+    /// The latest episode of each (robot, event, detail), as an index into `stuck`.
+    episodes: BTreeMap<(String, String, String), usize>,
     last_sample: Option<f64>,
 }
 
@@ -249,6 +251,7 @@ impl ReportBuilder {
             near_misses: Vec::new(),
             contacts: Vec::new(),
             stuck: Vec::new(),
+            episodes: BTreeMap::new(),
             last_sample: None,
         };
         for r in &placement.robots {
@@ -362,27 +365,30 @@ impl ReportBuilder {
     fn task_event(&mut self, t: f64, e: &crate::msgs::TaskEvent) {
         if matches!(e.event.as_str(), "stuck" | "deadlock") {
             // One episode per robot and condition: repeats of the same event continue it.
-            let episode = self.stuck.iter_mut().rev().find(|s| {
-                s.robot == e.robot
-                    && s.reason == e.event
-                    && s.detail == e.detail
-                    && t - s.until <= STUCK_EVENT_GAP
-            });
+            let key = (e.robot.clone(), e.event.clone(), e.detail.clone());
+            let episode = self
+                .episodes
+                .get(&key)
+                .and_then(|&i| self.stuck.get_mut(i))
+                .filter(|s| t - s.until <= STUCK_EVENT_GAP);
             match episode {
                 Some(s) => {
                     s.until = t;
                     s.events += 1;
                 }
-                None => self.stuck.push(StuckReport {
-                    robot: e.robot.clone(),
-                    fleet: e.fleet.clone(),
-                    task_id: e.task_id.clone(),
-                    t,
-                    until: t,
-                    events: 1,
-                    reason: e.event.clone(),
-                    detail: e.detail.clone(),
-                }),
+                None => {
+                    self.episodes.insert(key, self.stuck.len());
+                    self.stuck.push(StuckReport {
+                        robot: e.robot.clone(),
+                        fleet: e.fleet.clone(),
+                        task_id: e.task_id.clone(),
+                        t,
+                        until: t,
+                        events: 1,
+                        reason: e.event.clone(),
+                        detail: e.detail.clone(),
+                    });
+                }
             }
             return;
         }
