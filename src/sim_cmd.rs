@@ -156,12 +156,13 @@ pub(crate) fn run(args: &SimArgs) -> ExitCode {
         Ok(c) => c,
         Err(e) => return failed(e),
     };
-    // Map errors are shown in full; map warnings (demo maps have dozens) only as a count,
-    // so that they do not bury the run's own output: `mapc check` shows them.
+    // On a terminal, map errors are shown in full but map warnings (demo maps have dozens)
+    // only as a count, so that they do not bury the run's own output (`mapc check` shows
+    // them). JSON consumers get everything and can filter.
     let map_errors: Vec<Diagnostic> = checked
         .diagnostics
         .iter()
-        .filter(|d| d.is_error())
+        .filter(|d| d.is_error() || args.format == SimFormat::Json)
         .cloned()
         .collect();
     emit(&checked.parsed.sources, &map_errors, args.format);
