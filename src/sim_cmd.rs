@@ -159,16 +159,16 @@ pub(crate) fn run(args: &SimArgs) -> ExitCode {
     // On a terminal, map errors are shown in full but map warnings (demo maps have dozens)
     // only as a count, so that they do not bury the run's own output (`mapc check` shows
     // them). JSON consumers get everything and can filter.
-    let map_errors: Vec<Diagnostic> = checked
+    let shown: Vec<Diagnostic> = checked
         .diagnostics
         .iter()
         .filter(|d| d.is_error() || args.format == SimFormat::Json)
         .cloned()
         .collect();
-    emit(&checked.parsed.sources, &map_errors, args.format);
+    emit(&checked.parsed.sources, &shown, args.format);
     if args.format == SimFormat::Human {
         summary_line(&map, &checked);
-        if map_errors.is_empty() && !checked.diagnostics.is_empty() {
+        if shown.len() < checked.diagnostics.len() {
             eprintln!("  (run `mapc check {}` to see the warnings)", map.display());
         }
     }
