@@ -1254,7 +1254,7 @@ mod sweep_tests {
             }
             t += 0.1;
         }
-        closed.extend(open.into_iter());
+        closed.extend(open);
         let report = b.finish(t - 0.1, &[]);
         let mut got: Vec<(String, String, f64)> = report
             .near_misses
