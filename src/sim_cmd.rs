@@ -196,8 +196,7 @@ pub(crate) fn run(args: &SimArgs) -> ExitCode {
         Ok(t) => t,
         Err(e) => return failed(e),
     };
-    let end = args.until.unwrap_or(scenario.duration);
-    let mut bar = Progress::new(end);
+    let mut bar = Progress::new();
     let mut progress = |t: f64, end: f64| bar.update(t, end);
     let opts = mapc_sim::RunOptions {
         until: args.until,
@@ -311,7 +310,7 @@ struct Progress {
 }
 
 impl Progress {
-    fn new(_end: f64) -> Progress {
+    fn new() -> Progress {
         Progress {
             shown: false,
             started: std::time::Instant::now(),
