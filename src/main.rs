@@ -1,10 +1,11 @@
-//! `mapc`: the command line. Exit codes: 0 ok (warnings allowed), 1 invalid map,
+//! `mapc`: the command line. Exit codes: 0 ok (warnings allowed), 1 invalid map (or scenario),
 //! 2 usage or I/O error.
 
 mod build;
 mod output;
 mod report;
 mod report_json;
+mod sim_cmd;
 mod texture;
 mod world_cmd;
 
@@ -21,7 +22,7 @@ use std::process::ExitCode;
     long_about = "mapc reads traffic_editor .building.yaml maps, checks them, and writes the \
                   files RMF needs. `mapc nav` and `mapc gazebo` are drop-ins for \
                   `building_map_generator nav` and `gazebo`.\n\n\
-                  Exit codes: 0 ok (warnings allowed), 1 invalid map, 2 usage or I/O error."
+                  Exit codes: 0 ok (warnings allowed), 1 invalid map or scenario, 2 usage or I/O error."
 )]
 struct Cli {
     #[command(subcommand)]
@@ -110,6 +111,10 @@ enum Command {
     /// Write a Gazebo classic world and its level models, like `building_map_generator
     /// gazebo` before 2024-05.
     Classic(world_cmd::WorldArgs),
+    /// Run a scenario (robots, tasks, doors, lifts) on a map with the headless RMF runtime and
+    /// report what happened: task times, throughput, door and lift waits, near misses.
+    /// Scenario format, trace and report: docs/sim.md.
+    Sim(sim_cmd::SimArgs),
     /// Check maps and report every problem found, without writing anything.
     Check {
         /// The .building.yaml (or legacy .project.yaml) files to read.
@@ -145,11 +150,13 @@ fn main() -> ExitCode {
         Command::Gazebo(args) => world_cmd::run(mapc_backends::sdf::Flavour::Gz, &args),
         Command::Ignition(args) => world_cmd::run(mapc_backends::sdf::Flavour::Ignition, &args),
         Command::Classic(args) => world_cmd::run(mapc_backends::sdf::Flavour::Classic, &args),
+        Command::Sim(args) => sim_cmd::run(&args),
         Command::Check { inputs, diag } => check(&inputs, &diag),
     }
 }
 
-/// Stable name of a diagnostic code, from the frontend's table or the rule registry.
+/// Stable name of a diagnostic code, from the frontend's, the backends' or the scenario
+/// table, or the rule registry.
 pub(crate) fn code_name(code: &str) -> &'static str {
     mapc_frontend::CODES
         .iter()
@@ -158,6 +165,12 @@ pub(crate) fn code_name(code: &str) -> &'static str {
         .or_else(|| mapc_ir::rule(code).map(|r| r.name))
         .or_else(|| {
             mapc_backends::CODES
+                .iter()
+                .find(|c| c.code == code)
+                .map(|c| c.name)
+        })
+        .or_else(|| {
+            mapc_sim::codes::CODES
                 .iter()
                 .find(|c| c.code == code)
                 .map(|c| c.name)

@@ -5,6 +5,7 @@
 //!
 //! The only I/O is the trace writer handed to [`simulate`].
 
+pub mod codes;
 mod door;
 mod fleet;
 mod graph;
@@ -22,10 +23,13 @@ mod workcell;
 mod world;
 
 pub use params::RobotParams;
-pub use report::Report;
+pub use report::{
+    DoorReport, Encounter, FleetReport, LiftReport, Report, RobotReport, StuckReport, TaskReport,
+    Waits,
+};
 pub use scenario::{
-    parse as parse_scenario, FleetSpec, GeneratorSpec, Scenario, SimOptions, SpawnSpec,
-    TaskCategory, TaskKind, TaskSpec, WorkcellKind, WorkcellSpec,
+    parse as parse_scenario, parse_duration, FleetSpec, GeneratorSpec, Scenario, SimOptions,
+    SpawnSpec, TaskCategory, TaskKind, TaskSpec, WorkcellKind, WorkcellSpec, MAX_DURATION,
 };
 
 use mapc_ir::{Building, Diagnostic};

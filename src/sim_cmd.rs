@@ -1,0 +1,353 @@
+//! `mapc sim`: runs a scenario on a map with the headless runtime (mapc-sim) and writes a
+//! trace (JSON Lines) and a report (JSON). Exit codes: 0 ok, 1 invalid scenario or map (or
+//! a scenario that does not fit the map), 2 usage or I/O error.
+
+use crate::{load_and_check, output, report, report_json, summary_line, Checked};
+use clap::ValueEnum;
+use mapc_frontend::SourceFile;
+use mapc_ir::{Diagnostic, FileId, Span};
+use std::io::{BufWriter, IsTerminal, Write};
+use std::path::{Path, PathBuf};
+use std::process::ExitCode;
+
+#[derive(Clone, Copy, ValueEnum, PartialEq, Eq)]
+pub(crate) enum SimFormat {
+    /// Diagnostics with source snippets on stderr, a short summary on stdout.
+    Human,
+    /// JSON Lines on stdout: one object per diagnostic, then `{"report": {...}}`.
+    Json,
+}
+
+#[derive(clap::Args)]
+pub(crate) struct SimArgs {
+    /// The scenario file (.scenario.yaml; format in docs/sim.md).
+    scenario: PathBuf,
+    /// The .building.yaml to run on, instead of the scenario's `map`.
+    #[arg(long, value_name = "MAP")]
+    map: Option<PathBuf>,
+    /// Stop at this simulated time instead of the scenario's `duration`: seconds, or a
+    /// duration such as 90s, 15min, 8h, 1h30min.
+    #[arg(long, value_name = "TIME", value_parser = parse_until)]
+    until: Option<f64>,
+    /// Write every published message here, one JSON object per line.
+    #[arg(long, value_name = "FILE")]
+    trace: Option<PathBuf>,
+    /// Write the run report here (JSON).
+    #[arg(long, value_name = "FILE")]
+    report: Option<PathBuf>,
+    /// How to print diagnostics and the summary.
+    #[arg(long, value_enum, default_value = "human")]
+    format: SimFormat,
+}
+
+fn parse_until(s: &str) -> Result<f64, String> {
+    let t = mapc_sim::parse_duration(s)?;
+    if !t.is_finite() || t <= 0.0 {
+        return Err("must be a positive time".into());
+    }
+    if t > mapc_sim::MAX_DURATION {
+        return Err("must be at most one year".into());
+    }
+    Ok(t)
+}
+
+/// The scenario file's text, or a diagnostic when it is too large or not UTF-8 (exit 1),
+/// or an I/O error (exit 2).
+fn read_scenario(path: &Path, file: FileId) -> Result<(String, Option<Diagnostic>), String> {
+    use std::io::Read;
+    let err = |e: std::io::Error| format!("{}: {e}", path.display());
+    let meta = std::fs::metadata(path).map_err(err)?;
+    if !meta.is_file() {
+        return Err(format!("{}: not a regular file", path.display()));
+    }
+    let whole = Span {
+        file,
+        start: 0,
+        end: 0,
+        line: 1,
+        col: 1,
+    };
+    let limit = mapc_frontend::MAX_FILE_BYTES;
+    let mut bytes = Vec::new();
+    std::fs::File::open(path)
+        .and_then(|f| f.take(limit + 1).read_to_end(&mut bytes))
+        .map_err(err)?;
+    if bytes.len() as u64 > limit {
+        let d = Diagnostic::error(
+            mapc_sim::codes::INPUT_LIMIT.code,
+            whole,
+            format!("the file is larger than the input limit of {limit} bytes"),
+        )
+        .with_help("scenarios are a few dozen lines; check that this is the right file");
+        return Ok((String::new(), Some(d)));
+    }
+    match String::from_utf8(bytes) {
+        Ok(t) => Ok((t, None)),
+        Err(e) => {
+            let valid = &e.as_bytes()[..e.utf8_error().valid_up_to()];
+            let line = valid.iter().filter(|&&c| c == b'\n').count() + 1;
+            let tail = valid.rsplit(|&c| c == b'\n').next().unwrap_or(valid);
+            let col = String::from_utf8_lossy(tail).chars().count() + 1;
+            let off = valid.len() as u32;
+            let d = Diagnostic::error(
+                mapc_sim::codes::NOT_UTF8.code,
+                Span {
+                    file,
+                    start: off,
+                    end: off,
+                    line: line as u32,
+                    col: col as u32,
+                },
+                "the file is not valid UTF-8",
+            )
+            .with_help("pass a scenario file (YAML text), saved as UTF-8");
+            Ok((String::from_utf8_lossy(e.as_bytes()).into_owned(), Some(d)))
+        }
+    }
+}
+
+fn emit(sources: &[SourceFile], diags: &[Diagnostic], format: SimFormat) {
+    match format {
+        SimFormat::Human => report::emit(sources, diags),
+        SimFormat::Json => print!("{}", report_json::json_lines(sources, diags)),
+    }
+}
+
+pub(crate) fn run(args: &SimArgs) -> ExitCode {
+    let failed = |msg: String| {
+        eprintln!("error: {msg}");
+        ExitCode::from(2)
+    };
+    // 1. The scenario alone (its own file table), to find the map and report its problems.
+    let (text, bad_bytes) = match read_scenario(&args.scenario, FileId(0)) {
+        Ok(x) => x,
+        Err(e) => return failed(e),
+    };
+    let name = args.scenario.display().to_string();
+    let base = args
+        .scenario
+        .parent()
+        .filter(|p| !p.as_os_str().is_empty())
+        .unwrap_or(Path::new("."));
+    let scenario_only = [SourceFile {
+        name: name.clone(),
+        text: text.clone(),
+    }];
+    let (scenario, diags) = match bad_bytes {
+        Some(d) => (None, vec![d]),
+        None => mapc_sim::parse_scenario(FileId(0), &text, base),
+    };
+    emit(&scenario_only, &diags, args.format);
+    let Some(scenario) = scenario else {
+        if args.format == SimFormat::Human {
+            count_line(&name, &diags);
+        }
+        eprintln!("error: {name}: invalid scenario, nothing simulated");
+        return ExitCode::from(1);
+    };
+
+    // 2. The map, checked like `mapc check`.
+    let Some(map) = args.map.clone().or(scenario.map.clone()) else {
+        return failed(format!(
+            "{name} names no `map`; add `map: <path>` to it or pass --map"
+        ));
+    };
+    let checked: Checked = match load_and_check(&map) {
+        Ok(c) => c,
+        Err(e) => return failed(e),
+    };
+    // On a terminal, map errors are shown in full but map warnings (demo maps have dozens)
+    // only as a count, so that they do not bury the run's own output (`mapc check` shows
+    // them). JSON consumers get everything and can filter.
+    let shown: Vec<Diagnostic> = checked
+        .diagnostics
+        .iter()
+        .filter(|d| d.is_error() || args.format == SimFormat::Json)
+        .cloned()
+        .collect();
+    emit(&checked.parsed.sources, &shown, args.format);
+    if args.format == SimFormat::Human {
+        summary_line(&map, &checked);
+        if shown.len() < checked.diagnostics.len() {
+            eprintln!("  (run `mapc check {}` to see the warnings)", map.display());
+        }
+    }
+    let building = match checked.parsed.building.as_ref() {
+        Some(b) if !checked.failed(false) => b,
+        _ => {
+            eprintln!("error: {}: invalid map, nothing simulated", map.display());
+            return ExitCode::from(1);
+        }
+    };
+
+    // 3. The scenario again, with its file id after the map's files, so that diagnostics of
+    // the fleet layer can point into both.
+    let mut sources = checked.parsed.sources.clone();
+    let sid = FileId(sources.len() as u32);
+    sources.push(SourceFile { name, text });
+    let (Some(scenario), _) = mapc_sim::parse_scenario(sid, &sources[sid.0 as usize].text, base)
+    else {
+        // Same text, same result; never reached.
+        return failed("the scenario could not be read twice".into());
+    };
+
+    // 4. Run, streaming the trace into a temporary file renamed at the end.
+    let mut trace = match args.trace.as_deref().map(TraceFile::create).transpose() {
+        Ok(t) => t,
+        Err(e) => return failed(e),
+    };
+    let mut bar = Progress::new();
+    let mut progress = |t: f64, end: f64| bar.update(t, end);
+    let opts = mapc_sim::RunOptions {
+        until: args.until,
+        trace: trace.as_mut().map(|t| &mut t.writer as &mut dyn Write),
+        progress: if std::io::stderr().is_terminal() {
+            Some(&mut progress)
+        } else {
+            None
+        },
+    };
+    let result = mapc_sim::simulate(building, &scenario, opts);
+    bar.clear();
+    let run_report = match result {
+        Ok(r) => r,
+        Err(mapc_sim::SimError::Invalid(diags)) => {
+            emit(&sources, &diags, args.format);
+            eprintln!(
+                "error: {}: the scenario does not fit the map, nothing simulated",
+                args.scenario.display()
+            );
+            return ExitCode::from(1);
+        }
+        Err(mapc_sim::SimError::Io(e)) => {
+            let path = args.trace.as_deref().unwrap_or(Path::new("trace"));
+            return failed(format!("{}: {e}", path.display()));
+        }
+    };
+    if let Some(t) = trace {
+        if let Err(e) = t.finish() {
+            return failed(e);
+        }
+    }
+    if let Some(path) = &args.report {
+        let mut json = match serde_json::to_vec_pretty(&run_report) {
+            Ok(j) => j,
+            Err(e) => return failed(format!("report: {e}")),
+        };
+        json.push(b'\n');
+        if let Err(e) = output::write_atomic(path, &json) {
+            return failed(format!("{}: {e}", path.display()));
+        }
+    }
+    match args.format {
+        SimFormat::Human => print!("{}", run_report.summary()),
+        SimFormat::Json => println!("{}", serde_json::json!({ "report": run_report })),
+    }
+    ExitCode::SUCCESS
+}
+
+fn count_line(name: &str, diags: &[Diagnostic]) {
+    let errors = diags.iter().filter(|d| d.is_error()).count();
+    let warnings = diags.len() - errors;
+    if errors + warnings > 0 {
+        eprintln!("{name}: {errors} error(s), {warnings} warning(s)");
+    }
+}
+
+/// A trace being written: a temporary file next to the target, renamed on success and
+/// removed on failure, so that a reader never sees half a trace under the final name.
+struct TraceFile {
+    writer: BufWriter<std::fs::File>,
+    tmp: PathBuf,
+    path: PathBuf,
+    done: bool,
+}
+
+impl TraceFile {
+    fn create(path: &Path) -> Result<TraceFile, String> {
+        let err = |e: std::io::Error| format!("{}: {e}", path.display());
+        let dir = path
+            .parent()
+            .filter(|p| !p.as_os_str().is_empty())
+            .unwrap_or(Path::new("."));
+        std::fs::create_dir_all(dir).map_err(err)?;
+        let name = path
+            .file_name()
+            .and_then(|n| n.to_str())
+            .ok_or_else(|| format!("{}: not a file path", path.display()))?;
+        let tmp = dir.join(format!(".{name}.mapc-tmp-{}", std::process::id()));
+        let file = std::fs::File::create(&tmp).map_err(err)?;
+        Ok(TraceFile {
+            writer: BufWriter::with_capacity(1 << 20, file),
+            tmp,
+            path: path.to_path_buf(),
+            done: false,
+        })
+    }
+
+    fn finish(mut self) -> Result<(), String> {
+        let err = |e: std::io::Error| format!("{}: {e}", self.path.display());
+        self.writer.flush().map_err(err)?;
+        self.writer.get_ref().sync_all().map_err(err)?;
+        std::fs::rename(&self.tmp, &self.path).map_err(err)?;
+        self.done = true;
+        Ok(())
+    }
+}
+
+impl Drop for TraceFile {
+    fn drop(&mut self) {
+        if !self.done {
+            let _ = std::fs::remove_file(&self.tmp);
+        }
+    }
+}
+
+/// A one-line progress bar on stderr (only used when stderr is a terminal).
+struct Progress {
+    shown: bool,
+    started: std::time::Instant,
+}
+
+impl Progress {
+    fn new() -> Progress {
+        Progress {
+            shown: false,
+            started: std::time::Instant::now(),
+        }
+    }
+
+    fn update(&mut self, t: f64, end: f64) {
+        let frac = if end > 0.0 {
+            (t / end).clamp(0.0, 1.0)
+        } else {
+            1.0
+        };
+        let width = 30;
+        let filled = (frac * width as f64).round() as usize;
+        let wall = self.started.elapsed().as_secs_f64();
+        let speed = if wall > 0.0 { t / wall } else { 0.0 };
+        eprint!(
+            "\r[{}{}] {:5.1} % {} / {} sim ({:.0}x real time)",
+            "=".repeat(filled),
+            " ".repeat(width - filled),
+            100.0 * frac,
+            hms(t),
+            hms(end),
+            speed
+        );
+        self.shown = true;
+    }
+
+    fn clear(&mut self) {
+        if self.shown {
+            eprint!("\r{}\r", " ".repeat(80));
+            self.shown = false;
+        }
+    }
+}
+
+fn hms(t: f64) -> String {
+    let s = t.max(0.0).round() as u64;
+    format!("{}:{:02}:{:02}", s / 3600, s / 60 % 60, s % 60)
+}
