@@ -394,6 +394,26 @@ pub const NO_WORKCELL: Code = Code {
     summary: "a delivery has no dispenser or ingestor",
 };
 
+/// # S0207 waypoint-in-lift
+///
+/// **What:** a task names a waypoint that lies inside a lift cabin.
+///
+/// **Why it matters:** a robot parked in a cabin would hold the lift for as long as it
+/// stays there, so every other robot that needs the lift would wait for ever.
+///
+/// **Fix:** name a waypoint in front of the lift instead.
+///
+/// **Example:**
+/// ```yaml
+/// tasks:
+///   - {go_to_place: {place: lift_cabin_L1}}   # S0207: the vertex is inside the cabin
+/// ```
+pub const IN_LIFT: Code = Code {
+    code: "S0207",
+    name: "waypoint-in-lift",
+    summary: "a task waypoint lies inside a lift cabin",
+};
+
 /// # S0301 unknown-robot-preset
 ///
 /// **What:** a fleet's `robot` (or `robot.preset`) names no known robot type. The presets
@@ -628,6 +648,7 @@ pub static CODES: &[Code] = &[
     SPAWN_CLASH,
     NO_FLEET_ON_MAP,
     NO_WORKCELL,
+    IN_LIFT,
     UNKNOWN_PRESET,
     UNKNOWN_TASK_KIND,
     SEVERAL_TASK_KINDS,
