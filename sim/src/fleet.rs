@@ -47,6 +47,9 @@ pub mod codes {
 const RESEND: f64 = 1.0;
 /// Waiting this long for a door, lift or workcell fails the task.
 const EXTERNAL_TIMEOUT: f64 = 300.0;
+/// A robot at an empty dispenser asks again this often (s), this long (s).
+const ITEM_RETRY: f64 = 5.0;
+const ITEM_WAIT: f64 = 1200.0;
 /// A robot waiting for traffic this long is reported stuck.
 const STUCK_AFTER: f64 = 120.0;
 /// A stalled robot looks for a detour this often.
@@ -62,6 +65,9 @@ const MAX_BACKOFFS: u32 = 10;
 const BACKOFF_WAIT: f64 = 5.0;
 /// Edges of the other robots' routes a robot backing off must keep off.
 const DEADLOCK_HORIZON: usize = 8;
+/// Extra cost (s) of a yield or back-off spot that is not a parking spot, holding point
+/// or charger.
+const SPOT_PENALTY: f64 = 10.0;
 /// Most edges reserved at once through a corridor.
 const SEGMENT_MAX: usize = 12;
 /// Edges reserved ahead of a moving robot.
@@ -96,6 +102,9 @@ enum Cur {
         dispenser: bool,
         next_send: f64,
         deadline: f64,
+        /// Requests made after a FAILED, and when the first one was made.
+        tries: u32,
+        since: f64,
     },
     Dwell {
         until: f64,
@@ -163,6 +172,8 @@ struct Robot {
     free_at: f64,
     end_vertex: usize,
     charger: Option<usize>,
+    /// (drop-off vertex, ingestor) of the item the robot carries.
+    carrying: Option<(usize, String)>,
 }
 
 impl Robot {
@@ -361,23 +372,41 @@ impl Fleets {
                     cands.sort_by_key(|&v| (class(v), v));
                     // First pass: no robot next to another (each can drive off without the
                     // other moving); second pass: only far enough apart.
+                    // Spread over the levels the graph reaches: the level with the fewest
+                    // robots so far first, so that a multi-level graph does not crowd one
+                    // floor.
                     for strict in [true, false] {
-                        for &v in &cands {
-                            if chosen.len() == f.count {
-                                break;
-                            }
-                            let p = nav.vertices[v].pos;
-                            let clear = |&(w, fp): &(usize, f64)| {
-                                let vw = &nav.vertices[w];
-                                w != v
-                                    && (!level_handle_eq(vw.level, nav.vertices[v].level)
-                                        || vw.pos.minus(p).norm() >= fp + f.robot.footprint + 0.5)
-                                    && !(strict && nbrs[v].binary_search(&w).is_ok())
-                            };
+                        while chosen.len() < f.count {
                             let mine: Vec<(usize, f64)> =
                                 chosen.iter().map(|c| (c.0, f.robot.footprint)).collect();
-                            if taken.iter().all(clear) && mine.iter().all(clear) {
-                                chosen.push((v, None));
+                            let ok = |v: usize| {
+                                let p = nav.vertices[v].pos;
+                                let clear = |&(w, fp): &(usize, f64)| {
+                                    let vw = &nav.vertices[w];
+                                    w != v
+                                        && (!level_handle_eq(vw.level, nav.vertices[v].level)
+                                            || vw.pos.minus(p).norm()
+                                                >= fp + f.robot.footprint + 0.5)
+                                        && !(strict && nbrs[v].binary_search(&w).is_ok())
+                                };
+                                taken.iter().all(clear) && mine.iter().all(clear)
+                            };
+                            let on_level = |v: usize| {
+                                taken
+                                    .iter()
+                                    .map(|x| x.0)
+                                    .chain(mine.iter().map(|x| x.0))
+                                    .filter(|&w| nav.vertices[w].level == nav.vertices[v].level)
+                                    .count()
+                            };
+                            let pick = cands
+                                .iter()
+                                .copied()
+                                .filter(|&v| ok(v))
+                                .min_by_key(|&v| (class(v), on_level(v), v));
+                            match pick {
+                                Some(v) => chosen.push((v, None)),
+                                None => break,
                             }
                         }
                     }
@@ -556,6 +585,7 @@ impl Fleets {
                     free_at: 0.0,
                     end_vertex: at,
                     charger: None,
+                    carrying: None,
                 });
             }
             fleets.push(rt);
@@ -1082,10 +1112,28 @@ impl Fleets {
             out,
         );
         let r = &mut self.robots[i];
+        let ingesting = matches!(
+            r.cur,
+            Cur::Workcell {
+                dispenser: false,
+                ..
+            }
+        );
         r.steps.clear();
         r.cur = Cur::None;
         if !ok {
             self.abandon_route(i, t, out);
+            // A failed delivery still takes the item it carries to the ingestor, so that
+            // its dispenser gets it back (else the dispenser stays empty for good).
+            let r = &mut self.robots[i];
+            match r.carrying.take() {
+                Some((v, ing)) if !ingesting => {
+                    r.steps.push_back(Step::GoTo(v));
+                    r.steps.push_back(Step::Ingest(ing));
+                    r.dirty = true;
+                }
+                _ => {}
+            }
         }
     }
 
@@ -1142,8 +1190,45 @@ impl Fleets {
                     dispenser,
                     next_send,
                     deadline,
+                    tries,
+                    since,
                 } => match self.results.get(&guid).copied() {
-                    Some(workcell_result::SUCCESS) => true,
+                    Some(workcell_result::SUCCESS) => {
+                        let r = &mut self.robots[i];
+                        if dispenser {
+                            // Carrying the item now: where it is to go, in case the task
+                            // fails before it gets there.
+                            let to = r.steps.iter().find_map(|s| match s {
+                                Step::GoTo(v) => Some(*v),
+                                _ => None,
+                            });
+                            let ing = r.steps.iter().find_map(|s| match s {
+                                Step::Ingest(x) => Some(x.clone()),
+                                _ => None,
+                            });
+                            r.carrying = to.zip(ing);
+                        } else {
+                            r.carrying = None;
+                        }
+                        true
+                    }
+                    // An empty dispenser: its item is still out with another delivery
+                    // (it comes back once ingested). Ask again for a while.
+                    Some(_) if dispenser && t - since < ITEM_WAIT => {
+                        let base = guid.split("_retry").next().unwrap_or(&guid).to_string();
+                        self.robots[i].cur = Cur::Workcell {
+                            guid: format!("{base}_retry{}", tries + 1),
+                            target,
+                            dispenser,
+                            next_send: t + ITEM_RETRY,
+                            deadline: t + ITEM_RETRY + EXTERNAL_TIMEOUT,
+                            tries: tries + 1,
+                            since,
+                        };
+                        let r = &mut self.robots[i];
+                        r.wake = r.wake.min(t + ITEM_RETRY);
+                        return;
+                    }
                     Some(_) => {
                         self.end_task(i, t, false, format!("{target} failed"), out);
                         continue;
@@ -1208,10 +1293,14 @@ impl Fleets {
     /// Starts the next step (or task). False when there is nothing to do.
     fn next_step(&mut self, i: usize, t: f64, out: &mut Vec<(Topic, Msg)>) -> bool {
         if let Some(step) = self.robots[i].steps.pop_front() {
+            // Requests outside a task (an item taken back) get their own ids.
             let task_id = self.robots[i]
                 .task
                 .and_then(|ti| self.tasks.get(ti))
-                .map_or_else(|| self.robots[i].name.clone(), |tk| tk.id.clone());
+                .map_or_else(
+                    || format!("{}_return{}", self.robots[i].name, self.robots[i].path_seq),
+                    |tk| tk.id.clone(),
+                );
             let r = &mut self.robots[i];
             let workcell = |target: String, dispenser: bool| Cur::Workcell {
                 guid: format!("{task_id}_{}", if dispenser { "pickup" } else { "dropoff" }),
@@ -1219,6 +1308,8 @@ impl Fleets {
                 dispenser,
                 next_send: t,
                 deadline: t + EXTERNAL_TIMEOUT,
+                tries: 0,
+                since: t,
             };
             r.cur = match step {
                 Step::GoTo(goal) => Cur::GoTo {
@@ -1436,6 +1527,24 @@ impl Fleets {
     /// `SEGMENT_MAX` edges.
     fn segment(&self, i: usize, from: usize) -> usize {
         let r = &self.robots[i];
+        // Into a lift: the lane in, the ride and the lane out at the destination, so that
+        // the robot never rides to a floor where somebody waits on the cabin's doorstep.
+        if let Some(&first) = r.route.get(from) {
+            let e = &self.nav.edges[first];
+            let into_cabin = e.kind == EdgeKind::Lane
+                && self.nav.vertices[e.to].lift.is_some()
+                && self.nav.vertices[e.from].lift.is_none();
+            if into_cabin {
+                let mut k = 1;
+                while let Some(&n) = r.route.get(from + k) {
+                    k += 1;
+                    if self.nav.edges[n].kind == EdgeKind::Lane {
+                        break;
+                    }
+                }
+                return k;
+            }
+        }
         let mut k = 0;
         for &e in r.route.iter().skip(from) {
             k += 1;
@@ -2171,7 +2280,7 @@ impl Fleets {
         let class = |v: usize| {
             let ro = &self.nav.vertices[v].roles;
             if ro.is_parking_spot || ro.is_holding_point || ro.is_charger {
-                0
+                0u8
             } else {
                 1
             }
@@ -2193,12 +2302,10 @@ impl Fleets {
                     .any(|x| needed.binary_search(x).is_ok())
             })
             .collect();
-        cands.sort_by(|&a, &c| {
-            class(a)
-                .cmp(&class(c))
-                .then(times[a].total_cmp(&times[c]))
-                .then(a.cmp(&c))
-        });
+        // Nearest first; a spot that is not a parking spot, holding point or charger
+        // counts SPOT_PENALTY longer (it is more likely to be on somebody's way).
+        let cost = |v: usize| times[v] + SPOT_PENALTY * f64::from(class(v));
+        cands.sort_by(|&a, &c| cost(a).total_cmp(&cost(c)).then(a.cmp(&c)));
         // Only spots the robot can start driving to now (its first lane is free), else
         // whose first lane only idle robots block (they will be asked to move aside).
         let first: Vec<(usize, Option<usize>)> = cands
