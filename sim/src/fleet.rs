@@ -174,6 +174,11 @@ struct Robot {
     charger: Option<usize>,
     /// (drop-off vertex, ingestor) of the item the robot carries.
     carrying: Option<(usize, String)>,
+    /// Driving to a back-off spot (a Dwell and the GoTo it backed off from follow).
+    backing_off: bool,
+    last_backoff: f64,
+    /// When the current task started.
+    task_started: f64,
 }
 
 impl Robot {
@@ -586,6 +591,9 @@ impl Fleets {
                     end_vertex: at,
                     charger: None,
                     carrying: None,
+                    backing_off: false,
+                    last_backoff: f64::NEG_INFINITY,
+                    task_started: 0.0,
                 });
             }
             fleets.push(rt);
@@ -1311,6 +1319,9 @@ impl Fleets {
                 tries: 0,
                 since: t,
             };
+            if matches!(step, Step::Dwell(_)) {
+                r.backing_off = false;
+            }
             r.cur = match step {
                 Step::GoTo(goal) => Cur::GoTo {
                     goal,
@@ -1345,6 +1356,7 @@ impl Fleets {
             Some(steps) => {
                 let r = &mut self.robots[i];
                 r.task = Some(ti);
+                r.task_started = t;
                 r.steps = steps.into();
                 self.event(t, ti, "started", Some(i), String::new(), out);
             }
@@ -2066,7 +2078,10 @@ impl Fleets {
                     continue;
                 }
             }
-            if waited >= STUCK_FAIL {
+            // Stalled, or not moved at all (back-offs that never start reset the stall).
+            let r = &self.robots[i];
+            let unmoved = t - r.last_moved.max(r.task_started);
+            if waited >= STUCK_FAIL || (r.task.is_some() && unmoved >= STUCK_FAIL) {
                 if self.robots[i].task.is_some() {
                     self.end_task(i, t, false, "stuck in traffic".into(), out);
                 } else {
@@ -2098,13 +2113,35 @@ impl Fleets {
         t: f64,
         out: &mut Vec<(Topic, Msg)>,
     ) {
+        // Already backing off (its spot turned out blocked too): drop that back-off and
+        // head for the goal it was for.
+        {
+            let r = &mut self.robots[b];
+            if r.backing_off {
+                if let (Some(Step::Dwell(_)), Some(&Step::GoTo(goal))) =
+                    (r.steps.front(), r.steps.get(1))
+                {
+                    r.steps.pop_front();
+                    r.steps.pop_front();
+                    r.cur = Cur::GoTo {
+                        goal,
+                        planned: true,
+                    };
+                }
+            }
+        }
         if let Cur::GoTo { goal, .. } = self.robots[b].cur {
             let r = &mut self.robots[b];
             if r.backoff_goal != goal {
                 r.backoff_goal = goal;
                 r.backoffs = 0;
             }
-            r.backoffs += 1;
+            // Only back-offs after moving count: one that could not start is no livelock
+            // (a robot that never moves fails by STUCK_FAIL instead).
+            if r.last_moved > r.last_backoff {
+                r.backoffs += 1;
+            }
+            r.last_backoff = t;
             if r.backoffs > MAX_BACKOFFS {
                 // The same robots keep meeting: give up rather than loop forever.
                 r.backoffs = 0;
@@ -2124,8 +2161,11 @@ impl Fleets {
             r.steps.push_front(Step::GoTo(goal));
         }
         // Wait there long enough for the others to take the way.
-        r.steps.push_front(Step::Dwell(BACKOFF_WAIT));
+        // Longer each time towards the same goal: the others may need long to pass.
+        let wait = BACKOFF_WAIT * f64::from(1u32 << r.backoffs.clamp(1, 5).saturating_sub(1));
+        r.steps.push_front(Step::Dwell(wait));
         r.steps.push_front(Step::GoTo(v));
+        r.backing_off = true;
         r.cur = Cur::None;
         r.route.clear();
         r.n_res = 0;
@@ -2165,7 +2205,7 @@ impl Fleets {
                 }
                 let others: Vec<usize> = cycle.iter().copied().filter(|&o| o != b).collect();
                 let needed = self.needed(&others, &[], horizon);
-                if let Some((v, time)) = self.free_spot_timed(b, &needed, None) {
+                if let Some((v, time)) = self.free_spot_timed(b, &needed, None, horizon == 0) {
                     // A robot in a lift cabin backs off last: the others wait for the
                     // cabin to empty.
                     let cabin = self.nav.vertices[self.robots[b].at].lift.is_some();
@@ -2264,7 +2304,7 @@ impl Fleets {
     /// lane there is free now. Parking spots, holding points and chargers first, then any
     /// vertex; nearest first.
     fn free_spot(&self, b: usize, needed: &[Res], ignore: Option<usize>) -> Option<usize> {
-        self.free_spot_timed(b, needed, ignore).map(|x| x.0)
+        self.free_spot_timed(b, needed, ignore, false).map(|x| x.0)
     }
 
     /// [`Fleets::free_spot`] with the travel time there.
@@ -2273,6 +2313,7 @@ impl Fleets {
         b: usize,
         needed: &[Res],
         ignore: Option<usize>,
+        push: bool,
     ) -> Option<(usize, f64)> {
         let r = &self.robots[b];
         let f = &self.fleets[r.fleet];
@@ -2334,6 +2375,33 @@ impl Fleets {
                         self.res.blockers(b, &set).iter().all(|&o| {
                             Some(o) == ignore
                                 || (self.robots[o].idle() && self.robots[o].n_sent == 0)
+                        })
+                    })
+                })
+            })
+            .or_else(|| {
+                // Gridlock: a spot behind a robot that waits at rest (not one that needs
+                // `needed`); waiting for it makes a new wait-for cycle, whose own victim
+                // then makes room further out (robots pushed back one after the other).
+                if !push {
+                    return None;
+                }
+                first.iter().find(|&&(_, e)| {
+                    e.is_some_and(|e| {
+                        let standing = &self.conf.vertex[r.at];
+                        let set: Vec<Res> = self.conf.edge[e]
+                            .iter()
+                            .copied()
+                            .filter(|x| standing.binary_search(x).is_err())
+                            .collect();
+                        self.res.blockers(b, &set).iter().all(|&o| {
+                            let x = &self.robots[o];
+                            x.n_sent == 0
+                                && !self
+                                    .res
+                                    .held(o)
+                                    .iter()
+                                    .any(|h| needed.binary_search(h).is_ok())
                         })
                     })
                 })
