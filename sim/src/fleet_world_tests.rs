@@ -961,38 +961,30 @@ fn world_head_on_in_a_corridor_and_a_crossing_robot_all_complete() {
 
 #[test]
 fn world_second_delivery_waits_for_the_dispensers_item() {
-    // One dispenser holds one item; two deliveries start at once. The second robot asks
-    // again until the first delivery's item has been ingested and gone home (it used to
-    // fail with `disp failed`).
+    // One dispenser (at the junction) holds one item; two deliveries to the dead end start
+    // at once. The second robot reaches the dispenser while the first still carries the
+    // item down the corridor: it asks again until the item has been ingested and gone
+    // home (it used to fail with `disp failed`).
     let b = load("comb", Some(COMB));
+    let delivery = |at: f64| {
+        task(
+            at,
+            None,
+            TaskKind::Delivery {
+                pickup: "j".into(),
+                dropoff: "dead_end".into(),
+                dispenser: Some("disp".into()),
+                ingestor: Some("sink".into()),
+            },
+        )
+    };
     let mut s = scenario(
-        vec![fleet("d", 2, spawn(&["bay_n", "bay_s"]))],
-        vec![
-            task(
-                0.5,
-                None,
-                TaskKind::Delivery {
-                    pickup: "dead_end".into(),
-                    dropoff: "bay_e".into(),
-                    dispenser: Some("disp".into()),
-                    ingestor: Some("sink".into()),
-                },
-            ),
-            task(
-                0.6,
-                None,
-                TaskKind::Delivery {
-                    pickup: "dead_end".into(),
-                    dropoff: "bay_e".into(),
-                    dispenser: Some("disp".into()),
-                    ingestor: Some("sink".into()),
-                },
-            ),
-        ],
+        vec![fleet("d", 2, spawn(&["bay_n", "far_end"]))],
+        vec![delivery(0.5), delivery(0.6)],
     );
     for (name, kind, at) in [
-        ("disp", crate::scenario::WorkcellKind::Dispenser, "dead_end"),
-        ("sink", crate::scenario::WorkcellKind::Ingestor, "bay_e"),
+        ("disp", crate::scenario::WorkcellKind::Dispenser, "j"),
+        ("sink", crate::scenario::WorkcellKind::Ingestor, "dead_end"),
     ] {
         s.workcells.push(WorkcellSpec {
             name: name.into(),
