@@ -4,14 +4,18 @@
 //!
 //! Event driven: `update` returns at once unless a message arrived or a timer expired.
 //!
-//! A robot follows its route in PathRequests of up to `LOOKAHEAD` lanes it has reserved
-//! (see traffic.rs); a lane through a controlled door, into a lift cabin, or a lift ride is
-//! driven alone, after the door is open (DoorState OPEN and our heartbeat session) or the
-//! lift is at the floor with its doors open in our session. Progress is read from
+//! A robot follows its route in PathRequests of the lanes it has reserved (see traffic.rs):
+//! a corridor is reserved whole up to the next place where robots can pass (`segment`),
+//! at least `LOOKAHEAD` plain lanes ahead; entering a lift reserves the ride and the lane
+//! out at the destination. A lane through a controlled door, into a lift cabin, or a lift
+//! ride is driven alone, after the door is open (DoorState OPEN and our heartbeat session)
+//! or the lift is at the floor with its doors open in our session. Progress is read from
 //! RobotState (`path` = waypoints not yet reached). Waiting robots are watched once a
-//! second: idle robots in the way move aside, wait-for cycles are broken by backing one
-//! robot off, and a robot whose wait chain has not moved for `STUCK_AFTER` is reported,
-//! then its task fails.
+//! second: idle robots in the way move aside (rows of them one after the other), wait-for
+//! cycles are broken by backing one robot off (`resolve_deadlock`) or by a detour, a robot
+//! whose wait chain has not moved for `STUCK_AFTER` is reported and looks for detours, and
+//! after `STUCK_FAIL` its task fails. Empty dispensers are asked again; a delivery that
+//! fails while carrying its item still takes it to the ingestor.
 
 use crate::graph::{EdgeKind, Nav};
 use crate::msgs::{
