@@ -51,6 +51,8 @@ pub mod codes {
 const RESEND: f64 = 1.0;
 /// Waiting this long for a door, lift or workcell fails the task.
 const EXTERNAL_TIMEOUT: f64 = 300.0;
+/// A robot stalled this long in another stalled robot's way backs off for it (s).
+const YIELD_AFTER: f64 = 60.0;
 /// A robot at an empty dispenser asks again this often (s), this long (s).
 const ITEM_RETRY: f64 = 5.0;
 const ITEM_WAIT: f64 = 1200.0;
@@ -1957,6 +1959,20 @@ impl Fleets {
                 continue;
             }
             for b in self.robots[i].blockers.clone() {
+                // A blocker that has itself been stalled for long yields like an idle one
+                // would (a gridlock dissolves from its edges).
+                if self.robots[i].wait_since.is_some()
+                    && self.can_back_off(b)
+                    && t - self.robots[b].stall_since >= YIELD_AFTER
+                    && t - self.robots[i].stall_since >= YIELD_AFTER
+                {
+                    let needed = self.needed(&[i], &[], DEADLOCK_HORIZON);
+                    if let Some(v) = self.free_spot(b, &needed, None) {
+                        let names = [self.robots[i].name.clone(), self.robots[b].name.clone()];
+                        self.back_off(b, v, &names, t, out);
+                    }
+                    continue;
+                }
                 if self.robots[b].idle() && self.robots[b].n_sent == 0 {
                     // Out of the waiter's way if possible, else anywhere it can go now.
                     let needed = self.needed(&[i], &[], DEADLOCK_HORIZON);
