@@ -2337,7 +2337,7 @@ impl Fleets {
     ) -> Option<(usize, f64)> {
         let r = &self.robots[b];
         let f = &self.fleets[r.fleet];
-        let times = self.nav.times_from(f.slot, r.at, f.speed);
+        let (times, prev) = self.nav.tree_from(f.slot, r.at, f.speed);
         let class = |v: usize| {
             let ro = &self.nav.vertices[v].roles;
             if ro.is_parking_spot || ro.is_holding_point || ro.is_charger {
@@ -2372,13 +2372,7 @@ impl Fleets {
         let first: Vec<(usize, Option<usize>)> = cands
             .into_iter()
             .take(16)
-            .map(|v| {
-                let e = self
-                    .nav
-                    .plan(f.slot, r.at, v, f.speed)
-                    .and_then(|(_, route)| route.first().copied());
-                (v, e)
-            })
+            .map(|v| (v, self.nav.first_edge(&prev, r.at, v)))
             .collect();
         let found = first
             .iter()
