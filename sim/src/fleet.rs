@@ -4,14 +4,18 @@
 //!
 //! Event driven: `update` returns at once unless a message arrived or a timer expired.
 //!
-//! A robot follows its route in PathRequests of up to `LOOKAHEAD` lanes it has reserved
-//! (see traffic.rs); a lane through a controlled door, into a lift cabin, or a lift ride is
-//! driven alone, after the door is open (DoorState OPEN and our heartbeat session) or the
-//! lift is at the floor with its doors open in our session. Progress is read from
+//! A robot follows its route in PathRequests of the lanes it has reserved (see traffic.rs):
+//! a corridor is reserved whole up to the next place where robots can pass (`segment`),
+//! at least `LOOKAHEAD` plain lanes ahead; entering a lift reserves the ride and the lane
+//! out at the destination. A lane through a controlled door, into a lift cabin, or a lift
+//! ride is driven alone, after the door is open (DoorState OPEN and our heartbeat session)
+//! or the lift is at the floor with its doors open in our session. Progress is read from
 //! RobotState (`path` = waypoints not yet reached). Waiting robots are watched once a
-//! second: idle robots in the way move aside, wait-for cycles are broken by backing one
-//! robot off, and a robot whose wait chain has not moved for `STUCK_AFTER` is reported,
-//! then its task fails.
+//! second: idle robots in the way move aside (rows of them one after the other), wait-for
+//! cycles are broken by backing one robot off (`resolve_deadlock`) or by a detour, a robot
+//! whose wait chain has not moved for `STUCK_AFTER` is reported and looks for detours, and
+//! after `STUCK_FAIL` its task fails. Empty dispensers are asked again; a delivery that
+//! fails while carrying its item still takes it to the ingestor.
 
 use crate::graph::{EdgeKind, Nav};
 use crate::msgs::{
@@ -47,14 +51,31 @@ pub mod codes {
 const RESEND: f64 = 1.0;
 /// Waiting this long for a door, lift or workcell fails the task.
 const EXTERNAL_TIMEOUT: f64 = 300.0;
-/// A robot waiting for traffic this long is reported stuck; twice as long fails its task.
+/// A robot stalled this long in another stalled robot's way backs off for it (s).
+const YIELD_AFTER: f64 = 60.0;
+/// A robot at an empty dispenser asks again this often (s), this long (s).
+const ITEM_RETRY: f64 = 5.0;
+const ITEM_WAIT: f64 = 1200.0;
+/// A robot waiting for traffic this long is reported stuck.
 const STUCK_AFTER: f64 = 120.0;
+/// A stalled robot looks for a detour this often.
+const DETOUR_AFTER: f64 = 30.0;
+/// A robot stalled this long (no detour, no back-off helped) fails its task: traffic
+/// that never clears is reported rather than waited for until the end of the run.
+const STUCK_FAIL: f64 = 1800.0;
 /// A wait-for cycle older than this is broken by backing a robot off.
 const DEADLOCK_AFTER: f64 = 3.0;
 /// Back-offs towards one goal before its task fails.
 const MAX_BACKOFFS: u32 = 10;
 /// How long a robot that backed off out of a deadlock waits before going on (s).
 const BACKOFF_WAIT: f64 = 5.0;
+/// Edges of the other robots' routes a robot backing off must keep off.
+const DEADLOCK_HORIZON: usize = 8;
+/// Extra cost (s) of a yield or back-off spot that is not a parking spot, holding point
+/// or charger.
+const SPOT_PENALTY: f64 = 10.0;
+/// Most edges reserved at once through a corridor.
+const SEGMENT_MAX: usize = 12;
 /// Edges reserved ahead of a moving robot.
 const LOOKAHEAD: usize = 3;
 
@@ -87,6 +108,9 @@ enum Cur {
         dispenser: bool,
         next_send: f64,
         deadline: f64,
+        /// Requests made after a FAILED, and when the first one was made.
+        tries: u32,
+        since: f64,
     },
     Dwell {
         until: f64,
@@ -146,12 +170,21 @@ struct Robot {
     backoff_goal: usize,
     /// Since when nothing this robot waits for (directly or through others) moved.
     stall_since: f64,
+    /// When it last looked for a detour.
+    last_detour: f64,
     /// Last reported position that differed by more than 5 cm, and when.
     last_pos: (f64, f64),
     last_moved: f64,
     free_at: f64,
     end_vertex: usize,
     charger: Option<usize>,
+    /// (drop-off vertex, ingestor) of the item the robot carries.
+    carrying: Option<(usize, String)>,
+    /// Driving to a back-off spot (a Dwell and the GoTo it backed off from follow).
+    backing_off: bool,
+    last_backoff: f64,
+    /// When the current task started.
+    task_started: f64,
 }
 
 impl Robot {
@@ -200,6 +233,9 @@ struct LiftView {
 pub struct Fleets {
     nav: Nav,
     conf: Conflicts,
+    /// Per graph slot, per vertex: robots can wait or pass each other there (junctions,
+    /// leaves, holding points, lift cabins); corridors are the other vertices.
+    passing: Vec<Vec<bool>>,
     res: Reservations,
     fleets: Vec<FleetRt>,
     robots: Vec<Robot>,
@@ -318,6 +354,18 @@ impl Fleets {
                         .copied()
                         .filter(|&v| nav.vertices[v].lift.is_none())
                         .collect();
+                    // Neighbours (either direction) of each vertex on this graph.
+                    let mut nbrs: Vec<Vec<usize>> = vec![Vec::new(); nav.vertices.len()];
+                    for e in nav.edges.iter().filter(|e| e.graph == slot) {
+                        nbrs[e.from].push(e.to);
+                        nbrs[e.to].push(e.from);
+                    }
+                    for n in &mut nbrs {
+                        n.sort_unstable();
+                        n.dedup();
+                    }
+                    // Chargers, parking spots and holding points first, then dead ends
+                    // (off every through route), then the rest.
                     let class = |v: usize| {
                         let r = &nav.vertices[v].roles;
                         if r.is_charger {
@@ -326,25 +374,51 @@ impl Fleets {
                             1
                         } else if r.is_holding_point {
                             2
-                        } else {
+                        } else if nbrs[v].len() <= 1 {
                             3
+                        } else {
+                            4
                         }
                     };
                     cands.sort_by_key(|&v| (class(v), v));
-                    for v in cands {
-                        if chosen.len() == f.count {
-                            break;
-                        }
-                        let p = nav.vertices[v].pos;
-                        let clear = |&(w, fp): &(usize, f64)| {
-                            let vw = &nav.vertices[w];
-                            !level_handle_eq(vw.level, nav.vertices[v].level)
-                                || vw.pos.minus(p).norm() >= fp + f.robot.footprint + 0.5
-                        };
-                        let mine: Vec<(usize, f64)> =
-                            chosen.iter().map(|c| (c.0, f.robot.footprint)).collect();
-                        if taken.iter().all(clear) && mine.iter().all(clear) {
-                            chosen.push((v, None));
+                    // First pass: no robot next to another (each can drive off without the
+                    // other moving); second pass: only far enough apart.
+                    // Spread over the levels the graph reaches: the level with the fewest
+                    // robots so far first, so that a multi-level graph does not crowd one
+                    // floor.
+                    for strict in [true, false] {
+                        while chosen.len() < f.count {
+                            let mine: Vec<(usize, f64)> =
+                                chosen.iter().map(|c| (c.0, f.robot.footprint)).collect();
+                            let ok = |v: usize| {
+                                let p = nav.vertices[v].pos;
+                                let clear = |&(w, fp): &(usize, f64)| {
+                                    let vw = &nav.vertices[w];
+                                    w != v
+                                        && (!level_handle_eq(vw.level, nav.vertices[v].level)
+                                            || vw.pos.minus(p).norm()
+                                                >= fp + f.robot.footprint + 0.5)
+                                        && !(strict && nbrs[v].binary_search(&w).is_ok())
+                                };
+                                taken.iter().all(clear) && mine.iter().all(clear)
+                            };
+                            let on_level = |v: usize| {
+                                taken
+                                    .iter()
+                                    .map(|x| x.0)
+                                    .chain(mine.iter().map(|x| x.0))
+                                    .filter(|&w| nav.vertices[w].level == nav.vertices[v].level)
+                                    .count()
+                            };
+                            let pick = cands
+                                .iter()
+                                .copied()
+                                .filter(|&v| ok(v))
+                                .min_by_key(|&v| (class(v), on_level(v), v));
+                            match pick {
+                                Some(v) => chosen.push((v, None)),
+                                None => break,
+                            }
                         }
                     }
                 }
@@ -438,17 +512,22 @@ impl Fleets {
     ) -> Result<Fleets, Vec<Diagnostic>> {
         let graphs: Vec<i64> = scenario.fleets.iter().map(|f| f.graph).collect();
         let nav = Nav::build(building, &graphs);
-        let mut clear = Clearance {
+        let zero = Clearance {
             footprint: 0.0,
             stop_distance: 0.0,
             stop_radius: 0.0,
         };
+        let mut per_slot = vec![zero; nav.graphs.len()];
+        let mut footprint: f64 = 0.0;
         for f in &scenario.fleets {
-            clear.footprint = clear.footprint.max(f.robot.footprint);
-            clear.stop_distance = clear.stop_distance.max(f.robot.stop_distance);
-            clear.stop_radius = clear.stop_radius.max(f.robot.stop_radius);
+            footprint = footprint.max(f.robot.footprint);
+            if let Some(c) = nav.slot(f.graph).and_then(|s| per_slot.get_mut(s)) {
+                c.footprint = c.footprint.max(f.robot.footprint);
+                c.stop_distance = c.stop_distance.max(f.robot.stop_distance);
+                c.stop_radius = c.stop_radius.max(f.robot.stop_radius);
+            }
         }
-        let conf = Conflicts::build(&nav, clear);
+        let conf = Conflicts::build_per_slot(&nav, footprint, &per_slot);
         let mut diags = Vec::new();
         let mut fleets = Vec::new();
         let mut robots = Vec::new();
@@ -511,11 +590,16 @@ impl Fleets {
                     backoffs: 0,
                     backoff_goal: usize::MAX,
                     stall_since: 0.0,
+                    last_detour: f64::NEG_INFINITY,
                     last_pos: (spawn.x, spawn.y),
                     last_moved: 0.0,
                     free_at: 0.0,
                     end_vertex: at,
                     charger: None,
+                    carrying: None,
+                    backing_off: false,
+                    last_backoff: f64::NEG_INFINITY,
+                    task_started: 0.0,
                 });
             }
             fleets.push(rt);
@@ -648,7 +732,26 @@ impl Fleets {
         for (i, l) in nav.lifts.iter().enumerate() {
             lift_index.entry(l.name.clone()).or_insert(i);
         }
+        let passing = (0..nav.graphs.len())
+            .map(|slot| {
+                let mut nbrs: Vec<Vec<usize>> = vec![Vec::new(); nav.vertices.len()];
+                for e in nav.edges.iter().filter(|e| e.graph == slot) {
+                    nbrs[e.from].push(e.to);
+                    nbrs[e.to].push(e.from);
+                }
+                nbrs.iter_mut()
+                    .enumerate()
+                    .map(|(v, n)| {
+                        n.sort_unstable();
+                        n.dedup();
+                        let x = &nav.vertices[v];
+                        n.len() != 2 || x.roles.is_holding_point || x.lift.is_some()
+                    })
+                    .collect()
+            })
+            .collect();
         Ok(Fleets {
+            passing,
             doors: vec![DoorView::default(); nav.doors.len()],
             lifts: vec![LiftView::default(); nav.lifts.len()],
             nav,
@@ -1023,10 +1126,28 @@ impl Fleets {
             out,
         );
         let r = &mut self.robots[i];
+        let ingesting = matches!(
+            r.cur,
+            Cur::Workcell {
+                dispenser: false,
+                ..
+            }
+        );
         r.steps.clear();
         r.cur = Cur::None;
         if !ok {
             self.abandon_route(i, t, out);
+            // A failed delivery still takes the item it carries to the ingestor, so that
+            // its dispenser gets it back (else the dispenser stays empty for good).
+            let r = &mut self.robots[i];
+            match r.carrying.take() {
+                Some((v, ing)) if !ingesting => {
+                    r.steps.push_back(Step::GoTo(v));
+                    r.steps.push_back(Step::Ingest(ing));
+                    r.dirty = true;
+                }
+                _ => {}
+            }
         }
     }
 
@@ -1083,8 +1204,45 @@ impl Fleets {
                     dispenser,
                     next_send,
                     deadline,
+                    tries,
+                    since,
                 } => match self.results.get(&guid).copied() {
-                    Some(workcell_result::SUCCESS) => true,
+                    Some(workcell_result::SUCCESS) => {
+                        let r = &mut self.robots[i];
+                        if dispenser {
+                            // Carrying the item now: where it is to go, in case the task
+                            // fails before it gets there.
+                            let to = r.steps.iter().find_map(|s| match s {
+                                Step::GoTo(v) => Some(*v),
+                                _ => None,
+                            });
+                            let ing = r.steps.iter().find_map(|s| match s {
+                                Step::Ingest(x) => Some(x.clone()),
+                                _ => None,
+                            });
+                            r.carrying = to.zip(ing);
+                        } else {
+                            r.carrying = None;
+                        }
+                        true
+                    }
+                    // An empty dispenser: its item is still out with another delivery
+                    // (it comes back once ingested). Ask again for a while.
+                    Some(_) if dispenser && t - since < ITEM_WAIT => {
+                        let base = guid.split("_retry").next().unwrap_or(&guid).to_string();
+                        self.robots[i].cur = Cur::Workcell {
+                            guid: format!("{base}_retry{}", tries + 1),
+                            target,
+                            dispenser,
+                            next_send: t + ITEM_RETRY,
+                            deadline: t + ITEM_RETRY + EXTERNAL_TIMEOUT,
+                            tries: tries + 1,
+                            since,
+                        };
+                        let r = &mut self.robots[i];
+                        r.wake = r.wake.min(t + ITEM_RETRY);
+                        return;
+                    }
                     Some(_) => {
                         self.end_task(i, t, false, format!("{target} failed"), out);
                         continue;
@@ -1149,10 +1307,14 @@ impl Fleets {
     /// Starts the next step (or task). False when there is nothing to do.
     fn next_step(&mut self, i: usize, t: f64, out: &mut Vec<(Topic, Msg)>) -> bool {
         if let Some(step) = self.robots[i].steps.pop_front() {
+            // Requests outside a task (an item taken back) get their own ids.
             let task_id = self.robots[i]
                 .task
                 .and_then(|ti| self.tasks.get(ti))
-                .map_or_else(|| self.robots[i].name.clone(), |tk| tk.id.clone());
+                .map_or_else(
+                    || format!("{}_return{}", self.robots[i].name, self.robots[i].path_seq),
+                    |tk| tk.id.clone(),
+                );
             let r = &mut self.robots[i];
             let workcell = |target: String, dispenser: bool| Cur::Workcell {
                 guid: format!("{task_id}_{}", if dispenser { "pickup" } else { "dropoff" }),
@@ -1160,7 +1322,12 @@ impl Fleets {
                 dispenser,
                 next_send: t,
                 deadline: t + EXTERNAL_TIMEOUT,
+                tries: 0,
+                since: t,
             };
+            if matches!(step, Step::Dwell(_)) {
+                r.backing_off = false;
+            }
             r.cur = match step {
                 Step::GoTo(goal) => Cur::GoTo {
                     goal,
@@ -1195,6 +1362,7 @@ impl Fleets {
             Some(steps) => {
                 let r = &mut self.robots[i];
                 r.task = Some(ti);
+                r.task_started = t;
                 r.steps = steps.into();
                 self.event(t, ti, "started", Some(i), String::new(), out);
             }
@@ -1327,23 +1495,32 @@ impl Fleets {
         self.res.set_held(i, set);
     }
 
-    /// Tries to reserve edge `route[n_res]`. On failure records the blockers.
+    /// Tries to reserve the edges `route[n_res..]` up to the next place where robots can
+    /// pass each other (see [`Fleets::segment`]), all or nothing. On failure records the
+    /// blockers.
     fn try_reserve(&mut self, i: usize, t: f64) -> bool {
         let r = &self.robots[i];
-        let Some(&e) = r.route.get(r.n_res) else {
+        let k = self.segment(i, r.n_res);
+        if k == 0 {
             return false;
-        };
+        }
         // What the robot's standing set already shares (robots spawned closer than their
         // clearance) must not keep it from driving away.
         let standing = &self.conf.vertex[r.at];
-        let set: Vec<Res> = self.conf.edge[e]
-            .iter()
-            .copied()
-            .filter(|x| standing.binary_search(x).is_err())
-            .collect();
+        let mut set: Vec<Res> = Vec::new();
+        for &e in r.route.iter().skip(r.n_res).take(k) {
+            set.extend(
+                self.conf.edge[e]
+                    .iter()
+                    .copied()
+                    .filter(|x| standing.binary_search(x).is_err()),
+            );
+        }
+        set.sort_unstable();
+        set.dedup();
         if self.res.is_free_for(i, &set) {
             let r = &mut self.robots[i];
-            r.n_res += 1;
+            r.n_res += k;
             r.wait_since = None;
             r.blockers.clear();
             self.rehold(i);
@@ -1359,6 +1536,50 @@ impl Fleets {
             r.blockers = blockers;
             false
         }
+    }
+
+    /// How many edges from `route[from]` on robot `i` must reserve at once: through a
+    /// corridor (vertices with two neighbours) to the next junction, leaf, holding point,
+    /// or the end of the route, so that two robots never meet head-on inside it. Only
+    /// plain lanes are chained (doors and lifts are driven one edge at a time); at most
+    /// `SEGMENT_MAX` edges.
+    fn segment(&self, i: usize, from: usize) -> usize {
+        let r = &self.robots[i];
+        // Into a lift: the lane in, the ride and the lane out at the destination, so that
+        // the robot never rides to a floor where somebody waits on the cabin's doorstep.
+        if let Some(&first) = r.route.get(from) {
+            let e = &self.nav.edges[first];
+            let into_cabin = e.kind == EdgeKind::Lane
+                && self.nav.vertices[e.to].lift.is_some()
+                && self.nav.vertices[e.from].lift.is_none();
+            if into_cabin {
+                let mut k = 1;
+                while let Some(&n) = r.route.get(from + k) {
+                    k += 1;
+                    if self.nav.edges[n].kind == EdgeKind::Lane {
+                        break;
+                    }
+                }
+                return k;
+            }
+        }
+        let mut k = 0;
+        for &e in r.route.iter().skip(from) {
+            k += 1;
+            if k >= SEGMENT_MAX || !self.is_plain(e) {
+                break;
+            }
+            let v = self.nav.edges[e].to;
+            if self.passing[r.slot].get(v).copied().unwrap_or(true) {
+                break;
+            }
+            // The next edge must be plain too, else stop before it.
+            match r.route.get(from + k) {
+                Some(&n) if self.is_plain(n) => {}
+                _ => break,
+            }
+        }
+        k
     }
 
     fn is_plain(&self, e: usize) -> bool {
@@ -1738,9 +1959,23 @@ impl Fleets {
                 continue;
             }
             for b in self.robots[i].blockers.clone() {
+                // A blocker that has itself been stalled for long yields like an idle one
+                // would (a gridlock dissolves from its edges).
+                if self.robots[i].wait_since.is_some()
+                    && self.can_back_off(b)
+                    && t - self.robots[b].stall_since >= YIELD_AFTER
+                    && t - self.robots[i].stall_since >= YIELD_AFTER
+                {
+                    let needed = self.needed(&[i], &[], DEADLOCK_HORIZON);
+                    if let Some(v) = self.free_spot(b, &needed, None) {
+                        let names = [self.robots[i].name.clone(), self.robots[b].name.clone()];
+                        self.back_off(b, v, &names, t, out);
+                    }
+                    continue;
+                }
                 if self.robots[b].idle() && self.robots[b].n_sent == 0 {
                     // Out of the waiter's way if possible, else anywhere it can go now.
-                    let needed = self.needed(&[i], &[]);
+                    let needed = self.needed(&[i], &[], DEADLOCK_HORIZON);
                     let spot = self
                         .free_spot(b, &needed, None)
                         .or_else(|| self.free_spot(b, &[], None));
@@ -1762,7 +1997,7 @@ impl Fleets {
                         .plan(f.slot, rb.at, v, f.speed)
                         .map(|p| p.1)
                         .unwrap_or_default();
-                    let needed = self.needed(&[b], &route);
+                    let needed = self.needed(&[b], &route, 0);
                     if !self.can_back_off(i) {
                         continue;
                     }
@@ -1795,38 +2030,7 @@ impl Fleets {
                     .is_some_and(|s| t - s >= DEADLOCK_AFTER)
             });
             if old {
-                // The robot with the highest index backs off (lowest priority).
-                let names: Vec<String> =
-                    cycle.iter().map(|&r| self.robots[r].name.clone()).collect();
-                // The robot with the nearest spot out of the others' way backs off; on a
-                // tie the one with the highest index (lowest priority).
-                let mut best: Option<(f64, usize, usize)> = None;
-                for &b in cycle.iter().rev() {
-                    if !self.can_back_off(b) {
-                        continue;
-                    }
-                    let others: Vec<usize> = cycle.iter().copied().filter(|&o| o != b).collect();
-                    let needed = self.needed(&others, &[]);
-                    if let Some((v, time)) = self.free_spot_timed(b, &needed, None) {
-                        if best.is_none_or(|(bt, _, _)| time < bt) {
-                            best = Some((time, b, v));
-                        }
-                    }
-                }
-                let resolved = best.is_some();
-                if let Some((_, b, v)) = best {
-                    self.back_off(b, v, &names, t, out);
-                }
-                if !resolved {
-                    for &r in &cycle {
-                        if let Some(ti) = self.robots[r].task {
-                            if !self.robots[r].stuck_reported {
-                                self.event(t, ti, "deadlock", Some(r), names.join(","), out);
-                            }
-                        }
-                        self.robots[r].stuck_reported = true;
-                    }
-                }
+                self.resolve_deadlock(&cycle, t, out);
             }
         }
         // A waiting robot stalls only when nothing it waits for, directly or through
@@ -1883,7 +2087,21 @@ impl Fleets {
                     );
                 }
             }
-            if waited >= 2.0 * STUCK_AFTER {
+            // Long stalled: look for a way around what the others hold now.
+            if waited >= DETOUR_AFTER
+                && t - self.robots[i].last_detour >= DETOUR_AFTER
+                && self.can_back_off(i)
+            {
+                self.robots[i].last_detour = t;
+                if self.detour(i, &[]) {
+                    self.robots[i].stall_since = t;
+                    continue;
+                }
+            }
+            // Stalled, or not moved at all (back-offs that never start reset the stall).
+            let r = &self.robots[i];
+            let unmoved = t - r.last_moved.max(r.task_started);
+            if waited >= STUCK_FAIL || (r.task.is_some() && unmoved >= STUCK_FAIL) {
                 if self.robots[i].task.is_some() {
                     self.end_task(i, t, false, "stuck in traffic".into(), out);
                 } else {
@@ -1915,13 +2133,35 @@ impl Fleets {
         t: f64,
         out: &mut Vec<(Topic, Msg)>,
     ) {
+        // Already backing off (its spot turned out blocked too): drop that back-off and
+        // head for the goal it was for.
+        {
+            let r = &mut self.robots[b];
+            if r.backing_off {
+                if let (Some(Step::Dwell(_)), Some(&Step::GoTo(goal))) =
+                    (r.steps.front(), r.steps.get(1))
+                {
+                    r.steps.pop_front();
+                    r.steps.pop_front();
+                    r.cur = Cur::GoTo {
+                        goal,
+                        planned: true,
+                    };
+                }
+            }
+        }
         if let Cur::GoTo { goal, .. } = self.robots[b].cur {
             let r = &mut self.robots[b];
             if r.backoff_goal != goal {
                 r.backoff_goal = goal;
                 r.backoffs = 0;
             }
-            r.backoffs += 1;
+            // Only back-offs after moving count: one that could not start is no livelock
+            // (a robot that never moves fails by STUCK_FAIL instead).
+            if r.last_moved > r.last_backoff {
+                r.backoffs += 1;
+            }
+            r.last_backoff = t;
             if r.backoffs > MAX_BACKOFFS {
                 // The same robots keep meeting: give up rather than loop forever.
                 r.backoffs = 0;
@@ -1941,8 +2181,11 @@ impl Fleets {
             r.steps.push_front(Step::GoTo(goal));
         }
         // Wait there long enough for the others to take the way.
-        r.steps.push_front(Step::Dwell(BACKOFF_WAIT));
+        // Longer each time towards the same goal: the others may need long to pass.
+        let wait = BACKOFF_WAIT * f64::from(1u32 << r.backoffs.clamp(1, 5).saturating_sub(1));
+        r.steps.push_front(Step::Dwell(wait));
         r.steps.push_front(Step::GoTo(v));
+        r.backing_off = true;
         r.cur = Cur::None;
         r.route.clear();
         r.n_res = 0;
@@ -1966,13 +2209,105 @@ impl Fleets {
         }
     }
 
-    /// Resources robots `who` need: where they stand, their remaining routes, and `edges`.
-    fn needed(&self, who: &[usize], edges: &[usize]) -> Vec<Res> {
+    /// Breaks a wait-for cycle. The victim is the robot that can get out of the others'
+    /// way soonest (fewest back-offs lately first, so repeated cycles pick another one):
+    /// to a spot off the others' next `horizon` edges, the far horizon first. Without any
+    /// such spot, a robot of the cycle that has a detour around the others takes it; else
+    /// the deadlock is reported (and retried every second).
+    fn resolve_deadlock(&mut self, cycle: &[usize], t: f64, out: &mut Vec<(Topic, Msg)>) {
+        let names: Vec<String> = cycle.iter().map(|&r| self.robots[r].name.clone()).collect();
+        for horizon in [DEADLOCK_HORIZON, 2, 0] {
+            // (in a cabin, back-offs, time, robot, spot)
+            let mut best: Option<(bool, u32, f64, usize, usize)> = None;
+            for &b in cycle.iter().rev() {
+                if !self.can_back_off(b) {
+                    continue;
+                }
+                let others: Vec<usize> = cycle.iter().copied().filter(|&o| o != b).collect();
+                let needed = self.needed(&others, &[], horizon);
+                if let Some((v, time)) = self.free_spot_timed(b, &needed, None, horizon == 0) {
+                    // A robot in a lift cabin backs off last: the others wait for the
+                    // cabin to empty.
+                    let cabin = self.nav.vertices[self.robots[b].at].lift.is_some();
+                    let k = (cabin, self.robots[b].backoffs, time);
+                    if best.is_none_or(|(bc, bk, bt, _, _)| k < (bc, bk, bt)) {
+                        best = Some((k.0, k.1, k.2, b, v));
+                    }
+                }
+            }
+            if let Some((_, _, _, b, v)) = best {
+                self.back_off(b, v, &names, t, out);
+                return;
+            }
+        }
+        for &b in cycle {
+            if self.can_back_off(b) && self.detour(b, &[]) {
+                if let Some(ti) = self.robots[b].task {
+                    let detail = format!("{}: {} detours", names.join(","), self.robots[b].name);
+                    self.event(t, ti, "deadlock", Some(b), detail, out);
+                }
+                return;
+            }
+        }
+        for &r in cycle {
+            if let Some(ti) = self.robots[r].task {
+                if !self.robots[r].stuck_reported {
+                    self.event(t, ti, "deadlock", Some(r), names.join(","), out);
+                }
+            }
+            self.robots[r].stuck_reported = true;
+        }
+    }
+
+    /// Replans robot `b`'s GoTo (at rest, waiting) around what the other robots hold now
+    /// (and `avoid`, more resources to keep off). True if a new route was taken.
+    fn detour(&mut self, b: usize, avoid: &[Res]) -> bool {
+        let r = &self.robots[b];
+        let Cur::GoTo { goal, .. } = r.cur else {
+            return false;
+        };
+        if r.n_sent > 0 || r.gate != Gate::None {
+            return false;
+        }
+        let mut held: Vec<Res> = avoid.to_vec();
+        for o in 0..self.robots.len() {
+            if o != b {
+                held.extend_from_slice(self.res.held(o));
+            }
+        }
+        held.sort_unstable();
+        held.dedup();
+        let standing = &self.conf.vertex[r.at];
+        let clear = |e: usize| {
+            !self.conf.edge[e]
+                .iter()
+                .any(|x| standing.binary_search(x).is_err() && held.binary_search(x).is_ok())
+        };
+        let f = &self.fleets[r.fleet];
+        let Some((_, edges)) = self.nav.plan_with(r.slot, r.at, goal, f.speed, &clear) else {
+            return false;
+        };
+        if edges.is_empty() || edges.iter().eq(r.route.iter()) {
+            return false;
+        }
+        let r = &mut self.robots[b];
+        r.route = edges.into();
+        r.n_res = 0;
+        r.wait_since = None;
+        r.blockers.clear();
+        r.dirty = true;
+        self.rehold(b);
+        true
+    }
+
+    /// Resources robots `who` need: where they stand, the next `horizon` edges of their
+    /// routes, and `edges`.
+    fn needed(&self, who: &[usize], edges: &[usize], horizon: usize) -> Vec<Res> {
         let mut needed: Vec<Res> = Vec::new();
         for &o in who {
             let r = &self.robots[o];
             needed.extend_from_slice(&self.conf.vertex[r.at]);
-            for &e in &r.route {
+            for &e in r.route.iter().take(horizon) {
                 needed.extend_from_slice(&self.conf.edge[e]);
             }
         }
@@ -1989,7 +2324,7 @@ impl Fleets {
     /// lane there is free now. Parking spots, holding points and chargers first, then any
     /// vertex; nearest first.
     fn free_spot(&self, b: usize, needed: &[Res], ignore: Option<usize>) -> Option<usize> {
-        self.free_spot_timed(b, needed, ignore).map(|x| x.0)
+        self.free_spot_timed(b, needed, ignore, false).map(|x| x.0)
     }
 
     /// [`Fleets::free_spot`] with the travel time there.
@@ -1998,14 +2333,15 @@ impl Fleets {
         b: usize,
         needed: &[Res],
         ignore: Option<usize>,
+        push: bool,
     ) -> Option<(usize, f64)> {
         let r = &self.robots[b];
         let f = &self.fleets[r.fleet];
-        let times = self.nav.times_from(f.slot, r.at, f.speed);
+        let (times, prev) = self.nav.tree_from(f.slot, r.at, f.speed);
         let class = |v: usize| {
             let ro = &self.nav.vertices[v].roles;
             if ro.is_parking_spot || ro.is_holding_point || ro.is_charger {
-                0
+                0u8
             } else {
                 1
             }
@@ -2015,6 +2351,11 @@ impl Fleets {
             .copied()
             .filter(|&v| v != r.at && times[v].is_finite())
             .filter(|&v| self.nav.vertices[v].lift.is_none())
+            // From a cabin, not by riding on: the cabin is what the others wait for.
+            .filter(|&v| {
+                let here = &self.nav.vertices[r.at];
+                here.lift.is_none() || self.nav.vertices[v].level == here.level
+            })
             .filter(|&v| self.res.is_free_ignoring(b, &self.conf.vertex[v], ignore))
             .filter(|&v| {
                 !self.conf.vertex[v]
@@ -2022,23 +2363,76 @@ impl Fleets {
                     .any(|x| needed.binary_search(x).is_ok())
             })
             .collect();
-        cands.sort_by(|&a, &c| {
-            class(a)
-                .cmp(&class(c))
-                .then(times[a].total_cmp(&times[c]))
-                .then(a.cmp(&c))
-        });
-        // Only spots the robot can start driving to now (its first lane is free).
-        cands
+        // Nearest first; a spot that is not a parking spot, holding point or charger
+        // counts SPOT_PENALTY longer (it is more likely to be on somebody's way).
+        let cost = |v: usize| times[v] + SPOT_PENALTY * f64::from(class(v));
+        cands.sort_by(|&a, &c| cost(a).total_cmp(&cost(c)).then(a.cmp(&c)));
+        // Only spots the robot can start driving to now (its first lane is free), else
+        // whose first lane only idle robots block (they will be asked to move aside).
+        let first: Vec<(usize, Option<usize>)> = cands
             .into_iter()
             .take(16)
-            .find(|&v| {
-                self.nav
-                    .plan(f.slot, r.at, v, f.speed)
-                    .and_then(|(_, route)| route.first().copied())
-                    .is_some_and(|e| self.res.is_free_ignoring(b, &self.conf.edge[e], ignore))
+            .map(|v| (v, self.nav.first_edge(&prev, r.at, v)))
+            .collect();
+        let found = first
+            .iter()
+            .find(|&&(_, e)| e.is_some_and(|e| self.edge_free(b, e, ignore)))
+            .or_else(|| {
+                first.iter().find(|&&(_, e)| {
+                    e.is_some_and(|e| {
+                        let standing = &self.conf.vertex[r.at];
+                        let set: Vec<Res> = self.conf.edge[e]
+                            .iter()
+                            .copied()
+                            .filter(|x| standing.binary_search(x).is_err())
+                            .collect();
+                        self.res.blockers(b, &set).iter().all(|&o| {
+                            Some(o) == ignore
+                                || (self.robots[o].idle() && self.robots[o].n_sent == 0)
+                        })
+                    })
+                })
             })
-            .map(|v| (v, times[v]))
+            .or_else(|| {
+                // Gridlock: a spot behind a robot that waits at rest (not one that needs
+                // `needed`); waiting for it makes a new wait-for cycle, whose own victim
+                // then makes room further out (robots pushed back one after the other).
+                if !push {
+                    return None;
+                }
+                first.iter().find(|&&(_, e)| {
+                    e.is_some_and(|e| {
+                        let standing = &self.conf.vertex[r.at];
+                        let set: Vec<Res> = self.conf.edge[e]
+                            .iter()
+                            .copied()
+                            .filter(|x| standing.binary_search(x).is_err())
+                            .collect();
+                        self.res.blockers(b, &set).iter().all(|&o| {
+                            let x = &self.robots[o];
+                            x.n_sent == 0
+                                && !self
+                                    .res
+                                    .held(o)
+                                    .iter()
+                                    .any(|h| needed.binary_search(h).is_ok())
+                        })
+                    })
+                })
+            });
+        found.map(|&(v, _)| (v, times[v]))
+    }
+
+    /// Whether robot `b` could reserve edge `e` now, not counting what `ignore` holds nor
+    /// what its own standing set shares with others (as in `try_reserve`).
+    fn edge_free(&self, b: usize, e: usize, ignore: Option<usize>) -> bool {
+        let standing = &self.conf.vertex[self.robots[b].at];
+        let set: Vec<Res> = self.conf.edge[e]
+            .iter()
+            .copied()
+            .filter(|x| standing.binary_search(x).is_err())
+            .collect();
+        self.res.is_free_ignoring(b, &set, ignore)
     }
 
     /// What robot `i` is doing, for stuck reports.

@@ -884,7 +884,8 @@ fn assignment_by_category_and_soonest_start() {
                     place: "far_e".into(),
                 },
             ),
-            // c_1 is busy now; c_0 stands at the pickup. The dispenser fails.
+            // c_1 is busy now; c_0 stands at the pickup. The dispenser fails (every
+            // time it is asked, for ITEM_WAIT).
             task(
                 0.6,
                 TaskKind::Delivery {
@@ -898,7 +899,7 @@ fn assignment_by_category_and_soonest_start() {
             task(0.7, TaskKind::GoToPlace { place: "e".into() }),
         ],
     );
-    let (events, _, _) = run(&b, &s, 300.0);
+    let (events, _, _) = run(&b, &s, ITEM_WAIT + 60.0);
     let assigned: Vec<(&str, &str)> = events
         .iter()
         .filter(|e| e.event == "assigned")

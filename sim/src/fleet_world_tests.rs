@@ -836,3 +836,171 @@ fn world_runs_are_deterministic() {
     assert_eq!(a.events, c.events);
     assert_eq!(a.published, c.published);
 }
+
+/// A corridor with a dead end at the west, a junction with two bays in the middle and a
+/// bay near the east end; vertices 3 m apart (more than a TinyRobot's stop zone reaches).
+const COMB: &str = r#"
+coordinate_system: cartesian_meters
+name: comb
+levels:
+  L1:
+    elevation: 0
+    vertices:
+      - [0, 0, 0, dead_end]
+      - [3, 0, 0, c1]
+      - [6, 0, 0, c2]
+      - [9, 0, 0, j]
+      - [9, 3, 0, bay_n]
+      - [9, -3, 0, bay_s]
+      - [12, 0, 0, c4]
+      - [15, 0, 0, c5]
+      - [18, 0, 0, far_end]
+      - [15, 3, 0, bay_e]
+    lanes:
+      - [0, 1, {bidirectional: [4, true], graph_idx: [2, 0]}]
+      - [1, 2, {bidirectional: [4, true], graph_idx: [2, 0]}]
+      - [2, 3, {bidirectional: [4, true], graph_idx: [2, 0]}]
+      - [3, 4, {bidirectional: [4, true], graph_idx: [2, 0]}]
+      - [3, 5, {bidirectional: [4, true], graph_idx: [2, 0]}]
+      - [3, 6, {bidirectional: [4, true], graph_idx: [2, 0]}]
+      - [6, 7, {bidirectional: [4, true], graph_idx: [2, 0]}]
+      - [7, 8, {bidirectional: [4, true], graph_idx: [2, 0]}]
+      - [7, 9, {bidirectional: [4, true], graph_idx: [2, 0]}]
+"#;
+
+fn comb_pos(b: &Building, name: &str) -> mapc_ir::Vec2 {
+    b.vertices
+        .iter()
+        .find(|(_, v)| v.name == name)
+        .map(|(_, v)| v.pos)
+        .expect("comb vertex")
+}
+
+fn spawn(names: &[&str]) -> SpawnSpec {
+    SpawnSpec::Waypoints(names.iter().map(|n| n.to_string()).collect())
+}
+
+fn go(at: f64, fleet: &str, place: &str) -> TaskSpec {
+    task(
+        at,
+        Some(fleet),
+        TaskKind::GoToPlace {
+            place: place.into(),
+        },
+    )
+}
+
+/// Every task completed, and no two robots ever closer than their footprints.
+fn assert_all_completed(r: &Run, n: usize) {
+    let done = ended(&r.events);
+    assert_eq!(done.len(), n, "{}", dump(&r.events));
+    assert!(
+        done.iter().all(|e| e.1 == "completed"),
+        "{}",
+        dump(&r.events)
+    );
+    assert!(r.min_gap >= 0.0, "min gap {}", r.min_gap);
+}
+
+#[test]
+fn world_idle_robots_in_a_row_make_way_out_of_a_dead_end() {
+    // `a_0` starts at the dead end behind two idle robots standing in the corridor: the
+    // first can only move once the second has (it used to find no free spot, and `a_0`
+    // failed stuck in traffic).
+    let b = load("comb", Some(COMB));
+    let s = scenario(
+        vec![
+            fleet("a", 1, spawn(&["dead_end"])),
+            fleet("idle", 2, spawn(&["c1", "c2"])),
+        ],
+        vec![go(0.5, "a", "far_end")],
+    );
+    let r = run(&b, &s, 1200.0);
+    assert_all_completed(&r, 1);
+    let robots = r.world.robots();
+    let far = comb_pos(&b, "far_end");
+    assert!((robots[0].x - far.x).hypot(robots[0].y - far.y) < 0.1);
+    // The idle robots ended off the corridor's straight line or out of its way.
+    for rb in &robots[1..] {
+        assert!(rb.y.abs() > 1.0 || rb.x > 9.5, "{rb:?}");
+    }
+}
+
+#[test]
+fn world_head_on_in_a_corridor_and_a_crossing_robot_all_complete() {
+    // Two robots swap ends of the corridor while a third crosses the junction between
+    // the bays: they meet head-on unless one waits or backs off into a bay.
+    let b = load("comb", Some(COMB));
+    let s = scenario(
+        vec![
+            fleet("w", 1, spawn(&["dead_end"])),
+            fleet("e", 1, spawn(&["far_end"])),
+            fleet("n", 1, spawn(&["bay_n"])),
+        ],
+        vec![
+            go(0.5, "w", "far_end"),
+            go(0.5, "e", "dead_end"),
+            go(0.5, "n", "bay_s"),
+            go(200.0, "w", "dead_end"),
+            go(200.0, "e", "far_end"),
+            go(200.0, "n", "bay_n"),
+        ],
+    );
+    let r = run(&b, &s, 2400.0);
+    assert_all_completed(&r, 6);
+    for (rb, home) in r
+        .world
+        .robots()
+        .iter()
+        .zip(["dead_end", "far_end", "bay_n"])
+    {
+        let p = comb_pos(&b, home);
+        assert!((rb.x - p.x).hypot(rb.y - p.y) < 0.1, "{rb:?} not at {home}");
+    }
+}
+
+#[test]
+fn world_second_delivery_waits_for_the_dispensers_item() {
+    // One dispenser (at the junction) holds one item; two deliveries to the dead end start
+    // at once. The second robot reaches the dispenser while the first still carries the
+    // item down the corridor: it asks again until the item has been ingested and gone
+    // home (it used to fail with `disp failed`).
+    let b = load("comb", Some(COMB));
+    let delivery = |at: f64| {
+        task(
+            at,
+            None,
+            TaskKind::Delivery {
+                pickup: "j".into(),
+                dropoff: "dead_end".into(),
+                dispenser: Some("disp".into()),
+                ingestor: Some("sink".into()),
+            },
+        )
+    };
+    let mut s = scenario(
+        vec![fleet("d", 2, spawn(&["bay_n", "far_end"]))],
+        vec![delivery(0.5), delivery(0.6)],
+    );
+    for (name, kind, at) in [
+        ("disp", crate::scenario::WorkcellKind::Dispenser, "j"),
+        ("sink", crate::scenario::WorkcellKind::Ingestor, "dead_end"),
+    ] {
+        s.workcells.push(WorkcellSpec {
+            name: name.into(),
+            kind,
+            waypoint: at.into(),
+            span: Span::UNKNOWN,
+        });
+    }
+    let r = run(&b, &s, 2400.0);
+    assert_all_completed(&r, 2);
+    let started: Vec<&str> = r
+        .events
+        .iter()
+        .filter(|e| e.event == "started")
+        .map(|e| e.robot.as_str())
+        .collect();
+    assert_eq!(started.len(), 2, "{}", dump(&r.events));
+    assert_ne!(started[0], started[1], "{}", dump(&r.events));
+}

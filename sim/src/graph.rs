@@ -325,13 +325,25 @@ impl Nav {
 
     /// Travel times from `from` to every vertex of slot `slot` (Dijkstra).
     pub fn times_from(&self, slot: usize, from: usize, speed: f64) -> Vec<f64> {
+        self.tree_from(slot, from, speed).0
+    }
+
+    /// Travel times from `from` to every vertex of slot `slot`, and the edge each vertex is
+    /// reached by on a shortest route (ties broken as in [`Nav::plan`]).
+    pub fn tree_from(
+        &self,
+        slot: usize,
+        from: usize,
+        speed: f64,
+    ) -> (Vec<f64>, Vec<Option<usize>>) {
         let n = self.vertices.len();
         let mut dist = vec![f64::INFINITY; n];
+        let mut prev: Vec<Option<usize>> = vec![None; n];
         let Some(out) = self.out.get(slot) else {
-            return dist;
+            return (dist, prev);
         };
         if from >= n {
-            return dist;
+            return (dist, prev);
         }
         let mut heap = BinaryHeap::new();
         dist[from] = 0.0;
@@ -345,11 +357,28 @@ impl Nav {
                 let nd = d + self.edge_cost(e, speed);
                 if nd < dist[w] {
                     dist[w] = nd;
+                    prev[w] = Some(e);
                     heap.push(QItem(nd, w));
                 }
             }
         }
-        dist
+        (dist, prev)
+    }
+
+    /// The first edge of the route to `to` in a [`Nav::tree_from`] tree rooted at `from`.
+    pub fn first_edge(&self, prev: &[Option<usize>], from: usize, to: usize) -> Option<usize> {
+        let mut v = to;
+        let mut first = None;
+        // A tree path visits each vertex once.
+        for _ in 0..prev.len() {
+            if v == from {
+                return first;
+            }
+            let e = (*prev.get(v)?)?;
+            first = Some(e);
+            v = self.edges[e].from;
+        }
+        None
     }
 }
 

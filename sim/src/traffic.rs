@@ -1,7 +1,9 @@
 //! Traffic reservations: a robot drives an edge only while it holds the edge's conflict set
 //! (all-or-nothing), and always holds the set of the vertex it stands on. Conflict sets are
-//! precomputed from geometry with the largest footprint and stop zone of all fleets, so one
-//! table serves every robot.
+//! precomputed from geometry: standing sets with the largest footprint of all fleets (anyone
+//! may come close), edge sets with the stop zone of the fleets driving that graph (the
+//! slotcar only probes a disc of `stop_radius` around the point `stop_distance` ahead of
+//! itself), so a small robot is not reserved as much room as the largest one.
 
 use crate::graph::{point_segment, segment_segment, EdgeKind, Nav};
 use std::collections::BTreeMap;
@@ -29,7 +31,15 @@ pub struct Conflicts {
 }
 
 impl Conflicts {
+    /// One clearance for every graph.
+    #[cfg(test)]
     pub fn build(nav: &Nav, c: Clearance) -> Conflicts {
+        Conflicts::build_per_slot(nav, c.footprint, &vec![c; nav.graphs.len()])
+    }
+
+    /// `footprint`: the largest footprint of all robots; `per_slot[s]`: the clearance of
+    /// the robots driving graph slot `s` (largest over the fleets sharing it).
+    pub fn build_per_slot(nav: &Nav, footprint: f64, per_slot: &[Clearance]) -> Conflicts {
         let nv = nav.vertices.len();
         let lane_base = nv;
         let lift_base = lane_base + nav.ir_lanes;
@@ -48,10 +58,7 @@ impl Conflicts {
         }
         let mutex_base = lift_base + nav.lifts.len();
         let n_res = mutex_base + mutexes.len();
-        let body = 2.0 * c.footprint + MARGIN;
-        // Lanes closer than this interact (contact, or one robot's stop zone reaching the
-        // other's centre).
-        let lane_gap = body.max(c.stop_radius);
+        let body = 2.0 * footprint + MARGIN;
         let same_level = |a: usize, b: usize| nav.vertices[a].level == nav.vertices[b].level;
 
         let mut vertex = Vec::with_capacity(nv);
@@ -81,6 +88,15 @@ impl Conflicts {
             match e.kind {
                 EdgeKind::Lift(l) => set.push((lift_base + l) as Res),
                 EdgeKind::Lane => {
+                    let c = per_slot.get(e.graph).copied().unwrap_or(Clearance {
+                        footprint,
+                        stop_distance: 0.0,
+                        stop_radius: 0.0,
+                    });
+                    let body = footprint + c.footprint.min(footprint) + MARGIN;
+                    // Lanes closer than this interact (contact, or our stop zone reaching
+                    // the other's centre; the other lane's own set covers its stop zone).
+                    let lane_gap = body.max(c.stop_radius);
                     let (a, z) = (nav.vertices[e.from].pos, nav.vertices[e.to].pos);
                     let d = z.minus(a);
                     let len = d.norm();
