@@ -735,6 +735,22 @@ impl Fleets {
         let passing = (0..nav.graphs.len())
             .map(|slot| {
                 let mut nbrs: Vec<Vec<usize>> = vec![Vec::new(); nav.vertices.len()];
+                // Vertices touching a lane driven both ways: only there can two robots
+                // meet head-on, so only there must a corridor be reserved whole. On
+                // one-way corridors robots just follow each other.
+                let mut two_way = vec![false; nav.vertices.len()];
+                let directed: std::collections::BTreeSet<(usize, usize)> = nav
+                    .edges
+                    .iter()
+                    .filter(|e| e.graph == slot && e.kind == EdgeKind::Lane)
+                    .map(|e| (e.from, e.to))
+                    .collect();
+                for &(a, b) in &directed {
+                    if directed.contains(&(b, a)) {
+                        two_way[a] = true;
+                        two_way[b] = true;
+                    }
+                }
                 for e in nav.edges.iter().filter(|e| e.graph == slot) {
                     nbrs[e.from].push(e.to);
                     nbrs[e.to].push(e.from);
@@ -745,7 +761,10 @@ impl Fleets {
                         n.sort_unstable();
                         n.dedup();
                         let x = &nav.vertices[v];
-                        n.len() != 2 || x.roles.is_holding_point || x.lift.is_some()
+                        n.len() != 2
+                            || !two_way[v]
+                            || x.roles.is_holding_point
+                            || x.lift.is_some()
                     })
                     .collect()
             })
