@@ -4,8 +4,8 @@
 //! lifts) and cleaning for 8 simulated hours on the hotel demo map (read from
 //! `../shared/maps`; skipped when absent). Real-time factor = 28 800 s / measured time.
 //!
-//! `grid_10min/<n>`: n robots looping on a synthetic square grid with 5 vertices per robot
-//! (constant density), 10 simulated minutes: the cost per simulated second against the
+//! `rings_10min/<n>`: n robots, two per one-way ring of 8 vertices (constant density, every
+//! robot always driving), 10 simulated minutes: the cost per simulated second against the
 //! number of robots (5, 20, 80).
 //!
 //! Run with `cargo bench --bench sim`. The map and scenario are parsed before timing.
@@ -57,60 +57,58 @@ fn hotel_8h(bencher: Bencher) {
     });
 }
 
-/// A square grid of `side × side` vertices 3 m apart, bidirectional lanes between
-/// neighbours, in cartesian metres.
-fn grid_map(side: usize) -> String {
+/// `rings` one-way rings of 8 vertices 3 m apart (a 9 m × 3 m rectangle), 20 m apart, in
+/// cartesian metres; each ring carries two robots (the last one, when n is odd, one).
+fn rings_map(rings: usize) -> String {
+    const RING: [(i32, i32); 8] = [
+        (0, 0),
+        (3, 0),
+        (6, 0),
+        (9, 0),
+        (9, 3),
+        (6, 3),
+        (3, 3),
+        (0, 3),
+    ];
     let mut s = String::from(
-        "coordinate_system: cartesian_meters\nname: grid\nlevels:\n  L1:\n    elevation: 0\n    vertices:\n",
+        "coordinate_system: cartesian_meters\nname: rings\nlevels:\n  L1:\n    elevation: 0\n    vertices:\n",
     );
-    for j in 0..side {
-        for i in 0..side {
-            s += &format!("      - [{}, {}, 0, g_{i}_{j}]\n", 3 * i, 3 * j);
+    for r in 0..rings {
+        let (ox, oy) = (20 * (r % 10) as i32, 10 * (r / 10) as i32);
+        for (k, (x, y)) in RING.iter().enumerate() {
+            s += &format!("      - [{}, {}, 0, r{r}_{k}]\n", x + ox, y + oy);
         }
     }
     s += "    lanes:\n";
-    for j in 0..side {
-        for i in 0..side {
-            let k = j * side + i;
-            if i + 1 < side {
-                s += &format!(
-                    "      - [{k}, {}, {{bidirectional: [4, true], graph_idx: [2, 0]}}]\n",
-                    k + 1
-                );
-            }
-            if j + 1 < side {
-                s += &format!(
-                    "      - [{k}, {}, {{bidirectional: [4, true], graph_idx: [2, 0]}}]\n",
-                    k + side
-                );
-            }
+    for r in 0..rings {
+        for k in 0..8 {
+            let (a, b) = (r * 8 + k, r * 8 + (k + 1) % 8);
+            s += &format!("      - [{a}, {b}, {{bidirectional: [4, false], graph_idx: [2, 0]}}]\n");
         }
     }
     s
 }
 
-/// n robots, each with a loop along its own row or column (spread so that every row and
-/// column is used about equally).
-fn grid_scenario(n: usize, side: usize) -> String {
+/// n robots, two per ring, starting on opposite corners, each looping between the corners
+/// (the one-way ring makes them follow each other round).
+fn rings_scenario(n: usize) -> String {
+    let spawns: Vec<String> = (0..n)
+        .map(|i| format!("r{}_{}", i / 2, 4 * (i % 2)))
+        .collect();
     let mut s = format!(
-        "seed: 1\nduration: 10min\nfleets:\n  - {{name: grid, robot: TinyRobot, count: {n}, spawn: auto}}\ntasks:\n"
+        "seed: 1\nduration: 10min\nfleets:\n  - {{name: ring, robot: TinyRobot, count: {n}, spawn: [{}]}}\ntasks:\n",
+        spawns.join(", ")
     );
-    for r in 0..n {
-        let line = r % side;
-        let (a, b) = if r / side % 2 == 0 {
-            (format!("g_0_{line}"), format!("g_{}_{line}", side - 1))
-        } else {
-            (format!("g_{line}_0"), format!("g_{line}_{}", side - 1))
-        };
-        s += &format!("  - {{at: 0, loop: {{start: {a}, finish: {b}, loops: 1000}}}}\n");
+    for i in 0..n {
+        let r = i / 2;
+        s += &format!("  - {{at: 0, loop: {{start: r{r}_0, finish: r{r}_4, loops: 1000}}}}\n");
     }
     s
 }
 
 #[divan::bench(args = [5, 20, 80], sample_count = 3, sample_size = 1)]
-fn grid_10min(bencher: Bencher, n: usize) {
-    let side = ((5 * n) as f64).sqrt().ceil() as usize;
-    let (building, scenario) = load(&grid_map(side), &grid_scenario(n, side));
+fn rings_10min(bencher: Bencher, n: usize) {
+    let (building, scenario) = load(&rings_map(n.div_ceil(2)), &rings_scenario(n));
     bencher.bench_local(|| {
         let opts = RunOptions {
             until: None,

@@ -761,10 +761,7 @@ impl Fleets {
                         n.sort_unstable();
                         n.dedup();
                         let x = &nav.vertices[v];
-                        n.len() != 2
-                            || !two_way[v]
-                            || x.roles.is_holding_point
-                            || x.lift.is_some()
+                        n.len() != 2 || !two_way[v] || x.roles.is_holding_point || x.lift.is_some()
                     })
                     .collect()
             })
