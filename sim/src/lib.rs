@@ -72,6 +72,8 @@ pub fn simulate(
         lifts_start_at_initial_floor: scenario.options.lifts_start_at_initial_floor,
     };
     let mut world = world::World::new(building, &setup);
+    let o = &scenario.options;
+    world.set_charging(o.charging, o.instant_charging, o.battery_drain);
     let mut report = report::ReportBuilder::new(building, scenario, &placement);
     let end = opts.until.unwrap_or(scenario.duration);
     // Whole steps: comparing accumulated float time with `end` would depend on rounding.

@@ -154,6 +154,11 @@ pub struct SimOptions {
     pub clean_duration: f64,
     /// End the run as soon as every task has ended (instead of running to `duration`).
     pub stop_when_done: bool,
+    /// The toggle_charging GUI's switches, for every robot (runtime spec §1.9, §8): robots
+    /// charge at chargers, charge instantly, and their batteries drain.
+    pub charging: bool,
+    pub instant_charging: bool,
+    pub battery_drain: bool,
 }
 
 impl Default for SimOptions {
@@ -162,6 +167,9 @@ impl Default for SimOptions {
             lifts_start_at_initial_floor: true,
             clean_duration: 60.0,
             stop_when_done: false,
+            charging: true,
+            instant_charging: false,
+            battery_drain: true,
         }
     }
 }
@@ -205,6 +213,9 @@ const OPTION_KEYS: &[&str] = &[
     "lifts_start_at_initial_floor",
     "clean_duration",
     "stop_when_done",
+    "charging",
+    "instant_charging",
+    "battery_drain",
 ];
 
 /// Robot parameters a `robot:` mapping may set, and whether they must be > 0 (else ≥ 0).
@@ -1296,10 +1307,17 @@ impl P<'_> {
                 None => ok = false,
             }
         }
-        if let Some(n) = e.get("stop_when_done") {
-            match self.bool(n, "`stop_when_done`") {
-                Some(b) => o.stop_when_done = b,
-                None => ok = false,
+        for (key, field) in [
+            ("stop_when_done", &mut o.stop_when_done),
+            ("charging", &mut o.charging),
+            ("instant_charging", &mut o.instant_charging),
+            ("battery_drain", &mut o.battery_drain),
+        ] {
+            if let Some(n) = e.get(key) {
+                match self.bool(n, &format!("`{key}`")) {
+                    Some(b) => *field = b,
+                    None => ok = false,
+                }
             }
         }
         if let Some(n) = e.get("clean_duration") {
@@ -1631,7 +1649,8 @@ options: {lifts_start_at_initial_floor: false, clean_duration: 2min, stop_when_d
             SimOptions {
                 lifts_start_at_initial_floor: false,
                 clean_duration: 120.0,
-                stop_when_done: true
+                stop_when_done: true,
+                ..SimOptions::default()
             }
         );
         // Defaults of a minimal scenario.
@@ -1743,7 +1762,10 @@ options: {lifts_start_at_initial_floor: false, clean_duration: 2min, stop_when_d
         // Too far from any option for a guess: the help lists them.
         assert_eq!(
             d[2].help.as_deref(),
-            Some("known keys: `lifts_start_at_initial_floor`, `clean_duration`, `stop_when_done`")
+            Some(
+                "known keys: `lifts_start_at_initial_floor`, `clean_duration`, `stop_when_done`, \
+                 `charging`, `instant_charging`, `battery_drain`"
+            )
         );
         assert_eq!(d[0].span.line, 3);
     }

@@ -345,7 +345,6 @@ impl World {
     }
 
     /// Sets the world-wide `/charge_state` toggles (§1.9, §8).
-    #[allow(dead_code)] // for the fleet layer and scenarios; no caller yet
     pub fn set_charging(&mut self, enable_charge: bool, instant_charge: bool, enable_drain: bool) {
         self.flags = ChargeFlags {
             enable_charge,
