@@ -2037,20 +2037,28 @@ impl Fleets {
                     continue;
                 }
                 if self.robots[b].idle() && self.robots[b].n_sent == 0 {
-                    // Out of the waiter's way if possible, else anywhere it can go now.
+                    // Out of the waiter's way if possible.
                     let needed = self.needed(&[i], &[], DEADLOCK_HORIZON);
-                    let spot = self
-                        .free_spot(b, &needed, None)
-                        .or_else(|| self.free_spot(b, &[], None));
-                    if let Some(v) = spot {
+                    if let Some(v) = self.free_spot(b, &needed, None) {
                         let r = &mut self.robots[b];
                         r.steps.push_back(Step::GoTo(v));
                         r.dirty = true;
                         continue;
                     }
                     // Hemmed in by the waiter itself (a dead end): choose the idle robot's
-                    // spot as if the waiter were gone, and back the waiter off its way.
-                    let Some(v) = self.free_spot(b, &[], Some(i)) else {
+                    // spot off the waiter's way as if the waiter were gone, and back the
+                    // waiter off. A spot on the waiter's way would only make the two swap
+                    // places back and forth.
+                    let hemmed = self
+                        .free_spot(b, &needed, Some(i))
+                        .or_else(|| self.free_spot(b, &[], Some(i)));
+                    let Some(v) = hemmed.filter(|_| self.can_back_off(i)) else {
+                        // Else anywhere it can go now.
+                        if let Some(v) = self.free_spot(b, &[], None) {
+                            let r = &mut self.robots[b];
+                            r.steps.push_back(Step::GoTo(v));
+                            r.dirty = true;
+                        }
                         continue;
                     };
                     let rb = &self.robots[b];
@@ -2061,12 +2069,13 @@ impl Fleets {
                         .map(|p| p.1)
                         .unwrap_or_default();
                     let needed = self.needed(&[b], &route, 0);
-                    if !self.can_back_off(i) {
-                        continue;
-                    }
                     if let Some(w) = self.free_spot(i, &needed, None) {
                         let names = [self.robots[i].name.clone(), self.robots[b].name.clone()];
                         self.back_off(i, w, &names, t, out);
+                        let r = &mut self.robots[b];
+                        r.steps.push_back(Step::GoTo(v));
+                        r.dirty = true;
+                    } else if let Some(v) = self.free_spot(b, &[], None) {
                         let r = &mut self.robots[b];
                         r.steps.push_back(Step::GoTo(v));
                         r.dirty = true;
