@@ -76,7 +76,7 @@ const DEADLOCK_HORIZON: usize = 8;
 const SPOT_PENALTY: f64 = 10.0;
 /// Head start (s) in task assignment of an idle robot standing on one of the task's
 /// waypoints.
-const ON_TASK_BONUS: f64 = 60.0;
+const ON_TASK_BONUS: f64 = 180.0;
 /// Farthest (s) an idle robot drives to park: a long drive crosses the others' ways.
 const PARK_REACH: f64 = 120.0;
 /// Most edges reserved at once through a corridor.
