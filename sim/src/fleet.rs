@@ -74,6 +74,11 @@ const DEADLOCK_HORIZON: usize = 8;
 /// Extra cost (s) of a yield or back-off spot that is not a parking spot, holding point
 /// or charger.
 const SPOT_PENALTY: f64 = 10.0;
+/// Head start (s) in task assignment of an idle robot standing on one of the task's
+/// waypoints.
+const ON_TASK_BONUS: f64 = 180.0;
+/// Farthest (s) an idle robot drives to park: a long drive crosses the others' ways.
+const PARK_REACH: f64 = 120.0;
 /// Most edges reserved at once through a corridor.
 const SEGMENT_MAX: usize = 12;
 /// Edges reserved ahead of a moving robot.
@@ -185,6 +190,8 @@ struct Robot {
     last_backoff: f64,
     /// When the current task started.
     task_started: f64,
+    /// Its task just ended: once idle, it drives to a parking vertex (`Fleets::park`).
+    park_pending: bool,
 }
 
 impl Robot {
@@ -236,6 +243,9 @@ pub struct Fleets {
     /// Per graph slot, per vertex: robots can wait or pass each other there (junctions,
     /// leaves, holding points, lift cabins); corridors are the other vertices.
     passing: Vec<Vec<bool>>,
+    /// Per graph slot, per vertex: where an idle robot parks out of everybody's way
+    /// (see `park_vertices`).
+    park: Vec<Vec<bool>>,
     res: Reservations,
     fleets: Vec<FleetRt>,
     robots: Vec<Robot>,
@@ -600,6 +610,7 @@ impl Fleets {
                     backing_off: false,
                     last_backoff: f64::NEG_INFINITY,
                     task_started: 0.0,
+                    park_pending: false,
                 });
             }
             fleets.push(rt);
@@ -766,7 +777,20 @@ impl Fleets {
                     .collect()
             })
             .collect();
+        let park = park_vertices(&nav, &conf, scenario);
+        // A robot that starts on a waypoint of a loop, delivery or cleaning parks first.
+        for r in robots.iter_mut() {
+            r.park_pending = scenario
+                .tasks
+                .iter()
+                .map(|t| &t.kind)
+                .chain(scenario.generators.iter().map(|g| &g.kind))
+                .filter(|k| parks_after(k))
+                .flat_map(|k| waypoint_names(k))
+                .any(|name| nav.find(r.slot, name) == Some(r.at));
+        }
         Ok(Fleets {
+            park,
             passing,
             doors: vec![DoorView::default(); nav.doors.len()],
             lifts: vec![LiftView::default(); nav.lifts.len()],
@@ -1005,7 +1029,15 @@ impl Fleets {
                 let Some((travel, _)) = self.nav.plan(f.slot, from, first, f.speed) else {
                     continue;
                 };
-                let score = ready + travel;
+                // An idle robot standing on one of the task's waypoints would have to be
+                // moved aside for it anyway: it takes the task unless another robot is much
+                // sooner.
+                let on_task = r.idle()
+                    && steps
+                        .iter()
+                        .any(|s| matches!(s, Step::GoTo(v) if *v == r.at));
+                let bonus = if on_task { ON_TASK_BONUS } else { 0.0 };
+                let score = ready + travel - bonus;
                 if best.is_none_or(|b| score < b.0) {
                     best = Some((score, ri, dur));
                 }
@@ -1033,7 +1065,7 @@ impl Fleets {
                         })
                     });
                 let r = &mut self.robots[ri];
-                r.free_at = score + dur;
+                r.free_at = score.max(t) + dur;
                 if let Some(e) = end {
                     r.end_vertex = e;
                 }
@@ -1130,6 +1162,8 @@ impl Fleets {
         let Some(ti) = self.robots[i].task.take() else {
             return;
         };
+        // Like RMF's `finishing_request: park`, but a robot sent to a place stays there.
+        self.robots[i].park_pending = self.tasks.get(ti).is_some_and(|tk| parks_after(&tk.kind));
         if let Some(tk) = self.tasks.get_mut(ti) {
             tk.ended = true;
         }
@@ -1365,9 +1399,22 @@ impl Fleets {
         }
         // Charging comes before the next task when the battery is low.
         if self.robots[i].charger.is_none() && self.maybe_charge(i) {
+            // The charger is where it stays afterwards.
+            self.robots[i].park_pending = false;
             return true;
         }
         let Some(ti) = self.robots[i].queue.pop_front() else {
+            // Once after a task: park off everybody's way rather than where the task ended
+            // (task waypoints and corridors are what the next tasks need).
+            if std::mem::take(&mut self.robots[i].park_pending) {
+                if let Some((v, dt)) = self.park_spot(i) {
+                    let r = &mut self.robots[i];
+                    r.steps.push_back(Step::GoTo(v));
+                    r.free_at = t + dt;
+                    r.end_vertex = v;
+                    return true;
+                }
+            }
             let r = &mut self.robots[i];
             r.free_at = t;
             r.end_vertex = r.at;
@@ -1990,20 +2037,28 @@ impl Fleets {
                     continue;
                 }
                 if self.robots[b].idle() && self.robots[b].n_sent == 0 {
-                    // Out of the waiter's way if possible, else anywhere it can go now.
+                    // Out of the waiter's way if possible.
                     let needed = self.needed(&[i], &[], DEADLOCK_HORIZON);
-                    let spot = self
-                        .free_spot(b, &needed, None)
-                        .or_else(|| self.free_spot(b, &[], None));
-                    if let Some(v) = spot {
+                    if let Some(v) = self.free_spot(b, &needed, None) {
                         let r = &mut self.robots[b];
                         r.steps.push_back(Step::GoTo(v));
                         r.dirty = true;
                         continue;
                     }
                     // Hemmed in by the waiter itself (a dead end): choose the idle robot's
-                    // spot as if the waiter were gone, and back the waiter off its way.
-                    let Some(v) = self.free_spot(b, &[], Some(i)) else {
+                    // spot off the waiter's way as if the waiter were gone, and back the
+                    // waiter off. A spot on the waiter's way would only make the two swap
+                    // places back and forth.
+                    let hemmed = self
+                        .free_spot(b, &needed, Some(i))
+                        .or_else(|| self.free_spot(b, &[], Some(i)));
+                    let Some(v) = hemmed.filter(|_| self.can_back_off(i)) else {
+                        // Else anywhere it can go now.
+                        if let Some(v) = self.free_spot(b, &[], None) {
+                            let r = &mut self.robots[b];
+                            r.steps.push_back(Step::GoTo(v));
+                            r.dirty = true;
+                        }
                         continue;
                     };
                     let rb = &self.robots[b];
@@ -2014,12 +2069,13 @@ impl Fleets {
                         .map(|p| p.1)
                         .unwrap_or_default();
                     let needed = self.needed(&[b], &route, 0);
-                    if !self.can_back_off(i) {
-                        continue;
-                    }
                     if let Some(w) = self.free_spot(i, &needed, None) {
                         let names = [self.robots[i].name.clone(), self.robots[b].name.clone()];
                         self.back_off(i, w, &names, t, out);
+                        let r = &mut self.robots[b];
+                        r.steps.push_back(Step::GoTo(v));
+                        r.dirty = true;
+                    } else if let Some(v) = self.free_spot(b, &[], None) {
                         let r = &mut self.robots[b];
                         r.steps.push_back(Step::GoTo(v));
                         r.dirty = true;
@@ -2343,6 +2399,61 @@ impl Fleets {
         self.free_spot_timed(b, needed, ignore, false).map(|x| x.0)
     }
 
+    /// The nearest parking vertex (`park`) on robot `i`'s level that nobody stands on,
+    /// drives to or holds, with the travel time there; None when it is on one already.
+    fn park_spot(&self, i: usize) -> Option<(usize, f64)> {
+        let r = &self.robots[i];
+        let f = &self.fleets[r.fleet];
+        let park = self.park.get(f.slot)?;
+        if park.get(r.at).copied().unwrap_or(true) || self.nav.vertices[r.at].lift.is_some() {
+            return None;
+        }
+        let level = &self.nav.vertices[r.at].level;
+        let taken = |v: usize| {
+            self.robots.iter().enumerate().any(|(o, x)| {
+                o != i
+                    && (x.at == v
+                        || matches!(x.cur, Cur::GoTo { goal, .. } if goal == v)
+                        || x.steps
+                            .iter()
+                            .any(|s| matches!(s, Step::GoTo(g) if *g == v)))
+            })
+        };
+        let (times, prev) = self.nav.tree_from(f.slot, r.at, f.speed);
+        // Not through a controlled door or a lift: parking must not keep them busy.
+        let plain = |v: usize| {
+            let mut w = v;
+            for _ in 0..prev.len() {
+                if w == r.at {
+                    return true;
+                }
+                let Some(e) = prev.get(w).copied().flatten() else {
+                    return false;
+                };
+                if !self.is_plain(e) {
+                    return false;
+                }
+                w = self.nav.edges[e].from;
+            }
+            false
+        };
+        // Parking spots and holding points first (cf. `free_spot`).
+        let cost = |v: usize| {
+            let ro = &self.nav.vertices[v].roles;
+            let spot = ro.is_parking_spot || ro.is_holding_point;
+            times[v] + if spot { 0.0 } else { SPOT_PENALTY }
+        };
+        self.nav.members[f.slot]
+            .iter()
+            .copied()
+            .filter(|&v| park.get(v).copied().unwrap_or(false) && times[v] <= PARK_REACH)
+            .filter(|&v| self.nav.vertices[v].level == *level)
+            .filter(|&v| self.res.is_free_ignoring(i, &self.conf.vertex[v], None))
+            .filter(|&v| !taken(v) && plain(v))
+            .min_by(|&a, &b| cost(a).total_cmp(&cost(b)).then(a.cmp(&b)))
+            .map(|v| (v, times[v]))
+    }
+
     /// [`Fleets::free_spot`] with the travel time there.
     fn free_spot_timed(
         &self,
@@ -2470,6 +2581,81 @@ impl Fleets {
             }
         }
     }
+}
+
+/// Per graph slot, per vertex: where an idle robot may park out of everybody's way. Not a
+/// lift cabin or a charger, and neither the vertex nor anything its standing robot would hold is needed
+/// by a shortest route between two task waypoints (the routes loops, deliveries and the
+/// drives between tasks take), so a parked robot never has to be moved aside for them.
+fn park_vertices(nav: &Nav, conf: &Conflicts, scenario: &Scenario) -> Vec<Vec<bool>> {
+    let kinds: Vec<&TaskKind> = scenario
+        .tasks
+        .iter()
+        .map(|t| &t.kind)
+        .chain(scenario.generators.iter().map(|g| &g.kind))
+        .collect();
+    // Resources any task route of any graph needs (vertices and lanes driven): fleets on
+    // other graphs share the floor.
+    let mut used = vec![false; conf.n_res];
+    let mut mark = |set: &[Res]| {
+        for &x in set {
+            if let Some(u) = used.get_mut(x as usize) {
+                *u = true;
+            }
+        }
+    };
+    for slot in 0..nav.graphs.len() {
+        let mut wps: Vec<usize> = kinds
+            .iter()
+            .flat_map(|k| waypoint_names(k))
+            .filter_map(|name| nav.find(slot, name))
+            .collect();
+        wps.sort_unstable();
+        wps.dedup();
+        for &a in &wps {
+            if let Some(set) = conf.vertex.get(a) {
+                mark(set);
+            }
+            let (times, prev) = nav.tree_from(slot, a, 1.0);
+            for &b in &wps {
+                if b == a || !times[b].is_finite() {
+                    continue;
+                }
+                let mut v = b;
+                for _ in 0..prev.len() {
+                    let Some(e) = prev.get(v).copied().flatten() else {
+                        break;
+                    };
+                    if let Some(set) = conf.edge.get(e) {
+                        mark(set);
+                    }
+                    v = nav.edges[e].from;
+                    if v == a {
+                        break;
+                    }
+                }
+            }
+        }
+    }
+    (0..nav.graphs.len())
+        .map(|slot| {
+            let mut ok = vec![false; nav.vertices.len()];
+            for &v in &nav.members[slot] {
+                // Chargers are kept for robots that need to charge.
+                ok[v] = nav.vertices[v].lift.is_none()
+                    && !nav.vertices[v].roles.is_charger
+                    && conf.vertex[v]
+                        .iter()
+                        .all(|&x| !used.get(x as usize).copied().unwrap_or(true));
+            }
+            ok
+        })
+        .collect()
+}
+
+/// Whether a robot parks (`Fleets::park_spot`) after a task of this kind.
+fn parks_after(kind: &TaskKind) -> bool {
+    !matches!(kind, TaskKind::GoToPlace { .. })
 }
 
 fn waypoint_names(kind: &TaskKind) -> Vec<&str> {

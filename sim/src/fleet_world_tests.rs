@@ -1004,3 +1004,33 @@ fn world_second_delivery_waits_for_the_dispensers_item() {
     assert_eq!(started.len(), 2, "{}", dump(&r.events));
     assert_ne!(started[0], started[1], "{}", dump(&r.events));
 }
+
+#[test]
+fn world_idle_robot_parks_off_the_task_routes() {
+    // After a loop dead_end → far_end the robot does not stay on far_end (the next loop's
+    // waypoint) but parks on the nearest vertex no task route uses: bay_e is 3 + 3 m from
+    // far_end, bay_n and bay_s 9 + 3 m. It used to stay on far_end, in the next task's way.
+    let b = load("comb", Some(COMB));
+    let s = scenario(
+        vec![fleet("t", 1, spawn(&["c2"]))],
+        vec![task(
+            0.5,
+            Some("t"),
+            TaskKind::Loop {
+                start: "dead_end".into(),
+                finish: "far_end".into(),
+                loops: 1,
+            },
+        )],
+    );
+    RUN_TO_END.with(|c| c.set(true));
+    let r = run(&b, &s, 400.0);
+    RUN_TO_END.with(|c| c.set(false));
+    assert_all_completed(&r, 1);
+    let rb = r.world.robots()[0];
+    let bay = comb_pos(&b, "bay_e");
+    assert!(
+        (rb.x - bay.x).hypot(rb.y - bay.y) < 0.1,
+        "{rb:?} not at bay_e"
+    );
+}
