@@ -17,7 +17,7 @@
 //! after `STUCK_FAIL` its task fails. Empty dispensers are asked again; a delivery that
 //! fails while carrying its item still takes it to the ingestor.
 
-use crate::graph::{EdgeKind, Nav};
+use crate::graph::{EdgeKind, Nav, Regions};
 use crate::msgs::{
     door_mode, lift_request, lift_state, robot_mode, workcell_result, DoorMode, DoorRequest,
     FleetState, ItemType, LiftRequest, Location, Msg, PathRequest, Published, RobotState,
@@ -243,6 +243,8 @@ pub struct Fleets {
     /// Per graph slot, per vertex: robots can wait or pass each other there (junctions,
     /// leaves, holding points, lift cabins); corridors are the other vertices.
     passing: Vec<Vec<bool>>,
+    /// Dead-end regions with their capacities (admission control, `Fleets::admission`).
+    regions: Regions,
     /// Per graph slot, per vertex: where an idle robot parks out of everybody's way
     /// (see `park_vertices`).
     park: Vec<Vec<bool>>,
@@ -789,9 +791,11 @@ impl Fleets {
                 .flat_map(|k| waypoint_names(k))
                 .any(|name| nav.find(r.slot, name) == Some(r.at));
         }
+        let regions = nav.regions();
         Ok(Fleets {
             park,
             passing,
+            regions,
             doors: vec![DoorView::default(); nav.doors.len()],
             lifts: vec![LiftView::default(); nav.lifts.len()],
             nav,
@@ -1581,7 +1585,8 @@ impl Fleets {
         }
         set.sort_unstable();
         set.dedup();
-        if self.res.is_free_for(i, &set) {
+        let full = self.admission(i, k);
+        if full.is_empty() && self.res.is_free_for(i, &set) {
             let r = &mut self.robots[i];
             r.n_res += k;
             r.wait_since = None;
@@ -1589,7 +1594,10 @@ impl Fleets {
             self.rehold(i);
             true
         } else {
-            let blockers = self.res.blockers(i, &set);
+            let mut blockers = self.res.blockers(i, &set);
+            blockers.extend(full);
+            blockers.sort_unstable();
+            blockers.dedup();
             let r = &mut self.robots[i];
             if r.wait_since.is_none() {
                 r.wait_since = Some(t);
@@ -1599,6 +1607,44 @@ impl Fleets {
             r.blockers = blockers;
             false
         }
+    }
+
+    /// Admission control: the robots that keep robot `i` out of a lift lobby (see
+    /// [`Regions`]) that the next `k` unreserved edges of its route enter, or that the edge
+    /// after them enters (so that it waits before the region's entrance, not on it). Empty
+    /// when it may go on. A region admits `capacity` robots; robots inside it or with
+    /// reserved edges into it count, idle ones do not (they are moved aside as usual).
+    /// Robots arriving by lift enter without admission: they must get out of the cabin.
+    fn admission(&self, i: usize, k: usize) -> Vec<usize> {
+        let r = &self.robots[i];
+        let mut full = Vec::new();
+        for &e in r.route.iter().skip(r.n_res).take(k + 1) {
+            let Some(g) = self.regions.entry.get(e).copied().flatten() else {
+                continue;
+            };
+            if self.regions.contains(g, r.at) {
+                continue;
+            }
+            let inside: Vec<usize> = self
+                .robots
+                .iter()
+                .enumerate()
+                .filter(|&(o, x)| {
+                    o != i
+                        && !x.idle()
+                        && (self.regions.contains(g, x.at)
+                            || x.route
+                                .iter()
+                                .take(x.n_res + 1)
+                                .any(|&f| self.regions.contains(g, self.nav.edges[f].to)))
+                })
+                .map(|(o, _)| o)
+                .collect();
+            if inside.len() >= self.regions.capacity.get(g).copied().unwrap_or(1) {
+                full.extend(inside);
+            }
+        }
+        full
     }
 
     /// How many edges from `route[from]` on robot `i` must reserve at once: through a

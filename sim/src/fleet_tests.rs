@@ -993,3 +993,134 @@ fn task_waypoint_in_a_lift_cabin_is_refused() {
     let e = Fleets::new(&b, &s, &p).err().expect("error");
     assert_eq!(e[0].code, codes::IN_LIFT);
 }
+
+/// Vertices reached from `start` over the lanes of `nav` on `start`'s level, without the
+/// lane between `cut.0` and `cut.1` (either direction).
+fn reach_without(nav: &Nav, start: usize, cut: (usize, usize)) -> Vec<usize> {
+    let mut seen = vec![false; nav.vertices.len()];
+    let mut stack = vec![start];
+    seen[start] = true;
+    while let Some(v) = stack.pop() {
+        for e in &nav.edges {
+            if e.kind != crate::graph::EdgeKind::Lane {
+                continue;
+            }
+            let w = if e.from == v {
+                e.to
+            } else if e.to == v {
+                e.from
+            } else {
+                continue;
+            };
+            if (e.from, e.to) == cut || (e.to, e.from) == cut || seen[w] {
+                continue;
+            }
+            seen[w] = true;
+            stack.push(w);
+        }
+    }
+    (0..seen.len()).filter(|&v| seen[v]).collect()
+}
+
+#[test]
+fn lift_lobbies_are_the_small_side_of_a_bridge_with_a_cabin() {
+    let b = clinic();
+    let nav = Nav::build(&b, &[0]);
+    let regions = nav.regions();
+    assert!(!regions.members.is_empty(), "the clinic has lift lobbies");
+    for (g, members) in regions.members.iter().enumerate() {
+        let entries: Vec<usize> = (0..nav.edges.len())
+            .filter(|&e| regions.entry[e] == Some(g))
+            .collect();
+        assert!(!entries.is_empty(), "region {g} has an entrance");
+        for &e in &entries {
+            let (u, v) = (nav.edges[e].from, nav.edges[e].to);
+            // The entrance lane is a bridge: without it the inside is cut off from u.
+            let inside = reach_without(&nav, v, (u, v));
+            let outside = reach_without(&nav, u, (u, v));
+            assert!(
+                !inside.contains(&u),
+                "region {g}: lane {u}-{v} is no bridge"
+            );
+            assert_eq!(&inside, members, "region {g} is the far side of its bridge");
+            assert!(
+                inside.len() < outside.len(),
+                "region {g} is the smaller side"
+            );
+        }
+        assert!(members.iter().any(|&v| nav.vertices[v].lift.is_some()));
+        // Capacity: the region's leaves (one lane neighbour), at least one.
+        let leaves = members
+            .iter()
+            .filter(|&&v| {
+                let mut n: Vec<usize> = nav
+                    .edges
+                    .iter()
+                    .filter(|e| e.kind == crate::graph::EdgeKind::Lane)
+                    .filter_map(|e| match (e.from == v, e.to == v) {
+                        (true, _) => Some(e.to),
+                        (_, true) => Some(e.from),
+                        _ => None,
+                    })
+                    .collect();
+                n.sort_unstable();
+                n.dedup();
+                n.len() == 1
+            })
+            .count();
+        assert_eq!(regions.capacity[g], leaves.max(1));
+    }
+}
+
+#[test]
+fn a_full_lift_lobby_admits_nobody_until_a_robot_leaves() {
+    let b = clinic();
+    let s = scenario(vec![fleet("tiny", 3, SpawnSpec::Auto)], vec![]);
+    let (_, _, mut f) = run(&b, &s, 0.1);
+    // The first lobby and its entrance lane.
+    let g = 0;
+    let e = f
+        .regions
+        .entry
+        .iter()
+        .position(|&x| x == Some(g))
+        .expect("entrance");
+    let (u, v) = (f.nav.edges[e].from, f.nav.edges[e].to);
+    let cap = f.regions.capacity[g];
+    assert!(cap < f.robots.len(), "enough robots to fill the lobby");
+    let busy = |r: &mut Robot, at: usize| {
+        r.at = at;
+        r.route.clear();
+        r.n_res = 0;
+        r.cur = Cur::GoTo {
+            goal: at,
+            planned: true,
+        };
+    };
+    // Robot 0 waits at the entrance to drive in; `cap` busy robots stand inside.
+    busy(&mut f.robots[0], u);
+    f.robots[0].route = VecDeque::from(vec![e]);
+    for o in 1..=cap {
+        busy(&mut f.robots[o], v);
+    }
+    let full = f.admission(0, 1);
+    assert_eq!(full, (1..=cap).collect::<Vec<_>>());
+    // One fewer inside (it left the lobby): admitted.
+    let out = (0..f.nav.vertices.len()).find(|&w| !f.regions.contains(g, w));
+    busy(&mut f.robots[1], out.expect("a vertex outside"));
+    assert!(f.admission(0, 1).is_empty());
+    // An idle robot inside does not count (it is moved aside as usual).
+    busy(&mut f.robots[1], v);
+    f.robots[1].cur = Cur::None;
+    f.robots[1].task = None;
+    f.robots[1].queue.clear();
+    f.robots[1].steps.clear();
+    assert!(f.admission(0, 1).is_empty());
+    // A robot already inside needs no admission to go on.
+    f.robots[1].cur = Cur::GoTo {
+        goal: v,
+        planned: true,
+    };
+    f.robots[0].at = v;
+    assert!(f.admission(0, 1).is_empty());
+}
