@@ -261,6 +261,10 @@ fn fixture_scenarios_run_and_are_deterministic() {
             .filter(|t| t["result"] == "completed")
             .count();
         assert_eq!(completed_events, completed_tasks, "{name}");
+        // Every example scenario is sized to finish: each task completes (a robot parked
+        // past a one-way lane once left the warehouse's later tasks unreachable).
+        let tasks = report["tasks"].as_array().unwrap();
+        assert_eq!(completed_tasks, tasks.len(), "{name}: {tasks:?}");
         assert!(report["end_time"].as_f64().unwrap() <= last + 1.0);
     }
     assert!(any, "no fixtures/*.scenario.yaml");

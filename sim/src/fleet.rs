@@ -2489,14 +2489,27 @@ impl Fleets {
             let spot = ro.is_parking_spot || ro.is_holding_point;
             times[v] + if spot { 0.0 } else { SPOT_PENALTY }
         };
-        self.nav.members[f.slot]
+        let mut spots: Vec<usize> = self.nav.members[f.slot]
             .iter()
             .copied()
             .filter(|&v| park.get(v).copied().unwrap_or(false) && times[v] <= PARK_REACH)
             .filter(|&v| self.nav.vertices[v].level == *level)
             .filter(|&v| self.res.is_free_ignoring(i, &self.conf.vertex[v], None))
             .filter(|&v| !taken(v) && plain(v))
-            .min_by(|&a, &b| cost(a).total_cmp(&cost(b)).then(a.cmp(&b)))
+            .collect();
+        spots.sort_by(|&a, &b| cost(a).total_cmp(&cost(b)).then(a.cmp(&b)));
+        // Past a one-way lane a spot may have no way back: the robot would be trapped there
+        // for every later task. Parking is rare (after a task), so a tree per candidate
+        // tried is affordable; usually the first one qualifies.
+        spots
+            .into_iter()
+            .find(|&v| {
+                self.nav
+                    .tree_from(f.slot, v, f.speed)
+                    .0
+                    .get(r.at)
+                    .is_some_and(|t| t.is_finite())
+            })
             .map(|v| (v, times[v]))
     }
 
