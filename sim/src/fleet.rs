@@ -14,7 +14,7 @@
 //! second: idle robots in the way move aside (rows of them one after the other), wait-for
 //! cycles are broken by backing one robot off (`resolve_deadlock`) or by a detour, a robot
 //! whose wait chain has not moved for `STUCK_AFTER` is reported and looks for detours, and
-//! after `STUCK_FAIL` its task fails. Empty dispensers are asked again; a delivery that
+//! after `STUCK_FAIL` its task fails. Empty dispensers are asked again (while their item is on its way back, without limit); a delivery that
 //! fails while carrying its item still takes it to the ingestor.
 
 use crate::graph::{EdgeKind, Nav, Regions};
@@ -185,6 +185,8 @@ struct Robot {
     charger: Option<usize>,
     /// (drop-off vertex, ingestor) of the item the robot carries.
     carrying: Option<(usize, String)>,
+    /// The dispenser of the item aboard, until it is ingested (also on a return trip).
+    item_from: Option<String>,
     /// Driving to a back-off spot (a Dwell and the GoTo it backed off from follow).
     backing_off: bool,
     last_backoff: f64,
@@ -609,6 +611,7 @@ impl Fleets {
                     end_vertex: at,
                     charger: None,
                     carrying: None,
+                    item_from: None,
                     backing_off: false,
                     last_backoff: f64::NEG_INFINITY,
                     task_started: 0.0,
@@ -1275,14 +1278,18 @@ impl Fleets {
                                 _ => None,
                             });
                             r.carrying = to.zip(ing);
+                            r.item_from = Some(target.clone());
                         } else {
                             r.carrying = None;
+                            r.item_from = None;
                         }
                         true
                     }
                     // An empty dispenser: its item is still out with another delivery
                     // (it comes back once ingested). Ask again for a while.
-                    Some(_) if dispenser && t - since < ITEM_WAIT => {
+                    Some(_)
+                        if dispenser && (t - since < ITEM_WAIT || self.item_coming(&target)) =>
+                    {
                         let base = guid.split("_retry").next().unwrap_or(&guid).to_string();
                         self.robots[i].cur = Cur::Workcell {
                             guid: format!("{base}_retry{}", tries + 1),
@@ -1503,6 +1510,15 @@ impl Fleets {
             Topic::IngestorRequests
         };
         out.push((topic, msg));
+    }
+
+    /// Whether a robot still on its way (a delivery or the return trip of a failed one)
+    /// carries `dispenser`'s item: it will come back, so waiting for it is not in vain.
+    fn item_coming(&self, dispenser: &str) -> bool {
+        self.robots.iter().any(|x| {
+            x.item_from.as_deref() == Some(dispenser)
+                && !(matches!(x.cur, Cur::None) && x.steps.is_empty())
+        })
     }
 
     /// Reads the latest RobotState of the current PathRequest: pops the edges reached.
