@@ -14,8 +14,9 @@
 //! second: idle robots in the way move aside (rows of them one after the other), wait-for
 //! cycles are broken by backing one robot off (`resolve_deadlock`) or by a detour, a robot
 //! whose wait chain has not moved for `STUCK_AFTER` is reported and looks for detours, and
-//! after `STUCK_FAIL` its task fails. Empty dispensers are asked again (while their item is on its way back, without limit); a delivery that
-//! fails while carrying its item still takes it to the ingestor.
+//! after `STUCK_FAIL` its task fails. Empty dispensers are asked again (without limit while
+//! their item is on its way back); a delivery that fails while carrying its item still takes
+//! it to the ingestor.
 
 use crate::graph::{EdgeKind, Nav, Regions};
 use crate::msgs::{

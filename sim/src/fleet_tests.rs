@@ -1124,3 +1124,32 @@ fn a_full_lift_lobby_admits_nobody_until_a_robot_leaves() {
     f.robots[0].at = v;
     assert!(f.admission(0, 1).is_empty());
 }
+
+#[test]
+fn an_empty_dispensers_item_is_coming_while_its_carrier_is_on_its_way() {
+    // c_0 drives to far_e (a GoTo under way): pretend it carries `disp`'s item. A robot
+    // waiting at `disp` then keeps asking past ITEM_WAIT; once the carrier has nothing
+    // left to do (its return trip dropped), the item is not coming and the wait is bounded.
+    let b = cross();
+    let s = scenario(
+        vec![fleet("c", 1, SpawnSpec::Waypoints(vec!["far_w".into()]))],
+        vec![task(
+            0.5,
+            TaskKind::GoToPlace {
+                place: "far_e".into(),
+            },
+        )],
+    );
+    let (_, _, mut f) = run(&b, &s, 2.0);
+    assert!(matches!(f.robots[0].cur, Cur::GoTo { .. }));
+    assert!(!f.item_coming("disp"), "nothing carried yet");
+    f.robots[0].item_from = Some("disp".into());
+    assert!(f.item_coming("disp"));
+    assert!(!f.item_coming("other"));
+    f.robots[0].cur = Cur::None;
+    f.robots[0].steps.clear();
+    assert!(
+        !f.item_coming("disp"),
+        "a carrier with nothing to do brings nothing back"
+    );
+}
