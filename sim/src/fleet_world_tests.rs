@@ -54,6 +54,17 @@ fn scenario(fleets: Vec<FleetSpec>, tasks: Vec<TaskSpec>) -> Scenario {
     }
 }
 
+/// A go_to_place task for any fleet.
+fn go_to(at: f64, place: &str) -> TaskSpec {
+    task(
+        at,
+        None,
+        TaskKind::GoToPlace {
+            place: place.into(),
+        },
+    )
+}
+
 fn task(at: f64, fleet: Option<&str>, kind: TaskKind) -> TaskSpec {
     TaskSpec {
         at,
@@ -350,22 +361,7 @@ fn world_two_robots_share_the_lift() {
             2,
             SpawnSpec::Waypoints(vec!["tinyRobot1_charger".into(), "pharmacy".into()]),
         )],
-        vec![
-            task(
-                0.5,
-                None,
-                TaskKind::GoToPlace {
-                    place: "ward_a".into(),
-                },
-            ),
-            task(
-                0.5,
-                None,
-                TaskKind::GoToPlace {
-                    place: "ward_b".into(),
-                },
-            ),
-        ],
+        vec![go_to(0.5, "ward_a"), go_to(0.5, "ward_b")],
     );
     let r = run(&b, &s, 1200.0);
     let done = ended(&r.events);
@@ -608,13 +604,7 @@ fn world_lift_busy_with_someone_else_is_waited_for() {
     let b = load("two_level_clinic", None);
     let s = scenario(
         vec![fleet("tiny", 1, SpawnSpec::MapSpawnPoints)],
-        vec![task(
-            0.5,
-            None,
-            TaskKind::GoToPlace {
-                place: "ward_a".into(),
-            },
-        )],
+        vec![go_to(0.5, "ward_a")],
     );
     let request = |kind: u8, floor: &str| LiftRequest {
         lift_name: "lift_1".into(),
@@ -809,27 +799,9 @@ fn world_runs_are_deterministic() {
             SpawnSpec::Waypoints(vec!["tinyRobot1_charger".into(), "pharmacy".into()]),
         )],
         vec![
-            task(
-                0.5,
-                None,
-                TaskKind::GoToPlace {
-                    place: "ward_a".into(),
-                },
-            ),
-            task(
-                0.5,
-                None,
-                TaskKind::GoToPlace {
-                    place: "lobby".into(),
-                },
-            ),
-            task(
-                3.0,
-                None,
-                TaskKind::GoToPlace {
-                    place: "ward_b".into(),
-                },
-            ),
+            go_to(0.5, "ward_a"),
+            go_to(0.5, "lobby"),
+            go_to(3.0, "ward_b"),
         ],
     );
     let (a, c) = (run(&b, &s, 900.0), run(&b, &s, 900.0));

@@ -357,8 +357,14 @@ fn lift_trip_time_is_doors_close_plus_cabin_plus_doors_open() {
     assert_eq!(s.door_state, lift_state_open());
     assert_eq!(s.session_id, "s");
     // The rider now reports the upper level.
+    let level = last_level(&mut w, &mut out);
+    assert_eq!(level.as_deref(), Some("L2"));
+}
+
+/// The level named by the last RobotState published during the next second.
+fn last_level(w: &mut World, out: &mut Vec<Published>) -> Option<String> {
     let mut level = None;
-    run_until(&mut w, &mut out, 1.0, |_, out| {
+    run_until(w, out, 1.0, |_, out| {
         for p in out {
             if let Msg::RobotState(s) = &p.msg {
                 level = Some(s.location.level_name.clone());
@@ -366,7 +372,7 @@ fn lift_trip_time_is_doors_close_plus_cabin_plus_doors_open() {
         }
         false
     });
-    assert_eq!(level.as_deref(), Some("L2"));
+    level
 }
 
 #[test]
@@ -949,15 +955,7 @@ fn robot_reports_its_own_level_when_levels_share_an_elevation() {
     let r = spawn(&b, "r", RobotParams::default(), 0.0, 0.0, 0.0, "L1b");
     let mut w = World::new(&b, &setup(vec![r]));
     let mut out = Vec::new();
-    let mut level = None;
-    run_until(&mut w, &mut out, 1.0, |_, out| {
-        for p in out {
-            if let Msg::RobotState(s) = &p.msg {
-                level = Some(s.location.level_name.clone());
-            }
-        }
-        false
-    });
+    let level = last_level(&mut w, &mut out);
     assert_eq!(level.as_deref(), Some("L1b"));
 }
 
