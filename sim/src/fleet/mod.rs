@@ -1,0 +1,458 @@
+//! The fleet layer: what a minimal RMF fleet adapter does (task assignment, routes on the
+//! fleet's nav graph, traffic reservations, doors, lifts, workcells, charging), talking to
+//! the world only through messages.
+//!
+//! Event driven: `update` returns at once unless a message arrived or a timer expired.
+//!
+//! A robot follows its route in PathRequests of the lanes it has reserved (see traffic.rs):
+//! a corridor is reserved whole up to the next place where robots can pass (`segment`),
+//! at least `LOOKAHEAD` plain lanes ahead; entering a lift reserves the ride and the lane
+//! out at the destination. A lane through a controlled door, into a lift cabin, or a lift
+//! ride is driven alone, after the door is open (DoorState OPEN and our heartbeat session)
+//! or the lift is at the floor with its doors open in our session. Progress is read from
+//! RobotState (`path` = waypoints not yet reached). Waiting robots are watched once a
+//! second: idle robots in the way move aside (rows of them one after the other), wait-for
+//! cycles are broken by backing one robot off (`resolve_deadlock`) or by a detour, a robot
+//! whose wait chain has not moved for `STUCK_AFTER` is reported and looks for detours, and
+//! after `STUCK_FAIL` its task fails. Empty dispensers are asked again (without limit while
+//! their item is on its way back); a delivery that fails while carrying its item still takes
+//! it to the ingestor.
+
+use crate::graph::{EdgeKind, Nav, Regions};
+use crate::msgs::{
+    door_mode, lift_request, lift_state, robot_mode, workcell_result, DoorMode, DoorRequest,
+    FleetState, ItemType, LiftRequest, Location, Msg, PathRequest, Published, RobotState,
+    TaskEvent, Time, Topic, WorkcellRequest,
+};
+use crate::scenario::{Scenario, SpawnSpec, TaskCategory, TaskKind};
+use crate::traffic::{find_cycle, Clearance, Conflicts, Res, Reservations};
+use crate::world::{RobotSpawn, WorkcellSpawn};
+use mapc_ir::{Building, Diagnostic, Span};
+use std::collections::{BTreeMap, VecDeque};
+
+mod assign;
+mod drive;
+mod park;
+mod setup;
+mod task;
+mod traffic;
+
+use park::{park_vertices, parks_after, waypoint_names};
+
+/// Diagnostic codes of scenario/map mismatches.
+pub mod codes {
+    /// A named waypoint does not exist on the fleet's graph (or in the map for workcells).
+    pub const UNKNOWN_WAYPOINT: &str = "S0201";
+    /// Fewer spawn points than robots.
+    pub const NOT_ENOUGH_SPAWNS: &str = "S0202";
+    /// A fleet's graph has no lanes.
+    pub const EMPTY_GRAPH: &str = "S0203";
+    /// Two robots would start on the same waypoint or with the same name.
+    pub const SPAWN_CLASH: &str = "S0204";
+    /// A task names a fleet that does not exist or does not accept the task's category.
+    pub const NO_FLEET: &str = "S0205";
+    /// A delivery has no dispenser/ingestor (neither given nor a waypoint param).
+    pub const NO_WORKCELL: &str = "S0206";
+    /// A task waypoint lies inside a lift cabin.
+    pub const IN_LIFT: &str = "S0207";
+}
+
+/// Seconds between re-sent door, lift and workcell requests.
+const RESEND: f64 = 1.0;
+/// Waiting this long for a door, lift or workcell fails the task.
+const EXTERNAL_TIMEOUT: f64 = 300.0;
+/// A robot stalled this long in another stalled robot's way backs off for it (s).
+const YIELD_AFTER: f64 = 60.0;
+/// A robot at an empty dispenser asks again this often (s), this long (s).
+const ITEM_RETRY: f64 = 5.0;
+const ITEM_WAIT: f64 = 1200.0;
+/// A robot waiting for traffic this long is reported stuck.
+const STUCK_AFTER: f64 = 120.0;
+/// A stalled robot looks for a detour this often.
+const DETOUR_AFTER: f64 = 30.0;
+/// A robot stalled this long (no detour, no back-off helped) fails its task: traffic
+/// that never clears is reported rather than waited for until the end of the run.
+const STUCK_FAIL: f64 = 1800.0;
+/// A wait-for cycle older than this is broken by backing a robot off.
+const DEADLOCK_AFTER: f64 = 3.0;
+/// Back-offs towards one goal before its task fails.
+const MAX_BACKOFFS: u32 = 10;
+/// How long a robot that backed off out of a deadlock waits before going on (s).
+const BACKOFF_WAIT: f64 = 5.0;
+/// Edges of the other robots' routes a robot backing off must keep off.
+const DEADLOCK_HORIZON: usize = 8;
+/// Extra cost (s) of a yield or back-off spot that is not a parking spot, holding point
+/// or charger.
+const SPOT_PENALTY: f64 = 10.0;
+/// Head start (s) in task assignment of an idle robot standing on one of the task's
+/// waypoints.
+const ON_TASK_BONUS: f64 = 180.0;
+/// Farthest (s) an idle robot drives to park: a long drive crosses the others' ways.
+const PARK_REACH: f64 = 120.0;
+/// Most edges reserved at once through a corridor.
+const SEGMENT_MAX: usize = 12;
+/// Edges reserved ahead of a moving robot.
+const LOOKAHEAD: usize = 3;
+
+/// Where robots and workcells start, resolved from the scenario against the map.
+pub struct Placement {
+    pub robots: Vec<RobotSpawn>,
+    pub workcells: Vec<WorkcellSpawn>,
+}
+
+#[derive(Debug, Clone)]
+enum Step {
+    GoTo(usize),
+    Dispense(String),
+    Ingest(String),
+    Dwell(f64),
+    Charge(f64),
+}
+
+/// Runtime of the step in progress.
+#[derive(Debug, Clone, PartialEq)]
+enum Cur {
+    None,
+    GoTo {
+        goal: usize,
+        planned: bool,
+    },
+    Workcell {
+        guid: String,
+        target: String,
+        dispenser: bool,
+        next_send: f64,
+        deadline: f64,
+        /// Requests made after a FAILED, and when the first one was made.
+        tries: u32,
+        since: f64,
+    },
+    Dwell {
+        until: f64,
+    },
+    Charge {
+        pct: f64,
+        best: f64,
+        best_t: f64,
+    },
+}
+
+/// What a GoTo waits for before the next edge.
+#[derive(Debug, Clone, PartialEq)]
+enum Gate {
+    None,
+    Door {
+        door: usize,
+        next_send: f64,
+        since: f64,
+    },
+    Lift {
+        lift: usize,
+        floor: String,
+        next_send: f64,
+        since: f64,
+    },
+}
+
+struct Robot {
+    name: String,
+    fleet: usize,
+    slot: usize,
+    at: usize,
+    state: Option<RobotState>,
+    route: VecDeque<usize>,
+    /// Leading edges of `route` that are reserved / sent in the current PathRequest.
+    n_res: usize,
+    n_sent: usize,
+    path_id: String,
+    path_seq: u64,
+    gate: Gate,
+    /// Door to close / lift session to end after the edge being driven.
+    close_door: Option<usize>,
+    end_lift: Option<usize>,
+    steps: VecDeque<Step>,
+    cur: Cur,
+    task: Option<usize>,
+    queue: VecDeque<usize>,
+    wake: f64,
+    dirty: bool,
+    /// Waiting for reservations since, and on whom.
+    wait_since: Option<f64>,
+    blockers: Vec<usize>,
+    stuck_reported: bool,
+    /// Back-offs on the way to `backoff_goal` (a livelock guard).
+    backoffs: u32,
+    backoff_goal: usize,
+    /// Since when nothing this robot waits for (directly or through others) moved.
+    stall_since: f64,
+    /// When it last looked for a detour.
+    last_detour: f64,
+    /// Last reported position that differed by more than 5 cm, and when.
+    last_pos: (f64, f64),
+    last_moved: f64,
+    free_at: f64,
+    end_vertex: usize,
+    charger: Option<usize>,
+    /// (drop-off vertex, ingestor) of the item the robot carries.
+    carrying: Option<(usize, String)>,
+    /// The dispenser of the item aboard, until it is ingested (also on a return trip).
+    item_from: Option<String>,
+    /// Driving to a back-off spot (a Dwell and the GoTo it backed off from follow).
+    backing_off: bool,
+    last_backoff: f64,
+    /// When the current task started.
+    task_started: f64,
+    /// Its task just ended: once idle, it drives to a parking vertex (`Fleets::park`).
+    park_pending: bool,
+}
+
+impl Robot {
+    fn idle(&self) -> bool {
+        self.task.is_none()
+            && self.queue.is_empty()
+            && self.steps.is_empty()
+            && self.cur == Cur::None
+    }
+    fn battery(&self) -> f64 {
+        self.state.as_ref().map_or(100.0, |s| s.battery_percent)
+    }
+}
+
+struct FleetRt {
+    name: String,
+    slot: usize,
+    speed: f64,
+    recharge_threshold: f64,
+    recharge_soc: f64,
+    kinds: Vec<TaskCategory>,
+    robots: Vec<usize>,
+}
+
+struct Task {
+    id: String,
+    category: TaskCategory,
+    kind: TaskKind,
+    fleet: Option<String>,
+    ended: bool,
+}
+
+#[derive(Default, Clone)]
+struct DoorView {
+    mode: u32,
+    sessions: Vec<String>,
+}
+
+#[derive(Default, Clone)]
+struct LiftView {
+    current_floor: String,
+    door_state: u8,
+    session_id: String,
+}
+
+pub struct Fleets {
+    nav: Nav,
+    conf: Conflicts,
+    /// Per graph slot, per vertex: robots can wait or pass each other there (junctions,
+    /// leaves, holding points, lift cabins); corridors are the other vertices.
+    passing: Vec<Vec<bool>>,
+    /// Dead-end regions with their capacities (admission control, `Fleets::admission`).
+    regions: Regions,
+    /// Per graph slot, per vertex: where an idle robot parks out of everybody's way
+    /// (see `park_vertices`).
+    park: Vec<Vec<bool>>,
+    res: Reservations,
+    fleets: Vec<FleetRt>,
+    robots: Vec<Robot>,
+    by_name: BTreeMap<String, usize>,
+    tasks: Vec<Task>,
+    /// (request time, source order, kind, fleet) of tasks not yet requested, sorted.
+    upcoming: VecDeque<(f64, usize, TaskKind, Option<String>)>,
+    doors: Vec<DoorView>,
+    door_index: BTreeMap<String, usize>,
+    lifts: Vec<LiftView>,
+    lift_index: BTreeMap<String, usize>,
+    results: BTreeMap<String, u8>,
+    counters: BTreeMap<TaskCategory, usize>,
+    chargers: BTreeMap<usize, usize>,
+    next_wake: f64,
+    next_fleet_state: f64,
+    next_traffic: f64,
+    clean_duration: f64,
+    released: bool,
+}
+
+fn level_handle_eq(a: mapc_ir::Handle<mapc_ir::Level>, b: mapc_ir::Handle<mapc_ir::Level>) -> bool {
+    a == b
+}
+
+impl Fleets {
+    /// Reads what the world published in the last step (`inbox`) and appends the fleet's
+    /// requests and task events to `out`.
+    pub fn update(&mut self, t: f64, inbox: &[Published], out: &mut Vec<(Topic, Msg)>) {
+        if inbox.is_empty() && t < self.next_wake {
+            return;
+        }
+        let mut external = false;
+        for p in inbox {
+            match &p.msg {
+                Msg::RobotState(s) => {
+                    if let Some(&i) = self.by_name.get(&s.name) {
+                        let r = &mut self.robots[i];
+                        let (x, y) = (s.location.x, s.location.y);
+                        if (x - r.last_pos.0).hypot(y - r.last_pos.1) > 0.05 {
+                            r.last_pos = (x, y);
+                            r.last_moved = t;
+                        }
+                        r.state = Some(s.clone());
+                        r.dirty = true;
+                    }
+                }
+                Msg::DoorState(s) => {
+                    if let Some(&d) = self.door_index.get(&s.door_name) {
+                        self.doors[d].mode = s.current_mode.value;
+                        external = true;
+                    }
+                }
+                Msg::DoorHeartbeat(h) => {
+                    for v in self.doors.iter_mut() {
+                        v.sessions.clear();
+                    }
+                    for ds in &h.all_sessions {
+                        if let Some(&d) = self.door_index.get(&ds.door_name) {
+                            self.doors[d].sessions =
+                                ds.sessions.iter().map(|s| s.requester_id.clone()).collect();
+                        }
+                    }
+                    external = true;
+                }
+                Msg::LiftState(s) => {
+                    if let Some(&l) = self.lift_index.get(&s.lift_name) {
+                        self.lifts[l] = LiftView {
+                            current_floor: s.current_floor.clone(),
+                            door_state: s.door_state,
+                            session_id: s.session_id.clone(),
+                        };
+                        external = true;
+                    }
+                }
+                Msg::WorkcellResult(res)
+                    if matches!(p.topic, Topic::DispenserResults | Topic::IngestorResults)
+                        && res.status != workcell_result::ACKNOWLEDGED =>
+                {
+                    self.results.insert(res.request_guid.clone(), res.status);
+                    external = true;
+                }
+                _ => {}
+            }
+        }
+        if external {
+            for r in &mut self.robots {
+                if r.gate != Gate::None || matches!(r.cur, Cur::Workcell { .. }) {
+                    r.dirty = true;
+                }
+            }
+        }
+        // New tasks.
+        while self.upcoming.front().is_some_and(|u| u.0 <= t) {
+            if let Some((_, _, kind, fleet)) = self.upcoming.pop_front() {
+                self.request_task(t, kind, fleet, out);
+            }
+        }
+        // Robots with news or an expired timer; repeat while reservations were released
+        // (a release can unblock robots that are waiting).
+        for pass in 0..4 {
+            self.released = false;
+            for i in 0..self.robots.len() {
+                let r = &self.robots[i];
+                let due = r.dirty || r.wake <= t || (pass > 0 && r.wait_since.is_some());
+                if due {
+                    self.robots[i].dirty = false;
+                    self.tick(i, t, out);
+                }
+            }
+            if !self.released {
+                break;
+            }
+        }
+        if t >= self.next_traffic {
+            self.traffic_check(t, out);
+        }
+        if t >= self.next_fleet_state {
+            self.next_fleet_state = t + 1.0;
+            for f in &self.fleets {
+                let robots = f
+                    .robots
+                    .iter()
+                    .filter_map(|&i| self.robots[i].state.clone())
+                    .collect();
+                out.push((
+                    Topic::FleetStates,
+                    Msg::FleetState(FleetState {
+                        name: f.name.clone(),
+                        robots,
+                    }),
+                ));
+            }
+        }
+        let any_waiting = self.robots.iter().any(|r| r.wait_since.is_some());
+        self.next_traffic = if any_waiting {
+            self.next_traffic.min(t + 1.0).max(t + 1e-9)
+        } else {
+            f64::INFINITY
+        };
+        if self.next_traffic <= t {
+            self.next_traffic = t + 1.0;
+        }
+        let mut next = self.next_fleet_state.min(self.next_traffic);
+        if let Some(u) = self.upcoming.front() {
+            next = next.min(u.0);
+        }
+        for r in &self.robots {
+            next = next.min(r.wake);
+        }
+        self.next_wake = next;
+    }
+
+    /// True when every task has ended (completed or failed) and no generator is pending.
+    pub fn all_done(&self, _t: f64) -> bool {
+        self.upcoming.is_empty() && self.tasks.iter().all(|t| t.ended)
+    }
+
+    // ----- tasks -----
+
+    fn event(
+        &self,
+        t: f64,
+        task: usize,
+        event: &str,
+        robot: Option<usize>,
+        detail: String,
+        out: &mut Vec<(Topic, Msg)>,
+    ) {
+        let Some(tk) = self.tasks.get(task) else {
+            return;
+        };
+        let (fleet, robot) = robot
+            .and_then(|r| self.robots.get(r))
+            .map(|r| (self.fleets[r.fleet].name.clone(), r.name.clone()))
+            .unwrap_or_default();
+        out.push((
+            Topic::TaskEvents,
+            Msg::TaskEvent(TaskEvent {
+                time: Time::from_secs(t),
+                task_id: tk.id.clone(),
+                category: tk.category.as_str().to_string(),
+                event: event.to_string(),
+                fleet,
+                robot,
+                detail,
+            }),
+        ));
+    }
+}
+
+#[cfg(test)]
+mod tests;
+
+#[cfg(test)]
+mod world_tests;

@@ -1,0 +1,590 @@
+//! Setting the fleets up: robots and workcells placed on the map, the graphs, conflict
+//! sets and parking spots built once.
+
+use super::*;
+
+impl Fleets {
+    /// Resolves spawns and workcells (named waypoints must exist on the fleet's graph).
+    pub fn place(building: &Building, scenario: &Scenario) -> Result<Placement, Vec<Diagnostic>> {
+        let graphs: Vec<i64> = scenario.fleets.iter().map(|f| f.graph).collect();
+        let nav = Nav::build(building, &graphs);
+        let mut diags = Vec::new();
+        let mut robots: Vec<RobotSpawn> = Vec::new();
+        // (vertex, footprint) of robots placed so far.
+        let mut taken: Vec<(usize, f64)> = Vec::new();
+        for f in &scenario.fleets {
+            let Some(slot) = nav.slot(f.graph).filter(|&s| !nav.members[s].is_empty()) else {
+                diags.push(
+                    Diagnostic::error(
+                        codes::EMPTY_GRAPH,
+                        f.span,
+                        format!(
+                            "fleet `{}` drives on graph {}, which has no lanes",
+                            f.name, f.graph
+                        ),
+                    )
+                    .with_help(format!(
+                        "graphs with lanes in this map: {:?}",
+                        building.graph_indices()
+                    )),
+                );
+                continue;
+            };
+            let mut chosen: Vec<(usize, Option<String>)> = Vec::new();
+            match &f.spawn {
+                SpawnSpec::MapSpawnPoints => {
+                    let spawns: Vec<usize> = nav.members[slot]
+                        .iter()
+                        .copied()
+                        .filter(|&v| nav.vertices[v].roles.spawn_robot_type.is_some())
+                        .collect();
+                    let matching: Vec<usize> = spawns
+                        .iter()
+                        .copied()
+                        .filter(|&v| {
+                            nav.vertices[v]
+                                .roles
+                                .spawn_robot_type
+                                .as_deref()
+                                .is_some_and(|t| {
+                                    t.rsplit('/')
+                                        .next()
+                                        .unwrap_or(t)
+                                        .eq_ignore_ascii_case(&f.robot.model)
+                                })
+                        })
+                        .collect();
+                    let pool = if matching.is_empty() {
+                        spawns
+                    } else {
+                        matching
+                    };
+                    for v in pool {
+                        if chosen.len() == f.count {
+                            break;
+                        }
+                        if taken.iter().any(|&(w, _)| w == v) {
+                            continue;
+                        }
+                        chosen.push((v, nav.vertices[v].roles.spawn_robot_name.clone()));
+                    }
+                }
+                SpawnSpec::Waypoints(names) => {
+                    for name in names.iter().take(f.count) {
+                        match nav.find(slot, name) {
+                            Some(v)
+                                if taken.iter().any(|&(w, _)| w == v)
+                                    || chosen.iter().any(|c| c.0 == v) =>
+                            {
+                                diags.push(
+                                    Diagnostic::error(
+                                        codes::SPAWN_CLASH,
+                                        f.span,
+                                        format!("two robots would start on waypoint `{name}`"),
+                                    )
+                                    .with_help("name a different waypoint for each robot"),
+                                );
+                            }
+                            Some(v) => chosen.push((v, None)),
+                            None => diags.push(unknown_waypoint(&nav, slot, name, f.span, &f.name)),
+                        }
+                    }
+                }
+                SpawnSpec::Auto => {
+                    let mut cands: Vec<usize> = nav.members[slot]
+                        .iter()
+                        .copied()
+                        .filter(|&v| nav.vertices[v].lift.is_none())
+                        .collect();
+                    // Neighbours (either direction) of each vertex on this graph.
+                    let mut nbrs: Vec<Vec<usize>> = vec![Vec::new(); nav.vertices.len()];
+                    for e in nav.edges.iter().filter(|e| e.graph == slot) {
+                        nbrs[e.from].push(e.to);
+                        nbrs[e.to].push(e.from);
+                    }
+                    for n in &mut nbrs {
+                        n.sort_unstable();
+                        n.dedup();
+                    }
+                    // Chargers, parking spots and holding points first, then dead ends
+                    // (off every through route), then the rest.
+                    let class = |v: usize| {
+                        let r = &nav.vertices[v].roles;
+                        if r.is_charger {
+                            0
+                        } else if r.is_parking_spot {
+                            1
+                        } else if r.is_holding_point {
+                            2
+                        } else if nbrs[v].len() <= 1 {
+                            3
+                        } else {
+                            4
+                        }
+                    };
+                    cands.sort_by_key(|&v| (class(v), v));
+                    // First pass: no robot next to another (each can drive off without the
+                    // other moving); second pass: only far enough apart.
+                    // Spread over the levels the graph reaches: the level with the fewest
+                    // robots so far first, so that a multi-level graph does not crowd one
+                    // floor.
+                    for strict in [true, false] {
+                        while chosen.len() < f.count {
+                            let mine: Vec<(usize, f64)> =
+                                chosen.iter().map(|c| (c.0, f.robot.footprint)).collect();
+                            let ok = |v: usize| {
+                                let p = nav.vertices[v].pos;
+                                let clear = |&(w, fp): &(usize, f64)| {
+                                    let vw = &nav.vertices[w];
+                                    w != v
+                                        && (!level_handle_eq(vw.level, nav.vertices[v].level)
+                                            || vw.pos.minus(p).norm()
+                                                >= fp + f.robot.footprint + 0.5)
+                                        && !(strict && nbrs[v].binary_search(&w).is_ok())
+                                };
+                                taken.iter().all(clear) && mine.iter().all(clear)
+                            };
+                            let on_level = |v: usize| {
+                                taken
+                                    .iter()
+                                    .map(|x| x.0)
+                                    .chain(mine.iter().map(|x| x.0))
+                                    .filter(|&w| nav.vertices[w].level == nav.vertices[v].level)
+                                    .count()
+                            };
+                            let pick = cands
+                                .iter()
+                                .copied()
+                                .filter(|&v| ok(v))
+                                .min_by_key(|&v| (class(v), on_level(v), v));
+                            match pick {
+                                Some(v) => chosen.push((v, None)),
+                                None => break,
+                            }
+                        }
+                    }
+                }
+            }
+            if chosen.len() < f.count
+                && !matches!(f.spawn, SpawnSpec::Waypoints(ref n) if n.len() >= f.count && chosen.len() + diags.len() >= f.count)
+            {
+                let what = match f.spawn {
+                    SpawnSpec::MapSpawnPoints => "free spawn waypoints (`spawn_robot_type`)",
+                    SpawnSpec::Waypoints(_) => "spawn waypoints listed",
+                    SpawnSpec::Auto => "free waypoints far enough apart",
+                };
+                diags.push(
+                    Diagnostic::error(
+                        codes::NOT_ENOUGH_SPAWNS,
+                        f.span,
+                        format!(
+                            "fleet `{}` has {} robots but only {} {what}",
+                            f.name,
+                            f.count,
+                            chosen.len()
+                        ),
+                    )
+                    .with_help(match f.spawn {
+                        SpawnSpec::Auto => "lower `count` or add parking spots to the graph",
+                        _ => "lower `count`, list more waypoints, or use `spawn: auto`",
+                    }),
+                );
+            }
+            for (i, (v, name)) in chosen.into_iter().enumerate() {
+                let nv = &nav.vertices[v];
+                let name = name.unwrap_or_else(|| format!("{}_{i}", f.name));
+                if robots.iter().any(|r| r.name == name) {
+                    diags.push(Diagnostic::error(
+                        codes::SPAWN_CLASH,
+                        f.span,
+                        format!("two robots are named `{name}`"),
+                    ));
+                }
+                // Face along the first lane leaving the spawn point, as a parked robot would.
+                let yaw = nav.out[slot][v].first().map_or(0.0, |&e| {
+                    let d = nav.vertices[nav.edges[e].to].pos.minus(nv.pos);
+                    d.y.atan2(d.x)
+                });
+                robots.push(RobotSpawn {
+                    name,
+                    fleet: f.name.clone(),
+                    params: f.robot.clone(),
+                    x: nv.pos.x,
+                    y: nv.pos.y,
+                    yaw,
+                    level: nv.level,
+                });
+                taken.push((v, f.robot.footprint));
+            }
+        }
+        let mut workcells = Vec::new();
+        for w in &scenario.workcells {
+            match building
+                .vertices
+                .iter()
+                .find(|(_, v)| v.name == w.waypoint && !w.waypoint.is_empty())
+            {
+                Some((_, v)) => workcells.push(WorkcellSpawn {
+                    name: w.name.clone(),
+                    kind: w.kind,
+                    x: v.pos.x,
+                    y: v.pos.y,
+                    level: v.level,
+                }),
+                None => diags.push(
+                    Diagnostic::error(
+                        codes::UNKNOWN_WAYPOINT,
+                        w.span,
+                        format!("workcell `{}`: no waypoint named `{}`", w.name, w.waypoint),
+                    )
+                    .with_help("use the name of a vertex of the map"),
+                ),
+            }
+        }
+        if diags.iter().any(Diagnostic::is_error) {
+            return Err(diags);
+        }
+        Ok(Placement { robots, workcells })
+    }
+
+    pub fn new(
+        building: &Building,
+        scenario: &Scenario,
+        placement: &Placement,
+    ) -> Result<Fleets, Vec<Diagnostic>> {
+        let graphs: Vec<i64> = scenario.fleets.iter().map(|f| f.graph).collect();
+        let nav = Nav::build(building, &graphs);
+        let zero = Clearance {
+            footprint: 0.0,
+            stop_distance: 0.0,
+            stop_radius: 0.0,
+        };
+        let mut per_slot = vec![zero; nav.graphs.len()];
+        let mut footprint: f64 = 0.0;
+        for f in &scenario.fleets {
+            footprint = footprint.max(f.robot.footprint);
+            if let Some(c) = nav.slot(f.graph).and_then(|s| per_slot.get_mut(s)) {
+                c.footprint = c.footprint.max(f.robot.footprint);
+                c.stop_distance = c.stop_distance.max(f.robot.stop_distance);
+                c.stop_radius = c.stop_radius.max(f.robot.stop_radius);
+            }
+        }
+        let conf = Conflicts::build_per_slot(&nav, footprint, &per_slot);
+        let mut diags = Vec::new();
+        let mut fleets = Vec::new();
+        let mut robots = Vec::new();
+        let mut by_name = BTreeMap::new();
+        for f in &scenario.fleets {
+            let Some(slot) = nav.slot(f.graph) else {
+                continue;
+            };
+            let mut rt = FleetRt {
+                name: f.name.clone(),
+                slot,
+                speed: f.robot.nominal_drive_speed.max(0.05),
+                recharge_threshold: f.recharge_threshold,
+                recharge_soc: f.recharge_soc,
+                kinds: f.task_kinds.clone(),
+                robots: Vec::new(),
+            };
+            for spawn in placement.robots.iter().filter(|s| s.fleet == f.name) {
+                let at = nav.members[slot].iter().copied().find(|&v| {
+                    let nv = &nav.vertices[v];
+                    nv.level == spawn.level && (nv.pos.x - spawn.x).hypot(nv.pos.y - spawn.y) < 1e-6
+                });
+                let Some(at) = at else {
+                    diags.push(Diagnostic::error(
+                        codes::UNKNOWN_WAYPOINT,
+                        f.span,
+                        format!(
+                            "robot `{}` does not start on a waypoint of graph {}",
+                            spawn.name, f.graph
+                        ),
+                    ));
+                    continue;
+                };
+                let i = robots.len();
+                by_name.insert(spawn.name.clone(), i);
+                rt.robots.push(i);
+                robots.push(Robot {
+                    name: spawn.name.clone(),
+                    fleet: fleets.len(),
+                    slot,
+                    at,
+                    state: None,
+                    route: VecDeque::new(),
+                    n_res: 0,
+                    n_sent: 0,
+                    path_id: String::new(),
+                    path_seq: 0,
+                    gate: Gate::None,
+                    close_door: None,
+                    end_lift: None,
+                    steps: VecDeque::new(),
+                    cur: Cur::None,
+                    task: None,
+                    queue: VecDeque::new(),
+                    wake: f64::INFINITY,
+                    dirty: true,
+                    wait_since: None,
+                    blockers: Vec::new(),
+                    stuck_reported: false,
+                    backoffs: 0,
+                    backoff_goal: usize::MAX,
+                    stall_since: 0.0,
+                    last_detour: f64::NEG_INFINITY,
+                    last_pos: (spawn.x, spawn.y),
+                    last_moved: 0.0,
+                    free_at: 0.0,
+                    end_vertex: at,
+                    charger: None,
+                    carrying: None,
+                    item_from: None,
+                    backing_off: false,
+                    last_backoff: f64::NEG_INFINITY,
+                    task_started: 0.0,
+                    park_pending: false,
+                });
+            }
+            fleets.push(rt);
+        }
+        let mut res = Reservations::new(conf.n_res, robots.len());
+        for (i, r) in robots.iter().enumerate() {
+            res.set_held(i, conf.vertex[r.at].clone());
+        }
+
+        // Tasks: validate against the fleets, then order by request time (stable).
+        let mut upcoming = Vec::new();
+        let check = |kind: &TaskKind,
+                     fleet: &Option<String>,
+                     span: Span,
+                     diags: &mut Vec<Diagnostic>| {
+            let cat = kind.category();
+            let cands: Vec<&FleetRt> = fleets
+                .iter()
+                .filter(|f| fleet.as_ref().is_none_or(|n| *n == f.name))
+                .filter(|f| f.kinds.is_empty() || f.kinds.contains(&cat))
+                .collect();
+            if cands.is_empty() {
+                diags.push(
+                    Diagnostic::error(
+                        codes::NO_FLEET,
+                        span,
+                        format!(
+                            "no fleet{} accepts {} tasks",
+                            fleet
+                                .as_ref()
+                                .map(|n| format!(" named `{n}`"))
+                                .unwrap_or_default(),
+                            cat.as_str()
+                        ),
+                    )
+                    .with_help("add the category to a fleet's task kinds, or name another fleet"),
+                );
+                return;
+            }
+            for name in waypoint_names(kind) {
+                let found: Vec<usize> = cands
+                    .iter()
+                    .filter_map(|f| nav.find(f.slot, name))
+                    .collect();
+                if found.is_empty() {
+                    diags.push(unknown_waypoint(
+                        &nav,
+                        cands[0].slot,
+                        name,
+                        span,
+                        &cands[0].name,
+                    ));
+                } else if found.iter().any(|&v| nav.vertices[v].lift.is_some()) {
+                    // A robot parked in a cabin would keep the lift's session forever.
+                    diags.push(
+                        Diagnostic::error(
+                            codes::IN_LIFT,
+                            span,
+                            format!("waypoint `{name}` is inside a lift cabin"),
+                        )
+                        .with_help("use a waypoint in front of the lift"),
+                    );
+                }
+            }
+            if let TaskKind::Delivery {
+                pickup,
+                dropoff,
+                dispenser,
+                ingestor,
+            } = kind
+            {
+                let role = |name: &str, f: &dyn Fn(&mapc_ir::WaypointRoles) -> Option<String>| {
+                    cands
+                        .iter()
+                        .find_map(|c| nav.find(c.slot, name))
+                        .and_then(|v| f(&nav.vertices[v].roles))
+                };
+                if dispenser.is_none() && role(pickup, &|r| r.pickup_dispenser.clone()).is_none() {
+                    diags.push(
+                        Diagnostic::error(
+                            codes::NO_WORKCELL,
+                            span,
+                            format!("delivery from `{pickup}`: no dispenser named and the waypoint has no `pickup_dispenser`"),
+                        )
+                        .with_help("add `dispenser: <name>` to the task"),
+                    );
+                }
+                if ingestor.is_none() && role(dropoff, &|r| r.dropoff_ingestor.clone()).is_none() {
+                    diags.push(
+                        Diagnostic::error(
+                            codes::NO_WORKCELL,
+                            span,
+                            format!("delivery to `{dropoff}`: no ingestor named and the waypoint has no `dropoff_ingestor`"),
+                        )
+                        .with_help("add `ingestor: <name>` to the task"),
+                    );
+                }
+            }
+        };
+        for (i, t) in scenario.tasks.iter().enumerate() {
+            check(&t.kind, &t.fleet, t.span, &mut diags);
+            upcoming.push((t.at, i, t.kind.clone(), t.fleet.clone()));
+        }
+        let base = scenario.tasks.len();
+        for (g, gen) in scenario.generators.iter().enumerate() {
+            check(&gen.kind, &gen.fleet, gen.span, &mut diags);
+            if !(gen.every.is_finite() && gen.start.is_finite()) || gen.every <= 0.0 {
+                continue;
+            }
+            let end = gen.end.unwrap_or(scenario.duration).min(scenario.duration);
+            let mut k = 0u64;
+            loop {
+                let at = gen.start + k as f64 * gen.every;
+                if at > end || k > 1_000_000 {
+                    break;
+                }
+                upcoming.push((at, base + g, gen.kind.clone(), gen.fleet.clone()));
+                k += 1;
+            }
+        }
+        if diags.iter().any(Diagnostic::is_error) {
+            return Err(diags);
+        }
+        upcoming.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
+        let mut door_index = BTreeMap::new();
+        for (i, d) in nav.doors.iter().enumerate() {
+            door_index.entry(d.name.clone()).or_insert(i);
+        }
+        let mut lift_index = BTreeMap::new();
+        for (i, l) in nav.lifts.iter().enumerate() {
+            lift_index.entry(l.name.clone()).or_insert(i);
+        }
+        let passing = (0..nav.graphs.len())
+            .map(|slot| {
+                let mut nbrs: Vec<Vec<usize>> = vec![Vec::new(); nav.vertices.len()];
+                // Vertices touching a lane driven both ways: only there can two robots
+                // meet head-on, so only there must a corridor be reserved whole. On
+                // one-way corridors robots just follow each other.
+                let mut two_way = vec![false; nav.vertices.len()];
+                let directed: std::collections::BTreeSet<(usize, usize)> = nav
+                    .edges
+                    .iter()
+                    .filter(|e| e.graph == slot && e.kind == EdgeKind::Lane)
+                    .map(|e| (e.from, e.to))
+                    .collect();
+                for &(a, b) in &directed {
+                    if directed.contains(&(b, a)) {
+                        two_way[a] = true;
+                        two_way[b] = true;
+                    }
+                }
+                for e in nav.edges.iter().filter(|e| e.graph == slot) {
+                    nbrs[e.from].push(e.to);
+                    nbrs[e.to].push(e.from);
+                }
+                nbrs.iter_mut()
+                    .enumerate()
+                    .map(|(v, n)| {
+                        n.sort_unstable();
+                        n.dedup();
+                        let x = &nav.vertices[v];
+                        n.len() != 2 || !two_way[v] || x.roles.is_holding_point || x.lift.is_some()
+                    })
+                    .collect()
+            })
+            .collect();
+        let park = park_vertices(&nav, &conf, scenario);
+        // A robot that starts on a waypoint of a loop, delivery or cleaning parks first.
+        for r in robots.iter_mut() {
+            r.park_pending = scenario
+                .tasks
+                .iter()
+                .map(|t| &t.kind)
+                .chain(scenario.generators.iter().map(|g| &g.kind))
+                .filter(|k| parks_after(k))
+                .flat_map(|k| waypoint_names(k))
+                .any(|name| nav.find(r.slot, name) == Some(r.at));
+        }
+        let regions = nav.regions();
+        Ok(Fleets {
+            park,
+            passing,
+            regions,
+            doors: vec![DoorView::default(); nav.doors.len()],
+            lifts: vec![LiftView::default(); nav.lifts.len()],
+            nav,
+            conf,
+            res,
+            fleets,
+            robots,
+            by_name,
+            tasks: Vec::new(),
+            upcoming: upcoming.into(),
+            door_index,
+            lift_index,
+            results: BTreeMap::new(),
+            counters: BTreeMap::new(),
+            chargers: BTreeMap::new(),
+            next_wake: 0.0,
+            next_fleet_state: 0.0,
+            next_traffic: f64::INFINITY,
+            clean_duration: scenario.options.clean_duration,
+            released: false,
+        })
+    }
+}
+
+fn unknown_waypoint(nav: &Nav, slot: usize, name: &str, span: Span, fleet: &str) -> Diagnostic {
+    let mut names: Vec<&str> = nav.members[slot]
+        .iter()
+        .map(|&v| nav.vertices[v].name.as_str())
+        .filter(|n| !n.is_empty())
+        .collect();
+    names.sort_unstable();
+    names.dedup();
+    let close: Vec<&str> = names
+        .iter()
+        .copied()
+        .filter(|n| {
+            n.to_lowercase().contains(&name.to_lowercase())
+                || name.to_lowercase().contains(&n.to_lowercase())
+        })
+        .take(5)
+        .collect();
+    let help = if close.is_empty() {
+        format!(
+            "named waypoints on this graph: {}",
+            names
+                .iter()
+                .take(12)
+                .copied()
+                .collect::<Vec<_>>()
+                .join(", ")
+        )
+    } else {
+        format!("did you mean: {}?", close.join(", "))
+    };
+    Diagnostic::error(
+        codes::UNKNOWN_WAYPOINT,
+        span,
+        format!("no waypoint named `{name}` on the graph of fleet `{fleet}`"),
+    )
+    .with_help(help)
+}

@@ -1,0 +1,348 @@
+//! Executing tasks: the per-robot state machine of task steps (go to, workcell
+//! requests, dwell, charging) and their sessions.
+
+use super::*;
+
+impl Fleets {
+    pub(super) fn end_task(
+        &mut self,
+        i: usize,
+        t: f64,
+        ok: bool,
+        detail: String,
+        out: &mut Vec<(Topic, Msg)>,
+    ) {
+        let Some(ti) = self.robots[i].task.take() else {
+            return;
+        };
+        // Like RMF's `finishing_request: park`, but a robot sent to a place stays there.
+        self.robots[i].park_pending = self.tasks.get(ti).is_some_and(|tk| parks_after(&tk.kind));
+        if let Some(tk) = self.tasks.get_mut(ti) {
+            tk.ended = true;
+        }
+        self.event(
+            t,
+            ti,
+            if ok { "completed" } else { "failed" },
+            Some(i),
+            detail,
+            out,
+        );
+        let r = &mut self.robots[i];
+        let ingesting = matches!(
+            r.cur,
+            Cur::Workcell {
+                dispenser: false,
+                ..
+            }
+        );
+        r.steps.clear();
+        r.cur = Cur::None;
+        if !ok {
+            self.abandon_route(i, t, out);
+            // A failed delivery still takes the item it carries to the ingestor, so that
+            // its dispenser gets it back (else the dispenser stays empty for good).
+            let r = &mut self.robots[i];
+            match r.carrying.take() {
+                Some((v, ing)) if !ingesting => {
+                    r.steps.push_back(Step::GoTo(v));
+                    r.steps.push_back(Step::Ingest(ing));
+                    r.dirty = true;
+                }
+                _ => {}
+            }
+        }
+    }
+
+    pub(super) fn tick(&mut self, i: usize, t: f64, out: &mut Vec<(Topic, Msg)>) {
+        self.robots[i].wake = f64::INFINITY;
+        self.observe_progress(i, t, out);
+        // Bounded: each pass either finishes a step or returns.
+        for _ in 0..64 {
+            let cur = self.robots[i].cur.clone();
+            let done = match cur {
+                Cur::None => {
+                    if !self.next_step(i, t, out) {
+                        return;
+                    }
+                    continue;
+                }
+                Cur::GoTo { goal, planned } => match self.drive(i, goal, planned, t, out) {
+                    Some(true) => {
+                        if goal == self.robots[i].backoff_goal {
+                            self.robots[i].backoffs = 0;
+                        }
+                        true
+                    }
+                    Some(false) => return,
+                    None => {
+                        self.end_task(i, t, false, "no route".into(), out);
+                        continue;
+                    }
+                },
+                Cur::Workcell {
+                    guid,
+                    target,
+                    dispenser,
+                    next_send,
+                    deadline,
+                    tries,
+                    since,
+                } => match self.results.get(&guid).copied() {
+                    Some(workcell_result::SUCCESS) => {
+                        let r = &mut self.robots[i];
+                        if dispenser {
+                            // Carrying the item now: where it is to go, in case the task
+                            // fails before it gets there.
+                            let to = r.steps.iter().find_map(|s| match s {
+                                Step::GoTo(v) => Some(*v),
+                                _ => None,
+                            });
+                            let ing = r.steps.iter().find_map(|s| match s {
+                                Step::Ingest(x) => Some(x.clone()),
+                                _ => None,
+                            });
+                            r.carrying = to.zip(ing);
+                            r.item_from = Some(target.clone());
+                        } else {
+                            r.carrying = None;
+                            r.item_from = None;
+                        }
+                        true
+                    }
+                    // An empty dispenser: its item is still out with another delivery
+                    // (it comes back once ingested). Ask again for a while.
+                    Some(_)
+                        if dispenser && (t - since < ITEM_WAIT || self.item_coming(&target)) =>
+                    {
+                        let base = guid.split("_retry").next().unwrap_or(&guid).to_string();
+                        self.robots[i].cur = Cur::Workcell {
+                            guid: format!("{base}_retry{}", tries + 1),
+                            target,
+                            dispenser,
+                            next_send: t + ITEM_RETRY,
+                            deadline: t + ITEM_RETRY + EXTERNAL_TIMEOUT,
+                            tries: tries + 1,
+                            since,
+                        };
+                        let r = &mut self.robots[i];
+                        r.wake = r.wake.min(t + ITEM_RETRY);
+                        return;
+                    }
+                    Some(_) => {
+                        self.end_task(i, t, false, format!("{target} failed"), out);
+                        continue;
+                    }
+                    None if t >= deadline => {
+                        self.end_task(i, t, false, format!("{target} did not answer"), out);
+                        continue;
+                    }
+                    None => {
+                        if t >= next_send {
+                            self.workcell_request(i, &guid, &target, dispenser, t, out);
+                            if let Cur::Workcell { next_send, .. } = &mut self.robots[i].cur {
+                                *next_send = t + 2.0 * RESEND;
+                            }
+                        }
+                        let r = &mut self.robots[i];
+                        r.wake = r.wake.min(t + 2.0 * RESEND);
+                        return;
+                    }
+                },
+                Cur::Dwell { until } => {
+                    if t >= until {
+                        true
+                    } else {
+                        self.robots[i].wake = until;
+                        return;
+                    }
+                }
+                Cur::Charge { pct, best, best_t } => {
+                    let b = self.robots[i].battery();
+                    if b >= pct {
+                        true
+                    } else if b > best {
+                        self.robots[i].cur = Cur::Charge {
+                            pct,
+                            best: b,
+                            best_t: t,
+                        };
+                        self.robots[i].wake = t + 10.0;
+                        return;
+                    } else if t - best_t > 900.0 {
+                        // Not charging at all (charging disabled in the world?): give up.
+                        true
+                    } else {
+                        self.robots[i].wake = t + 10.0;
+                        return;
+                    }
+                }
+            };
+            if done {
+                if matches!(self.robots[i].cur, Cur::Charge { .. }) {
+                    let r = &mut self.robots[i];
+                    if let Some(c) = r.charger.take() {
+                        self.chargers.remove(&c);
+                    }
+                }
+                self.robots[i].cur = Cur::None;
+            }
+        }
+    }
+
+    /// Starts the next step (or task). False when there is nothing to do.
+    pub(super) fn next_step(&mut self, i: usize, t: f64, out: &mut Vec<(Topic, Msg)>) -> bool {
+        if let Some(step) = self.robots[i].steps.pop_front() {
+            // Requests outside a task (an item taken back) get their own ids.
+            let task_id = self.robots[i]
+                .task
+                .and_then(|ti| self.tasks.get(ti))
+                .map_or_else(
+                    || format!("{}_return{}", self.robots[i].name, self.robots[i].path_seq),
+                    |tk| tk.id.clone(),
+                );
+            let r = &mut self.robots[i];
+            let workcell = |target: String, dispenser: bool| Cur::Workcell {
+                guid: format!("{task_id}_{}", if dispenser { "pickup" } else { "dropoff" }),
+                target,
+                dispenser,
+                next_send: t,
+                deadline: t + EXTERNAL_TIMEOUT,
+                tries: 0,
+                since: t,
+            };
+            if matches!(step, Step::Dwell(_)) {
+                r.backing_off = false;
+            }
+            r.cur = match step {
+                Step::GoTo(goal) => Cur::GoTo {
+                    goal,
+                    planned: false,
+                },
+                Step::Dwell(d) => Cur::Dwell { until: t + d },
+                Step::Charge(pct) => Cur::Charge {
+                    pct,
+                    best: r.battery(),
+                    best_t: t,
+                },
+                Step::Dispense(target) => workcell(target, true),
+                Step::Ingest(target) => workcell(target, false),
+            };
+            return true;
+        }
+        if self.robots[i].task.is_some() {
+            self.end_task(i, t, true, String::new(), out);
+        }
+        // Charging comes before the next task when the battery is low.
+        if self.robots[i].charger.is_none() && self.maybe_charge(i) {
+            // The charger is where it stays afterwards.
+            self.robots[i].park_pending = false;
+            return true;
+        }
+        let Some(ti) = self.robots[i].queue.pop_front() else {
+            // Once after a task: park off everybody's way rather than where the task ended
+            // (task waypoints and corridors are what the next tasks need).
+            if std::mem::take(&mut self.robots[i].park_pending) {
+                if let Some((v, dt)) = self.park_spot(i) {
+                    let r = &mut self.robots[i];
+                    r.steps.push_back(Step::GoTo(v));
+                    r.free_at = t + dt;
+                    r.end_vertex = v;
+                    return true;
+                }
+            }
+            let r = &mut self.robots[i];
+            r.free_at = t;
+            r.end_vertex = r.at;
+            return false;
+        };
+        let fi = self.robots[i].fleet;
+        match self.expand(fi, &self.tasks[ti].kind.clone()) {
+            Some(steps) => {
+                let r = &mut self.robots[i];
+                r.task = Some(ti);
+                r.task_started = t;
+                r.steps = steps.into();
+                self.event(t, ti, "started", Some(i), String::new(), out);
+            }
+            None => {
+                self.tasks[ti].ended = true;
+                self.event(
+                    t,
+                    ti,
+                    "failed",
+                    Some(i),
+                    "waypoints not on the fleet's graph".into(),
+                    out,
+                );
+            }
+        }
+        true
+    }
+
+    pub(super) fn maybe_charge(&mut self, i: usize) -> bool {
+        let r = &self.robots[i];
+        let f = &self.fleets[r.fleet];
+        if r.state.is_none() || r.battery() >= f.recharge_threshold * 100.0 {
+            return false;
+        }
+        let times = self.nav.times_from(f.slot, r.at, f.speed);
+        let best = self.nav.members[f.slot]
+            .iter()
+            .copied()
+            .filter(|&v| {
+                self.nav.vertices[v].roles.is_charger && self.nav.vertices[v].lift.is_none()
+            })
+            .filter(|v| self.chargers.get(v).is_none_or(|&o| o == i))
+            .filter(|&v| times[v].is_finite())
+            .min_by(|&a, &b| times[a].total_cmp(&times[b]).then(a.cmp(&b)));
+        let Some(c) = best else {
+            return false;
+        };
+        let pct = f.recharge_soc * 100.0;
+        self.chargers.insert(c, i);
+        let r = &mut self.robots[i];
+        r.charger = Some(c);
+        r.steps.push_back(Step::GoTo(c));
+        r.steps.push_back(Step::Charge(pct));
+        true
+    }
+
+    pub(super) fn workcell_request(
+        &self,
+        i: usize,
+        guid: &str,
+        target: &str,
+        dispenser: bool,
+        t: f64,
+        out: &mut Vec<(Topic, Msg)>,
+    ) {
+        let r = &self.robots[i];
+        let msg = Msg::WorkcellRequest(WorkcellRequest {
+            time: Time::from_secs(t),
+            request_guid: guid.to_string(),
+            target_guid: target.to_string(),
+            transporter_type: self.fleets[r.fleet].name.clone(),
+            items: vec![ItemType {
+                type_guid: "item".into(),
+                quantity: 1,
+                compartment_name: String::new(),
+            }],
+        });
+        let topic = if dispenser {
+            Topic::DispenserRequests
+        } else {
+            Topic::IngestorRequests
+        };
+        out.push((topic, msg));
+    }
+
+    /// Whether a robot still on its way (a delivery or the return trip of a failed one)
+    /// carries `dispenser`'s item: it will come back, so waiting for it is not in vain.
+    pub(super) fn item_coming(&self, dispenser: &str) -> bool {
+        self.robots.iter().any(|x| {
+            x.item_from.as_deref() == Some(dispenser)
+                && !(matches!(x.cur, Cur::None) && x.steps.is_empty())
+        })
+    }
+}
