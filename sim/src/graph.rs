@@ -336,6 +336,17 @@ impl Nav {
         from: usize,
         speed: f64,
     ) -> (Vec<f64>, Vec<Option<usize>>) {
+        self.tree_with(slot, from, speed, &|_| true)
+    }
+
+    /// Like [`Nav::tree_from`], using only the edges `allow` accepts.
+    pub fn tree_with(
+        &self,
+        slot: usize,
+        from: usize,
+        speed: f64,
+        allow: &dyn Fn(usize) -> bool,
+    ) -> (Vec<f64>, Vec<Option<usize>>) {
         let n = self.vertices.len();
         let mut dist = vec![f64::INFINITY; n];
         let mut prev: Vec<Option<usize>> = vec![None; n];
@@ -353,6 +364,9 @@ impl Nav {
                 continue;
             }
             for &e in &out[v] {
+                if !allow(e) {
+                    continue;
+                }
                 let w = self.edges[e].to;
                 let nd = d + self.edge_cost(e, speed);
                 if nd < dist[w] {
@@ -363,22 +377,6 @@ impl Nav {
             }
         }
         (dist, prev)
-    }
-
-    /// The first edge of the route to `to` in a [`Nav::tree_from`] tree rooted at `from`.
-    pub fn first_edge(&self, prev: &[Option<usize>], from: usize, to: usize) -> Option<usize> {
-        let mut v = to;
-        let mut first = None;
-        // A tree path visits each vertex once.
-        for _ in 0..prev.len() {
-            if v == from {
-                return first;
-            }
-            let e = (*prev.get(v)?)?;
-            first = Some(e);
-            v = self.edges[e].from;
-        }
-        None
     }
 }
 

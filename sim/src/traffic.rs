@@ -223,52 +223,12 @@ impl Reservations {
         *old = set;
     }
 
+    /// The robots holding resource `x`.
+    pub fn holders(&self, x: Res) -> &[u16] {
+        self.holders.get(x as usize).map_or(&[], |v| v.as_slice())
+    }
+
     pub fn held(&self, r: usize) -> &[Res] {
         self.held.get(r).map_or(&[], |v| v.as_slice())
     }
-}
-
-/// A cycle in the wait-for graph (`waits[r]` = robots `r` waits for), as the robots on it
-/// in the order found, starting from the smallest index; `None` if there is none.
-pub fn find_cycle(waits: &[Vec<usize>]) -> Option<Vec<usize>> {
-    // 0 unvisited, 1 on the stack, 2 done.
-    let n = waits.len();
-    let mut mark = vec![0u8; n];
-    let mut stack: Vec<(usize, usize)> = Vec::new();
-    for s in 0..n {
-        if mark[s] != 0 {
-            continue;
-        }
-        stack.push((s, 0));
-        mark[s] = 1;
-        while let Some(&mut (v, ref mut i)) = stack.last_mut() {
-            let next = waits[v].get(*i).copied();
-            *i += 1;
-            match next {
-                Some(w) if w < n => {
-                    if mark[w] == 1 {
-                        let pos = stack.iter().position(|&(x, _)| x == w).unwrap_or(0);
-                        let mut cyc: Vec<usize> = stack[pos..].iter().map(|&(x, _)| x).collect();
-                        let k = cyc
-                            .iter()
-                            .enumerate()
-                            .min_by_key(|&(_, &x)| x)
-                            .map_or(0, |(k, _)| k);
-                        cyc.rotate_left(k);
-                        return Some(cyc);
-                    }
-                    if mark[w] == 0 {
-                        mark[w] = 1;
-                        stack.push((w, 0));
-                    }
-                }
-                Some(_) => {}
-                None => {
-                    mark[v] = 2;
-                    stack.pop();
-                }
-            }
-        }
-    }
-    None
 }

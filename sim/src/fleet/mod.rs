@@ -10,13 +10,15 @@
 //! out at the destination. A lane through a controlled door, into a lift cabin, or a lift
 //! ride is driven alone, after the door is open (DoorState OPEN and our heartbeat session)
 //! or the lift is at the floor with its doors open in our session. Progress is read from
-//! RobotState (`path` = waypoints not yet reached). Waiting robots are watched once a
-//! second: idle robots in the way move aside (rows of them one after the other), wait-for
-//! cycles are broken by backing one robot off (`resolve_deadlock`) or by a detour, a robot
-//! whose wait chain has not moved for `STUCK_AFTER` is reported and looks for detours, and
-//! after `STUCK_FAIL` its task fails. Empty dispensers are asked again (without limit while
-//! their item is on its way back); a delivery that fails while carrying its item still takes
-//! it to the ingestor.
+//! RobotState (`path` = waypoints not yet reached). Who waits for whom is decided by the
+//! traffic planner (traffic.rs), which is deadlock-free by construction: no task ever fails
+//! for traffic. Empty dispensers are asked again (without limit while their item is on its
+//! way back); a delivery that fails while carrying its item still takes it to the ingestor.
+//!
+//! Modules: `setup` (placement, graphs, conflict sets), `assign` (which robot takes a
+//! task), `task` (the steps of a task and their sessions), `drive` (path requests, doors
+//! and lifts on the way), `traffic` (reservations and the planner), `park` (where idle
+//! robots stand).
 
 use crate::graph::{EdgeKind, Nav, Regions};
 use crate::msgs::{
@@ -25,7 +27,7 @@ use crate::msgs::{
     TaskEvent, Time, Topic, WorkcellRequest,
 };
 use crate::scenario::{Scenario, SpawnSpec, TaskCategory, TaskKind};
-use crate::traffic::{find_cycle, Clearance, Conflicts, Res, Reservations};
+use crate::traffic::{Clearance, Conflicts, Res, Reservations};
 use crate::world::{RobotSpawn, WorkcellSpawn};
 use mapc_ir::{Building, Diagnostic, Span};
 use std::collections::{BTreeMap, VecDeque};
@@ -61,8 +63,6 @@ pub mod codes {
 const RESEND: f64 = 1.0;
 /// Waiting this long for a door, lift or workcell fails the task.
 const EXTERNAL_TIMEOUT: f64 = 300.0;
-/// A robot stalled this long in another stalled robot's way backs off for it (s).
-const YIELD_AFTER: f64 = 60.0;
 /// A robot at an empty dispenser asks again this often (s), this long (s).
 const ITEM_RETRY: f64 = 5.0;
 const ITEM_WAIT: f64 = 1200.0;
@@ -70,17 +70,6 @@ const ITEM_WAIT: f64 = 1200.0;
 const STUCK_AFTER: f64 = 120.0;
 /// A stalled robot looks for a detour this often.
 const DETOUR_AFTER: f64 = 30.0;
-/// A robot stalled this long (no detour, no back-off helped) fails its task: traffic
-/// that never clears is reported rather than waited for until the end of the run.
-const STUCK_FAIL: f64 = 1800.0;
-/// A wait-for cycle older than this is broken by backing a robot off.
-const DEADLOCK_AFTER: f64 = 3.0;
-/// Back-offs towards one goal before its task fails.
-const MAX_BACKOFFS: u32 = 10;
-/// How long a robot that backed off out of a deadlock waits before going on (s).
-const BACKOFF_WAIT: f64 = 5.0;
-/// Edges of the other robots' routes a robot backing off must keep off.
-const DEADLOCK_HORIZON: usize = 8;
 /// Extra cost (s) of a yield or back-off spot that is not a parking spot, holding point
 /// or charger.
 const SPOT_PENALTY: f64 = 10.0;
@@ -180,9 +169,14 @@ struct Robot {
     wait_since: Option<f64>,
     blockers: Vec<usize>,
     stuck_reported: bool,
-    /// Back-offs on the way to `backoff_goal` (a livelock guard).
-    backoffs: u32,
-    backoff_goal: usize,
+    /// Traffic priority (smaller first): when the move it is making began; infinite for
+    /// moves nobody waits for (parking, making room while idle).
+    prio: f64,
+    /// The goal whose arrival ends the current priority: moves made to make room keep the
+    /// priority of the move they interrupt.
+    prio_until: Option<usize>,
+    /// Making room: (for whom, the spot it drives to).
+    escape: Option<(usize, usize)>,
     /// Since when nothing this robot waits for (directly or through others) moved.
     stall_since: f64,
     /// When it last looked for a detour.
@@ -197,9 +191,6 @@ struct Robot {
     carrying: Option<(usize, String)>,
     /// The dispenser of the item aboard, until it is ingested (also on a return trip).
     item_from: Option<String>,
-    /// Driving to a back-off spot (a Dwell and the GoTo it backed off from follow).
-    backing_off: bool,
-    last_backoff: f64,
     /// When the current task started.
     task_started: f64,
     /// Its task just ended: once idle, it drives to a parking vertex (`Fleets::park`).
@@ -261,6 +252,8 @@ pub struct Fleets {
     /// (see `park_vertices`).
     park: Vec<Vec<bool>>,
     res: Reservations,
+    /// The claimant and the resources it claims (see traffic.rs).
+    claim: Option<(usize, Vec<Res>)>,
     fleets: Vec<FleetRt>,
     robots: Vec<Robot>,
     by_name: BTreeMap<String, usize>,

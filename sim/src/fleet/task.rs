@@ -38,6 +38,8 @@ impl Fleets {
         );
         r.steps.clear();
         r.cur = Cur::None;
+        r.prio_until = None;
+        r.escape = None;
         if !ok {
             self.abandon_route(i, t, out);
             // A failed delivery still takes the item it carries to the ingestor, so that
@@ -69,9 +71,11 @@ impl Fleets {
                 }
                 Cur::GoTo { goal, planned } => match self.drive(i, goal, planned, t, out) {
                     Some(true) => {
-                        if goal == self.robots[i].backoff_goal {
-                            self.robots[i].backoffs = 0;
+                        let r = &mut self.robots[i];
+                        if r.prio_until == Some(goal) {
+                            r.prio_until = None;
                         }
+                        r.escape = None;
                         true
                     }
                     Some(false) => return,
@@ -211,8 +215,8 @@ impl Fleets {
                 tries: 0,
                 since: t,
             };
-            if matches!(step, Step::Dwell(_)) {
-                r.backing_off = false;
+            if matches!(step, Step::GoTo(_)) && r.prio_until.is_none() {
+                r.prio = t;
             }
             r.cur = match step {
                 Step::GoTo(goal) => Cur::GoTo {
@@ -245,6 +249,9 @@ impl Fleets {
             if std::mem::take(&mut self.robots[i].park_pending) {
                 if let Some((v, dt)) = self.park_spot(i) {
                     let r = &mut self.robots[i];
+                    // Nobody waits for a robot to park.
+                    r.prio = f64::INFINITY;
+                    r.prio_until = Some(v);
                     r.steps.push_back(Step::GoTo(v));
                     r.free_at = t + dt;
                     r.end_vertex = v;

@@ -7,7 +7,7 @@ use super::*;
 use crate::graph::{segment_segment, Nav};
 use crate::msgs::*;
 use crate::scenario::{FleetSpec, GeneratorSpec, SimOptions, TaskCategory, TaskSpec, WorkcellSpec};
-use crate::traffic::{find_cycle, Clearance, Conflicts, Reservations};
+use crate::traffic::{Clearance, Conflicts, Reservations};
 use mapc_ir::{Building, Span, Vec2};
 
 fn clinic() -> Building {
@@ -185,22 +185,6 @@ fn crossing_lanes_conflict_and_far_ones_do_not() {
     assert!(res.is_free_for(1, &conf.edge[far]));
     res.set_held(0, Vec::new());
     assert!(res.is_free_for(1, &conf.edge[sn]));
-}
-
-#[test]
-fn wait_for_cycles() {
-    assert_eq!(find_cycle(&[vec![1], vec![2], vec![]]), None);
-    assert_eq!(
-        find_cycle(&[vec![1], vec![2], vec![0]]),
-        Some(vec![0, 1, 2])
-    );
-    assert_eq!(
-        find_cycle(&[vec![], vec![2], vec![3], vec![1]]),
-        Some(vec![1, 2, 3])
-    );
-    assert_eq!(find_cycle(&[vec![0]]), Some(vec![0]));
-    // Out-of-range entries are ignored.
-    assert_eq!(find_cycle(&[vec![7]]), None);
 }
 
 #[test]

@@ -1,6 +1,60 @@
-//! Traffic planning for the fleets (see ARCHITECTURE.md).
+//! Traffic planning: which robot may drive where next, and who makes room for whom.
+//!
+//! Robots reserve conflict sets (`crate::traffic`) all or nothing: through a corridor to the
+//! next place where robots can pass (`segment`), into a lift through the ride and the lane
+//! out at the destination. A reserved segment is always driven to its end, so robots that
+//! move never block each other for good; the only waits that could last for ever are
+//! between robots at rest. Those are ordered by priority (`Robot::prio`: when the robot
+//! began the move it waits to make; moves made to make room keep the priority of the move
+//! they interrupt, idle robots have none):
+//!
+//! - the waiting robot of highest priority, the *claimant*, claims the resources of its
+//!   next segment: no other robot may reserve them (except to leave them), and every robot
+//!   at rest on them is pushed to the nearest free spot off them (`push`);
+//! - when none of the robots in its way can get out of it (a dead end behind them), the
+//!   claimant makes room for one of them instead, which then claims in its place (`yield`).
+//!
+//! So the claimant's way empties in bounded time (nobody enters it, everyone on it moves
+//! off or leaves), it drives, and it stays the claimant at every wait until its move is
+//! done; then the next oldest waiter is served. Every waiting robot becomes the claimant
+//! eventually, so no robot waits for ever and no set of robots can hold each other up: no
+//! wait-for cycle is ever resolved by failing a task. Idle robots never block: they park
+//! off the task routes (`park.rs`) and are pushed aside by any waiting robot.
 
 use super::*;
+
+/// Edges of the claimant's route ahead that a robot pushed out of its way avoids, when it
+/// can (else it only avoids the claimed segment).
+const ESCAPE_HORIZON: usize = 8;
+/// A pushed robot that has not got going after this long (s) is pushed again.
+const REPUSH_AFTER: f64 = 2.0;
+/// How many robots deep a push may reach (robots waiting at rest in the way of a robot
+/// that makes room are pushed first).
+const PUSH_DEPTH: u32 = 3;
+/// The claimant waits this long (s) for the robots in its way before it makes room for
+/// one of them instead.
+const YIELD_AFTER: f64 = 5.0;
+
+/// The sorted union of two sorted resource lists.
+fn union(a: &[Res], b: &[Res]) -> Vec<Res> {
+    let mut u = [a, b].concat();
+    u.sort_unstable();
+    u.dedup();
+    u
+}
+
+/// Whether two sorted resource lists share an element.
+pub(super) fn meets(a: &[Res], b: &[Res]) -> bool {
+    let (mut i, mut j) = (0, 0);
+    while i < a.len() && j < b.len() {
+        match a[i].cmp(&b[j]) {
+            std::cmp::Ordering::Less => i += 1,
+            std::cmp::Ordering::Greater => j += 1,
+            std::cmp::Ordering::Equal => return true,
+        }
+    }
+    false
+}
 
 impl Fleets {
     /// Holds the standing set of the current vertex plus the sets of reserved edges.
@@ -19,14 +73,13 @@ impl Fleets {
         self.res.set_held(i, set);
     }
 
-    /// Tries to reserve the edges `route[n_res..]` up to the next place where robots can
-    /// pass each other (see [`Fleets::segment`]), all or nothing. On failure records the
-    /// blockers.
-    pub(super) fn try_reserve(&mut self, i: usize, t: f64) -> bool {
+    /// Robot `i`'s next reservation: the number of edges from `route[n_res]` and their
+    /// resources (sorted), less what its standing set already holds. None at the route's end.
+    pub(super) fn wanted(&self, i: usize) -> Option<(usize, Vec<Res>)> {
         let r = &self.robots[i];
         let k = self.segment(i, r.n_res);
         if k == 0 {
-            return false;
+            return None;
         }
         // What the robot's standing set already shares (robots spawned closer than their
         // clearance) must not keep it from driving away.
@@ -42,8 +95,26 @@ impl Fleets {
         }
         set.sort_unstable();
         set.dedup();
-        let full = self.admission(i, k);
-        if full.is_empty() && self.res.is_free_for(i, &set) {
+        Some((k, set))
+    }
+
+    /// Tries to reserve robot `i`'s next segment ([`Fleets::wanted`]), all or nothing. On
+    /// failure records the blockers.
+    pub(super) fn try_reserve(&mut self, i: usize, t: f64) -> bool {
+        let Some((k, set)) = self.wanted(i) else {
+            return false;
+        };
+        let claimant = self.claim_blocks(i, k, &set);
+        // The claimant is served before admission limits: its way is being cleared.
+        let full = if self.claim.as_ref().is_some_and(|c| c.0 == i) {
+            Vec::new()
+        } else {
+            self.admission(i, k)
+        };
+        if claimant.is_none() && full.is_empty() && self.res.is_free_for(i, &set) {
+            if self.claim.as_ref().is_some_and(|c| c.0 == i) {
+                self.claim = None;
+            }
             let r = &mut self.robots[i];
             r.n_res += k;
             r.wait_since = None;
@@ -53,6 +124,7 @@ impl Fleets {
         } else {
             let mut blockers = self.res.blockers(i, &set);
             blockers.extend(full);
+            blockers.extend(claimant);
             blockers.sort_unstable();
             blockers.dedup();
             let r = &mut self.robots[i];
@@ -64,6 +136,362 @@ impl Fleets {
             r.blockers = blockers;
             false
         }
+    }
+
+    /// The claimant whose claim keeps robot `i` from reserving `set` (its next `k` edges):
+    /// none for the claimant itself, for robots making room for it, and for a robot on the
+    /// claimed resources whose segment takes it off them.
+    fn claim_blocks(&self, i: usize, k: usize, set: &[Res]) -> Option<usize> {
+        let (c, claimed) = self.claim.as_ref()?;
+        let r = &self.robots[i];
+        if *c == i || r.escape.is_some_and(|(f, _)| f == *c) || !meets(set, claimed) {
+            return None;
+        }
+        let end = r
+            .route
+            .get(r.n_res + k - 1)
+            .map_or(r.at, |&e| self.nav.edges[e].to);
+        if meets(self.res.held(i), claimed) && !meets(&self.conf.vertex[end], claimed) {
+            return None;
+        }
+        Some(*c)
+    }
+
+    /// Waiting for a reservation, at rest, in the middle of a move.
+    fn waits_at_rest(&self, i: usize) -> bool {
+        let r = &self.robots[i];
+        r.wait_since.is_some()
+            && r.n_sent == 0
+            && r.gate == Gate::None
+            && matches!(r.cur, Cur::GoTo { .. })
+    }
+
+    /// Can be sent elsewhere now: idle, or waiting at rest in a move (a robot driving,
+    /// at a door or lift, or busy at a task step leaves by itself in bounded time).
+    fn pushable(&self, b: usize) -> bool {
+        let r = &self.robots[b];
+        r.n_sent == 0 && r.gate == Gate::None && (r.idle() || self.waits_at_rest(b))
+    }
+
+    /// Once a second while robots wait: stall bookkeeping and stuck reports, idle robots
+    /// out of the way, the claimant's way cleared, detours for long waits.
+    pub(super) fn traffic_check(&mut self, t: f64, out: &mut Vec<(Topic, Msg)>) {
+        self.next_traffic = t + 1.0;
+        if std::env::var("MAPC_TDBG")
+            .ok()
+            .and_then(|v| v.parse::<f64>().ok())
+            .is_some_and(|v| (t - v).abs() < 0.6)
+        {
+            for (i, r) in self.robots.iter().enumerate() {
+                let v = &self.nav.vertices[r.at];
+                eprintln!("{i} {} at {} ({:.1},{:.1} {}) cur {:?} gate {:?} n_res {} n_sent {} route {:?} wait {:?} blk {:?} prio {} esc {:?} steps {:?}", r.name, r.at, v.pos.x, v.pos.y, v.level_name, r.cur, r.gate, r.n_res, r.n_sent, r.route.iter().map(|&e| self.nav.edges[e].to).collect::<Vec<_>>(), r.wait_since, r.blockers, r.prio, r.escape, r.steps);
+                eprintln!("   want {:?}", self.wanted(i).map(|w| w.1.len()));
+            }
+            eprintln!("claim {:?}", self.claim.as_ref().map(|c| c.0));
+        }
+        self.watch_stalls(t, out);
+        self.move_idle_blockers(t);
+        self.serve_claimant(t);
+        for i in 0..self.robots.len() {
+            let r = &self.robots[i];
+            let long = r.wait_since.is_some_and(|s| t - s >= DETOUR_AFTER);
+            if long && t - r.last_detour >= DETOUR_AFTER && self.waits_at_rest(i) {
+                self.robots[i].last_detour = t;
+                if self.detour(i, &[]) {
+                    self.robots[i].stall_since = t;
+                }
+            }
+        }
+    }
+
+    /// Idle robots in a waiting robot's way move to a free spot off its way.
+    fn move_idle_blockers(&mut self, t: f64) {
+        for i in 0..self.robots.len() {
+            if self.robots[i].wait_since.is_none() {
+                continue;
+            }
+            for b in self.robots[i].blockers.clone() {
+                if self.robots[b].idle() && self.robots[b].n_sent == 0 {
+                    let needed = self.needed(&[i], &[], ESCAPE_HORIZON);
+                    let spot = self
+                        .free_spot(b, &needed)
+                        .or_else(|| self.free_spot(b, &self.needed(&[i], &[], 1)));
+                    if let Some(v) = spot {
+                        self.escape(b, i, v, t);
+                    }
+                }
+            }
+        }
+    }
+
+    /// Chooses the claimant (the robot of highest priority waiting at rest), claims its
+    /// next segment and pushes the robots at rest on it out of the way. When none of them
+    /// can get out of the way (a dead end behind them) and one of them needs the
+    /// claimant's place, the claimant makes room for that one instead, which inherits a
+    /// priority just above the claimant's until its move is done (priority inheritance, as
+    /// in PIBT), so that the two cannot take turns pushing each other back.
+    fn serve_claimant(&mut self, t: f64) {
+        let c = (0..self.robots.len())
+            .filter(|&i| self.waits_at_rest(i))
+            .min_by(|&a, &b| {
+                let (ra, rb) = (&self.robots[a], &self.robots[b]);
+                ra.prio.total_cmp(&rb.prio).then(a.cmp(&b))
+            });
+        let Some((c, set)) = c.and_then(|c| Some((c, self.wanted(c)?.1))) else {
+            self.claim = None;
+            return;
+        };
+        self.claim = Some((c, set.clone()));
+        let mut near = set.clone();
+        near.extend_from_slice(&self.conf.vertex[self.robots[c].at]);
+        near.sort_unstable();
+        near.dedup();
+        let far = self.needed(&[c], &[], ESCAPE_HORIZON);
+        let mut cannot = Vec::new();
+        for b in self.res.blockers(c, &set) {
+            if !self.pushable(b) {
+                continue;
+            }
+            let rb = &self.robots[b];
+            let on_its_way = rb.escape.is_some_and(|(f, _)| f == c)
+                && rb.wait_since.is_none_or(|s| t - s < REPUSH_AFTER);
+            if on_its_way {
+                continue;
+            }
+            let pushed =
+                self.push(b, c, &union(&far, &near), 0, t) || self.push(b, c, &near, PUSH_DEPTH, t);
+            if !pushed {
+                cannot.push(b);
+            }
+        }
+        if !self.robots[c]
+            .wait_since
+            .is_some_and(|s| t - s >= YIELD_AFTER)
+        {
+            return;
+        }
+        let held = self.res.held(c).to_vec();
+        for b in cannot {
+            if !self.waits_at_rest(b) {
+                continue;
+            }
+            let Some((_, bset)) = self.wanted(b) else {
+                continue;
+            };
+            if !meets(&bset, &held) {
+                continue;
+            }
+            let mut near = bset;
+            near.extend_from_slice(&self.conf.vertex[self.robots[b].at]);
+            near.sort_unstable();
+            near.dedup();
+            let far = self.needed(&[b], &[], ESCAPE_HORIZON);
+            let spot = self
+                .free_spot(c, &union(&far, &near))
+                .or_else(|| self.free_spot(c, &near));
+            if let Some(v) = spot {
+                self.escape(c, b, v, t);
+                let prio = self.robots[c].prio;
+                let rb = &mut self.robots[b];
+                rb.prio = prio - 1e-3;
+                if rb.prio_until.is_none() {
+                    if let Cur::GoTo { goal, .. } = rb.cur {
+                        rb.prio_until = Some(goal);
+                    }
+                }
+                self.claim = None;
+                return;
+            }
+        }
+    }
+
+    /// Sends robot `b` to spot `v` to make room for robot `c`; the move it was waiting to
+    /// make (if any) follows, with its priority kept.
+    fn escape(&mut self, b: usize, c: usize, v: usize, t: f64) {
+        let r = &mut self.robots[b];
+        match r.cur.clone() {
+            Cur::GoTo { goal, .. } => {
+                // Already making room (its spot turned out blocked): only the spot changes.
+                if r.escape.map(|e| e.1) != Some(goal) {
+                    r.steps.push_front(Step::GoTo(goal));
+                    if r.prio_until.is_none() {
+                        r.prio_until = Some(goal);
+                    }
+                }
+                r.steps.push_front(Step::GoTo(v));
+                r.cur = Cur::None;
+            }
+            Cur::None if r.idle() => {
+                r.steps.push_back(Step::GoTo(v));
+                r.prio = f64::INFINITY;
+                r.prio_until = Some(v);
+            }
+            _ => return,
+        }
+        r.escape = Some((c, v));
+        r.route.clear();
+        r.n_res = 0;
+        r.wait_since = None;
+        r.blockers.clear();
+        r.dirty = true;
+        r.wake = r.wake.min(t);
+        self.rehold(b);
+    }
+
+    /// Stall bookkeeping: a waiting robot stalls only when nothing it waits for, directly
+    /// or through other waiting robots, has moved lately (long lanes take minutes). A
+    /// robot stalled for `STUCK_AFTER` is reported once (a `stuck` task event); the
+    /// claimant order still serves it, so this is information, never a failure.
+    fn watch_stalls(&mut self, t: f64, out: &mut Vec<(Topic, Msg)>) {
+        let n = self.robots.len();
+        let mut live: Vec<bool> = self
+            .robots
+            .iter()
+            .map(|r| r.wait_since.is_none() && t - r.last_moved < 2.0)
+            .collect();
+        for _ in 0..n {
+            let mut changed = false;
+            for i in 0..n {
+                if !live[i]
+                    && self.robots[i].wait_since.is_some()
+                    && self.robots[i]
+                        .blockers
+                        .iter()
+                        .any(|&b| live.get(b) == Some(&true))
+                {
+                    live[i] = true;
+                    changed = true;
+                }
+            }
+            if !changed {
+                break;
+            }
+        }
+        for (i, r) in self.robots.iter_mut().enumerate() {
+            if r.wait_since.is_none() || live[i] {
+                r.stall_since = t;
+            }
+        }
+        for i in 0..n {
+            let r = &self.robots[i];
+            if r.wait_since.is_none() || r.stuck_reported || t - r.stall_since < STUCK_AFTER {
+                continue;
+            }
+            self.robots[i].stuck_reported = true;
+            let who: Vec<String> = self.robots[i]
+                .blockers
+                .iter()
+                .map(|&b| format!("{} ({})", self.robots[b].name, self.status(b)))
+                .collect();
+            if let Some(ti) = self.robots[i].task {
+                let detail = format!("waiting for {}", who.join(","));
+                self.event(t, ti, "stuck", Some(i), detail, out);
+            }
+        }
+    }
+
+    /// A vertex robot `b` can go to where it is in nobody's way, nearest first, with the
+    /// route there: nobody else holds its standing set, the set is disjoint from `needed`
+    /// (sorted), it is not a lift cabin, and every lane of the way is free or held only by
+    /// robots that are driving (they pass) or idle (they are pushed in turn); with
+    /// `through_waiting`, also by robots waiting at rest other than `keep` (the caller
+    /// pushes them first). Parking spots, holding points and chargers count `SPOT_PENALTY`
+    /// nearer than other vertices, which are more likely to be on somebody's way.
+    fn find_spot(
+        &self,
+        b: usize,
+        needed: &[Res],
+        through_waiting: bool,
+        keep: usize,
+    ) -> Option<(usize, Vec<usize>)> {
+        let r = &self.robots[b];
+        let f = &self.fleets[r.fleet];
+        let standing = &self.conf.vertex[r.at];
+        let clear = |e: usize| {
+            self.conf.edge[e]
+                .iter()
+                .filter(|x| standing.binary_search(x).is_err())
+                .all(|&x| {
+                    self.res.holders(x).iter().all(|&o| {
+                        let o = o as usize;
+                        let x = &self.robots[o];
+                        o == b
+                            || x.n_sent > 0
+                            || (x.idle() && x.gate == Gate::None)
+                            || (through_waiting && o != keep && self.waits_at_rest(o))
+                    })
+                })
+        };
+        let here = &self.nav.vertices[r.at];
+        // From a cabin, not by riding on: the cabin is what the others wait for.
+        let from_cabin = here.lift.is_some();
+        let ride = |e: usize| !from_cabin || self.nav.edges[e].kind == EdgeKind::Lane;
+        let (times, prev) = self
+            .nav
+            .tree_with(f.slot, r.at, f.speed, &|e| ride(e) && clear(e));
+        let cost = |v: usize| {
+            let ro = &self.nav.vertices[v].roles;
+            let spot = ro.is_parking_spot || ro.is_holding_point || ro.is_charger;
+            times[v] + if spot { 0.0 } else { SPOT_PENALTY }
+        };
+        let v = self.nav.members[f.slot]
+            .iter()
+            .copied()
+            .filter(|&v| v != r.at && times[v].is_finite())
+            .filter(|&v| self.nav.vertices[v].lift.is_none())
+            .filter(|&v| self.res.is_free_ignoring(b, &self.conf.vertex[v], None))
+            .filter(|&v| !meets(&self.conf.vertex[v], needed))
+            .min_by(|&a, &c| cost(a).total_cmp(&cost(c)).then(a.cmp(&c)))?;
+        let mut path = Vec::new();
+        let mut w = v;
+        while w != r.at {
+            let e = prev[w]?;
+            path.push(e);
+            w = self.nav.edges[e].from;
+        }
+        path.reverse();
+        Some((v, path))
+    }
+
+    /// A free spot for robot `b` (see [`Fleets::find_spot`]).
+    pub(super) fn free_spot(&self, b: usize, needed: &[Res]) -> Option<usize> {
+        self.find_spot(b, needed, false, usize::MAX).map(|s| s.0)
+    }
+
+    /// Pushes robot `b` off `avoid` to make room for the claimant `c`: to a free spot, or,
+    /// `depth` levels deep, to a spot behind robots waiting at rest, which are pushed off
+    /// its way first (priority inheritance: they move for the claimant too). False when
+    /// no such spot exists.
+    fn push(&mut self, b: usize, c: usize, avoid: &[Res], depth: u32, t: f64) -> bool {
+        if let Some((v, _)) = self.find_spot(b, avoid, false, c) {
+            self.escape(b, c, v, t);
+            return true;
+        }
+        if depth == 0 {
+            return false;
+        }
+        let Some((v, path)) = self.find_spot(b, avoid, true, c) else {
+            return false;
+        };
+        let standing = self.conf.vertex[self.robots[b].at].clone();
+        let mut way: Vec<Res> = self.conf.vertex[v].clone();
+        for &e in &path {
+            way.extend(
+                self.conf.edge[e]
+                    .iter()
+                    .filter(|x| standing.binary_search(x).is_err()),
+            );
+        }
+        way.sort_unstable();
+        way.dedup();
+        let deeper = union(avoid, &way);
+        for o in self.res.blockers(b, &way) {
+            if o != c && self.waits_at_rest(o) && !self.push(o, c, &deeper, depth - 1, t) {
+                return false;
+            }
+        }
+        self.escape(b, c, v, t);
+        true
     }
 
     /// Admission control: the robots that keep robot `i` out of a lift lobby (see
@@ -156,329 +584,6 @@ impl Fleets {
             && self.nav.vertices[edge.to].lift.is_none()
     }
 
-    pub(super) fn traffic_check(&mut self, t: f64, out: &mut Vec<(Topic, Msg)>) {
-        self.next_traffic = t + 1.0;
-        let n = self.robots.len();
-        // Idle robots in the way move to a free spot off the waiting robot's route.
-        for i in 0..n {
-            if self.robots[i].wait_since.is_none() {
-                continue;
-            }
-            for b in self.robots[i].blockers.clone() {
-                // A blocker that has itself been stalled for long yields like an idle one
-                // would (a gridlock dissolves from its edges).
-                if self.robots[i].wait_since.is_some()
-                    && self.can_back_off(b)
-                    && t - self.robots[b].stall_since >= YIELD_AFTER
-                    && t - self.robots[i].stall_since >= YIELD_AFTER
-                {
-                    let needed = self.needed(&[i], &[], DEADLOCK_HORIZON);
-                    if let Some(v) = self.free_spot(b, &needed, None) {
-                        let names = [self.robots[i].name.clone(), self.robots[b].name.clone()];
-                        self.back_off(b, v, &names, t, out);
-                    }
-                    continue;
-                }
-                if self.robots[b].idle() && self.robots[b].n_sent == 0 {
-                    // Out of the waiter's way if possible.
-                    let needed = self.needed(&[i], &[], DEADLOCK_HORIZON);
-                    if let Some(v) = self.free_spot(b, &needed, None) {
-                        let r = &mut self.robots[b];
-                        r.steps.push_back(Step::GoTo(v));
-                        r.dirty = true;
-                        continue;
-                    }
-                    // Hemmed in by the waiter itself (a dead end): choose the idle robot's
-                    // spot off the waiter's way as if the waiter were gone, and back the
-                    // waiter off. A spot on the waiter's way would only make the two swap
-                    // places back and forth.
-                    let hemmed = self
-                        .free_spot(b, &needed, Some(i))
-                        .or_else(|| self.free_spot(b, &[], Some(i)));
-                    let Some(v) = hemmed.filter(|_| self.can_back_off(i)) else {
-                        // Else anywhere it can go now.
-                        if let Some(v) = self.free_spot(b, &[], None) {
-                            let r = &mut self.robots[b];
-                            r.steps.push_back(Step::GoTo(v));
-                            r.dirty = true;
-                        }
-                        continue;
-                    };
-                    let rb = &self.robots[b];
-                    let f = &self.fleets[rb.fleet];
-                    let route = self
-                        .nav
-                        .plan(f.slot, rb.at, v, f.speed)
-                        .map(|p| p.1)
-                        .unwrap_or_default();
-                    let needed = self.needed(&[b], &route, 0);
-                    if let Some(w) = self.free_spot(i, &needed, None) {
-                        let names = [self.robots[i].name.clone(), self.robots[b].name.clone()];
-                        self.back_off(i, w, &names, t, out);
-                        let r = &mut self.robots[b];
-                        r.steps.push_back(Step::GoTo(v));
-                        r.dirty = true;
-                    } else if let Some(v) = self.free_spot(b, &[], None) {
-                        let r = &mut self.robots[b];
-                        r.steps.push_back(Step::GoTo(v));
-                        r.dirty = true;
-                    }
-                }
-            }
-        }
-        // Deadlocks: cycles of robots waiting for each other.
-        let waits: Vec<Vec<usize>> = self
-            .robots
-            .iter()
-            .map(|r| {
-                if r.wait_since.is_some() {
-                    r.blockers.clone()
-                } else {
-                    Vec::new()
-                }
-            })
-            .collect();
-        if let Some(cycle) = find_cycle(&waits) {
-            let old = cycle.iter().all(|&r| {
-                self.robots[r]
-                    .wait_since
-                    .is_some_and(|s| t - s >= DEADLOCK_AFTER)
-            });
-            if old {
-                self.resolve_deadlock(&cycle, t, out);
-            }
-        }
-        // A waiting robot stalls only when nothing it waits for, directly or through
-        // other waiting robots, has moved lately (long lanes take minutes to drive).
-        let mut live: Vec<bool> = self
-            .robots
-            .iter()
-            .map(|r| r.wait_since.is_none() && t - r.last_moved < 2.0)
-            .collect();
-        for _ in 0..n {
-            let mut changed = false;
-            for i in 0..n {
-                if !live[i]
-                    && self.robots[i].wait_since.is_some()
-                    && self.robots[i]
-                        .blockers
-                        .iter()
-                        .any(|&b| live.get(b) == Some(&true))
-                {
-                    live[i] = true;
-                    changed = true;
-                }
-            }
-            if !changed {
-                break;
-            }
-        }
-        for (i, r) in self.robots.iter_mut().enumerate() {
-            if r.wait_since.is_none() || live[i] {
-                r.stall_since = t;
-            }
-        }
-        // No progress for too long: report, then give up the task.
-        for i in 0..n {
-            if self.robots[i].wait_since.is_none() {
-                continue;
-            }
-            let waited = t - self.robots[i].stall_since;
-            if waited >= STUCK_AFTER && !self.robots[i].stuck_reported {
-                self.robots[i].stuck_reported = true;
-                let who: Vec<String> = self.robots[i]
-                    .blockers
-                    .iter()
-                    .map(|&b| format!("{} ({})", self.robots[b].name, self.status(b)))
-                    .collect();
-                if let Some(ti) = self.robots[i].task {
-                    self.event(
-                        t,
-                        ti,
-                        "stuck",
-                        Some(i),
-                        format!("waiting for {}", who.join(",")),
-                        out,
-                    );
-                }
-            }
-            // Long stalled: look for a way around what the others hold now.
-            if waited >= DETOUR_AFTER
-                && t - self.robots[i].last_detour >= DETOUR_AFTER
-                && self.can_back_off(i)
-            {
-                self.robots[i].last_detour = t;
-                if self.detour(i, &[]) {
-                    self.robots[i].stall_since = t;
-                    continue;
-                }
-            }
-            // Stalled, or not moved at all (back-offs that never start reset the stall).
-            let r = &self.robots[i];
-            let unmoved = t - r.last_moved.max(r.task_started);
-            if waited >= STUCK_FAIL || (r.task.is_some() && unmoved >= STUCK_FAIL) {
-                if self.robots[i].task.is_some() {
-                    self.end_task(i, t, false, "stuck in traffic".into(), out);
-                } else {
-                    // A yield move that cannot happen: drop it.
-                    let r = &mut self.robots[i];
-                    r.steps.clear();
-                    r.cur = Cur::None;
-                    self.abandon_route(i, t, out);
-                }
-            }
-        }
-    }
-
-    /// Only a robot waiting at rest in the middle of a GoTo can back off.
-    pub(super) fn can_back_off(&self, b: usize) -> bool {
-        let rb = &self.robots[b];
-        rb.gate == Gate::None
-            && rb.n_sent == 0
-            && rb.wait_since.is_some()
-            && matches!(rb.cur, Cur::GoTo { .. })
-    }
-
-    /// Robot `b` drives to `v`, waits there, then resumes its GoTo from scratch.
-    pub(super) fn back_off(
-        &mut self,
-        b: usize,
-        v: usize,
-        names: &[String],
-        t: f64,
-        out: &mut Vec<(Topic, Msg)>,
-    ) {
-        // Already backing off (its spot turned out blocked too): drop that back-off and
-        // head for the goal it was for.
-        {
-            let r = &mut self.robots[b];
-            if r.backing_off {
-                if let (Some(Step::Dwell(_)), Some(&Step::GoTo(goal))) =
-                    (r.steps.front(), r.steps.get(1))
-                {
-                    r.steps.pop_front();
-                    r.steps.pop_front();
-                    r.cur = Cur::GoTo {
-                        goal,
-                        planned: true,
-                    };
-                }
-            }
-        }
-        if let Cur::GoTo { goal, .. } = self.robots[b].cur {
-            let r = &mut self.robots[b];
-            if r.backoff_goal != goal {
-                r.backoff_goal = goal;
-                r.backoffs = 0;
-            }
-            // Only back-offs after moving count: one that could not start is no livelock
-            // (a robot that never moves fails by STUCK_FAIL instead).
-            if r.last_moved > r.last_backoff {
-                r.backoffs += 1;
-            }
-            r.last_backoff = t;
-            if r.backoffs > MAX_BACKOFFS {
-                // The same robots keep meeting: give up rather than loop forever.
-                r.backoffs = 0;
-                let detail = format!("deadlock with {} not resolved", names.join(","));
-                if r.task.is_some() {
-                    self.end_task(b, t, false, detail, out);
-                } else {
-                    r.cur = Cur::None;
-                    r.steps.clear();
-                    self.abandon_route(b, t, out);
-                }
-                return;
-            }
-        }
-        let r = &mut self.robots[b];
-        if let Cur::GoTo { goal, .. } = r.cur {
-            r.steps.push_front(Step::GoTo(goal));
-        }
-        // Wait there long enough for the others to take the way.
-        // Longer each time towards the same goal: the others may need long to pass.
-        let wait = BACKOFF_WAIT * f64::from(1u32 << r.backoffs.clamp(1, 5).saturating_sub(1));
-        r.steps.push_front(Step::Dwell(wait));
-        r.steps.push_front(Step::GoTo(v));
-        r.backing_off = true;
-        r.cur = Cur::None;
-        r.route.clear();
-        r.n_res = 0;
-        r.wait_since = None;
-        r.blockers.clear();
-        r.dirty = true;
-        self.rehold(b);
-        let spot = &self.nav.vertices[v];
-        let spot = if spot.name.is_empty() {
-            format!("({:.2}, {:.2})", spot.pos.x, spot.pos.y)
-        } else {
-            spot.name.clone()
-        };
-        let detail = format!(
-            "{}: {} backs off to {spot}",
-            names.join(","),
-            self.robots[b].name
-        );
-        if let Some(ti) = self.robots[b].task {
-            self.event(t, ti, "deadlock", Some(b), detail, out);
-        }
-    }
-
-    /// Breaks a wait-for cycle. The victim is the robot that can get out of the others'
-    /// way soonest (fewest back-offs lately first, so repeated cycles pick another one):
-    /// to a spot off the others' next `horizon` edges, the far horizon first. Without any
-    /// such spot, a robot of the cycle that has a detour around the others takes it; else
-    /// the deadlock is reported (and retried every second).
-    pub(super) fn resolve_deadlock(
-        &mut self,
-        cycle: &[usize],
-        t: f64,
-        out: &mut Vec<(Topic, Msg)>,
-    ) {
-        let names: Vec<String> = cycle.iter().map(|&r| self.robots[r].name.clone()).collect();
-        for horizon in [DEADLOCK_HORIZON, 2, 0] {
-            // (in a cabin, back-offs, time, robot, spot)
-            let mut best: Option<(bool, u32, f64, usize, usize)> = None;
-            for &b in cycle.iter().rev() {
-                if !self.can_back_off(b) {
-                    continue;
-                }
-                let others: Vec<usize> = cycle.iter().copied().filter(|&o| o != b).collect();
-                let needed = self.needed(&others, &[], horizon);
-                if let Some((v, time)) = self.free_spot_timed(b, &needed, None, horizon == 0) {
-                    // A robot in a lift cabin backs off last: the others wait for the
-                    // cabin to empty.
-                    let cabin = self.nav.vertices[self.robots[b].at].lift.is_some();
-                    let k = (cabin, self.robots[b].backoffs, time);
-                    if best.is_none_or(|(bc, bk, bt, _, _)| k < (bc, bk, bt)) {
-                        best = Some((k.0, k.1, k.2, b, v));
-                    }
-                }
-            }
-            if let Some((_, _, _, b, v)) = best {
-                self.back_off(b, v, &names, t, out);
-                return;
-            }
-        }
-        for &b in cycle {
-            if self.can_back_off(b) && self.detour(b, &[]) {
-                if let Some(ti) = self.robots[b].task {
-                    let detail = format!("{}: {} detours", names.join(","), self.robots[b].name);
-                    self.event(t, ti, "deadlock", Some(b), detail, out);
-                }
-                return;
-            }
-        }
-        for &r in cycle {
-            if let Some(ti) = self.robots[r].task {
-                if !self.robots[r].stuck_reported {
-                    self.event(t, ti, "deadlock", Some(r), names.join(","), out);
-                }
-            }
-            self.robots[r].stuck_reported = true;
-        }
-    }
-
     /// Replans robot `b`'s GoTo (at rest, waiting) around what the other robots hold now
     /// (and `avoid`, more resources to keep off). True if a new route was taken.
     pub(super) fn detour(&mut self, b: usize, avoid: &[Res]) -> bool {
@@ -537,127 +642,6 @@ impl Fleets {
         needed.sort_unstable();
         needed.dedup();
         needed
-    }
-
-    /// A vertex robot `b` can go to where it is in nobody's way: nobody (but `ignore`)
-    /// holds its standing set, the set is disjoint from `needed` (sorted), and the first
-    /// lane there is free now. Parking spots, holding points and chargers first, then any
-    /// vertex; nearest first.
-    pub(super) fn free_spot(
-        &self,
-        b: usize,
-        needed: &[Res],
-        ignore: Option<usize>,
-    ) -> Option<usize> {
-        self.free_spot_timed(b, needed, ignore, false).map(|x| x.0)
-    }
-
-    /// [`Fleets::free_spot`] with the travel time there.
-    pub(super) fn free_spot_timed(
-        &self,
-        b: usize,
-        needed: &[Res],
-        ignore: Option<usize>,
-        push: bool,
-    ) -> Option<(usize, f64)> {
-        let r = &self.robots[b];
-        let f = &self.fleets[r.fleet];
-        let (times, prev) = self.nav.tree_from(f.slot, r.at, f.speed);
-        let class = |v: usize| {
-            let ro = &self.nav.vertices[v].roles;
-            if ro.is_parking_spot || ro.is_holding_point || ro.is_charger {
-                0u8
-            } else {
-                1
-            }
-        };
-        let mut cands: Vec<usize> = self.nav.members[f.slot]
-            .iter()
-            .copied()
-            .filter(|&v| v != r.at && times[v].is_finite())
-            .filter(|&v| self.nav.vertices[v].lift.is_none())
-            // From a cabin, not by riding on: the cabin is what the others wait for.
-            .filter(|&v| {
-                let here = &self.nav.vertices[r.at];
-                here.lift.is_none() || self.nav.vertices[v].level == here.level
-            })
-            .filter(|&v| self.res.is_free_ignoring(b, &self.conf.vertex[v], ignore))
-            .filter(|&v| {
-                !self.conf.vertex[v]
-                    .iter()
-                    .any(|x| needed.binary_search(x).is_ok())
-            })
-            .collect();
-        // Nearest first; a spot that is not a parking spot, holding point or charger
-        // counts SPOT_PENALTY longer (it is more likely to be on somebody's way).
-        let cost = |v: usize| times[v] + SPOT_PENALTY * f64::from(class(v));
-        cands.sort_by(|&a, &c| cost(a).total_cmp(&cost(c)).then(a.cmp(&c)));
-        // Only spots the robot can start driving to now (its first lane is free), else
-        // whose first lane only idle robots block (they will be asked to move aside).
-        let first: Vec<(usize, Option<usize>)> = cands
-            .into_iter()
-            .take(16)
-            .map(|v| (v, self.nav.first_edge(&prev, r.at, v)))
-            .collect();
-        let found = first
-            .iter()
-            .find(|&&(_, e)| e.is_some_and(|e| self.edge_free(b, e, ignore)))
-            .or_else(|| {
-                first.iter().find(|&&(_, e)| {
-                    e.is_some_and(|e| {
-                        let standing = &self.conf.vertex[r.at];
-                        let set: Vec<Res> = self.conf.edge[e]
-                            .iter()
-                            .copied()
-                            .filter(|x| standing.binary_search(x).is_err())
-                            .collect();
-                        self.res.blockers(b, &set).iter().all(|&o| {
-                            Some(o) == ignore
-                                || (self.robots[o].idle() && self.robots[o].n_sent == 0)
-                        })
-                    })
-                })
-            })
-            .or_else(|| {
-                // Gridlock: a spot behind a robot that waits at rest (not one that needs
-                // `needed`); waiting for it makes a new wait-for cycle, whose own victim
-                // then makes room further out (robots pushed back one after the other).
-                if !push {
-                    return None;
-                }
-                first.iter().find(|&&(_, e)| {
-                    e.is_some_and(|e| {
-                        let standing = &self.conf.vertex[r.at];
-                        let set: Vec<Res> = self.conf.edge[e]
-                            .iter()
-                            .copied()
-                            .filter(|x| standing.binary_search(x).is_err())
-                            .collect();
-                        self.res.blockers(b, &set).iter().all(|&o| {
-                            let x = &self.robots[o];
-                            x.n_sent == 0
-                                && !self
-                                    .res
-                                    .held(o)
-                                    .iter()
-                                    .any(|h| needed.binary_search(h).is_ok())
-                        })
-                    })
-                })
-            });
-        found.map(|&(v, _)| (v, times[v]))
-    }
-
-    /// Whether robot `b` could reserve edge `e` now, not counting what `ignore` holds nor
-    /// what its own standing set shares with others (as in `try_reserve`).
-    pub(super) fn edge_free(&self, b: usize, e: usize, ignore: Option<usize>) -> bool {
-        let standing = &self.conf.vertex[self.robots[b].at];
-        let set: Vec<Res> = self.conf.edge[e]
-            .iter()
-            .copied()
-            .filter(|x| standing.binary_search(x).is_err())
-            .collect();
-        self.res.is_free_ignoring(b, &set, ignore)
     }
 
     /// What robot `i` is doing, for stuck reports.
