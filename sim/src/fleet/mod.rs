@@ -252,8 +252,8 @@ pub struct Fleets {
     /// (see `park_vertices`).
     park: Vec<Vec<bool>>,
     res: Reservations,
-    /// The claimant and the resources it claims (see traffic.rs).
-    claim: Option<(usize, Vec<Res>)>,
+    /// The claimants in priority order and the resources each claims (see traffic.rs).
+    claims: Vec<(usize, Vec<Res>)>,
     fleets: Vec<FleetRt>,
     robots: Vec<Robot>,
     by_name: BTreeMap<String, usize>,

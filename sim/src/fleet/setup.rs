@@ -531,7 +531,7 @@ impl Fleets {
             nav,
             conf,
             res,
-            claim: None,
+            claims: Vec::new(),
             fleets,
             robots,
             by_name,

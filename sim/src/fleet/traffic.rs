@@ -106,14 +106,15 @@ impl Fleets {
         };
         let claimant = self.claim_blocks(i, k, &set);
         // The claimant is served before admission limits: its way is being cleared.
-        let full = if self.claim.as_ref().is_some_and(|c| c.0 == i) {
+        let claims = self.claims.iter().any(|c| c.0 == i);
+        let full = if claims {
             Vec::new()
         } else {
             self.admission(i, k)
         };
         if claimant.is_none() && full.is_empty() && self.res.is_free_for(i, &set) {
-            if self.claim.as_ref().is_some_and(|c| c.0 == i) {
-                self.claim = None;
+            if claims {
+                self.claims.retain(|c| c.0 != i);
             }
             let r = &mut self.robots[i];
             r.n_res += k;
@@ -139,22 +140,32 @@ impl Fleets {
     }
 
     /// The claimant whose claim keeps robot `i` from reserving `set` (its next `k` edges):
-    /// none for the claimant itself, for robots making room for it, and for a robot on the
-    /// claimed resources whose segment takes it off them.
+    /// none for claims of lower priority than `i`'s own, for robots making room for the
+    /// claimant, and for a robot on the claimed resources whose segment takes it off them.
     fn claim_blocks(&self, i: usize, k: usize, set: &[Res]) -> Option<usize> {
-        let (c, claimed) = self.claim.as_ref()?;
         let r = &self.robots[i];
-        if *c == i || r.escape.is_some_and(|(f, _)| f == *c) || !meets(set, claimed) {
-            return None;
-        }
         let end = r
             .route
             .get(r.n_res + k - 1)
             .map_or(r.at, |&e| self.nav.edges[e].to);
-        if meets(self.res.held(i), claimed) && !meets(&self.conf.vertex[end], claimed) {
+        // Making room is never held up by a claim: the spot it drives to is off the
+        // claims, and a robot stopped on its way would only block them longer.
+        if r.escape.is_some() {
             return None;
         }
-        Some(*c)
+        for (c, claimed) in &self.claims {
+            if *c == i {
+                return None;
+            }
+            if !meets(set, claimed) {
+                continue;
+            }
+            if meets(self.res.held(i), claimed) && !meets(&self.conf.vertex[end], claimed) {
+                continue;
+            }
+            return Some(*c);
+        }
+        None
     }
 
     /// Waiting for a reservation, at rest, in the middle of a move.
@@ -187,11 +198,14 @@ impl Fleets {
                 eprintln!("{i} {} at {} ({:.1},{:.1} {}) cur {:?} gate {:?} n_res {} n_sent {} route {:?} wait {:?} blk {:?} prio {} esc {:?} steps {:?}", r.name, r.at, v.pos.x, v.pos.y, v.level_name, r.cur, r.gate, r.n_res, r.n_sent, r.route.iter().map(|&e| self.nav.edges[e].to).collect::<Vec<_>>(), r.wait_since, r.blockers, r.prio, r.escape, r.steps);
                 eprintln!("   want {:?}", self.wanted(i).map(|w| w.1.len()));
             }
-            eprintln!("claim {:?}", self.claim.as_ref().map(|c| c.0));
+            eprintln!(
+                "claims {:?}",
+                self.claims.iter().map(|c| c.0).collect::<Vec<_>>()
+            );
         }
         self.watch_stalls(t, out);
         self.move_idle_blockers(t);
-        self.serve_claimant(t);
+        self.serve_claimants(t);
         for i in 0..self.robots.len() {
             let r = &self.robots[i];
             let long = r.wait_since.is_some_and(|s| t - s >= DETOUR_AFTER);
@@ -224,31 +238,47 @@ impl Fleets {
         }
     }
 
-    /// Chooses the claimant (the robot of highest priority waiting at rest), claims its
-    /// next segment and pushes the robots at rest on it out of the way. When none of them
-    /// can get out of the way (a dead end behind them) and one of them needs the
-    /// claimant's place, the claimant makes room for that one instead, which inherits a
-    /// priority just above the claimant's until its move is done (priority inheritance, as
-    /// in PIBT), so that the two cannot take turns pushing each other back.
-    fn serve_claimant(&mut self, t: f64) {
-        let c = (0..self.robots.len())
+    /// Serves the robots waiting at rest in priority order: each whose next segment is
+    /// disjoint from the claims before it claims that segment, and the robots at rest on
+    /// it are pushed out of the way (off the claims before it too). A robot in the way
+    /// that cannot get out of it (a dead end behind it) is let out instead: the claimant
+    /// makes room for it, and a waiting one inherits a priority just above the claimant's
+    /// until its move is done (priority inheritance, as in PIBT), so that the two cannot
+    /// take turns pushing each other back.
+    fn serve_claimants(&mut self, t: f64) {
+        let mut order: Vec<usize> = (0..self.robots.len())
             .filter(|&i| self.waits_at_rest(i))
-            .min_by(|&a, &b| {
-                let (ra, rb) = (&self.robots[a], &self.robots[b]);
-                ra.prio.total_cmp(&rb.prio).then(a.cmp(&b))
-            });
-        let Some((c, set)) = c.and_then(|c| Some((c, self.wanted(c)?.1))) else {
-            self.claim = None;
-            return;
-        };
-        self.claim = Some((c, set.clone()));
-        let mut near = set.clone();
-        near.extend_from_slice(&self.conf.vertex[self.robots[c].at]);
-        near.sort_unstable();
-        near.dedup();
-        let far = self.needed(&[c], &[], ESCAPE_HORIZON);
+            .collect();
+        order.sort_by(|&a, &b| {
+            let (ra, rb) = (&self.robots[a], &self.robots[b]);
+            ra.prio.total_cmp(&rb.prio).then(a.cmp(&b))
+        });
+        self.claims.clear();
+        let mut claimed: Vec<Res> = Vec::new();
+        for c in order {
+            if !self.waits_at_rest(c) {
+                continue;
+            }
+            let Some((_, set)) = self.wanted(c) else {
+                continue;
+            };
+            if meets(&set, &claimed) {
+                continue;
+            }
+            self.claims.push((c, set.clone()));
+            let before = claimed.clone();
+            claimed = union(&claimed, &set);
+            self.clear_way(c, &set, &before, t);
+        }
+    }
+
+    /// Pushes the robots at rest on claimant `c`'s claimed `set` out of it, never onto
+    /// `higher` (the claims before it).
+    fn clear_way(&mut self, c: usize, set: &[Res], higher: &[Res], t: f64) {
+        let near = union(&union(set, &self.conf.vertex[self.robots[c].at]), higher);
+        let far = union(&self.needed(&[c], &[], ESCAPE_HORIZON), &near);
         let mut cannot = Vec::new();
-        for b in self.res.blockers(c, &set) {
+        for b in self.res.blockers(c, set) {
             if !self.pushable(b) {
                 continue;
             }
@@ -258,8 +288,7 @@ impl Fleets {
             if on_its_way {
                 continue;
             }
-            let pushed =
-                self.push(b, c, &union(&far, &near), 0, t) || self.push(b, c, &near, PUSH_DEPTH, t);
+            let pushed = self.push(b, c, &far, 0, c, t) || self.push(b, c, &near, PUSH_DEPTH, c, t);
             if !pushed {
                 cannot.push(b);
             }
@@ -270,38 +299,21 @@ impl Fleets {
         {
             return;
         }
-        let held = self.res.held(c).to_vec();
         for b in cannot {
-            if !self.waits_at_rest(b) {
+            // Let `b` out through the claimant's place: the claimant moves too.
+            let waiting = self.waits_at_rest(b);
+            let pushed = self.push(b, c, &far, PUSH_DEPTH, usize::MAX, t)
+                || self.push(b, c, &near, PUSH_DEPTH, usize::MAX, t);
+            if !pushed {
                 continue;
             }
-            let Some((_, bset)) = self.wanted(b) else {
-                continue;
-            };
-            if !meets(&bset, &held) {
-                continue;
-            }
-            let mut near = bset;
-            near.extend_from_slice(&self.conf.vertex[self.robots[b].at]);
-            near.sort_unstable();
-            near.dedup();
-            let far = self.needed(&[b], &[], ESCAPE_HORIZON);
-            let spot = self
-                .free_spot(c, &union(&far, &near))
-                .or_else(|| self.free_spot(c, &near));
-            if let Some(v) = spot {
-                self.escape(c, b, v, t);
-                let prio = self.robots[c].prio;
+            if waiting {
+                let prio = self.robots[c].prio - 1e-3;
                 let rb = &mut self.robots[b];
-                rb.prio = prio - 1e-3;
-                if rb.prio_until.is_none() {
-                    if let Cur::GoTo { goal, .. } = rb.cur {
-                        rb.prio_until = Some(goal);
-                    }
-                }
-                self.claim = None;
-                return;
+                rb.prio = rb.prio.min(prio);
             }
+            self.claims.retain(|x| x.0 != c);
+            return;
         }
     }
 
@@ -441,6 +453,12 @@ impl Fleets {
             .filter(|&v| self.nav.vertices[v].lift.is_none())
             .filter(|&v| self.res.is_free_ignoring(b, &self.conf.vertex[v], None))
             .filter(|&v| !meets(&self.conf.vertex[v], needed))
+            .filter(|&v| {
+                !self
+                    .robots
+                    .iter()
+                    .any(|x| x.escape.is_some_and(|e| e.1 == v))
+            })
             .min_by(|&a, &c| cost(a).total_cmp(&cost(c)).then(a.cmp(&c)))?;
         let mut path = Vec::new();
         let mut w = v;
@@ -459,18 +477,18 @@ impl Fleets {
     }
 
     /// Pushes robot `b` off `avoid` to make room for the claimant `c`: to a free spot, or,
-    /// `depth` levels deep, to a spot behind robots waiting at rest, which are pushed off
-    /// its way first (priority inheritance: they move for the claimant too). False when
-    /// no such spot exists.
-    fn push(&mut self, b: usize, c: usize, avoid: &[Res], depth: u32, t: f64) -> bool {
-        if let Some((v, _)) = self.find_spot(b, avoid, false, c) {
+    /// `depth` levels deep, to a spot behind robots waiting at rest (other than `keep`),
+    /// which are pushed off its way first (they move for the claimant too). False when no
+    /// such spot exists.
+    fn push(&mut self, b: usize, c: usize, avoid: &[Res], depth: u32, keep: usize, t: f64) -> bool {
+        if let Some((v, _)) = self.find_spot(b, avoid, false, keep) {
             self.escape(b, c, v, t);
             return true;
         }
         if depth == 0 {
             return false;
         }
-        let Some((v, path)) = self.find_spot(b, avoid, true, c) else {
+        let Some((v, path)) = self.find_spot(b, avoid, true, keep) else {
             return false;
         };
         let standing = self.conf.vertex[self.robots[b].at].clone();
@@ -486,7 +504,7 @@ impl Fleets {
         way.dedup();
         let deeper = union(avoid, &way);
         for o in self.res.blockers(b, &way) {
-            if o != c && self.waits_at_rest(o) && !self.push(o, c, &deeper, depth - 1, t) {
+            if o != keep && self.waits_at_rest(o) && !self.push(o, c, &deeper, depth - 1, keep, t) {
                 return false;
             }
         }
