@@ -704,9 +704,10 @@ fn crossing_robots_keep_apart() {
 }
 
 #[test]
-fn head_on_swap_resolves_deadlock() {
+fn head_on_on_a_single_lane_both_arrive() {
     let b = cross();
-    // a: w → e, b: e → w on the same lane: one must wait or step aside into a parking spot.
+    // a: w → e, b: e → w on the same lane: the younger move makes room (a parking spot
+    // beside the lane), the older drives; nobody fails, nobody touches.
     let s = scenario(
         vec![
             fleet("a", 1, SpawnSpec::Waypoints(vec!["w".into()])),
@@ -724,22 +725,10 @@ fn head_on_swap_resolves_deadlock() {
         ],
     );
     let (events, mock, _) = run(&b, &s, 400.0);
-    for e in &events {
-        eprintln!(
-            "{:.1} {} {} {} {}",
-            e.time.as_secs(),
-            e.task_id,
-            e.event,
-            e.robot,
-            e.detail
-        );
-    }
     let done = ended(&events);
     assert_eq!(done.len(), 2, "{events:#?}");
     assert!(done.iter().all(|e| e.1 == "completed"), "{events:#?}");
-    let deadlocks: Vec<&TaskEvent> = events.iter().filter(|e| e.event == "deadlock").collect();
-    assert_eq!(deadlocks.len(), 1, "{events:#?}");
-    assert_eq!(deadlocks[0].detail, "a_0,b_0: b_0 backs off to park_e");
+    assert!(!events.iter().any(|e| e.event == "stuck"), "{events:#?}");
     assert!(mock.min_gap > 0.0, "min gap {}", mock.min_gap);
 }
 

@@ -104,7 +104,7 @@ impl Fleets {
         let Some((k, set)) = self.wanted(i) else {
             return false;
         };
-        let claimant = self.claim_blocks(i, k, &set);
+        let claimant = self.claim_blocks(i, k);
         // The claimant is served before admission limits: its way is being cleared.
         let claims = self.claims.iter().any(|c| c.0 == i);
         let full = if claims {
@@ -139,31 +139,29 @@ impl Fleets {
         }
     }
 
-    /// The claimant whose claim keeps robot `i` from reserving `set` (its next `k` edges):
-    /// none for claims of lower priority than `i`'s own, for robots making room for the
-    /// claimant, and for a robot on the claimed resources whose segment takes it off them.
-    fn claim_blocks(&self, i: usize, k: usize, set: &[Res]) -> Option<usize> {
+    /// The claimant whose claim keeps robot `i` from reserving its next `k` edges: a claim
+    /// of higher priority than `i`'s own that the segment would stop on (its end vertex's
+    /// standing set meets the claim). Driving through a claim is allowed: the robot is
+    /// gone at the end of its segment, like any robot already driving. Robots making room
+    /// are never held up by a claim: the spot they drive to is off the claims, and a robot
+    /// stopped on its way would only block them longer.
+    fn claim_blocks(&self, i: usize, k: usize) -> Option<usize> {
         let r = &self.robots[i];
+        if r.escape.is_some() {
+            return None;
+        }
         let end = r
             .route
             .get(r.n_res + k - 1)
             .map_or(r.at, |&e| self.nav.edges[e].to);
-        // Making room is never held up by a claim: the spot it drives to is off the
-        // claims, and a robot stopped on its way would only block them longer.
-        if r.escape.is_some() {
-            return None;
-        }
+        let stop = &self.conf.vertex[end];
         for (c, claimed) in &self.claims {
             if *c == i {
                 return None;
             }
-            if !meets(set, claimed) {
-                continue;
+            if meets(stop, claimed) {
+                return Some(*c);
             }
-            if meets(self.res.held(i), claimed) && !meets(&self.conf.vertex[end], claimed) {
-                continue;
-            }
-            return Some(*c);
         }
         None
     }
@@ -188,21 +186,6 @@ impl Fleets {
     /// out of the way, the claimant's way cleared, detours for long waits.
     pub(super) fn traffic_check(&mut self, t: f64, out: &mut Vec<(Topic, Msg)>) {
         self.next_traffic = t + 1.0;
-        if std::env::var("MAPC_TDBG")
-            .ok()
-            .and_then(|v| v.parse::<f64>().ok())
-            .is_some_and(|v| (t - v).abs() < 0.6)
-        {
-            for (i, r) in self.robots.iter().enumerate() {
-                let v = &self.nav.vertices[r.at];
-                eprintln!("{i} {} at {} ({:.1},{:.1} {}) cur {:?} gate {:?} n_res {} n_sent {} route {:?} wait {:?} blk {:?} prio {} esc {:?} steps {:?}", r.name, r.at, v.pos.x, v.pos.y, v.level_name, r.cur, r.gate, r.n_res, r.n_sent, r.route.iter().map(|&e| self.nav.edges[e].to).collect::<Vec<_>>(), r.wait_since, r.blockers, r.prio, r.escape, r.steps);
-                eprintln!("   want {:?}", self.wanted(i).map(|w| w.1.len()));
-            }
-            eprintln!(
-                "claims {:?}",
-                self.claims.iter().map(|c| c.0).collect::<Vec<_>>()
-            );
-        }
         self.watch_stalls(t, out);
         self.move_idle_blockers(t);
         self.serve_claimants(t);
@@ -226,11 +209,10 @@ impl Fleets {
             }
             for b in self.robots[i].blockers.clone() {
                 if self.robots[b].idle() && self.robots[b].n_sent == 0 {
+                    // Off the waiter's way ahead, or not at all: a spot on it would only
+                    // be left again (hemmed-in robots are let out by the claimant).
                     let needed = self.needed(&[i], &[], ESCAPE_HORIZON);
-                    let spot = self
-                        .free_spot(b, &needed)
-                        .or_else(|| self.free_spot(b, &self.needed(&[i], &[], 1)));
-                    if let Some(v) = spot {
+                    if let Some(v) = self.free_spot(b, &needed) {
                         self.escape(b, i, v, t);
                     }
                 }

@@ -1006,3 +1006,100 @@ fn world_idle_robot_parks_off_the_task_routes() {
         "{rb:?} not at bay_e"
     );
 }
+
+// ----- the traffic planner's guarantees (ARCHITECTURE.md): every robot reaches its goal -----
+
+#[test]
+fn guarantee_dead_end_room_robots_in_and_out() {
+    // `dead_end` is a room with one way in: one robot inside wants out while two outside
+    // want in, over and over; the corridor holds one robot abreast.
+    let b = load("comb", Some(COMB));
+    let s = scenario(
+        vec![
+            fleet("in", 1, spawn(&["dead_end"])),
+            fleet("out", 2, spawn(&["bay_n", "far_end"])),
+        ],
+        vec![
+            go(0.5, "in", "far_end"),
+            go(0.5, "out", "dead_end"),
+            go(150.0, "out", "dead_end"),
+            go(300.0, "in", "dead_end"),
+            go(300.0, "out", "bay_s"),
+            go(450.0, "out", "dead_end"),
+        ],
+    );
+    let r = run(&b, &s, 3600.0);
+    assert_all_completed(&r, 6);
+    assert!(
+        !r.events.iter().any(|e| e.event == "failed"),
+        "{}",
+        dump(&r.events)
+    );
+}
+
+const RING: &str = r#"
+coordinate_system: cartesian_meters
+name: ring
+levels:
+  L1:
+    elevation: 0
+    vertices:
+      - [0, 0, 0, r0]
+      - [4, 0, 0, r1]
+      - [8, 0, 0, r2]
+      - [8, 4, 0, r3]
+      - [4, 4, 0, r4]
+      - [0, 4, 0, r5]
+    lanes:
+      - [0, 1, {bidirectional: [4, true], graph_idx: [2, 0]}]
+      - [1, 2, {bidirectional: [4, true], graph_idx: [2, 0]}]
+      - [2, 3, {bidirectional: [4, true], graph_idx: [2, 0]}]
+      - [3, 4, {bidirectional: [4, true], graph_idx: [2, 0]}]
+      - [4, 5, {bidirectional: [4, true], graph_idx: [2, 0]}]
+      - [5, 0, {bidirectional: [4, true], graph_idx: [2, 0]}]
+"#;
+
+#[test]
+fn guarantee_ring_of_robots_each_wanting_the_next_spot() {
+    // Five robots on a ring of six spots, each sent to the spot of the robot ahead of it
+    // (the last one to the free spot): they must move one after the other, in the right
+    // order, or swap round each other.
+    let b = load("ring", Some(RING));
+    let names = ["r0", "r1", "r2", "r3", "r4", "r5"];
+    let fleets: Vec<FleetSpec> = (0..5)
+        .map(|k| fleet(&format!("f{k}"), 1, spawn(&[names[k]])))
+        .collect();
+    let tasks: Vec<TaskSpec> = (0..5)
+        .map(|k| go(0.5, &format!("f{k}"), names[k + 1]))
+        .collect();
+    let s = scenario(fleets, tasks);
+    let r = run(&b, &s, 1800.0);
+    assert_all_completed(&r, 5);
+    for (k, rb) in r.world.robots().iter().enumerate() {
+        let p = comb_pos(&b, names[k + 1]);
+        assert!(
+            (rb.x - p.x).hypot(rb.y - p.y) < 0.1,
+            "{rb:?} not at {}",
+            names[k + 1]
+        );
+    }
+}
+
+#[test]
+fn guarantee_two_robots_need_the_lift_in_opposite_directions() {
+    // One robot rides up while the other rides down, each starting where the other wants
+    // to end up near the lift: the lift and its lobby are taken one at a time.
+    let b = load("two_level_clinic", None);
+    let s = scenario(
+        vec![
+            fleet("up", 1, spawn(&["corridor"])),
+            fleet("down", 1, spawn(&["ward_a"])),
+        ],
+        vec![go(0.5, "up", "ward_a"), go(0.5, "down", "corridor")],
+    );
+    let r = run(&b, &s, 1800.0);
+    assert_all_completed(&r, 2);
+    let robots = r.world.robots();
+    assert!((robots[0].z - 4.0).abs() < 0.05, "{:?}", robots[0]);
+    assert!(robots[1].z.abs() < 0.05, "{:?}", robots[1]);
+}
