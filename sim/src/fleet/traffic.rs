@@ -175,6 +175,12 @@ impl Fleets {
             && matches!(r.cur, Cur::GoTo { .. })
     }
 
+    /// Standing still and free to be sent elsewhere: idle, or waiting at rest in a move.
+    fn at_rest(&self, o: usize) -> bool {
+        let x = &self.robots[o];
+        x.n_sent == 0 && x.gate == Gate::None && (x.idle() || self.waits_at_rest(o))
+    }
+
     /// Can be sent elsewhere now: idle, or waiting at rest in a move (a robot driving,
     /// at a door or lift, or busy at a task step leaves by itself in bounded time).
     fn pushable(&self, b: usize) -> bool {
@@ -289,11 +295,11 @@ impl Fleets {
             if !pushed {
                 continue;
             }
-            if waiting {
-                let prio = self.robots[c].prio - 1e-3;
-                let rb = &mut self.robots[b];
-                rb.prio = rb.prio.min(prio);
-            }
+            // `b` goes first until its move is done, so that the claimant does not come
+            // back into its way before it is out.
+            let prio = self.robots[c].prio - 1e-3;
+            let rb = &mut self.robots[b];
+            rb.prio = if waiting { rb.prio.min(prio) } else { prio };
             self.claims.retain(|x| x.0 != c);
             return;
         }
@@ -387,9 +393,8 @@ impl Fleets {
     /// A vertex robot `b` can go to where it is in nobody's way, nearest first, with the
     /// route there: nobody else holds its standing set, the set is disjoint from `needed`
     /// (sorted), it is not a lift cabin, and every lane of the way is free or held only by
-    /// robots that are driving (they pass) or idle (they are pushed in turn); with
-    /// `through_waiting`, also by robots waiting at rest other than `keep` (the caller
-    /// pushes them first). Parking spots, holding points and chargers count `SPOT_PENALTY`
+    /// robots that are driving (they pass); with `through_waiting`, also by robots at rest
+    /// (idle or waiting) other than `keep`, which the caller pushes first. Parking spots, holding points and chargers count `SPOT_PENALTY`
     /// nearer than other vertices, which are more likely to be on somebody's way.
     fn find_spot(
         &self,
@@ -409,10 +414,7 @@ impl Fleets {
                     self.res.holders(x).iter().all(|&o| {
                         let o = o as usize;
                         let x = &self.robots[o];
-                        o == b
-                            || x.n_sent > 0
-                            || (x.idle() && x.gate == Gate::None)
-                            || (through_waiting && o != keep && self.waits_at_rest(o))
+                        o == b || x.n_sent > 0 || (through_waiting && o != keep && self.at_rest(o))
                     })
                 })
         };
@@ -486,7 +488,7 @@ impl Fleets {
         way.dedup();
         let deeper = union(avoid, &way);
         for o in self.res.blockers(b, &way) {
-            if o != keep && self.waits_at_rest(o) && !self.push(o, c, &deeper, depth - 1, keep, t) {
+            if o != keep && self.at_rest(o) && !self.push(o, c, &deeper, depth - 1, keep, t) {
                 return false;
             }
         }
