@@ -343,6 +343,8 @@ impl Fleets {
                     item_from: None,
                     task_started: 0.0,
                     park_pending: false,
+                    waiting_for: None,
+                    waits: TaskWaits::default(),
                 });
             }
             fleets.push(rt);
