@@ -43,6 +43,9 @@ pub struct Report {
     pub contacts: Vec<Encounter>,
     /// By time.
     pub stuck: Vec<StuckReport>,
+    /// The run was stopped (Ctrl-C) before its end: everything above covers what ran.
+    #[serde(skip_serializing_if = "std::ops::Not::not")]
+    pub interrupted: bool,
 }
 
 #[derive(Debug, Clone, Default, PartialEq, Serialize)]
@@ -648,6 +651,7 @@ impl ReportBuilder {
             near_misses: self.near_misses,
             contacts: self.contacts,
             stuck: self.stuck,
+            interrupted: false,
         }
     }
 }
@@ -669,9 +673,14 @@ impl Report {
         let count = |r: &str| self.tasks.iter().filter(|k| k.result == r).count();
         let _ = writeln!(
             s,
-            "simulated {} ({:.2} s)",
+            "simulated {} ({:.2} s){}",
             hms(self.end_time),
-            self.end_time
+            self.end_time,
+            if self.interrupted {
+                ", interrupted"
+            } else {
+                ""
+            }
         );
         let _ = writeln!(
             s,
@@ -748,7 +757,18 @@ impl Report {
             );
         }
         let _ = writeln!(s);
-        let _ = writeln!(s, "stuck episodes: {}", self.stuck.len());
+        // Resolved: the robot moved on (or the events stopped) well before the end.
+        let unresolved = self
+            .stuck
+            .iter()
+            .filter(|k| k.until >= self.end_time - STUCK_AFTER)
+            .count();
+        let _ = writeln!(
+            s,
+            "stuck episodes: {} ({} resolved, {unresolved} unresolved at the end)",
+            self.stuck.len(),
+            self.stuck.len() - unresolved
+        );
         const SHOWN: usize = 10;
         for k in self.stuck.iter().take(SHOWN) {
             let _ = writeln!(
