@@ -6,7 +6,7 @@
 #     MAPS <file.building.yaml>...       # maps, relative to the current source directory
 #     [OUTPUT_DIR <dir>]                 # default ${CMAKE_CURRENT_BINARY_DIR}/maps
 #     [INSTALL_DESTINATION <dir>]        # default share/${PROJECT_NAME}/maps
-#     [TARGETS <nav|gltf|meshes>...]     # default: every target mapc knows
+#     [TARGETS <nav|gltf|meshes|classic|ignition|gz>...]  # default: all of them
 #     [TEXTURE_PATHS <dir>...]           # searched for <texture>.png before the map's dir
 #     [NO_INSTALL])
 #

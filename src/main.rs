@@ -221,7 +221,14 @@ const UNITS_UNKNOWN: &[&str] = &["E0106", "E0107", "E0108", "E0109"];
 /// Reads a map and runs every validation pass. `Err` is an I/O problem (exit 2).
 fn load_and_check(input: &Path) -> Result<Checked, String> {
     sanity::map_input(input)?;
-    let parsed = mapc_frontend::load(input).map_err(|e| e.to_string())?;
+    let mut parsed = mapc_frontend::load(input).map_err(|e| {
+        // The frontend names the file as given; print it without `./` noise.
+        e.to_string()
+            .replace(&input.display().to_string(), &output::shown(input))
+    })?;
+    for s in &mut parsed.sources {
+        s.name = output::shown(Path::new(&s.name));
+    }
     let mut diagnostics = parsed.diagnostics.clone();
     // Passes run even after frontend errors so one run reports everything it can, except
     // those whose inputs the errors left unknown: they would only report consequences
