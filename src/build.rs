@@ -283,8 +283,7 @@ fn target_files(
         if models {
             names.extend(mesh_texture_names(&meshes));
         }
-        let search =
-            texture::SearchPath::new(texture_path, std::env::var_os("MAPC_TEXTURE_PATH"), input);
+        let search = texture::SearchPath::from_env(texture_path, input);
         let (textures, d) =
             mapc_backends::resolve_textures(b, names.iter().map(String::as_str), &mut |f| {
                 let Some((path, bytes)) = search.locate(f) else {

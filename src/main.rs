@@ -462,8 +462,7 @@ fn textures_for<'a>(
     texture_path: &[PathBuf],
     input: &Path,
 ) -> (mapc_backends::Textures, Vec<Diagnostic>) {
-    let search =
-        texture::SearchPath::new(texture_path, std::env::var_os("MAPC_TEXTURE_PATH"), input);
+    let search = texture::SearchPath::from_env(texture_path, input);
     mapc_backends::resolve_textures(b, names, &mut |f| search.find(f))
 }
 

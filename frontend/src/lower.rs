@@ -96,49 +96,6 @@ const VERTEX_PARAMS: &[&str] = &[
     "human_goal_set_name",
 ];
 
-/// Optimal string alignment distance (Levenshtein plus adjacent transpositions).
-fn edit_distance(a: &str, b: &str) -> usize {
-    let a: Vec<char> = a.chars().collect();
-    let b: Vec<char> = b.chars().collect();
-    let mut d = vec![vec![0usize; b.len() + 1]; a.len() + 1];
-    for (i, row) in d.iter_mut().enumerate() {
-        row[0] = i;
-    }
-    for j in 0..=b.len() {
-        d[0][j] = j;
-    }
-    for i in 1..=a.len() {
-        for j in 1..=b.len() {
-            let cost = usize::from(a[i - 1] != b[j - 1]);
-            let mut v = (d[i - 1][j] + 1)
-                .min(d[i][j - 1] + 1)
-                .min(d[i - 1][j - 1] + cost);
-            if i > 1 && j > 1 && a[i - 1] == b[j - 2] && a[i - 2] == b[j - 1] {
-                v = v.min(d[i - 2][j - 2] + 1);
-            }
-            d[i][j] = v;
-        }
-    }
-    d[a.len()][b.len()]
-}
-
-/// The known name `word` is probably a misspelling of: within one edit for short names,
-/// two for names of more than five characters (case ignored). Ties go to the first listed.
-pub(crate) fn closest<'k>(word: &str, known: &[&'k str]) -> Option<&'k str> {
-    // Bounded: keys are short, and a long unknown key is no typo of a short one.
-    if word.chars().count() > 64 {
-        return None;
-    }
-    let lower = word.to_lowercase();
-    let limit = if lower.chars().count() > 5 { 2 } else { 1 };
-    known
-        .iter()
-        .map(|k| (edit_distance(&lower, k), *k))
-        .filter(|(d, _)| *d <= limit)
-        .min_by_key(|(d, _)| *d)
-        .map(|(_, k)| k)
-}
-
 impl Lower<'_> {
     fn err(&mut self, code: &'static str, span: Span, msg: impl Into<String>, help: &str) {
         self.diags
@@ -239,7 +196,7 @@ impl Lower<'_> {
                 }
                 // Close to a known key: a typo whose value would be silently lost. Far from
                 // every known key: a tool-specific extension, which maps may carry.
-                match closest(t, known) {
+                match crate::spelling::closest(t, known) {
                     Some(m) => self.err(
                         "E0112",
                         k.span,
@@ -268,7 +225,7 @@ impl Lower<'_> {
             if VERTEX_PARAMS.contains(&t) {
                 continue;
             }
-            if let Some(m) = closest(t, VERTEX_PARAMS) {
+            if let Some(m) = crate::spelling::closest(t, VERTEX_PARAMS) {
                 self.err(
                     "E0112",
                     k.span,
