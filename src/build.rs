@@ -511,6 +511,10 @@ pub(crate) fn build(mut args: BuildArgs) -> ExitCode {
     args.targets.sort();
     args.targets.dedup();
     let args = &args;
+    if let Err(e) = crate::sanity::output_dir(&args.out_dir, "OUTDIR") {
+        eprintln!("error: {e}");
+        return ExitCode::from(2);
+    }
     // Two inputs with the same name would write the same directory.
     let mut seen: BTreeMap<String, &Path> = BTreeMap::new();
     for input in &args.inputs {

@@ -186,3 +186,37 @@ fn paths_print_without_cur_dir() {
     ]);
     assert!(!err.contains("./.."), "{err}");
 }
+
+#[test]
+fn renamed_level_model_is_removed_by_meshes() {
+    let dir = tempfile::tempdir().unwrap();
+    let text = std::fs::read_to_string(Path::new(env!("CARGO_MANIFEST_DIR")).join(CLINIC)).unwrap();
+    let map = dir.path().join("clinic.building.yaml");
+    std::fs::write(&map, &text).unwrap();
+    let models = dir.path().join("models");
+    let (m, o) = (map.to_str().unwrap(), models.to_str().unwrap());
+    assert_eq!(mapc(&["meshes", m, o]).0, 0);
+    assert!(models.join("two_level_clinic_L2/meshes").is_dir());
+    // L2 becomes L3 (the lift's level_doors refer to it by name too).
+    std::fs::write(&map, text.replace("L2", "L3")).unwrap();
+    let (code, _, err) = mapc(&["meshes", m, o]);
+    assert_eq!(code, 0, "{err}");
+    assert!(models.join("two_level_clinic_L3/meshes").is_dir());
+    assert!(
+        !models.join("two_level_clinic_L2").exists(),
+        "the old level's model and its emptied directories must go"
+    );
+}
+
+#[test]
+fn outdir_that_is_a_file() {
+    let dir = tempfile::tempdir().unwrap();
+    let afile = dir.path().join("afile");
+    std::fs::write(&afile, "x").unwrap();
+    let (code, _, err) = mapc(&["build", CLINIC, "-o", afile.to_str().unwrap()]);
+    assert_eq!(code, 2, "{err}");
+    assert!(
+        err.contains("is a file; OUTDIR must be a directory"),
+        "{err}"
+    );
+}

@@ -95,3 +95,27 @@ fn sarif_uris_are_absolute_or_normalized() {
         "{base}"
     );
 }
+
+#[test]
+fn readme_says_how_to_install_and_quick_start_shows_texture_path() {
+    let readme =
+        std::fs::read_to_string(std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("README.md"))
+            .unwrap();
+    let quick = readme
+        .split("## Quick start")
+        .nth(1)
+        .and_then(|s| s.split("\n## ").next())
+        .unwrap();
+    assert!(quick.contains("cargo install --path ."), "{quick}");
+    assert!(quick.contains("--texture-path"), "{quick}");
+    assert!(quick.contains("AMENT_PREFIX_PATH"), "{quick}");
+    // Every subcommand the quick start runs exists.
+    let (_, help, _) = mapc_env(&["--help"], &[]);
+    for line in quick.lines().filter(|l| l.starts_with("mapc ")) {
+        let sub = line.split_whitespace().nth(1).unwrap();
+        assert!(
+            help.contains(&format!("  {sub} ")),
+            "`mapc {sub}` not in --help:\n{help}"
+        );
+    }
+}
