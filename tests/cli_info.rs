@@ -1,7 +1,6 @@
 //! Issue 11: `mapc info MAP` lists what scenario authors refer to by name, and S0201 (no
 //! waypoint named) names the nearest match and how many names it leaves out.
 
-use std::path::Path;
 use std::process::Command;
 
 fn mapc(args: &[&str]) -> (i32, String, String) {
