@@ -101,10 +101,11 @@ enum Command {
         #[command(flatten)]
         diag: DiagOpts,
     },
-    /// Build many maps to several targets at once: OUTDIR/<map>/nav_graphs/<graph_idx>.yaml,
-    /// OUTDIR/<map>/<building>.glb, OUTDIR/<map>/models/<building>_<level>/meshes/. Maps are
-    /// built in parallel; unchanged files are not rewritten; `--depfile` tells Make or Ninja
-    /// what was read.
+    /// Build many maps to several targets at once (nav, gltf, meshes, classic, ignition,
+    /// gz): OUTDIR/<map>/nav_graphs/<graph_idx>.yaml, OUTDIR/<map>/<building>.glb,
+    /// OUTDIR/<map>/models/<building>_<level>/, OUTDIR/<map>/<map>{_classic,_ignition,}.world.
+    /// Maps are built in parallel; unchanged files are not rewritten, stale ones removed;
+    /// `--depfile` tells Make or Ninja what was read.
     Build(build::BuildArgs),
     /// Write a gz-sim (Harmonic onwards) world and its level models, like today's
     /// `building_map_generator gazebo`: OUTPUT_WORLD and
