@@ -499,6 +499,10 @@ fn check(inputs: &[PathBuf], opts: &DiagOpts) -> ExitCode {
                 if opts.format == Format::Human {
                     summary_line(input, &c);
                 }
+                // A clean map is said out loud too (problems have their count line).
+                if c.diagnostics.is_empty() && !opts.quiet {
+                    eprintln!("{}: no problems found", output::shown(input));
+                }
                 all.push(c);
             }
             Err(e) => {

@@ -154,6 +154,13 @@ fn success_line_and_quiet() {
         err.contains("fixtures/two_level_clinic.scenario.yaml: simulated "),
         "{err}"
     );
+    let (_, _, err) = mapc(&["check", "fixtures/two_level_clinic.building.yaml"]);
+    assert_eq!(
+        err,
+        "fixtures/two_level_clinic.building.yaml: no problems found\n"
+    );
+    let (_, _, err) = mapc(&["check", "-q", "fixtures/two_level_clinic.building.yaml"]);
+    assert_eq!(err, "");
     let (_, _, err) = mapc(&["sim", "-q", "fixtures/two_level_clinic.scenario.yaml"]);
     assert!(!err.contains("simulated"), "{err}");
 }
