@@ -80,8 +80,10 @@ fn unwritable_report_fails_before_simulating() {
     );
 }
 
+/// Runs mapc, and once the run is under way (its temporary trace in `dir` holds data: at
+/// least 1 MB has been buffered and flushed), sends `signals` SIGINTs.
 #[cfg(unix)]
-fn interrupt_after(args: &[&str], signals: usize) -> (i32, String, String) {
+fn interrupt_after(dir: &Path, args: &[&str], signals: usize) -> (i32, String, String) {
     let child = Command::new(env!("CARGO_BIN_EXE_mapc"))
         .current_dir(root())
         .args(args)
@@ -89,7 +91,18 @@ fn interrupt_after(args: &[&str], signals: usize) -> (i32, String, String) {
         .stderr(Stdio::piped())
         .spawn()
         .unwrap();
-    std::thread::sleep(std::time::Duration::from_millis(1500));
+    let started = std::time::Instant::now();
+    let running = || {
+        std::fs::read_dir(dir).unwrap().any(|e| {
+            let e = e.unwrap();
+            e.file_name().to_string_lossy().contains(".mapc-tmp-")
+                && e.metadata().is_ok_and(|m| m.len() > 0)
+        })
+    };
+    while !running() {
+        assert!(started.elapsed().as_secs() < 120, "the run never got going");
+        std::thread::sleep(std::time::Duration::from_millis(20));
+    }
     for _ in 0..signals {
         let ok = Command::new("kill")
             .args(["-INT", &child.id().to_string()])
@@ -115,6 +128,7 @@ fn ctrl_c_writes_the_report_of_what_ran() {
     let report = dir.path().join("report.json");
     let trace = dir.path().join("trace.jsonl");
     let (code, out, err) = interrupt_after(
+        dir.path(),
         &[
             "sim",
             scenario.to_str().unwrap(),
@@ -148,11 +162,11 @@ fn ctrl_c_writes_the_report_of_what_ran() {
 fn second_ctrl_c_exits_and_removes_the_temporary_trace() {
     let dir = tempfile::tempdir().unwrap();
     let scenario = long_scenario(dir.path());
-    // A report far larger than what one signal leaves time for is not needed: the second
-    // signal arrives while the first is handled or right after, and must not leave a
-    // temporary behind either way.
+    // The second signal arrives while the first is handled or after the run stopped; it
+    // must not leave a temporary behind either way.
     let trace = dir.path().join("trace.jsonl");
     let (code, _, err) = interrupt_after(
+        dir.path(),
         &[
             "sim",
             scenario.to_str().unwrap(),
