@@ -6,6 +6,7 @@
 
 mod codes;
 mod lower;
+pub mod spelling;
 mod transform;
 mod yaml;
 

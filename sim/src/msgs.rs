@@ -369,6 +369,48 @@ pub enum Topic {
 }
 
 impl Topic {
+    pub const ALL: [Topic; 19] = [
+        Topic::RobotState,
+        Topic::FleetStates,
+        Topic::RobotPathRequests,
+        Topic::RobotModeRequests,
+        Topic::RobotPauseRequests,
+        Topic::AdapterDoorRequests,
+        Topic::DoorRequests,
+        Topic::DoorStates,
+        Topic::DoorSupervisorHeartbeat,
+        Topic::AdapterLiftRequests,
+        Topic::LiftRequests,
+        Topic::LiftStates,
+        Topic::DispenserRequests,
+        Topic::DispenserResults,
+        Topic::DispenserStates,
+        Topic::IngestorRequests,
+        Topic::IngestorResults,
+        Topic::IngestorStates,
+        Topic::TaskEvents,
+    ];
+
+    /// The topic of a name, with or without the leading `/`.
+    pub fn from_name(name: &str) -> Option<Topic> {
+        let name = name.strip_prefix('/').unwrap_or(name);
+        Topic::ALL.into_iter().find(|t| &t.name()[1..] == name)
+    }
+
+    /// Periodic state topics (what `--trace-state-period` thins out).
+    pub fn is_state(self) -> bool {
+        matches!(
+            self,
+            Topic::RobotState
+                | Topic::FleetStates
+                | Topic::DoorStates
+                | Topic::DoorSupervisorHeartbeat
+                | Topic::LiftStates
+                | Topic::DispenserStates
+                | Topic::IngestorStates
+        )
+    }
+
     pub fn name(self) -> &'static str {
         match self {
             Topic::RobotState => "/robot_state",

@@ -47,6 +47,9 @@ pub struct Report {
     pub waits: WaitTotals,
     /// The place tasks waited at longest (none when no task waited).
     pub bottleneck: Option<Bottleneck>,
+    /// The run was stopped (Ctrl-C) before its end: everything above covers what ran.
+    #[serde(skip_serializing_if = "std::ops::Not::not")]
+    pub interrupted: bool,
 }
 
 #[derive(Debug, Clone, Default, PartialEq, Serialize)]
@@ -715,6 +718,7 @@ impl ReportBuilder {
             stuck: self.stuck,
             waits,
             bottleneck,
+            interrupted: false,
         }
     }
 }
@@ -765,9 +769,14 @@ impl Report {
         let count = |r: &str| self.tasks.iter().filter(|k| k.result == r).count();
         let _ = writeln!(
             s,
-            "simulated {} ({:.2} s)",
+            "simulated {} ({:.2} s){}",
             hms(self.end_time),
-            self.end_time
+            self.end_time,
+            if self.interrupted {
+                ", interrupted"
+            } else {
+                ""
+            }
         );
         let _ = writeln!(
             s,
@@ -865,7 +874,18 @@ impl Report {
             );
         }
         let _ = writeln!(s);
-        let _ = writeln!(s, "stuck episodes: {}", self.stuck.len());
+        // Resolved: the robot moved on (or the events stopped) well before the end.
+        let unresolved = self
+            .stuck
+            .iter()
+            .filter(|k| k.until >= self.end_time - STUCK_AFTER)
+            .count();
+        let _ = writeln!(
+            s,
+            "stuck episodes: {} ({} resolved, {unresolved} unresolved at the end)",
+            self.stuck.len(),
+            self.stuck.len() - unresolved
+        );
         const SHOWN: usize = 10;
         for k in self.stuck.iter().take(SHOWN) {
             let _ = writeln!(
@@ -1288,7 +1308,12 @@ mod tests {
             s.contains("tasks: 3 seen, 1 completed, 1 failed, 1 unfinished"),
             "{s}"
         );
-        assert!(s.contains("stuck episodes: 3"), "{s}");
+        // Run end 600 s: the no_motion episode lasts to the end; the deadlocks ended at 88 s
+        // and 200 s, more than 300 s before it.
+        assert!(
+            s.contains("stuck episodes: 3 (2 resolved, 1 unresolved at the end)"),
+            "{s}"
+        );
     }
 
     #[test]
