@@ -31,6 +31,8 @@ const REPUSH_AFTER: f64 = 2.0;
 /// How many robots deep a push may reach (robots waiting at rest in the way of a robot
 /// that makes room are pushed first).
 const PUSH_DEPTH: u32 = 3;
+/// Most robots a jam is searched for (see `unjam`).
+const JAM_MAX: usize = 32;
 /// The claimant waits this long (s) for the robots in its way before it makes room for
 /// one of them instead.
 const YIELD_AFTER: f64 = 5.0;
@@ -193,6 +195,7 @@ impl Fleets {
     pub(super) fn traffic_check(&mut self, t: f64, out: &mut Vec<(Topic, Msg)>) {
         self.next_traffic = t + 1.0;
         self.watch_stalls(t, out);
+        self.drop_stale_escapes();
         self.move_idle_blockers(t);
         self.serve_claimants(t);
         for i in 0..self.robots.len() {
@@ -204,6 +207,29 @@ impl Fleets {
                     self.robots[i].stall_since = t;
                 }
             }
+        }
+    }
+
+    /// A robot held up on its way to make room for a robot that no longer waits at rest
+    /// (it drove on) gives the spot up and goes on with its own move: making room that
+    /// nobody needs only fills the way of others.
+    fn drop_stale_escapes(&mut self) {
+        for b in 0..self.robots.len() {
+            let Some((f, _)) = self.robots[b].escape else {
+                continue;
+            };
+            if f == b || self.waits_at_rest(f) || !self.waits_at_rest(b) {
+                continue;
+            }
+            let r = &mut self.robots[b];
+            r.escape = None;
+            r.cur = Cur::None;
+            r.route.clear();
+            r.n_res = 0;
+            r.wait_since = None;
+            r.blockers.clear();
+            r.dirty = true;
+            self.rehold(b);
         }
     }
 
@@ -287,7 +313,7 @@ impl Fleets {
         {
             return;
         }
-        for b in cannot {
+        for &b in &cannot {
             // Let `b` out through the claimant's place: the claimant moves too.
             let waiting = self.waits_at_rest(b);
             let pushed = self.push(b, c, &far, PUSH_DEPTH, usize::MAX, t)
@@ -302,6 +328,41 @@ impl Fleets {
             rb.prio = if waiting { rb.prio.min(prio) } else { prio };
             self.claims.retain(|x| x.0 != c);
             return;
+        }
+        if !cannot.is_empty() {
+            self.unjam(c, &far, t);
+        }
+    }
+
+    /// A jam: the robots in the claimant's way can neither get out of it nor be let out.
+    /// Dissolve it from its edges: every robot at rest that holds up the claimant,
+    /// directly or through other robots at rest (the wait-for closure, at most `JAM_MAX`
+    /// robots), and has a free spot off the claimant's way within reach, goes there. Each
+    /// one that leaves makes room for the next; robots keep their priority, so they come
+    /// back in the claimant order.
+    fn unjam(&mut self, c: usize, avoid: &[Res], t: f64) {
+        let mut seen = vec![c];
+        let mut k = 0;
+        while k < seen.len() && seen.len() < JAM_MAX {
+            let o = seen[k];
+            k += 1;
+            let wanted = match self.wanted(o) {
+                Some((_, set)) if o == c || self.waits_at_rest(o) => set,
+                _ => continue,
+            };
+            for b in self.res.blockers(o, &wanted) {
+                if !seen.contains(&b) && self.at_rest(b) {
+                    seen.push(b);
+                }
+            }
+        }
+        for &b in &seen[1..] {
+            if !self.at_rest(b) {
+                continue;
+            }
+            if let Some((v, _)) = self.find_spot(b, avoid, false, c) {
+                self.escape(b, c, v, t);
+            }
         }
     }
 
