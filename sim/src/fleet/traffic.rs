@@ -195,7 +195,6 @@ impl Fleets {
     pub(super) fn traffic_check(&mut self, t: f64, out: &mut Vec<(Topic, Msg)>) {
         self.next_traffic = t + 1.0;
         self.watch_stalls(t, out);
-        self.drop_stale_escapes();
         self.move_idle_blockers(t);
         self.serve_claimants(t);
         for i in 0..self.robots.len() {
@@ -207,29 +206,6 @@ impl Fleets {
                     self.robots[i].stall_since = t;
                 }
             }
-        }
-    }
-
-    /// A robot held up on its way to make room for a robot that no longer waits at rest
-    /// (it drove on) gives the spot up and goes on with its own move: making room that
-    /// nobody needs only fills the way of others.
-    fn drop_stale_escapes(&mut self) {
-        for b in 0..self.robots.len() {
-            let Some((f, _)) = self.robots[b].escape else {
-                continue;
-            };
-            if f == b || self.waits_at_rest(f) || !self.waits_at_rest(b) {
-                continue;
-            }
-            let r = &mut self.robots[b];
-            r.escape = None;
-            r.cur = Cur::None;
-            r.route.clear();
-            r.n_res = 0;
-            r.wait_since = None;
-            r.blockers.clear();
-            r.dirty = true;
-            self.rehold(b);
         }
     }
 
