@@ -3,6 +3,7 @@
 
 mod build;
 mod output;
+mod render_cmd;
 mod report;
 mod report_json;
 mod sim_cmd;
@@ -115,6 +116,10 @@ enum Command {
     /// report what happened: task times, throughput, door and lift waits, near misses.
     /// Scenario format, trace and report: docs/sim.md.
     Sim(sim_cmd::SimArgs),
+    /// Draw each level as a picture: OUTPUT/<building>_<level>.svg (or .png) with floors,
+    /// walls, doors, lifts, the lanes of each graph, waypoints and their roles, models, a
+    /// legend and a scale bar; `--diagnostics` draws the problems at their places.
+    Render(render_cmd::RenderArgs),
     /// Check maps and report every problem found, without writing anything.
     Check {
         /// The .building.yaml (or legacy .project.yaml) files to read.
@@ -151,6 +156,7 @@ fn main() -> ExitCode {
         Command::Ignition(args) => world_cmd::run(mapc_backends::sdf::Flavour::Ignition, &args),
         Command::Classic(args) => world_cmd::run(mapc_backends::sdf::Flavour::Classic, &args),
         Command::Sim(args) => sim_cmd::run(&args),
+        Command::Render(args) => render_cmd::run(&args),
         Command::Check { inputs, diag } => check(&inputs, &diag),
     }
 }
