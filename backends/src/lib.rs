@@ -41,4 +41,3 @@ pub struct OutputFile {
     pub path: PathBuf,
     pub contents: Vec<u8>,
 }
-

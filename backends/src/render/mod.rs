@@ -90,6 +90,9 @@ const LINE_H: f64 = 16.0;
 /// `MAX_PX_PER_M` pixels per metre).
 const MAP_PX: f64 = 1400.0;
 const MAX_PX_PER_M: f64 = 60.0;
+const MIN_PX_PER_M: f64 = 10.0;
+const NAME_ROOM: f64 = 110.0;
+const MAX_MAP_PX: f64 = 3000.0;
 
 /// Where map-frame metres land on the picture.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -118,7 +121,40 @@ impl View {
 /// Bounding box of what is on `level`: vertices, models, shafts of the lifts serving it.
 fn bounds(b: &Building, level: Handle<Level>) -> (Vec2, Vec2) {
     let l = &b.levels[level];
-    let mut pts: Vec<Vec2> = l.vertices.iter().map(|&v| b.vertices[v].pos).collect();
+    // What is drawn: the vertices of walls, doors, lanes, floors and holes, waypoints with
+    // roles (not stray vertices such as measurement ends far outside the building).
+    let mut used = vec![false; b.vertices.len()];
+    let mut mark = |v: Handle<mapc_ir::Vertex>| used[v.index()] = true;
+    for &h in &l.walls {
+        mark(b.walls[h].start);
+        mark(b.walls[h].end);
+    }
+    for &h in &l.doors {
+        mark(b.doors[h].start);
+        mark(b.doors[h].end);
+    }
+    for &h in &l.lanes {
+        mark(b.lanes[h].start);
+        mark(b.lanes[h].end);
+    }
+    let floors = l.floors.iter().map(|&h| &b.floors[h]);
+    for poly in floors.chain(l.holes.iter().map(|&h| &b.holes[h])) {
+        poly.vertices.iter().for_each(|&v| mark(v));
+    }
+    for &v in &l.vertices {
+        if roles_of(&b.vertices[v].roles).iter().any(|&r| r) {
+            mark(v);
+        }
+    }
+    let mut pts: Vec<Vec2> = l
+        .vertices
+        .iter()
+        .filter(|v| used[v.index()])
+        .map(|&v| b.vertices[v].pos)
+        .collect();
+    if pts.is_empty() {
+        pts.extend(l.vertices.iter().map(|&v| b.vertices[v].pos));
+    }
     pts.extend(l.models.iter().map(|&m| b.models[m].pos));
     for h in b.lifts_on_level(level) {
         pts.extend(b.lifts[h].shaft_corners());
@@ -144,14 +180,18 @@ pub fn level_view(b: &Building, level: Handle<Level>) -> View {
     let extent = (hi.x - lo.x).max(hi.y - lo.y).max(1.0);
     let m = (0.04 * extent).max(1.0);
     let (w, h) = (hi.x - lo.x + 2.0 * m, hi.y - lo.y + 2.0 * m);
-    let k = (MAP_PX / w.max(h)).min(MAX_PX_PER_M);
+    // Large sites get more pixels (names stay legible), up to MAX_MAP_PX.
+    let k = (MAP_PX / w.max(h))
+        .max(MIN_PX_PER_M.min(MAX_MAP_PX / w.max(h)))
+        .min(MAX_PX_PER_M);
     View {
         k,
         min_x: lo.x - m,
         max_y: hi.y + m,
         left: MARGIN,
         top: TITLE_H,
-        width: (w * k).ceil(),
+        // Room on the right for the names of the easternmost waypoints.
+        width: (w * k + NAME_ROOM).ceil(),
         height: (h * k).ceil(),
     }
 }
@@ -466,7 +506,9 @@ fn draw_map(
             } else {
                 (1.0, 0.0)
             };
-            let (nx, ny) = (-uy * shift, ux * shift);
+            // The same side for a lane and its reverse, so graphs sharing it stay apart.
+            let flip = if (ux, uy) < (0.0, 0.0) { -1.0 } else { 1.0 };
+            let (nx, ny) = (-uy * shift * flip, ux * shift * flip);
             let a = (a.0 + nx, a.1 + ny);
             let z = (z.0 + nx, z.1 + ny);
             s.line(
@@ -552,7 +594,7 @@ fn draw_map(
             s.text(
                 (p.0 + 4.0, p.1 - 4.0),
                 10.0,
-                r##"fill="#222222" class="wp-name""##,
+                r##"fill="#222222" stroke="#ffffff" stroke-width="2.5" stroke-opacity="0.8" paint-order="stroke" class="wp-name""##,
                 &vx.name,
             );
         }
@@ -602,7 +644,11 @@ fn draw_lift(
         .filter(|ld| ld.level == level)
         .flat_map(|ld| ld.doors.iter().map(|(n, _)| n.as_str()))
         .collect();
-    for door in lift.doors.iter().filter(|d| here.contains(&d.name.as_str())) {
+    for door in lift
+        .doors
+        .iter()
+        .filter(|d| here.contains(&d.name.as_str()))
+    {
         let axis = Vec2::new(1.0, 0.0).rotate(door.motion_axis_orientation);
         let half = axis.scale(door.width / 2.0);
         let a = door.pos.minus(half).rotate(lift.yaw).plus(lift.pos);
@@ -618,11 +664,13 @@ fn draw_lift(
             ),
         );
     }
+    // The name above the shaft, clear of the waypoint in the cabin.
+    let top = shaft.iter().map(|p| p.1).fold(f64::INFINITY, f64::min);
     let c = view.px(lift.pos);
     s.text(
-        (c.0, c.1 + 4.0),
+        (c.0, top - 4.0),
         11.0,
-        r##"fill="#222222" text-anchor="middle" font-weight="bold""##,
+        r##"fill="#222222" text-anchor="middle" font-weight="bold" stroke="#ffffff" stroke-width="3" paint-order="stroke""##,
         &lift.name,
     );
 }
@@ -768,7 +816,12 @@ fn draw_legend(
     view: &View,
 ) -> f64 {
     let mut y = 16.0;
-    s.text((0.0, y), 14.0, r##"font-weight="bold" fill="#222222""##, "Legend");
+    s.text(
+        (0.0, y),
+        14.0,
+        r##"font-weight="bold" fill="#222222""##,
+        "Legend",
+    );
     y += 10.0;
     let label = |s: &mut Svg, y: f64, text: &str| {
         s.text((34.0, y + 4.0), 11.0, r##"fill="#222222""##, text);
@@ -835,10 +888,7 @@ fn draw_legend(
                     &format!(r#"stroke="{}" stroke-width="3""#, colours::DOOR),
                 );
                 s.path(
-                    "M26 -1 A24 24 0 0 0 2 -19"
-                        .replace("-1", &num(y + 5.0))
-                        .replace("-19", &num(y - 7.0))
-                        .as_str(),
+                    &format!("M26 {} A24 12 0 0 0 2 {}", num(y + 5.0), num(y - 7.0)),
                     &format!(
                         r#"stroke="{}" fill="none" stroke-dasharray="3 2""#,
                         colours::DOOR
@@ -922,7 +972,11 @@ fn draw_legend(
         item(
             s,
             &|s, y| {
-                s.line((2.0, y), (26.0, y), r##"stroke="#555555" stroke-width="2""##);
+                s.line(
+                    (2.0, y),
+                    (26.0, y),
+                    r##"stroke="#555555" stroke-width="2""##,
+                );
                 s.polygon(
                     &[(20.0, y), (10.0, y - 5.0), (10.0, y + 5.0)],
                     r##"fill="#555555""##,
@@ -935,7 +989,11 @@ fn draw_legend(
         item(
             s,
             &|s, y| {
-                s.line((2.0, y), (26.0, y), r##"stroke="#555555" stroke-width="2""##);
+                s.line(
+                    (2.0, y),
+                    (26.0, y),
+                    r##"stroke="#555555" stroke-width="2""##,
+                );
                 s.circle(
                     (14.0, y),
                     4.5,
@@ -948,13 +1006,7 @@ fn draw_legend(
     if p.waypoints {
         item(
             s,
-            &|s, y| {
-                s.circle(
-                    (14.0, y),
-                    3.5,
-                    &format!(r#"fill="{}""#, colours::WAYPOINT),
-                )
-            },
+            &|s, y| s.circle((14.0, y), 3.5, &format!(r#"fill="{}""#, colours::WAYPOINT)),
             "waypoint",
         );
     }
@@ -963,7 +1015,13 @@ fn draw_legend(
             item(
                 s,
                 &|s, y| {
-                    s.rect(8.0, y - 6.0, 12.0, 12.0, &format!(r#"fill="{colour}" rx="2""#));
+                    s.rect(
+                        8.0,
+                        y - 6.0,
+                        12.0,
+                        12.0,
+                        &format!(r#"fill="{colour}" rx="2""#),
+                    );
                     s.text(
                         (14.0, y + 3.5),
                         9.0,
@@ -1055,7 +1113,11 @@ fn draw_diagnostic_list(s: &mut Svg, diags: &[(&Diagnostic, Located)], top: f64,
             Severity::Error => "error",
             Severity::Warning => "warning",
         };
-        let place = if at.at.is_some() { "" } else { " (no place on the map)" };
+        let place = if at.at.is_some() {
+            ""
+        } else {
+            " (no place on the map)"
+        };
         let mut line = format!(
             "{}. {} {sev} [{}:{}] {}{place}",
             i + 1,

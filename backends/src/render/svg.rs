@@ -70,11 +70,7 @@ impl Svg {
     }
 
     pub fn polygon(&mut self, pts: &[(f64, f64)], attrs: &str) {
-        let _ = writeln!(
-            self.out,
-            r#"<polygon points="{}" {attrs}/>"#,
-            points(pts)
-        );
+        let _ = writeln!(self.out, r#"<polygon points="{}" {attrs}/>"#, points(pts));
     }
 
     pub fn path(&mut self, d: &str, attrs: &str) {
