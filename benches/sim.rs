@@ -52,6 +52,7 @@ fn hotel_8h(bencher: Bencher) {
             until: None,
             trace: None,
             progress: None,
+            observer: None,
         };
         simulate(&building, &scenario, opts).expect("runs")
     });
@@ -114,6 +115,7 @@ fn rings_10min(bencher: Bencher, n: usize) {
             until: None,
             trace: None,
             progress: None,
+            observer: None,
         };
         simulate(&building, &scenario, opts).expect("runs")
     });

@@ -4,6 +4,7 @@
 mod build;
 mod output;
 mod render_cmd;
+mod replay;
 mod report;
 mod report_json;
 mod sim_cmd;

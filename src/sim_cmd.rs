@@ -35,6 +35,10 @@ pub(crate) struct SimArgs {
     /// Write the run report here (JSON).
     #[arg(long, value_name = "FILE")]
     report: Option<PathBuf>,
+    /// Write a self-contained HTML page that replays the run (levels, robots, doors, lifts,
+    /// tasks, charts; no network needed).
+    #[arg(long, value_name = "FILE")]
+    html: Option<PathBuf>,
     /// How to print diagnostics and the summary.
     #[arg(long, value_enum, default_value = "human")]
     format: SimFormat,
@@ -198,11 +202,25 @@ pub(crate) fn run(args: &SimArgs) -> ExitCode {
     };
     let mut bar = Progress::new();
     let mut progress = |t: f64, end: f64| bar.update(t, end);
+    let mut recorder = args
+        .html
+        .as_ref()
+        .map(|_| crate::replay::Recorder::new(building, &scenario));
+    let mut observe = |p: &mapc_sim::msgs::Published| {
+        if let Some(r) = recorder.as_mut() {
+            r.observe(p);
+        }
+    };
     let opts = mapc_sim::RunOptions {
         until: args.until,
         trace: trace.as_mut().map(|t| &mut t.writer as &mut dyn Write),
         progress: if std::io::stderr().is_terminal() {
             Some(&mut progress)
+        } else {
+            None
+        },
+        observer: if args.html.is_some() {
+            Some(&mut observe)
         } else {
             None
         },
@@ -227,6 +245,11 @@ pub(crate) fn run(args: &SimArgs) -> ExitCode {
     if let Some(t) = trace {
         if let Err(e) = t.finish() {
             return failed(e);
+        }
+    }
+    if let (Some(path), Some(r)) = (&args.html, recorder) {
+        if let Err(e) = output::write_atomic(path, r.page().as_bytes()) {
+            return failed(format!("{}: {e}", path.display()));
         }
     }
     if let Some(path) = &args.report {

@@ -44,6 +44,9 @@ pub struct RunOptions<'a> {
     pub trace: Option<&'a mut dyn Write>,
     /// Called about once per simulated minute with (t, end).
     pub progress: Option<&'a mut dyn FnMut(f64, f64)>,
+    /// Sees every message the trace records, in the same order (e.g. to build a replay);
+    /// it cannot change the run.
+    pub observer: Option<&'a mut dyn FnMut(&Published)>,
 }
 
 /// Why a run could not start or finish.
@@ -91,14 +94,14 @@ pub fn simulate(
         inbox.clear();
         for (topic, msg) in requests.drain(..) {
             let p = Published { t, topic, msg };
-            record(&mut opts.trace, &mut report, &p)?;
+            record(&mut opts.trace, &mut opts.observer, &mut report, &p)?;
             if topic != Topic::TaskEvents {
                 world.deliver(topic, p.msg);
             }
         }
         world.step(&mut inbox);
         for p in &inbox {
-            record(&mut opts.trace, &mut report, p)?;
+            record(&mut opts.trace, &mut opts.observer, &mut report, p)?;
         }
         if i % sample_every == 0 {
             report.sample(world.time(), &world.robots());
@@ -121,11 +124,15 @@ pub fn simulate(
 
 fn record(
     trace: &mut Option<&mut dyn Write>,
+    observer: &mut Option<&mut dyn FnMut(&Published)>,
     report: &mut report::ReportBuilder,
     p: &Published,
 ) -> Result<(), SimError> {
     if let Some(w) = trace.as_mut() {
         trace::write(&mut **w, p).map_err(SimError::Io)?;
+    }
+    if let Some(o) = observer.as_mut() {
+        o(p);
     }
     report.observe(p);
     Ok(())

@@ -657,9 +657,10 @@ fn draw_lift(
             view.px(a),
             view.px(z),
             &format!(
-                r#"stroke="{}" stroke-width="{}" class="lift-door" data-door="{}""#,
+                r#"stroke="{}" stroke-width="{}" class="lift-door" data-lift="{}" data-door="{}""#,
                 colours::LIFT_DOOR,
                 num((0.12 * view.k).clamp(3.0, 6.0)),
+                esc(&lift.name),
                 esc(&door.name)
             ),
         );
