@@ -688,13 +688,16 @@ fn draw_door(s: &mut Svg, b: &Building, d: Handle<mapc_ir::Door>, view: &View) {
         esc(&door.name),
         colours::DOOR
     ));
+    // Open leaves are drawn thin, as in architectural plans (the replay thickens them
+    // while the door is open).
     let leaf = |s: &mut Svg, a: Vec2, z: Vec2, class: &str| {
+        let w = if class == "open-leaf" { 1.5 } else { leaf_w };
         s.line(
             view.px(a),
             view.px(z),
             &format!(
                 r#"stroke-width="{}" stroke-linecap="butt" class="{class}""#,
-                num(leaf_w)
+                num(w)
             ),
         );
     };
