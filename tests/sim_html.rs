@@ -43,7 +43,9 @@ const HEADLESS: [&str; 5] = [
 
 /// The page's data (the JSON in `<script id="data">`).
 fn data(html: &str) -> Value {
-    let start = html.find("<script id=\"data\" type=\"application/json\">").unwrap();
+    let start = html
+        .find("<script id=\"data\" type=\"application/json\">")
+        .unwrap();
     let rest = &html[start..];
     let open = rest.find('>').unwrap() + 1;
     let close = rest.find("</script>").unwrap();
@@ -157,7 +159,11 @@ fn replay_pages_of_every_fixture_scenario() {
         // Loads without console messages or errors, and says it is ready.
         let o = Command::new(browser)
             .args(HEADLESS)
-            .args(["--enable-logging=stderr", "--v=0", "--virtual-time-budget=3000"])
+            .args([
+                "--enable-logging=stderr",
+                "--v=0",
+                "--virtual-time-budget=3000",
+            ])
             .arg("--dump-dom")
             .arg(url(t1))
             .output()
@@ -170,7 +176,9 @@ fn replay_pages_of_every_fixture_scenario() {
         assert!(
             dom.contains("<pre id=\"errors\"></pre>"),
             "{name}: errors in the page: {}",
-            dom.lines().find(|l| l.contains("id=\"errors\"")).unwrap_or("")
+            dom.lines()
+                .find(|l| l.contains("id=\"errors\""))
+                .unwrap_or("")
         );
         // Two moments differ in the map area (left of the panels).
         let a = shot(browser, &url(t1), &dir.path().join("a.png"));

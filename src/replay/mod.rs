@@ -78,8 +78,12 @@ impl Robot {
     fn push(&mut self, s: [i64; 4]) {
         let mut dyaw = s[3] - self.last[3];
         dyaw = (dyaw + 540).rem_euclid(360) - 180;
-        self.track
-            .extend([s[0] - self.last[0], s[1] - self.last[1], s[2] - self.last[2], dyaw]);
+        self.track.extend([
+            s[0] - self.last[0],
+            s[1] - self.last[1],
+            s[2] - self.last[2],
+            dyaw,
+        ]);
         self.last = [s[0], s[1], s[2], self.last[3] + dyaw];
     }
     fn finish(&mut self) {
@@ -191,9 +195,7 @@ impl<'a> Recorder<'a> {
             .rsplit_once("_pickup")
             .or_else(|| guid.rsplit_once("_dropoff"))
             .map(|(b, _)| b)?;
-        self.task_index
-            .get(base)
-            .and_then(|&t| self.tasks[t].robot)
+        self.task_index.get(base).and_then(|&t| self.tasks[t].robot)
     }
 
     pub fn observe(&mut self, p: &Published) {
@@ -343,7 +345,12 @@ impl<'a> Recorder<'a> {
                 .find(|f| f.name == fleet)
                 .map_or(0.3, |f| f.robot.footprint)
         };
-        let fleets: Vec<&str> = self.scenario.fleets.iter().map(|f| f.name.as_str()).collect();
+        let fleets: Vec<&str> = self
+            .scenario
+            .fleets
+            .iter()
+            .map(|f| f.name.as_str())
+            .collect();
         let robots: Vec<Value> = self
             .robots
             .iter()
