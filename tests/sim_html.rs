@@ -228,27 +228,9 @@ fn hotel_page(until: &str) -> Option<(u64, Option<u64>)> {
     Some((size, ready))
 }
 
-/// One hour of the 20-robot hotel benchmark: the page grows about linearly with the run, so
-/// under 2.5 MB per hour keeps the 8 h replay under 20 MB (the full run is the ignored test
-/// below; 8.2 MB, ready in 0.5-0.8 s when measured).
+/// The acceptance figure: the 8 h, 20-robot hotel replay is under 20 MB (8.2 MB) and opens
+/// in under 3 s (0.3-0.8 s from navigation start). About a minute in a debug build.
 #[test]
-fn hotel_replay_size_per_hour() {
-    let Some((size, ready)) = hotel_page("1h") else {
-        return;
-    };
-    assert!(
-        size < 2_500_000,
-        "1 h of the hotel replay takes {size} bytes"
-    );
-    if let Some(ms) = ready {
-        assert!(ms < 3000, "the 1 h hotel replay took {ms} ms to open");
-    }
-}
-
-/// The acceptance figure: the 8 h, 20-robot hotel replay is under 20 MB and opens in under
-/// 3 s. Slow in a debug build: `cargo test --release --test sim_html -- --ignored`.
-#[test]
-#[ignore]
 fn hotel_8h_replay_under_20_mb_and_3_s() {
     let Some((size, ready)) = hotel_page("8h") else {
         return;
