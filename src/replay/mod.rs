@@ -216,11 +216,6 @@ impl<'a> Recorder<'a> {
             (Topic::RobotState, Msg::RobotState(s)) => {
                 let i = self.robot(&s.name);
                 let level = self.level_index(&s.location.level_name);
-                let task = if s.task_id.is_empty() {
-                    -1
-                } else {
-                    self.task(&s.task_id) as i64
-                };
                 let r = &mut self.robots[i];
                 let loc = &s.location;
                 r.sample([
@@ -231,7 +226,9 @@ impl<'a> Recorder<'a> {
                 ]);
                 r.level.set(tk, level);
                 r.mode.set(tk, s.mode.mode as i64);
-                r.task.set(tk, task);
+                if r.task.last.is_none() {
+                    r.task.set(tk, -1);
+                }
                 r.battery.set(tk, s.battery_percent.round() as i64);
             }
             (Topic::TaskEvents, Msg::TaskEvent(e)) => {
@@ -242,15 +239,26 @@ impl<'a> Recorder<'a> {
                 if robot.is_some() {
                     task.robot = robot;
                 }
+                // The robot's task is the one it started until that one ends (RobotState's
+                // task_id names the path request, not the task).
                 match e.event.as_str() {
                     "queued" => task.queued = Some(t),
-                    "started" => task.started = Some(t),
+                    "started" => {
+                        task.started = Some(t);
+                        if let Some(r) = task.robot {
+                            self.robots[r].task.set(tk, ti as i64);
+                        }
+                    }
                     "completed" | "failed" => {
                         task.ended = Some(t);
                         task.ok = Some(e.event == "completed");
                         task.detail.clone_from(&e.detail);
                         if let Some(r) = task.robot {
-                            self.robots[r].carry.set(tk, 0);
+                            let robot = &mut self.robots[r];
+                            robot.carry.set(tk, 0);
+                            if robot.task.last == Some(ti as i64) {
+                                robot.task.set(tk, -1);
+                            }
                         }
                     }
                     _ => {

@@ -216,7 +216,7 @@
     s += ", battery " + at(r.battery, t, "?") + " %" + (at(r.carry, t, 0) ? ", carrying an item" : "") + "\n";
     if (tk) {
       s += "task " + tk.id + " (" + tk.cat + "), started " + hms(tk.s || 0);
-      s += tk.e != null ? ", " + (tk.ok ? "completed" : "failed") + " at " + hms(tk.e) : "";
+      s += tk.e != null && tk.e <= t ? ", " + (tk.ok ? "completed" : "failed") + " at " + hms(tk.e) : ", in progress";
       if (tk.detail) s += "\n" + tk.detail;
     } else {
       s += "no task";
