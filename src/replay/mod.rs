@@ -8,8 +8,8 @@
 //! `[dticks, dx_cm, dy_cm, dyaw_deg, ...]` after an absolute first sample, with samples
 //! left out while the robot stands still (the last still sample is kept before it moves
 //! again, so linear interpolation between kept samples gives the 2 Hz track back);
-//! everything else (level, mode, task, battery, carried item, doors, lifts) as
-//! `[tick, value, ...]` change lists.
+//! everything else (level, mode, task, battery, carried item, doors) as `[tick, value, ...]`
+//! change lists, lifts as `[tick, floor, door, motion, destination, ...]`.
 
 use mapc_backends::render::{self, RenderOptions};
 use mapc_ir::Building;
@@ -115,8 +115,9 @@ struct Door {
 
 #[derive(Default)]
 struct Lift {
+    /// `[tick, floor, door state, motion state, destination floor, ...]` on change.
     state: Vec<i64>,
-    last: Option<[i64; 3]>,
+    last: Option<[i64; 4]>,
     waits: Vec<f64>,
     /// Session → (request time, floor) of its first request, until served.
     pending: BTreeMap<String, (f64, String)>,
@@ -306,10 +307,11 @@ impl<'a> Recorder<'a> {
             }
             (Topic::LiftStates, Msg::LiftState(l)) => {
                 let floor = self.level_index(&l.current_floor);
+                let dest = self.level_index(&l.destination_floor);
                 let lift = self.lifts.entry(l.lift_name.clone()).or_default();
-                let st = [floor, l.door_state as i64, l.motion_state as i64];
+                let st = [floor, l.door_state as i64, l.motion_state as i64, dest];
                 if lift.last != Some(st) {
-                    lift.state.extend([tk, st[0], st[1], st[2]]);
+                    lift.state.extend([tk, st[0], st[1], st[2], st[3]]);
                     lift.last = Some(st);
                 }
                 if l.door_state == lift_state::DOOR_OPEN {

@@ -70,6 +70,7 @@
     for (const g of div.querySelectorAll("g.door")) L.doors.set(g.dataset.door, g);
     L.cabins = new Map();
     for (const g of div.querySelectorAll("g.lift-cabin")) L.cabins.set(g.dataset.lift, g);
+    L.cabinLabels = new Map();
     L.liftDoors = [...div.querySelectorAll("line.lift-door")];
   });
   const NS = D.levels.length ? D.levels[0].svg.namespaceURI : "";
@@ -81,6 +82,17 @@
   D.levels.forEach((L) => {
     L.layer = el("g", { class: "robots" });
     L.svg.querySelector("g.map").appendChild(L.layer);
+    // Where each cabin is: a label at the cabin's centre (from its polygon's points).
+    for (const [name, g] of L.cabins) {
+      const poly = g.querySelector("polygon");
+      const pts = (poly ? poly.getAttribute("points") : "").trim().split(/\s+/).map((p) => p.split(",").map(Number));
+      const cx = pts.reduce((a, p) => a + p[0], 0) / Math.max(1, pts.length);
+      const cy = pts.reduce((a, p) => a + p[1], 0) / Math.max(1, pts.length);
+      const text = el("text", { x: cx.toFixed(1), y: (cy + 16).toFixed(1), "font-size": 11, "text-anchor": "middle",
+        fill: "#1a237e", stroke: "#fff", "stroke-width": 3, "paint-order": "stroke", class: "cabin-label" });
+      L.svg.querySelector("g.map").appendChild(text);
+      L.cabinLabels.set(name, text);
+    }
   });
 
   let selected = -1;
@@ -182,16 +194,23 @@
     for (const lift of D.lifts) {
       const s = lift.state;
       let i = -1;
-      for (let lo = 0, hi = s.length / 4 - 1; lo <= hi;) {
+      for (let lo = 0, hi = s.length / 5 - 1; lo <= hi;) {
         const mid = (lo + hi) >> 1;
-        if (s[4 * mid] <= t / TICK) { i = mid; lo = mid + 1; } else { hi = mid - 1; }
+        if (s[5 * mid] <= t / TICK) { i = mid; lo = mid + 1; } else { hi = mid - 1; }
       }
-      const floor = i < 0 ? -1 : s[4 * i + 1], door = i < 0 ? 0 : s[4 * i + 2], motion = i < 0 ? 0 : s[4 * i + 3];
+      const floor = i < 0 ? -1 : s[5 * i + 1], door = i < 0 ? 0 : s[5 * i + 2];
+      const motion = i < 0 ? 0 : s[5 * i + 3], dest = i < 0 ? -1 : s[5 * i + 4];
+      const name = (k) => (k >= 0 && k < D.levels.length ? D.levels[k].name : "?");
       D.levels.forEach((L, li) => {
         const g = L.cabins.get(lift.name);
         if (g) {
           g.classList.toggle("away", i >= 0 && floor !== li);
           g.classList.toggle("moving", motion !== 0);
+        }
+        const label = L.cabinLabels.get(lift.name);
+        if (label) {
+          label.textContent = i < 0 ? "" : motion !== 0 ? name(floor) + " \u2192 " + name(dest)
+            : floor !== li ? "cabin at " + name(floor) : door === 2 ? "open" : "";
         }
         for (const ld of L.liftDoors) {
           if (ld.dataset.lift === lift.name) ld.classList.toggle("open", floor === li && door === 2);
