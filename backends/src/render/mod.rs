@@ -272,7 +272,7 @@ pub fn render_level(b: &Building, level: Handle<Level>, opts: &RenderOptions<'_>
     let present = draw_map(&mut map, b, level, &view, opts.graphs);
 
     let mut legend = Svg::default();
-    let legend_h = draw_legend(&mut legend, b, &present, &diags, &view);
+    let legend_h = draw_legend(&mut legend, b, &present, &diags);
 
     let map_bottom = view.top + view.height;
     let list_top = map_bottom.max(view.top + legend_h) + SCALE_H;
@@ -812,13 +812,7 @@ fn draw_scale_bar(s: &mut Svg, view: &View) {
 }
 
 /// The legend (translated to the legend column); returns its height.
-fn draw_legend(
-    s: &mut Svg,
-    b: &Building,
-    p: &Present,
-    diags: &[(&Diagnostic, Located)],
-    view: &View,
-) -> f64 {
+fn draw_legend(s: &mut Svg, b: &Building, p: &Present, diags: &[(&Diagnostic, Located)]) -> f64 {
     let mut y = 16.0;
     s.text(
         (0.0, y),
@@ -1056,7 +1050,6 @@ fn draw_legend(
             );
         }
     }
-    let _ = view;
     y + 12.0
 }
 
