@@ -4,6 +4,8 @@
 mod build;
 mod info;
 mod output;
+mod render_cmd;
+mod replay;
 mod report;
 mod report_json;
 mod sanity;
@@ -125,6 +127,10 @@ enum Command {
     /// List what a map holds for scenario authors: levels, graphs, named waypoints by role,
     /// doors, lifts, dispensers and ingestors.
     Info(info::InfoArgs),
+    /// Draw each level as a picture: OUTPUT/<building>_<level>.svg (or .png) with floors,
+    /// walls, doors, lifts, the lanes of each graph, waypoints and their roles, models, a
+    /// legend and a scale bar; `--diagnostics` draws the problems at their places.
+    Render(render_cmd::RenderArgs),
     /// Check maps and report every problem found, without writing anything.
     Check {
         /// The .building.yaml (or legacy .project.yaml) files to read.
@@ -165,6 +171,7 @@ fn main() -> ExitCode {
         Command::Classic(args) => world_cmd::run(mapc_backends::sdf::Flavour::Classic, &args),
         Command::Sim(args) => sim_cmd::run(&args),
         Command::Info(args) => info::run(&args),
+        Command::Render(args) => render_cmd::run(&args),
         Command::Check { inputs, diag } => check(&inputs, &diag),
     }
 }

@@ -45,6 +45,10 @@ pub(crate) struct SimArgs {
     /// Write the run report here (JSON).
     #[arg(long, value_name = "FILE")]
     report: Option<PathBuf>,
+    /// Write a self-contained HTML page that replays the run (levels, robots, doors, lifts,
+    /// tasks, charts; no network needed).
+    #[arg(long, value_name = "FILE")]
+    html: Option<PathBuf>,
     /// How to print diagnostics and the summary.
     #[arg(long, value_enum, default_value = "human")]
     format: SimFormat,
@@ -196,7 +200,11 @@ pub(crate) fn run(args: &SimArgs) -> ExitCode {
             output::shown(&args.scenario)
         ));
     }
-    for (path, what) in [(&args.report, "--report"), (&args.trace, "--trace")] {
+    for (path, what) in [
+        (&args.report, "--report"),
+        (&args.trace, "--trace"),
+        (&args.html, "--html"),
+    ] {
         if let Some(p) = path {
             if let Err(e) = check_writable(p, what) {
                 return failed(e);
@@ -280,6 +288,15 @@ pub(crate) fn run(args: &SimArgs) -> ExitCode {
     let mut progress = |t: f64, end: f64| bar.update(t, end);
     let topics =
         (!args.trace_topics.is_empty()).then(|| args.trace_topics.iter().copied().collect());
+    let mut recorder = args
+        .html
+        .as_ref()
+        .map(|_| crate::replay::Recorder::new(building, &scenario));
+    let mut observe = |p: &mapc_sim::msgs::Published| {
+        if let Some(r) = recorder.as_mut() {
+            r.observe(p);
+        }
+    };
     let opts = mapc_sim::RunOptions {
         until: args.until,
         trace: trace.as_mut().map(|t| t.writer()),
@@ -290,6 +307,11 @@ pub(crate) fn run(args: &SimArgs) -> ExitCode {
         },
         stop: Some(&signals::INTERRUPTED),
         trace_filter: mapc_sim::TraceFilter::new(topics, args.trace_state_period.unwrap_or(0.0)),
+        observer: if args.html.is_some() {
+            Some(&mut observe)
+        } else {
+            None
+        },
     };
     let result = mapc_sim::simulate(building, &scenario, opts);
     bar.clear();
@@ -312,6 +334,11 @@ pub(crate) fn run(args: &SimArgs) -> ExitCode {
     if let Some(t) = trace {
         if let Err(e) = t.finish() {
             return failed(e);
+        }
+    }
+    if let (Some(path), Some(r)) = (&args.html, recorder) {
+        if let Err(e) = output::write_atomic(path, r.page().as_bytes()) {
+            return failed(format!("{}: {e}", path.display()));
         }
     }
     if let Some(path) = &args.report {

@@ -52,6 +52,9 @@ pub struct RunOptions<'a> {
     pub stop: Option<&'a AtomicBool>,
     /// Which messages go to the trace (every one by default); the report sees them all.
     pub trace_filter: trace::TraceFilter,
+    /// Sees every message the trace records, in the same order (e.g. to build a replay);
+    /// it cannot change the run.
+    pub observer: Option<&'a mut dyn FnMut(&Published)>,
 }
 
 /// Why a run could not start or finish.
@@ -104,14 +107,26 @@ pub fn simulate(
         inbox.clear();
         for (topic, msg) in requests.drain(..) {
             let p = Published { t, topic, msg };
-            record(&mut opts.trace, &mut opts.trace_filter, &mut report, &p)?;
+            record(
+                &mut opts.trace,
+                &mut opts.trace_filter,
+                &mut opts.observer,
+                &mut report,
+                &p,
+            )?;
             if topic != Topic::TaskEvents {
                 world.deliver(topic, p.msg);
             }
         }
         world.step(&mut inbox);
         for p in &inbox {
-            record(&mut opts.trace, &mut opts.trace_filter, &mut report, p)?;
+            record(
+                &mut opts.trace,
+                &mut opts.trace_filter,
+                &mut opts.observer,
+                &mut report,
+                p,
+            )?;
         }
         if i % sample_every == 0 {
             report.sample(world.time(), &world.robots());
@@ -137,6 +152,7 @@ pub fn simulate(
 fn record(
     trace: &mut Option<&mut dyn Write>,
     filter: &mut trace::TraceFilter,
+    observer: &mut Option<&mut dyn FnMut(&Published)>,
     report: &mut report::ReportBuilder,
     p: &Published,
 ) -> Result<(), SimError> {
@@ -144,6 +160,9 @@ fn record(
         if filter.accepts(p) {
             trace::write(&mut **w, p).map_err(SimError::Io)?;
         }
+    }
+    if let Some(o) = observer.as_mut() {
+        o(p);
     }
     report.observe(p);
     Ok(())
