@@ -109,7 +109,13 @@ pub(crate) fn run(args: &RenderArgs) -> ExitCode {
     }
     let label = crate::build::map_name(&args.input);
     let pictures = files.len();
-    match output::single_write(&args.output_dir, "DIR", &files, "render", &label) {
+    // A full render replaces the last one (stale pictures removed); `--level` adds to it.
+    let written = if args.levels.is_empty() {
+        output::single_write(&args.output_dir, "DIR", &files, "render", &label)
+    } else {
+        output::write_all(&args.output_dir, "DIR", &files)
+    };
+    match written {
         Ok(w) if !args.quiet => {
             let what = crate::plural(pictures, "picture");
             crate::success_line(
