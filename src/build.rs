@@ -356,10 +356,11 @@ impl Progress {
     }
 }
 
-fn report(r: &MapResult, format: Format) {
+fn report(r: &MapResult, opts: &DiagOpts) {
+    let format = opts.format;
     if let Some(c) = &r.checked {
         if format != Format::Sarif {
-            emit(c, format);
+            emit(c, opts, crate::report::Style::Snippets);
         }
         if format == Format::Human {
             summary_line(&r.input, c);
@@ -471,7 +472,7 @@ pub(crate) fn build(mut args: BuildArgs) -> ExitCode {
             results[i] = Some(r);
             progress.clear();
             while let Some(Some(r)) = results.get(printed) {
-                report(r, args.diag.format);
+                report(r, &args.diag);
                 printed += 1;
             }
             progress.draw(done + 1, &last);
@@ -480,7 +481,10 @@ pub(crate) fn build(mut args: BuildArgs) -> ExitCode {
     });
     let results: Vec<MapResult> = results.into_iter().flatten().collect();
     if args.diag.format == Format::Sarif {
-        crate::print_sarif(results.iter().filter_map(|r| r.checked.as_ref()));
+        crate::print_sarif(
+            results.iter().filter_map(|r| r.checked.as_ref()),
+            args.diag.max_diagnostics,
+        );
     }
     let code = results.iter().map(|r| r.code).max().unwrap_or(0);
     if code == 0 {

@@ -2,10 +2,13 @@
 //! 2 usage or I/O error.
 
 mod build;
+mod escape;
+mod limit;
 mod output;
 mod report;
 mod report_json;
 mod sim_cmd;
+mod snippet;
 mod texture;
 mod world_cmd;
 
@@ -47,6 +50,14 @@ struct DiagOpts {
     /// Treat warnings as errors (exit 1 and write nothing when there are any).
     #[arg(long)]
     deny_warnings: bool,
+    /// Show at most N diagnostics per code, then one line with the number found (`all`:
+    /// show every one).
+    #[arg(long, value_name = "N|all", default_value = "20")]
+    max_diagnostics: limit::MaxDiagnostics,
+    /// Show source snippets in `nav`, `gazebo`, `ignition` and `classic` too (they print
+    /// one `file:line:col` line per diagnostic otherwise).
+    #[arg(long)]
+    verbose: bool,
 }
 
 #[derive(Subcommand)]
@@ -208,14 +219,27 @@ fn load_and_check(input: &Path) -> Result<Checked, String> {
     })
 }
 
-fn emit(c: &Checked, format: Format) {
-    match format {
-        Format::Human => report::emit(&c.parsed.sources, &c.diagnostics),
-        Format::Json => print!(
+/// Prints the diagnostics of `c` in the chosen format, at most `--max-diagnostics` per
+/// code (SARIF is printed by the caller, once for all maps). `style` is the command's
+/// human style; `--verbose` always gives snippets.
+fn emit(c: &Checked, opts: &DiagOpts, style: report::Style) {
+    let (shown, cut) = limit::select(&c.diagnostics, opts.max_diagnostics);
+    let style = if opts.verbose {
+        report::Style::Snippets
+    } else {
+        style
+    };
+    match opts.format {
+        Format::Human => report::emit(&c.parsed.sources, &shown, &cut, style),
+        Format::Json => {
+            let mut out = std::io::BufWriter::new(std::io::stdout().lock());
+            // Nothing useful to do if stdout is gone (e.g. a closed pipe).
+            let _ = report_json::write_json_lines(&mut out, &c.parsed.sources, &shown, &cut);
+        }
+        Format::Sarif => print!(
             "{}",
-            report_json::json_lines(&c.parsed.sources, &c.diagnostics)
+            report_json::sarif(&c.parsed.sources, &shown, &cut)
         ),
-        Format::Sarif => print!("{}", report_json::sarif(&c.parsed.sources, &c.diagnostics)),
     }
 }
 
@@ -231,7 +255,8 @@ fn summary_line(input: &Path, c: &Checked) {
 }
 
 fn nav(input: &Path, output_dir: &Path, opts: &DiagOpts) -> ExitCode {
-    run_command(input, output_dir, opts, |b| {
+    // A drop-in for `building_map_generator nav`: one line per diagnostic in build logs.
+    run_command(input, output_dir, opts, report::Style::OneLine, |b| {
         (mapc_backends::nav_graphs(b), Vec::new())
     })
 }
@@ -243,6 +268,7 @@ fn run_command(
     input: &Path,
     out_dir: &Path,
     opts: &DiagOpts,
+    style: report::Style,
     produce: impl FnOnce(&mapc_ir::Building) -> (Vec<mapc_backends::OutputFile>, Vec<Diagnostic>),
 ) -> ExitCode {
     let mut checked = match load_and_check(input) {
@@ -260,7 +286,7 @@ fn run_command(
             checked.diagnostics.extend(diags);
         }
     }
-    emit(&checked, opts.format);
+    emit(&checked, opts, style);
     if opts.format == Format::Human {
         summary_line(input, &checked);
     }
@@ -303,7 +329,7 @@ fn gltf(
     per_level: bool,
     opts: &DiagOpts,
 ) -> ExitCode {
-    run_command(input, output_dir, opts, |b| {
+    run_command(input, output_dir, opts, report::Style::Snippets, |b| {
         let meshes = build::all_level_meshes(b);
         let names = build::gltf_texture_names(&meshes);
         let (textures, diags) =
@@ -326,7 +352,7 @@ fn textures_for<'a>(
 }
 
 fn meshes(input: &Path, model_dir: &Path, texture_path: &[PathBuf], opts: &DiagOpts) -> ExitCode {
-    run_command(input, model_dir, opts, |b| {
+    run_command(input, model_dir, opts, report::Style::Snippets, |b| {
         let meshes = build::all_level_meshes(b);
         let names = build::mesh_texture_names(&meshes);
         let (textures, diags) =
@@ -345,7 +371,7 @@ fn check(inputs: &[PathBuf], opts: &DiagOpts) -> ExitCode {
                     code = code.max(1);
                 }
                 if opts.format != Format::Sarif {
-                    emit(&c, opts.format);
+                    emit(&c, opts, report::Style::Snippets);
                 }
                 if opts.format == Format::Human {
                     summary_line(input, &c);
@@ -359,13 +385,14 @@ fn check(inputs: &[PathBuf], opts: &DiagOpts) -> ExitCode {
         }
     }
     if opts.format == Format::Sarif {
-        print_sarif(&all);
+        print_sarif(&all, opts.max_diagnostics);
     }
     ExitCode::from(code)
 }
 
-/// One SARIF log for several maps: sources merged, file ids re-based.
-fn print_sarif<'a>(all: impl IntoIterator<Item = &'a Checked>) {
+/// One SARIF log for several maps: sources merged, file ids re-based, at most `max`
+/// diagnostics per code over all maps.
+fn print_sarif<'a>(all: impl IntoIterator<Item = &'a Checked>, max: limit::MaxDiagnostics) {
     let mut sources = Vec::new();
     let mut diags = Vec::new();
     for c in all {
@@ -380,5 +407,6 @@ fn print_sarif<'a>(all: impl IntoIterator<Item = &'a Checked>) {
             diags.push(d);
         }
     }
-    print!("{}", report_json::sarif(&sources, &diags));
+    let (shown, cut) = limit::select(&diags, max);
+    print!("{}", report_json::sarif(&sources, &shown, &cut));
 }

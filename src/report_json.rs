@@ -2,9 +2,11 @@
 //! code-scanning tools. The JSON schema is documented in docs/diagnostics.md and is
 //! stable: fields are only ever added.
 
+use crate::limit::CodeCount;
 use mapc_frontend::SourceFile;
 use mapc_ir::{Diagnostic, Severity, Span};
 use serde_json::{json, Value};
+use std::io::Write;
 
 /// (line, column) of the end of a span, 1-based, column in characters.
 fn end_position(sources: &[SourceFile], s: Span) -> (u32, u32) {
@@ -75,18 +77,41 @@ pub fn diagnostic_json(sources: &[SourceFile], d: &Diagnostic) -> Value {
     v
 }
 
-/// JSON Lines: one object per line.
-pub fn json_lines(sources: &[SourceFile], diags: &[Diagnostic]) -> String {
-    let mut out = String::new();
+/// The summary record of a code whose diagnostics were not all shown (documented in
+/// docs/diagnostics.md): `{"kind": "summary", "code", "name", "found", "shown", "message"}`.
+pub fn summary_json(c: &CodeCount) -> Value {
+    json!({
+        "kind": "summary",
+        "code": c.code,
+        "name": crate::code_name(c.code),
+        "found": c.found,
+        "shown": c.shown,
+        "message": crate::limit::summary_text(c),
+    })
+}
+
+/// JSON Lines to `out`, one object per line as it is made, then one summary record per
+/// code in `cut`.
+pub fn write_json_lines(
+    out: &mut impl Write,
+    sources: &[SourceFile],
+    diags: &[&Diagnostic],
+    cut: &[CodeCount],
+) -> std::io::Result<()> {
     for d in diags {
-        out.push_str(&diagnostic_json(sources, d).to_string());
-        out.push('\n');
+        writeln!(out, "{}", diagnostic_json(sources, d))?;
     }
-    out
+    for c in cut {
+        writeln!(out, "{}", summary_json(c))?;
+    }
+    out.flush()
 }
 
 /// A SARIF 2.1.0 log with one run.
-pub fn sarif(sources: &[SourceFile], diags: &[Diagnostic]) -> String {
+///
+/// Codes in `cut` get a tool notification in the run's invocation (`level: note`, the
+/// code as `descriptor.id`, `properties.found` and `properties.shown`).
+pub fn sarif(sources: &[SourceFile], diags: &[&Diagnostic], cut: &[CodeCount]) -> String {
     let mut codes: Vec<&str> = diags.iter().map(|d| d.code).collect();
     codes.sort_unstable();
     codes.dedup();
@@ -131,7 +156,7 @@ pub fn sarif(sources: &[SourceFile], diags: &[Diagnostic]) -> String {
             })
         })
         .collect();
-    let log = json!({
+    let mut log = json!({
         "$schema": "https://json.schemastore.org/sarif-2.1.0.json",
         "version": "2.1.0",
         "runs": [{
@@ -144,6 +169,23 @@ pub fn sarif(sources: &[SourceFile], diags: &[Diagnostic]) -> String {
             "results": results,
         }],
     });
+    if !cut.is_empty() {
+        let notes: Vec<Value> = cut
+            .iter()
+            .map(|c| {
+                json!({
+                    "level": "note",
+                    "descriptor": { "id": c.code },
+                    "message": { "text": crate::limit::summary_text(c) },
+                    "properties": { "found": c.found, "shown": c.shown },
+                })
+            })
+            .collect();
+        log["runs"][0]["invocations"] = json!([{
+            "executionSuccessful": true,
+            "toolExecutionNotifications": notes,
+        }]);
+    }
     let mut s = serde_json::to_string_pretty(&log).unwrap_or_default();
     s.push('\n');
     s
