@@ -50,6 +50,8 @@ mod tests {
         assert_eq!(display_safe("a\nb\r"), "a\\nb\\r");
         assert_eq!(display_safe("x\u{202e}y\u{2066}"), "x\\u{202e}y\\u{2066}");
         assert_eq!(display_safe("bell\u{7}"), "bell\\u{7}");
-        assert!(!display_safe("\u{200f}\u{61c}\u{1b}[31m").chars().any(needs_escape));
+        assert!(!display_safe("\u{200f}\u{61c}\u{1b}[31m")
+            .chars()
+            .any(needs_escape));
     }
 }

@@ -236,10 +236,7 @@ fn emit(c: &Checked, opts: &DiagOpts, style: report::Style) {
             // Nothing useful to do if stdout is gone (e.g. a closed pipe).
             let _ = report_json::write_json_lines(&mut out, &c.parsed.sources, &shown, &cut);
         }
-        Format::Sarif => print!(
-            "{}",
-            report_json::sarif(&c.parsed.sources, &shown, &cut)
-        ),
+        Format::Sarif => print!("{}", report_json::sarif(&c.parsed.sources, &shown, &cut)),
     }
 }
 

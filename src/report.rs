@@ -1,5 +1,8 @@
 //! Human rendering of diagnostics with source snippets (codespan-reporting).
 
+use crate::escape::display_safe;
+use crate::limit::CodeCount;
+use crate::snippet::{Excerpts, SourceLines};
 use codespan_reporting::diagnostic::{
     Diagnostic as CsDiagnostic, Label as CsLabel, Severity as CsSeverity,
 };
@@ -8,9 +11,6 @@ use codespan_reporting::term::{
     self,
     termcolor::{BufferWriter, ColorChoice},
 };
-use crate::escape::display_safe;
-use crate::limit::CodeCount;
-use crate::snippet::{Excerpts, SourceLines};
 use mapc_frontend::SourceFile;
 use mapc_ir::{Diagnostic, Severity};
 use std::io::{IsTerminal, Write};
@@ -52,8 +52,11 @@ pub fn emit(sources: &[SourceFile], diags: &[&Diagnostic], cut: &[CodeCount], st
             let _ = writeln!(one, "{}", one_line(sources, d));
         } else {
             let cs = to_codespan(sources, d);
-            let labels: Vec<(usize, std::ops::Range<usize>)> =
-                cs.labels.iter().map(|l| (l.file_id, l.range.clone())).collect();
+            let labels: Vec<(usize, std::ops::Range<usize>)> = cs
+                .labels
+                .iter()
+                .map(|l| (l.file_id, l.range.clone()))
+                .collect();
             let rendered = if lines.needs_excerpt(&labels) {
                 // Long lines cut, control and bidi characters escaped.
                 let (excerpts, ranges) = Excerpts::new(&lines, &labels);
@@ -112,7 +115,11 @@ fn to_codespan(sources: &[SourceFile], d: &Diagnostic) -> CsDiagnostic<usize> {
     } else {
         // No position (a whole-file problem): name the file in the message.
         let name = sources.first().map_or("<input>", |s| s.name.as_str());
-        cs = cs.with_message(format!("{}: {}", display_safe(name), display_safe(&d.message)));
+        cs = cs.with_message(format!(
+            "{}: {}",
+            display_safe(name),
+            display_safe(&d.message)
+        ));
     }
     if let Some(h) = &d.help {
         cs = cs.with_notes(vec![format!("help: {}", display_safe(h))]);

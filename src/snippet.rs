@@ -336,7 +336,10 @@ mod tests {
         let (ex, ranges) = Excerpts::new(&lines, &labels);
         let src = ex.source(0).unwrap();
         assert!(src.len() < 2 * MAX_LINE_CHARS, "{src}");
-        assert!(src.starts_with('…') && src.trim_end().ends_with('…'), "{src}");
+        assert!(
+            src.starts_with('…') && src.trim_end().ends_with('…'),
+            "{src}"
+        );
         assert_eq!(&src[ranges[0].clone()], "12345");
         // The column is the real one.
         let line = ex.line_index(0, ranges[0].start).unwrap();

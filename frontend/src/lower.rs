@@ -577,6 +577,7 @@ impl Lower<'_> {
                 .seq(vs, &format!("the vertices of {what}"))
                 .unwrap_or(&[]);
             slots.reserve(list.len());
+            b.vertices.reserve(list.len());
             for v in list {
                 let h = self.vertex(lh, v).map(|vx| {
                     let h = b.vertices.append(vx, v.span);
@@ -601,7 +602,9 @@ impl Lower<'_> {
             out
         };
 
-        for e in edges(self, b, "lanes") {
+        let lanes = edges(self, b, "lanes");
+        b.lanes.reserve(lanes.len());
+        for e in lanes {
             let span = e.span;
             if let Some(lane) = self.lane(lh, e) {
                 let h = b.lanes.append(lane, span);
