@@ -95,7 +95,14 @@ mod tests {
         for ok in ["L1", "Pine Tree", "étage 2", "OpenRobotics/Chair", ""] {
             assert_eq!(problem(ok), None, "{ok:?}");
         }
-        for bad in ["L0_tab\there", "a\nb", "x\u{202e}y", "\u{2066}L1", "bell\u{7}", "\u{200f}"] {
+        for bad in [
+            "L0_tab\there",
+            "a\nb",
+            "x\u{202e}y",
+            "\u{2066}L1",
+            "bell\u{7}",
+            "\u{200f}",
+        ] {
             assert!(problem(bad).is_some(), "{bad:?}");
         }
     }
@@ -119,8 +126,10 @@ mod tests {
         assert_eq!(d.len(), 4, "{d:?}");
         assert!(d.iter().all(|d| d.is_error()));
         // Messages never carry the raw characters.
-        assert!(d.iter().all(|d| !d.message.chars().any(|c| c.is_control()
-            || super::is_bidi_control(c))));
+        assert!(d.iter().all(|d| !d
+            .message
+            .chars()
+            .any(|c| c.is_control() || super::is_bidi_control(c))));
         // W0508 leaves these names to E0509.
         assert!(!crate::validate(&m.b).iter().any(|d| d.code == "W0508"));
     }

@@ -142,9 +142,7 @@ mod tests {
 
     #[test]
     fn unsafe_names() {
-        for n in [
-            "", "L1/east", "a\\b", "..", ".", " L1", "L1 ", "a/../b",
-        ] {
+        for n in ["", "L1/east", "a\\b", "..", ".", " L1", "L1 ", "a/../b"] {
             assert!(problem(n, Kind::Level).is_some(), "{n:?}");
         }
         assert!(problem("", Kind::Lift).is_some());
