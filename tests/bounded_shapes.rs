@@ -13,10 +13,11 @@
 //! `LARGE_FACTOR` × file so that they cannot grow further unnoticed.
 
 mod shapes;
+mod support;
 
 use std::path::Path;
-use std::process::{Command, Stdio};
-use std::time::{Duration, Instant};
+use std::time::Duration;
+use support::run;
 
 /// Time bound for the debug binary (release: at most 2 s, see BENCHMARKS.md).
 const DEBUG_SECONDS: u64 = 30;
@@ -26,67 +27,6 @@ const MAX_OUTPUT: usize = 1 << 20;
 const FACTOR: u64 = 10;
 /// The bound the line and pairs shapes are held to for now (see the module doc).
 const LARGE_FACTOR: u64 = 30;
-
-struct Run {
-    code: i32,
-    stdout: Vec<u8>,
-    stderr: Vec<u8>,
-    elapsed: Duration,
-    /// Peak resident memory in bytes, when /proc tells it.
-    peak_rss: Option<u64>,
-}
-
-fn vm_hwm(pid: u32) -> Option<u64> {
-    let status = std::fs::read_to_string(format!("/proc/{pid}/status")).ok()?;
-    let line = status.lines().find(|l| l.starts_with("VmHWM:"))?;
-    let kb: u64 = line.split_whitespace().nth(1)?.parse().ok()?;
-    Some(kb * 1024)
-}
-
-fn run(args: &[&str]) -> Run {
-    let start = Instant::now();
-    let mut child = Command::new(env!("CARGO_BIN_EXE_mapc"))
-        .args(args)
-        .stdout(Stdio::piped())
-        .stderr(Stdio::piped())
-        .spawn()
-        .expect("mapc starts");
-    let pid = child.id();
-    // Drain the pipes on threads so a full pipe never blocks the child.
-    let mut out = child.stdout.take().expect("stdout");
-    let mut err = child.stderr.take().expect("stderr");
-    let t_out = std::thread::spawn(move || {
-        let mut v = Vec::new();
-        let _ = std::io::Read::read_to_end(&mut out, &mut v);
-        v
-    });
-    let t_err = std::thread::spawn(move || {
-        let mut v = Vec::new();
-        let _ = std::io::Read::read_to_end(&mut err, &mut v);
-        v
-    });
-    let mut peak = None;
-    let status = loop {
-        if let Some(m) = vm_hwm(pid) {
-            peak = Some(peak.map_or(m, |p: u64| p.max(m)));
-        }
-        if let Some(s) = child.try_wait().expect("wait") {
-            break s;
-        }
-        if start.elapsed() > Duration::from_secs(4 * DEBUG_SECONDS) {
-            let _ = child.kill();
-            panic!("mapc {args:?} still running after {:?}", start.elapsed());
-        }
-        std::thread::sleep(Duration::from_millis(5));
-    };
-    Run {
-        code: status.code().unwrap_or(-1),
-        stdout: t_out.join().expect("stdout thread"),
-        stderr: t_err.join().expect("stderr thread"),
-        elapsed: start.elapsed(),
-        peak_rss: peak,
-    }
-}
 
 /// Runs `check` and `nav` on `text` and checks the bounds; returns check's stderr.
 fn bounded(name: &str, text: &str, factor: u64) -> String {
@@ -101,7 +41,7 @@ fn bounded(name: &str, text: &str, factor: u64) -> String {
         ("check", vec!["check", path(&map)]),
         ("nav", vec!["nav", path(&map), path(&out_dir)]),
     ] {
-        let r = run(&args);
+        let r = run(&args, Duration::from_secs(4 * DEBUG_SECONDS));
         let printed = r.stdout.len() + r.stderr.len();
         let stderr = String::from_utf8_lossy(&r.stderr).into_owned();
         eprintln!(
