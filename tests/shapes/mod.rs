@@ -56,8 +56,13 @@ pub fn map(name: &str, vertices: &[(f64, f64)], lanes: &[(usize, usize)]) -> Str
 /// `n` waypoints scattered over a 10 m × 10 m room, `lanes` random lanes between them
 /// (issue 18: 20,000 and 10,000).
 pub fn scattered(n: usize, lanes: usize) -> String {
+    scattered_in(n, lanes, 10.0)
+}
+
+/// `n` waypoints scattered over a `side` × `side` room, `lanes` random lanes between them.
+pub fn scattered_in(n: usize, lanes: usize, side: f64) -> String {
     let mut r = Lcg::new(18);
-    let v: Vec<(f64, f64)> = (0..n).map(|_| (10.0 * r.unit(), 10.0 * r.unit())).collect();
+    let v: Vec<(f64, f64)> = (0..n).map(|_| (side * r.unit(), side * r.unit())).collect();
     let l: Vec<(usize, usize)> = (0..lanes)
         .map(|_| {
             let a = r.below(n);
