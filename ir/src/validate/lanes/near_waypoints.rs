@@ -105,7 +105,8 @@ fn spots(ctx: &Context, graph: i64, waypoints: &[Handle<Vertex>]) -> Vec<Spot> {
 fn check(ctx: &Context, out: &mut Vec<Diagnostic>) {
     let b = ctx.b;
     // (center, others) -> graphs, so a spot that several graphs share is one warning.
-    let mut found: BTreeMap<(Handle<Vertex>, Vec<Handle<Vertex>>), Vec<i64>> = BTreeMap::new();
+    type SpotKey = (Handle<Vertex>, Vec<Handle<Vertex>>);
+    let mut found: BTreeMap<SpotKey, Vec<i64>> = BTreeMap::new();
     for (&graph, lanes) in &ctx.lanes_by_graph {
         // The graph's waypoints, per level, in document order.
         let mut by_level: BTreeMap<_, Vec<Handle<Vertex>>> = BTreeMap::new();
