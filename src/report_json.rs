@@ -1,7 +1,9 @@
 //! Machine-readable diagnostics: JSON Lines for editors and scripts, SARIF 2.1.0 for
 //! code-scanning tools. The JSON schema is documented in docs/diagnostics.md and is
-//! stable: fields are only ever added.
+//! stable: fields are only ever added. Messages, labels and help are display-safe (control
+//! and bidi characters escaped), as editors and code-scanning pages show them to people.
 
+use crate::escape::display_safe;
 use crate::limit::CodeCount;
 use mapc_frontend::SourceFile;
 use mapc_ir::{Diagnostic, Severity, Span};
@@ -63,16 +65,16 @@ pub fn diagnostic_json(sources: &[SourceFile], d: &Diagnostic) -> Value {
         "severity": severity(d),
         "code": d.code,
         "name": crate::code_name(d.code),
-        "message": d.message,
+        "message": display_safe(&d.message),
         "location": location(sources, d.span),
         "labels": d.labels.iter().map(|l| {
             let mut loc = location(sources, l.span);
-            loc["message"] = json!(l.message);
+            loc["message"] = json!(display_safe(&l.message));
             loc
         }).collect::<Vec<_>>(),
     });
     if let Some(h) = &d.help {
-        v["help"] = json!(h);
+        v["help"] = json!(display_safe(h));
     }
     v
 }
@@ -138,10 +140,10 @@ pub fn sarif(sources: &[SourceFile], diags: &[&Diagnostic], cut: &[CodeCount]) -
                     "endColumn": ec,
                 });
             }
-            let mut text = d.message.clone();
+            let mut text = display_safe(&d.message).into_owned();
             if let Some(h) = &d.help {
                 text.push_str("\nhelp: ");
-                text.push_str(h);
+                text.push_str(&display_safe(h));
             }
             json!({
                 "ruleId": d.code,

@@ -92,8 +92,13 @@ fn case(root: &Path, text: &str) -> Result<(), String> {
                 r.stdout.len() + r.stderr.len()
             ));
         }
-        if let Some(c) = stderr.chars().find(|&c| c != '\n' && unsafe_char(c)) {
-            return Err(format!("{what}: printed a raw {c:?}\n{stderr}"));
+        let stdout = String::from_utf8_lossy(&r.stdout);
+        if let Some(c) = stderr
+            .chars()
+            .chain(stdout.chars())
+            .find(|&c| c != '\n' && unsafe_char(c))
+        {
+            return Err(format!("{what}: printed a raw {c:?}\n{stderr}{stdout}"));
         }
     }
     // Nothing outside the output directory; no unsafe name inside it.
