@@ -8,8 +8,8 @@
 //! milliseconds (Linux only; a sample can miss a last-moment peak).
 //!
 //! Memory: issue 18 asks for max(10 × file, 64 MB). The scattered and spot shapes meet it.
-//! The line and pairs shapes do not yet (about 25 × their file size: the YAML tree, 56 bytes
-//! a node, and the IR are alive together during lowering); they are held to
+//! The line and pairs shapes do not yet (21 × and 23 × their file size: the YAML tree, 56
+//! bytes a node, and the IR are alive together during lowering); they are held to
 //! `LARGE_FACTOR` × file so that they cannot grow further unnoticed.
 
 mod shapes;
