@@ -72,17 +72,29 @@ impl<'a> SourceLines<'a> {
     }
 
     /// Would the plain rendering of these labels print a long line, a control or bidi
-    /// character, or a label over many lines?
+    /// character, or a label over many lines? It prints the labelled lines and a single
+    /// line between two of them, so all of those are looked at.
     pub fn needs_excerpt(&self, labels: &[(usize, Range<usize>)]) -> bool {
-        labels.iter().any(|(file, r)| {
+        let mut shown: BTreeSet<(usize, usize)> = BTreeSet::new();
+        for (file, r) in labels {
             let r = self.clamp(*file, r);
             let (first, last) = (self.line_of(*file, r.start), self.end_line(*file, &r));
-            last - first + 1 > MAX_LABEL_LINES
-                || (first..=last).any(|l| {
-                    let line = self.line(*file, l).1;
-                    line.len() > MAX_LINE_CHARS && line.chars().count() > MAX_LINE_CHARS
-                        || line.chars().any(needs_escape)
-                })
+            if last - first + 1 > MAX_LABEL_LINES {
+                return true;
+            }
+            shown.extend((first..=last).map(|l| (*file, l)));
+        }
+        let between: Vec<(usize, usize)> = shown
+            .iter()
+            .zip(shown.iter().skip(1))
+            .filter(|(a, b)| a.0 == b.0 && b.1 == a.1 + 2)
+            .map(|(a, _)| (a.0, a.1 + 1))
+            .collect();
+        shown.extend(between);
+        shown.iter().any(|&(file, l)| {
+            let line = self.line(file, l).1;
+            line.len() > MAX_LINE_CHARS && line.chars().count() > MAX_LINE_CHARS
+                || line.chars().any(needs_escape)
         })
     }
 }
@@ -319,6 +331,16 @@ mod tests {
         assert!(!lines.needs_excerpt(&[(0, 5..9)]));
         let s = source("a: \"L0\there\"\n");
         assert!(SourceLines::new(&s).needs_excerpt(&[(0, 3..12)]));
+    }
+
+    #[test]
+    fn a_line_shown_between_labels_counts() {
+        // Found by tests/fuzz_maps.rs: the renderer prints the one line between two
+        // labelled lines, which held a U+2066.
+        let s = source("a: 1\nb: \"\u{2066}x\"\nc: 3\n");
+        let lines = SourceLines::new(&s);
+        assert!(lines.needs_excerpt(&[(0, 0..1), (0, 17..18)]));
+        assert!(!lines.needs_excerpt(&[(0, 0..1)]));
     }
 
     #[test]

@@ -147,3 +147,23 @@ fn long_lines_are_cut_around_the_span() {
     assert!(longest < 400, "a line of {longest} characters was printed");
     assert!(err.contains('…'), "{err}");
 }
+
+#[test]
+fn lines_shown_between_labels_are_escaped_too() {
+    // Regression (tests/fuzz_maps.rs, seed 1795619889687424002, case 476): W0207 labels the
+    // lines of `a` and `c`; the renderer also prints the line between them, which names a
+    // vertex with U+2066 (joined to `a` by a lane, so not part of the spot).
+    let text = "name: between\ncoordinate_system: cartesian_meters\nlevels:\n  L1:\n    \
+                elevation: 0\n    vertices:\n      - [0, 0, 0, a]\n      - [0.001, 0, 0, \
+                \"\u{2066}iso\"]\n      - [0.002, 0, 0, c]\n      - [5, 0, 0, far]\n    lanes:\n      \
+                - [0, 1, {graph_idx: [2, 0], bidirectional: [4, true]}]\n      - [0, 3, \
+                {graph_idx: [2, 0], bidirectional: [4, true]}]\n      - [2, 3, {graph_idx: [2, \
+                0], bidirectional: [4, true]}]\n";
+    let tmp = tempfile::tempdir().unwrap();
+    let map = write(tmp.path(), "between.building.yaml", text);
+    let (code, _, err) = mapc(&["check", &map]);
+    assert_eq!(code, 0, "{err}");
+    assert!(err.contains("warning[W0207]"), "{err}");
+    assert!(err.contains("\\u{2066}iso"), "{err}");
+    assert!(!err.contains('\u{2066}'), "{err}");
+}
