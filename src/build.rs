@@ -453,10 +453,11 @@ impl Progress {
 }
 
 fn report(r: &MapResult, args: &BuildArgs) {
-    let format = args.diag.format;
+    let opts = &args.diag;
+    let format = opts.format;
     if let Some(c) = &r.checked {
         if format != Format::Sarif {
-            emit(c, format);
+            emit(c, opts, crate::report::Style::Snippets);
         }
         if format == Format::Human {
             summary_line(&r.input, c);
@@ -479,7 +480,21 @@ fn report(r: &MapResult, args: &BuildArgs) {
 /// Make/Ninja depfile text: `targets: deps`, one dependency per continuation line. No
 /// `gcc -MP` style empty rules: CMake's Makefile generator adds its own, and keeps rules it
 /// once read, so that a texture deleted later would rerun mapc on every build.
-pub(crate) fn depfile_text(targets: &[PathBuf], deps: &[PathBuf]) -> String {
+///
+/// Neither Make nor Ninja can read a path with a control character (a newline ends the
+/// rule, a tab separates words): such a path is an error, and no depfile is written.
+pub(crate) fn depfile_text(targets: &[PathBuf], deps: &[PathBuf]) -> Result<String, String> {
+    if let Some(bad) = targets
+        .iter()
+        .chain(deps)
+        .find(|p| p.to_string_lossy().chars().any(char::is_control))
+    {
+        return Err(format!(
+            "cannot write a depfile naming `{}`: Make and Ninja cannot read a path with a \
+             control character",
+            crate::escape::display_safe(&bad.to_string_lossy())
+        ));
+    }
     let mut s = String::new();
     let names: Vec<String> = targets.iter().map(|t| escape(t)).collect();
     s.push_str(&names.join(" \\\n  "));
@@ -489,7 +504,7 @@ pub(crate) fn depfile_text(targets: &[PathBuf], deps: &[PathBuf]) -> String {
         s.push_str(&escape(d));
     }
     s.push('\n');
-    s
+    Ok(s)
 }
 
 /// A path as Make and Ninja read it in a depfile: spaces and `#` backslash-escaped, `$`
@@ -588,7 +603,10 @@ pub(crate) fn build(mut args: BuildArgs) -> ExitCode {
     });
     let results: Vec<MapResult> = results.into_iter().flatten().collect();
     if args.diag.format == Format::Sarif {
-        crate::print_sarif(results.iter().filter_map(|r| r.checked.as_ref()));
+        crate::print_sarif(
+            results.iter().filter_map(|r| r.checked.as_ref()),
+            args.diag.max_diagnostics,
+        );
     }
     let code = results.iter().map(|r| r.code).max().unwrap_or(0);
     if code == 0 {
@@ -614,7 +632,7 @@ fn finish(args: &BuildArgs, results: &[MapResult]) -> Result<(), String> {
             Some(stamp) => vec![stamp.clone()],
             None => outputs.clone(),
         };
-        let text = depfile_text(&targets, &deps);
+        let text = depfile_text(&targets, &deps)?;
         // Always rewritten, as compilers do: CMake's Makefile generator reads a depfile
         // again only when it is newer than what it consolidated last time.
         output::write_atomic(depfile, text.as_bytes())
@@ -648,6 +666,16 @@ mod tests {
     }
 
     #[test]
+    fn depfile_refuses_control_characters() {
+        let e = depfile_text(
+            &[PathBuf::from("out/x.stamp")],
+            &[PathBuf::from("m\nx.yaml")],
+        );
+        assert!(e.unwrap_err().contains("`m\\nx.yaml`"));
+        assert!(depfile_text(&[PathBuf::from("a\tb")], &[]).is_err());
+    }
+
+    #[test]
     fn depfile_escapes() {
         let t = depfile_text(
             &[PathBuf::from("out/a b.stamp")],
@@ -655,7 +683,8 @@ mod tests {
                 PathBuf::from("m#1.building.yaml"),
                 PathBuf::from("t/$x.png"),
             ],
-        );
+        )
+        .unwrap();
         assert_eq!(
             t,
             "out/a\\ b.stamp: \\\n  m\\#1.building.yaml \\\n  t/$$x.png\n"

@@ -243,13 +243,17 @@ pub(crate) fn run(args: &InfoArgs) -> ExitCode {
         }
     };
     // Errors matter (the listing may be incomplete); warnings are `mapc check`'s business.
-    let errors: Vec<_> = checked
+    let errors: Vec<&mapc_ir::Diagnostic> = checked
         .diagnostics
         .iter()
         .filter(|d| d.is_error())
-        .cloned()
         .collect();
-    report::emit(&checked.parsed.sources, &errors);
+    report::emit(
+        &checked.parsed.sources,
+        &errors,
+        &[],
+        report::Style::Snippets,
+    );
     if !errors.is_empty() {
         summary_line(&args.input, &checked);
     }

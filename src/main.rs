@@ -2,7 +2,9 @@
 //! 2 usage or I/O error.
 
 mod build;
+mod escape;
 mod info;
+mod limit;
 mod output;
 mod render_cmd;
 mod replay;
@@ -11,6 +13,7 @@ mod report_json;
 mod sanity;
 mod signals;
 mod sim_cmd;
+mod snippet;
 mod texture;
 mod world_cmd;
 
@@ -55,6 +58,14 @@ struct DiagOpts {
     /// Do not print the success line (what was written) on stderr.
     #[arg(short, long)]
     quiet: bool,
+    /// Show at most N diagnostics per code, then one line with the number found (`all`:
+    /// show every one).
+    #[arg(long, value_name = "N|all", default_value = "20")]
+    max_diagnostics: limit::MaxDiagnostics,
+    /// Show source snippets in `nav`, `gazebo`, `ignition` and `classic` too (they print
+    /// one `file:line:col` line per diagnostic otherwise).
+    #[arg(long)]
+    verbose: bool,
 }
 
 #[derive(Subcommand)]
@@ -255,14 +266,24 @@ fn load_and_check(input: &Path) -> Result<Checked, String> {
     })
 }
 
-fn emit(c: &Checked, format: Format) {
-    match format {
-        Format::Human => report::emit(&c.parsed.sources, &c.diagnostics),
-        Format::Json => print!(
-            "{}",
-            report_json::json_lines(&c.parsed.sources, &c.diagnostics)
-        ),
-        Format::Sarif => print!("{}", report_json::sarif(&c.parsed.sources, &c.diagnostics)),
+/// Prints the diagnostics of `c` in the chosen format, at most `--max-diagnostics` per
+/// code (SARIF is printed by the caller, once for all maps). `style` is the command's
+/// human style; `--verbose` always gives snippets.
+fn emit(c: &Checked, opts: &DiagOpts, style: report::Style) {
+    let (shown, cut) = limit::select(&c.diagnostics, opts.max_diagnostics);
+    let style = if opts.verbose {
+        report::Style::Snippets
+    } else {
+        style
+    };
+    match opts.format {
+        Format::Human => report::emit(&c.parsed.sources, &shown, &cut, style),
+        Format::Json => {
+            let mut out = std::io::BufWriter::new(std::io::stdout().lock());
+            // Nothing useful to do if stdout is gone (e.g. a closed pipe).
+            let _ = report_json::write_json_lines(&mut out, &c.parsed.sources, &shown, &cut);
+        }
+        Format::Sarif => print!("{}", report_json::sarif(&c.parsed.sources, &shown, &cut)),
     }
 }
 
@@ -284,7 +305,8 @@ fn nav(input: &Path, output_dir: &Path, opts: &DiagOpts) -> ExitCode {
         kind: "nav graph",
         none: "the map has no lanes",
     };
-    run_command(input, output_dir, opts, &cmd, |b| {
+    // A drop-in for `building_map_generator nav`: one line per diagnostic in build logs.
+    run_command(input, output_dir, opts, &cmd, report::Style::OneLine, |b| {
         let files = mapc_backends::nav_graphs(b);
         let n = files.len();
         (files, Vec::new(), n)
@@ -358,6 +380,7 @@ fn run_command(
     out_dir: &Path,
     opts: &DiagOpts,
     cmd: &Cmd,
+    style: report::Style,
     produce: impl FnOnce(&mapc_ir::Building) -> (Vec<mapc_backends::OutputFile>, Vec<Diagnostic>, usize),
 ) -> ExitCode {
     if let Err(e) = sanity::output_dir(out_dir, cmd.role) {
@@ -381,7 +404,7 @@ fn run_command(
             checked.diagnostics.extend(diags);
         }
     }
-    emit(&checked, opts.format);
+    emit(&checked, opts, style);
     if opts.format == Format::Human {
         summary_line(input, &checked);
     }
@@ -448,18 +471,25 @@ fn gltf(
         kind: "level mesh",
         none: "the map has no floors or walls",
     };
-    run_command(input, output_dir, opts, &cmd, |b| {
-        let meshes = build::all_level_meshes(b);
-        let n = meshes.iter().map(|(_, m)| m.all().count()).sum();
-        let names = build::gltf_texture_names(&meshes);
-        let (textures, diags) =
-            textures_for(b, names.iter().map(String::as_str), texture_path, input);
-        (
-            build::gltf_files(b, &meshes, &textures, per_level),
-            diags,
-            n,
-        )
-    })
+    run_command(
+        input,
+        output_dir,
+        opts,
+        &cmd,
+        report::Style::Snippets,
+        |b| {
+            let meshes = build::all_level_meshes(b);
+            let n = meshes.iter().map(|(_, m)| m.all().count()).sum();
+            let names = build::gltf_texture_names(&meshes);
+            let (textures, diags) =
+                textures_for(b, names.iter().map(String::as_str), texture_path, input);
+            (
+                build::gltf_files(b, &meshes, &textures, per_level),
+                diags,
+                n,
+            )
+        },
+    )
 }
 
 /// Texture images for `names`, searched on the texture path (`--texture-path` directories,
@@ -481,7 +511,7 @@ fn meshes(input: &Path, model_dir: &Path, texture_path: &[PathBuf], opts: &DiagO
         kind: "level mesh",
         none: "the map has no floors or walls",
     };
-    run_command(input, model_dir, opts, &cmd, |b| {
+    run_command(input, model_dir, opts, &cmd, report::Style::Snippets, |b| {
         let meshes = build::all_level_meshes(b);
         let n = meshes.iter().map(|(_, m)| m.all().count()).sum();
         let names = build::mesh_texture_names(&meshes);
@@ -501,7 +531,7 @@ fn check(inputs: &[PathBuf], opts: &DiagOpts) -> ExitCode {
                     code = code.max(1);
                 }
                 if opts.format != Format::Sarif {
-                    emit(&c, opts.format);
+                    emit(&c, opts, report::Style::Snippets);
                 }
                 if opts.format == Format::Human {
                     summary_line(input, &c);
@@ -519,13 +549,14 @@ fn check(inputs: &[PathBuf], opts: &DiagOpts) -> ExitCode {
         }
     }
     if opts.format == Format::Sarif {
-        print_sarif(&all);
+        print_sarif(&all, opts.max_diagnostics);
     }
     ExitCode::from(code)
 }
 
-/// One SARIF log for several maps: sources merged, file ids re-based.
-fn print_sarif<'a>(all: impl IntoIterator<Item = &'a Checked>) {
+/// One SARIF log for several maps: sources merged, file ids re-based, at most `max`
+/// diagnostics per code over all maps.
+fn print_sarif<'a>(all: impl IntoIterator<Item = &'a Checked>, max: limit::MaxDiagnostics) {
     let mut sources = Vec::new();
     let mut diags = Vec::new();
     for c in all {
@@ -540,5 +571,6 @@ fn print_sarif<'a>(all: impl IntoIterator<Item = &'a Checked>) {
             diags.push(d);
         }
     }
-    print!("{}", report_json::sarif(&sources, &diags));
+    let (shown, cut) = limit::select(&diags, max);
+    print!("{}", report_json::sarif(&sources, &shown, &cut));
 }

@@ -40,6 +40,10 @@ pub(crate) struct RenderArgs {
     /// No success line on stderr.
     #[arg(short, long)]
     quiet: bool,
+    /// Show at most N diagnostics per code on stderr (`all`: every one); the pictures
+    /// always draw every one.
+    #[arg(long, value_name = "N|all", default_value = "20")]
+    max_diagnostics: crate::limit::MaxDiagnostics,
 }
 
 pub(crate) fn run(args: &RenderArgs) -> ExitCode {
@@ -50,7 +54,14 @@ pub(crate) fn run(args: &RenderArgs) -> ExitCode {
             return ExitCode::from(2);
         }
     };
-    emit(&checked, Format::Human);
+    let opts = crate::DiagOpts {
+        format: Format::Human,
+        deny_warnings: false,
+        quiet: args.quiet,
+        max_diagnostics: args.max_diagnostics,
+        verbose: true,
+    };
+    emit(&checked, &opts, crate::report::Style::Snippets);
     summary_line(&args.input, &checked);
     let has_errors = checked.failed(false);
     let Some(b) = checked.parsed.building.as_ref() else {

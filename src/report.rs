@@ -1,5 +1,8 @@
 //! Human rendering of diagnostics with source snippets (codespan-reporting).
 
+use crate::escape::display_safe;
+use crate::limit::CodeCount;
+use crate::snippet::{Excerpts, SourceLines};
 use codespan_reporting::diagnostic::{
     Diagnostic as CsDiagnostic, Label as CsLabel, Severity as CsSeverity,
 };
@@ -12,40 +15,76 @@ use mapc_frontend::SourceFile;
 use mapc_ir::{Diagnostic, Severity};
 use std::io::{IsTerminal, Write};
 
-/// Renders diagnostics to stderr, colour only on a terminal.
+/// How a diagnostic is printed in human form.
+#[derive(Clone, Copy, PartialEq, Eq)]
+pub enum Style {
+    /// With source snippets (`check`, `gltf`, `meshes`, `build`, and `--verbose`).
+    Snippets,
+    /// One `file:line:col: severity[code]: message` line (the drop-in commands).
+    OneLine,
+}
+
+/// Renders `diags` to stderr as they come (one write per diagnostic, so memory holds one
+/// rendered diagnostic, not the report), then one line per code in `cut` stating how many
+/// were found. Colour only on a terminal.
 ///
-/// Everything is rendered into one buffer and written at once: the renderer issues many
-/// small writes (a colour change, a gutter, a fragment of a line), and stderr is
-/// unbuffered, so writing straight to it costs thousands of system calls per map.
-pub fn emit(sources: &[SourceFile], diags: &[Diagnostic]) {
-    if diags.is_empty() {
+/// Each diagnostic is rendered into a buffer first: the renderer issues many small writes
+/// (a colour change, a gutter, a fragment of a line), and stderr is unbuffered.
+pub fn emit(sources: &[SourceFile], diags: &[&Diagnostic], cut: &[CodeCount], style: Style) {
+    if diags.is_empty() && cut.is_empty() {
         return;
     }
     let mut files = SimpleFiles::new();
     for s in sources {
-        files.add(s.name.as_str(), s.text.as_str());
+        files.add(display_safe(&s.name), s.text.as_str());
     }
+    let lines = SourceLines::new(sources);
     let choice = if std::io::stderr().is_terminal() {
         ColorChoice::Auto
     } else {
         ColorChoice::Never
     };
     let writer = BufferWriter::stderr(choice);
-    let mut out = writer.buffer();
     let config = term::Config::default();
     for d in diags {
-        let cs = to_codespan(sources, d);
         let mut one = writer.buffer();
-        // Writes to a memory buffer do not fail.
-        let _ = match term::emit_to_write_style(&mut one, &config, &files, &cs) {
-            Ok(()) => out.write_all(one.as_slice()),
-            // A span that does not fit its file (should not happen): plain fallback, in
-            // place of whatever was rendered before the failure.
-            Err(_) => writeln!(out, "{}", one_line(sources, d)),
-        };
+        if style == Style::OneLine {
+            let _ = writeln!(one, "{}", one_line(sources, d));
+        } else {
+            let cs = to_codespan(sources, d);
+            let labels: Vec<(usize, std::ops::Range<usize>)> = cs
+                .labels
+                .iter()
+                .map(|l| (l.file_id, l.range.clone()))
+                .collect();
+            let rendered = if lines.needs_excerpt(&labels) {
+                // Long lines cut, control and bidi characters escaped.
+                let (excerpts, ranges) = Excerpts::new(&lines, &labels);
+                let mut cs = cs;
+                for (l, r) in cs.labels.iter_mut().zip(ranges) {
+                    l.range = r;
+                }
+                term::emit_to_write_style(&mut one, &config, &excerpts, &cs)
+            } else {
+                term::emit_to_write_style(&mut one, &config, &files, &cs)
+            };
+            if rendered.is_err() {
+                // A span that does not fit its file (should not happen): plain fallback,
+                // in place of whatever was rendered before the failure.
+                one = writer.buffer();
+                let _ = writeln!(one, "{}", one_line(sources, d));
+            }
+        }
+        // Nothing useful to do if stderr is gone (e.g. a closed pipe).
+        let _ = writer.print(&one);
     }
-    // Nothing useful to do if stderr is gone (e.g. a closed pipe).
-    let _ = writer.print(&out);
+    if !cut.is_empty() {
+        let mut one = writer.buffer();
+        for c in cut {
+            let _ = writeln!(one, "{}", crate::limit::summary_text(c));
+        }
+        let _ = writer.print(&one);
+    }
 }
 
 fn to_codespan(sources: &[SourceFile], d: &Diagnostic) -> CsDiagnostic<usize> {
@@ -56,7 +95,7 @@ fn to_codespan(sources: &[SourceFile], d: &Diagnostic) -> CsDiagnostic<usize> {
     let file = d.span.file.0 as usize;
     let mut cs = CsDiagnostic::new(severity).with_code(d.code);
     if d.span.is_known() && file < sources.len() {
-        cs = cs.with_message(&d.message);
+        cs = cs.with_message(display_safe(&d.message));
         let mut labels = vec![CsLabel::primary(
             file,
             d.span.start as usize..d.span.end.max(d.span.start) as usize,
@@ -68,7 +107,7 @@ fn to_codespan(sources: &[SourceFile], d: &Diagnostic) -> CsDiagnostic<usize> {
                         l.span.file.0 as usize,
                         l.span.start as usize..l.span.end as usize,
                     )
-                    .with_message(&l.message),
+                    .with_message(display_safe(&l.message)),
                 );
             }
         }
@@ -76,10 +115,14 @@ fn to_codespan(sources: &[SourceFile], d: &Diagnostic) -> CsDiagnostic<usize> {
     } else {
         // No position (a whole-file problem): name the file in the message.
         let name = sources.first().map_or("<input>", |s| s.name.as_str());
-        cs = cs.with_message(format!("{name}: {}", d.message));
+        cs = cs.with_message(format!(
+            "{}: {}",
+            display_safe(name),
+            display_safe(&d.message)
+        ));
     }
     if let Some(h) = &d.help {
-        cs = cs.with_notes(vec![format!("help: {h}")]);
+        cs = cs.with_notes(vec![format!("help: {}", display_safe(h))]);
     }
     cs
 }
@@ -95,10 +138,19 @@ pub fn one_line(sources: &[SourceFile], d: &Diagnostic) -> String {
     };
     if d.span.is_known() {
         format!(
-            "{name}:{}:{}: {sev}[{}]: {}",
-            d.span.line, d.span.col, d.code, d.message
+            "{}:{}:{}: {sev}[{}]: {}",
+            display_safe(name),
+            d.span.line,
+            d.span.col,
+            d.code,
+            display_safe(&d.message)
         )
     } else {
-        format!("{name}: {sev}[{}]: {}", d.code, d.message)
+        format!(
+            "{}: {sev}[{}]: {}",
+            display_safe(name),
+            d.code,
+            display_safe(&d.message)
+        )
     }
 }

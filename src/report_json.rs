@@ -1,10 +1,14 @@
 //! Machine-readable diagnostics: JSON Lines for editors and scripts, SARIF 2.1.0 for
 //! code-scanning tools. The JSON schema is documented in docs/diagnostics.md and is
-//! stable: fields are only ever added.
+//! stable: fields are only ever added. Messages, labels and help are display-safe (control
+//! and bidi characters escaped), as editors and code-scanning pages show them to people.
 
+use crate::escape::display_safe;
+use crate::limit::CodeCount;
 use mapc_frontend::SourceFile;
 use mapc_ir::{Diagnostic, Severity, Span};
 use serde_json::{json, Value};
+use std::io::Write;
 
 /// (line, column) of the end of a span, 1-based, column in characters.
 fn end_position(sources: &[SourceFile], s: Span) -> (u32, u32) {
@@ -61,28 +65,48 @@ pub fn diagnostic_json(sources: &[SourceFile], d: &Diagnostic) -> Value {
         "severity": severity(d),
         "code": d.code,
         "name": crate::code_name(d.code),
-        "message": d.message,
+        "message": display_safe(&d.message),
         "location": location(sources, d.span),
         "labels": d.labels.iter().map(|l| {
             let mut loc = location(sources, l.span);
-            loc["message"] = json!(l.message);
+            loc["message"] = json!(display_safe(&l.message));
             loc
         }).collect::<Vec<_>>(),
     });
     if let Some(h) = &d.help {
-        v["help"] = json!(h);
+        v["help"] = json!(display_safe(h));
     }
     v
 }
 
-/// JSON Lines: one object per line.
-pub fn json_lines(sources: &[SourceFile], diags: &[Diagnostic]) -> String {
-    let mut out = String::new();
+/// The summary record of a code whose diagnostics were not all shown (documented in
+/// docs/diagnostics.md): `{"kind": "summary", "code", "name", "found", "shown", "message"}`.
+pub fn summary_json(c: &CodeCount) -> Value {
+    json!({
+        "kind": "summary",
+        "code": c.code,
+        "name": crate::code_name(c.code),
+        "found": c.found,
+        "shown": c.shown,
+        "message": crate::limit::summary_text(c),
+    })
+}
+
+/// JSON Lines to `out`, one object per line as it is made, then one summary record per
+/// code in `cut`.
+pub fn write_json_lines(
+    out: &mut impl Write,
+    sources: &[SourceFile],
+    diags: &[&Diagnostic],
+    cut: &[CodeCount],
+) -> std::io::Result<()> {
     for d in diags {
-        out.push_str(&diagnostic_json(sources, d).to_string());
-        out.push('\n');
+        writeln!(out, "{}", diagnostic_json(sources, d))?;
     }
-    out
+    for c in cut {
+        writeln!(out, "{}", summary_json(c))?;
+    }
+    out.flush()
 }
 
 /// Where a code's documentation is, as an absolute URI (SARIF viewers do not resolve
@@ -144,7 +168,10 @@ fn artifact_location(name: &str) -> Value {
 }
 
 /// A SARIF 2.1.0 log with one run.
-pub fn sarif(sources: &[SourceFile], diags: &[Diagnostic]) -> String {
+///
+/// Codes in `cut` get a tool notification in the run's invocation (`level: note`, the
+/// code as `descriptor.id`, `properties.found` and `properties.shown`).
+pub fn sarif(sources: &[SourceFile], diags: &[&Diagnostic], cut: &[CodeCount]) -> String {
     let mut codes: Vec<&str> = diags.iter().map(|d| d.code).collect();
     codes.sort_unstable();
     codes.dedup();
@@ -171,10 +198,10 @@ pub fn sarif(sources: &[SourceFile], diags: &[Diagnostic]) -> String {
                     "endColumn": ec,
                 });
             }
-            let mut text = d.message.clone();
+            let mut text = display_safe(&d.message).into_owned();
             if let Some(h) = &d.help {
                 text.push_str("\nhelp: ");
-                text.push_str(h);
+                text.push_str(&display_safe(h));
             }
             json!({
                 "ruleId": d.code,
@@ -189,7 +216,7 @@ pub fn sarif(sources: &[SourceFile], diags: &[Diagnostic]) -> String {
             })
         })
         .collect();
-    let log = json!({
+    let mut log = json!({
         "$schema": "https://json.schemastore.org/sarif-2.1.0.json",
         "version": "2.1.0",
         "runs": [{
@@ -209,6 +236,23 @@ pub fn sarif(sources: &[SourceFile], diags: &[Diagnostic]) -> String {
             "results": results,
         }],
     });
+    if !cut.is_empty() {
+        let notes: Vec<Value> = cut
+            .iter()
+            .map(|c| {
+                json!({
+                    "level": "note",
+                    "descriptor": { "id": c.code },
+                    "message": { "text": crate::limit::summary_text(c) },
+                    "properties": { "found": c.found, "shown": c.shown },
+                })
+            })
+            .collect();
+        log["runs"][0]["invocations"] = json!([{
+            "executionSuccessful": true,
+            "toolExecutionNotifications": notes,
+        }]);
+    }
     let mut s = serde_json::to_string_pretty(&log).unwrap_or_default();
     s.push('\n');
     s

@@ -177,9 +177,14 @@ fn read_scenario(path: &Path, file: FileId) -> Result<(String, Option<Diagnostic
 }
 
 fn emit(sources: &[SourceFile], diags: &[Diagnostic], format: SimFormat) {
+    // A scenario's diagnostics are few (it is small and hand-written): all are shown.
+    let all: Vec<&Diagnostic> = diags.iter().collect();
     match format {
-        SimFormat::Human => report::emit(sources, diags),
-        SimFormat::Json => print!("{}", report_json::json_lines(sources, diags)),
+        SimFormat::Human => report::emit(sources, &all, &[], report::Style::Snippets),
+        SimFormat::Json => {
+            let mut out = std::io::BufWriter::new(std::io::stdout().lock());
+            let _ = report_json::write_json_lines(&mut out, sources, &all, &[]);
+        }
     }
 }
 

@@ -122,7 +122,8 @@ pub(crate) fn run(flavour: Flavour, args: &WorldArgs) -> ExitCode {
         }
     }
     checked.diagnostics.extend(texture_diags);
-    emit(&checked, args.diag.format);
+    // A drop-in for `building_map_generator`: one line per diagnostic in build logs.
+    emit(&checked, &args.diag, crate::report::Style::OneLine);
     if args.diag.format == Format::Human {
         summary_line(&args.input, &checked);
     }

@@ -156,6 +156,31 @@ formats, chosen with `--format`:
   are only ever added, never renamed or removed.
 - `sarif`: one SARIF 2.1.0 log on stdout (all inputs in one run), for code-scanning tools.
 
+**How many are shown.** At most 20 diagnostics per code are shown (`--max-diagnostics N`
+changes the number, `--max-diagnostics all` shows every one; in the style of clang's
+`-ferror-limit`). For each code with more, every format states the true total once, after
+the diagnostics:
+
+- `human`: one line per code,
+  `W0207 unconnected-near-waypoints: 3,046 found, 20 shown; --max-diagnostics all to see them`
+  (the per-map total line that follows still counts every diagnostic).
+- `json`: one summary record per code, after the diagnostics; it is told apart from a
+  diagnostic by its `kind`:
+
+  ```json
+  {"kind": "summary", "code": "W0207", "name": "unconnected-near-waypoints",
+   "found": 3046, "shown": 20, "message": "W0207 unconnected-near-waypoints: 3,046 found, ..."}
+  ```
+- `sarif`: `runs[0].invocations[0].toolExecutionNotifications`, one per code, with
+  `level: "note"`, `descriptor.id` = the code, `properties.found` and `properties.shown`.
+
+`nav`, `gazebo`, `ignition` and `classic`, the drop-ins for `building_map_generator` that
+build systems run, print one `file:line:col: severity[code]: message` line per diagnostic
+in `human` format (source snippets with `--verbose`); `check` and the other commands print
+snippets. Control and bidirectional-control characters in messages and snippets are shown
+escaped (`\t`, `\u{202e}`), and a source line longer than 160 characters is cut around the
+underlined part (`…`).
+
 Exit codes: 0 no errors (warnings allowed), 1 at least one error (or a warning with
 `--deny-warnings`), 2 usage or I/O error.
 "#;

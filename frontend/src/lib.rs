@@ -199,13 +199,16 @@ fn load_into(
             return Ok(None);
         }
     };
+    if !is_project_file(path) {
+        // Parsed from the kept source: no second copy of a large file.
+        sources.push(SourceFile { name, text });
+        let text = &sources[sources.len() - 1].text;
+        return Ok(parse_into(file, text, diags));
+    }
     sources.push(SourceFile {
         name,
         text: text.clone(),
     });
-    if !is_project_file(path) {
-        return Ok(parse_into(file, &text, diags));
-    }
     // Legacy project file: {building: {filename: x.building.yaml}, ...}.
     let root = match yaml::parse(&text, file) {
         Ok(r) => r,

@@ -350,20 +350,34 @@ impl Lower<'_> {
         let Some(entries) = self.map(node, format_args!("the parameters of {what}")) else {
             return (out, invalid);
         };
+        // Name -> position in `out`: a later duplicate replaces the earlier one in place,
+        // without a scan per parameter (maps are untrusted: a lane may have 10^5 of them).
+        let mut position: std::collections::HashMap<&str, usize> = std::collections::HashMap::new();
+        out.0.reserve_exact(entries.len());
         for (k, v) in entries {
             let Some(name) = k.key_text() else {
                 self.wrong_type(k, "a parameter name", "a string");
                 continue;
             };
             match self.param_value(v, name) {
-                Some(value) => out.insert(Param {
-                    name: name.to_string(),
-                    value,
-                    span: v.span,
-                }),
+                Some(value) => {
+                    let p = Param {
+                        name: name.to_string(),
+                        value,
+                        span: v.span,
+                    };
+                    match position.get(name) {
+                        Some(&i) => out.0[i] = p,
+                        None => {
+                            position.insert(name, out.0.len());
+                            out.0.push(p);
+                        }
+                    }
+                }
                 None => invalid.push(name.to_string()),
             }
         }
+        out.0.shrink_to_fit();
         (out, invalid)
     }
 
@@ -628,6 +642,7 @@ impl Lower<'_> {
                 .seq(vs, &format!("the vertices of {what}"))
                 .unwrap_or(&[]);
             slots.reserve(list.len());
+            b.vertices.reserve(list.len());
             for v in list {
                 let h = self.vertex(lh, v).map(|vx| {
                     let h = b.vertices.append(vx, v.span);
@@ -652,7 +667,9 @@ impl Lower<'_> {
             out
         };
 
-        for e in edges(self, b, "lanes") {
+        let lanes = edges(self, b, "lanes");
+        b.lanes.reserve(lanes.len());
+        for e in lanes {
             let span = e.span;
             if let Some(lane) = self.lane(lh, e) {
                 let h = b.lanes.append(lane, span);

@@ -85,6 +85,11 @@ impl<T> Arena<T> {
         self.spans.push(span);
         h
     }
+    /// Room for `additional` more elements (large maps: no doubling slack).
+    pub fn reserve(&mut self, additional: usize) {
+        self.items.reserve_exact(additional);
+        self.spans.reserve_exact(additional);
+    }
     pub fn len(&self) -> usize {
         self.items.len()
     }

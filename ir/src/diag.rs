@@ -72,3 +72,28 @@ impl Diagnostic {
 pub fn has_errors(diags: &[Diagnostic]) -> bool {
     diags.iter().any(Diagnostic::is_error)
 }
+
+/// A count with thousands separators, as messages print them: `29,990`.
+pub fn count_text(n: usize) -> String {
+    let digits = n.to_string();
+    let mut out = String::with_capacity(digits.len() + digits.len() / 3);
+    for (i, c) in digits.chars().enumerate() {
+        if i > 0 && (digits.len() - i) % 3 == 0 {
+            out.push(',');
+        }
+        out.push(c);
+    }
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    #[test]
+    fn count_text() {
+        assert_eq!(super::count_text(0), "0");
+        assert_eq!(super::count_text(999), "999");
+        assert_eq!(super::count_text(1000), "1,000");
+        assert_eq!(super::count_text(24878), "24,878");
+        assert_eq!(super::count_text(1234567), "1,234,567");
+    }
+}

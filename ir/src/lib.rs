@@ -14,7 +14,7 @@ mod validate;
 
 pub use arena::{Arena, Handle};
 pub use building::*;
-pub use diag::{has_errors, Code, Diagnostic, Label, Severity};
+pub use diag::{count_text, has_errors, Code, Diagnostic, Label, Severity};
 pub use geom::segment_intersection;
 pub use params::{Param, ParamValue, Params};
 pub use span::{FileId, Span};

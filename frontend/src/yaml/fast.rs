@@ -388,6 +388,7 @@ impl<'a> P<'a> {
         let end = items
             .last()
             .map_or(start.start, |(_, v)| v.span.end.max(v.span.start));
+        items.shrink_to_fit();
         Ok(Node {
             kind: Kind::Map(items),
             span: Span { end, ..start },
@@ -438,6 +439,7 @@ impl<'a> P<'a> {
         let end = items
             .last()
             .map_or(start.start, |v: &Node| v.span.end.max(v.span.start));
+        items.shrink_to_fit();
         Ok(Node {
             kind: Kind::Seq(items),
             span: Span { end, ..start },
@@ -688,6 +690,8 @@ impl<'a> P<'a> {
                     _ => return Err(Bail),
                 }
             }
+            // Trees of large maps hold millions of nodes: no spare capacity.
+            items.shrink_to_fit();
             Kind::Seq(items)
         } else {
             let mut items = Vec::new();
@@ -720,6 +724,7 @@ impl<'a> P<'a> {
                     _ => return Err(Bail),
                 }
             }
+            items.shrink_to_fit();
             Kind::Map(items)
         };
         self.pos += 1; // the closing bracket

@@ -14,6 +14,8 @@ pub struct Context<'a> {
     pub lanes_at_vertex: Vec<Vec<Handle<Lane>>>,
     /// For each vertex (by arena index): the lift whose shaft contains it on its level.
     pub lift_of_vertex: Vec<Option<Handle<Lift>>>,
+    /// For each vertex (by arena index): its index in its level's `vertices` list.
+    pub index_in_level: Vec<u32>,
 }
 
 impl<'a> Context<'a> {
@@ -28,16 +30,39 @@ impl<'a> Context<'a> {
             }
         }
         let mut lift_of_vertex = vec![None; b.vertices.len()];
+        let mut index_in_level = vec![0u32; b.vertices.len()];
+        for (_, level) in b.levels.iter() {
+            for (i, &vh) in level.vertices.iter().enumerate() {
+                index_in_level[vh.index()] = i as u32;
+            }
+        }
         for (lh, level) in b.levels.iter() {
             let lifts: Vec<Handle<Lift>> = b.lifts_on_level(lh).collect();
             if lifts.is_empty() {
                 continue;
             }
+            // The shafts' bounding boxes in a grid: each vertex meets only the shafts near it.
+            let boxes: Vec<(Vec2, Vec2)> = lifts
+                .iter()
+                .map(|&l| {
+                    let c = b.lifts[l].shaft_corners();
+                    let lo = c
+                        .iter()
+                        .fold(c[0], |m, p| Vec2::new(m.x.min(p.x), m.y.min(p.y)));
+                    let hi = c
+                        .iter()
+                        .fold(c[0], |m, p| Vec2::new(m.x.max(p.x), m.y.max(p.y)));
+                    let eps = Vec2::new(1e-6, 1e-6);
+                    (lo.minus(eps), hi.plus(eps))
+                })
+                .collect();
+            let mut grid = super::grid::BoxGrid::new(&boxes);
             for &vh in &level.vertices {
                 let p = b.vertices[vh].pos;
-                lift_of_vertex[vh.index()] = lifts
-                    .iter()
-                    .copied()
+                lift_of_vertex[vh.index()] = grid
+                    .candidates(p, p)
+                    .into_iter()
+                    .map(|i| lifts[i as usize])
                     .find(|&l| b.lifts[l].shaft_contains(p));
             }
         }
@@ -47,6 +72,7 @@ impl<'a> Context<'a> {
             lanes_by_graph,
             lanes_at_vertex,
             lift_of_vertex,
+            index_in_level,
         }
     }
 
@@ -62,11 +88,7 @@ impl<'a> Context<'a> {
     /// `name` or a description for unnamed vertices.
     pub fn vertex_label(&self, v: Handle<Vertex>) -> String {
         let vx = &self.b.vertices[v];
-        let idx = self.b.levels[vx.level]
-            .vertices
-            .iter()
-            .position(|&x| x == v)
-            .unwrap_or(0);
+        let idx = self.index_in_level[v.index()];
         if vx.name.is_empty() {
             format!("vertex {idx} of level `{}`", self.level_name(vx.level))
         } else {

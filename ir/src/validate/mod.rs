@@ -9,6 +9,7 @@
 mod context;
 mod doors;
 mod geometry;
+mod grid;
 mod lanes;
 mod lifts;
 mod names;

@@ -50,10 +50,13 @@ fn check(ctx: &Context, out: &mut Vec<Diagnostic>) {
         if floors.is_empty() {
             continue;
         }
+        let mut grid =
+            crate::validate::grid::BoxGrid::new(&floors.iter().map(|f| f.1).collect::<Vec<_>>());
         for &mh in &level.models {
             let model = &b.models[mh];
             let p = model.pos;
-            let on_floor = floors.iter().any(|(pts, (lo, hi))| {
+            let on_floor = grid.candidates(p, p).into_iter().any(|i| {
+                let (pts, (lo, hi)) = &floors[i as usize];
                 p.x >= lo.x && p.x <= hi.x && p.y >= lo.y && p.y <= hi.y && point_in_polygon(p, pts)
             });
             if !on_floor {

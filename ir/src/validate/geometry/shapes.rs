@@ -154,13 +154,30 @@ pub(crate) fn rings_overlap(a: &[Vec2], b: &[Vec2]) -> bool {
     if alo.x > bhi.x || blo.x > ahi.x || alo.y > bhi.y || blo.y > ahi.y {
         return false;
     }
-    if a.iter().any(|&p| point_in_polygon(p, b)) || b.iter().any(|&p| point_in_polygon(p, a)) {
+    // Crossing or touching edges, found through a grid of b's edges (no na × nb loop).
+    let (na, nb) = (a.len(), b.len());
+    let edge_box = |p: Vec2, q: Vec2| {
+        (
+            Vec2::new(p.x.min(q.x), p.y.min(q.y)),
+            Vec2::new(p.x.max(q.x), p.y.max(q.y)),
+        )
+    };
+    let b_edges: Vec<(Vec2, Vec2)> = (0..nb).map(|j| edge_box(b[j], b[(j + 1) % nb])).collect();
+    let mut grid = crate::validate::grid::BoxGrid::new(&b_edges);
+    let crossing = (0..na).any(|i| {
+        let (p, q) = (a[i], a[(i + 1) % na]);
+        let (lo, hi) = edge_box(p, q);
+        grid.candidates(lo, hi).into_iter().any(|j| {
+            let j = j as usize;
+            segments_meet(p, q, b[j], b[(j + 1) % nb]) != Meet::None
+        })
+    });
+    if crossing {
         return true;
     }
-    let (na, nb) = (a.len(), b.len());
-    (0..na).any(|i| {
-        (0..nb).any(|j| segments_meet(a[i], a[(i + 1) % na], b[j], b[(j + 1) % nb]) != Meet::None)
-    })
+    // No boundary point shared: one ring is inside the other or they are apart, which a
+    // vertex of each tells.
+    point_in_polygon(a[0], b) || point_in_polygon(b[0], a)
 }
 
 /// A floor or hole with a word for messages.
@@ -382,5 +399,24 @@ mod tests {
         }
         comb.extend([v(-1., 3000.), v(-1., 0.)]);
         assert_eq!(self_intersection(&comb), Simplicity::Unknown);
+    }
+
+    #[test]
+    fn ring_overlap_of_large_rings() {
+        // 20,000-corner rings: an n × n edge loop would take minutes in a debug build.
+        let circle = |r: f64, cx: f64| -> Vec<Vec2> {
+            (0..20_000)
+                .map(|i| {
+                    let a = std::f64::consts::TAU * i as f64 / 20_000.0;
+                    v(cx + r * a.cos(), r * a.sin())
+                })
+                .collect()
+        };
+        let big = circle(10.0, 0.0);
+        assert!(rings_overlap(&circle(5.0, 0.0), &big)); // inside
+        assert!(rings_overlap(&big, &circle(5.0, 0.0))); // contains
+        assert!(rings_overlap(&circle(5.0, 12.0), &big)); // crossing
+        assert!(!rings_overlap(&circle(5.0, 16.0), &circle(5.0, 0.0))); // apart
+        assert!(rings_overlap(&circle(5.0, 10.0), &circle(5.0, 0.0))); // touching
     }
 }

@@ -29,6 +29,7 @@
 //! ```
 
 use super::geom::{meet, point_segment_distance, segment_intersection, Bbox, Meet, TOUCH};
+use crate::validate::grid::BoxGrid;
 use crate::validate::{Context, Rule};
 use crate::{Diagnostic, Handle, Vec2, Vertex, Wall};
 
@@ -62,6 +63,18 @@ fn check(ctx: &Context, out: &mut Vec<Diagnostic>) {
             .map(|&d| (pos(b.doors[d].start), pos(b.doors[d].end)))
             .filter(|(p, q)| q.minus(*p).norm() >= TOUCH)
             .collect();
+        // Spatial indexes: a lane is tested against the walls and doors near it only.
+        let mut wall_grid =
+            BoxGrid::new(&walls.iter().map(|w| (w.3.lo, w.3.hi)).collect::<Vec<_>>());
+        let mut door_grid = BoxGrid::new(
+            &doors
+                .iter()
+                .map(|&(p, q)| {
+                    let bb = Bbox::of(p, q);
+                    (bb.lo, bb.hi)
+                })
+                .collect::<Vec<_>>(),
+        );
         for &lh in &level.lanes {
             let lane = &b.lanes[lh];
             let (a, z) = (pos(lane.start), pos(lane.end));
@@ -75,9 +88,10 @@ fn check(ctx: &Context, out: &mut Vec<Diagnostic>) {
             let mut in_doorway = |x: Vec2| {
                 crossed_doors
                     .get_or_insert_with(|| {
-                        doors
-                            .iter()
-                            .copied()
+                        door_grid
+                            .candidates(bbox.lo, bbox.hi)
+                            .into_iter()
+                            .map(|i| doors[i as usize])
                             .filter(|&(p, q)| segment_intersection(a, z, p, q).is_some())
                             .collect()
                     })
@@ -88,7 +102,8 @@ fn check(ctx: &Context, out: &mut Vec<Diagnostic>) {
             let mut hits: Vec<(f64, Handle<Wall>)> = Vec::new();
             // Wall ends lying on the lane: (point, wall, side of the wall's other end).
             let mut ends: Vec<(Vec2, Handle<Wall>, i8)> = Vec::new();
-            for &(w, p, q, wb) in &walls {
+            for i in wall_grid.candidates(bbox.lo, bbox.hi) {
+                let (w, p, q, wb) = walls[i as usize];
                 if !bbox.overlaps(&wb) {
                     continue;
                 }

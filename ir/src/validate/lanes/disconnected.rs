@@ -2,8 +2,9 @@
 //!
 //! **What:** the lanes of one graph form more than one connected piece (ignoring lane
 //! directions). Waypoints inside the same lift shaft on different levels count as
-//! connected, since robots ride the lift between them. One warning is given per piece
-//! other than the largest, at the first lane of that piece.
+//! connected, since robots ride the lift between them. One warning is given per graph, at
+//! the first lane of the first piece other than the largest, listing the pieces by size
+//! (the list is cut after a few: "… and 29,990 more pieces of 2").
 //!
 //! **Why it matters:** a fleet can only travel within one piece. Robots that start, charge
 //! or receive tasks in a smaller piece can never reach the rest of the building, and tasks
@@ -23,7 +24,7 @@
 //! ```
 
 use crate::validate::{Context, Rule};
-use crate::{Diagnostic, Handle, Lane, Level, Lift};
+use crate::{count_text, Diagnostic, Handle, Lane, Level, Lift};
 use std::collections::BTreeMap;
 
 pub(crate) static RULE: Rule = Rule {
@@ -94,9 +95,10 @@ fn check(ctx: &Context, out: &mut Vec<Diagnostic>) {
             size[r] += 1;
         }
         let mut pieces: Vec<(usize, usize, Handle<Lane>)> = Vec::new();
+        let mut listed = vec![false; verts.len()];
         for &l in lanes {
             let r = uf.find(local[b.lanes[l].start.index()]);
-            if !pieces.iter().any(|p| p.0 == r) {
+            if !std::mem::replace(&mut listed[r], true) {
                 pieces.push((r, size[r], l));
             }
         }
@@ -114,36 +116,74 @@ fn check(ctx: &Context, out: &mut Vec<Diagnostic>) {
             .map_or(0, |(i, _)| i);
         let mut sizes: Vec<usize> = pieces.iter().map(|p| p.1).collect();
         sizes.sort_unstable_by(|x, y| y.cmp(x));
-        let sizes = sizes
-            .iter()
-            .map(|s| s.to_string())
-            .collect::<Vec<_>>()
-            .join(", ");
-        for (i, &(_, n, first)) in pieces.iter().enumerate() {
-            if i == main {
-                continue;
-            }
-            out.push(
-                Diagnostic::warning(
-                    RULE.code,
-                    ctx.lane_span(first),
-                    format!(
-                        "graph {graph} falls apart into {} pieces (of {sizes} waypoints); this \
-                         lane belongs to a piece of {n} waypoint{} that robots cannot reach from \
-                         the largest piece of {} waypoints",
-                        pieces.len(),
-                        if n == 1 { "" } else { "s" },
-                        pieces[main].1,
-                    ),
-                )
-                .with_label(ctx.lane_span(pieces[main].2), "a lane of the largest piece")
-                .with_help(
-                    "add the missing lane, or merge vertices that should be one waypoint; use \
-                     another graph_idx if the pieces are meant for different fleets",
-                ),
+        let sizes = sizes_text(&sizes);
+        let plural = |n: usize| if n == 1 { "" } else { "s" };
+        let mut small = pieces.iter().enumerate().filter(|(i, _)| *i != main);
+        let Some((_, &(_, n, first))) = small.next() else {
+            continue;
+        };
+        let message = if pieces.len() == 2 {
+            format!(
+                "graph {graph} falls apart into 2 pieces (of {sizes} waypoints); this lane \
+                 belongs to a piece of {n} waypoint{} that robots cannot reach from the \
+                 largest piece of {} waypoints",
+                plural(n),
+                pieces[main].1,
+            )
+        } else {
+            format!(
+                "graph {graph} falls apart into {} pieces (of {sizes} waypoints); robots \
+                 cannot reach the largest piece of {} waypoints from this lane's piece of {n} \
+                 waypoint{} nor from the {} other smaller pieces",
+                count_text(pieces.len()),
+                pieces[main].1,
+                plural(n),
+                count_text(pieces.len() - 2),
+            )
+        };
+        let mut d = Diagnostic::warning(RULE.code, ctx.lane_span(first), message)
+            .with_label(ctx.lane_span(pieces[main].2), "a lane of the largest piece");
+        for (_, &(_, n, l)) in small.take(MAX_LABELS) {
+            d = d.with_label(
+                ctx.lane_span(l),
+                format!("a lane of another piece of {n} waypoint{}", plural(n)),
             );
         }
+        out.push(d.with_help(
+            "add the missing lane, or merge vertices that should be one waypoint; use \
+             another graph_idx if the pieces are meant for different fleets",
+        ));
     }
+}
+
+/// Labels for at most this many other small pieces.
+const MAX_LABELS: usize = 3;
+/// Sizes listed one by one before the rest is summed up.
+const MAX_SIZES: usize = 8;
+
+/// "5, 3, 2" or, for many pieces (sizes sorted, largest first), "1000, 2, … and 29,990
+/// more pieces of 2" (or "of 2 to 5").
+fn sizes_text(sizes: &[usize]) -> String {
+    let shown: Vec<String> = sizes
+        .iter()
+        .take(MAX_SIZES)
+        .map(|s| s.to_string())
+        .collect();
+    let mut text = shown.join(", ");
+    let rest = &sizes[shown.len()..];
+    if let (Some(&hi), Some(&lo)) = (rest.first(), rest.last()) {
+        let range = if hi == lo {
+            hi.to_string()
+        } else {
+            format!("{lo} to {hi}")
+        };
+        text.push_str(&format!(
+            " … and {} more piece{} of {range}",
+            count_text(rest.len()),
+            if rest.len() == 1 { "" } else { "s" }
+        ));
+    }
+    text
 }
 
 #[cfg(test)]
@@ -165,7 +205,7 @@ mod tests {
                 (2, 3, 0, true),
                 (4, 5, 0, true)
             ])),
-            2
+            1
         );
         // Different graphs are separate fleets.
         assert_eq!(count(&lanes_map(&[(0, 1, 0, true), (2, 3, 1, true)])), 0);
@@ -184,6 +224,39 @@ mod tests {
             d[0].message.contains("2 pieces (of 3, 2 waypoints)"),
             "{}",
             d[0].message
+        );
+    }
+
+    #[test]
+    fn many_pieces_are_one_warning_with_a_cut_list() {
+        let lanes: Vec<(usize, usize, i64, bool)> =
+            (0..3000).map(|i| (2 * i, 2 * i + 1, 0, true)).collect();
+        let b = lanes_map(&lanes);
+        let d: Vec<_> = crate::validate(&b)
+            .into_iter()
+            .filter(|d| d.code == "W0208")
+            .collect();
+        assert_eq!(d.len(), 1);
+        assert!(
+            d[0].message.contains(
+                "falls apart into 3,000 pieces (of 2, 2, 2, 2, 2, 2, 2, 2 … and 2,992 more \
+                 pieces of 2 waypoints)"
+            ),
+            "{}",
+            d[0].message
+        );
+        assert!(d[0].message.len() < 400);
+        assert_eq!(d[0].labels.len(), 4);
+    }
+
+    #[test]
+    fn sizes_text_cuts_ranges() {
+        assert_eq!(super::sizes_text(&[3, 2]), "3, 2");
+        let mut v = vec![9, 8, 7, 6, 5, 4, 3, 3];
+        v.extend([3, 2, 1]);
+        assert_eq!(
+            super::sizes_text(&v),
+            "9, 8, 7, 6, 5, 4, 3, 3 … and 3 more pieces of 1 to 3"
         );
     }
 

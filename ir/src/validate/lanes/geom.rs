@@ -8,8 +8,8 @@ pub(super) const TOUCH: f64 = 1e-3;
 /// Axis-aligned bounding box of a segment, grown by [`TOUCH`].
 #[derive(Debug, Clone, Copy)]
 pub(super) struct Bbox {
-    lo: Vec2,
-    hi: Vec2,
+    pub(super) lo: Vec2,
+    pub(super) hi: Vec2,
 }
 
 impl Bbox {

@@ -31,6 +31,7 @@
 use super::geom::{
     abs_sin, colinear_overlap, point_segment_distance, segment_intersection, side, Bbox, TOUCH,
 };
+use crate::validate::grid::BoxGrid;
 use crate::validate::{Context, Rule};
 use crate::{Diagnostic, Handle, Vertex};
 
@@ -58,6 +59,7 @@ fn check(ctx: &Context, out: &mut Vec<Diagnostic>) {
         if doors.is_empty() {
             continue;
         }
+        let mut grid = BoxGrid::new(&doors.iter().map(|d| (d.3.lo, d.3.hi)).collect::<Vec<_>>());
         for &lh in &level.lanes {
             let lane = &b.lanes[lh];
             let (a, z) = (pos(lane.start), pos(lane.end));
@@ -65,7 +67,8 @@ fn check(ctx: &Context, out: &mut Vec<Diagnostic>) {
                 continue; // E0201, W0202
             }
             let bbox = Bbox::of(a, z);
-            for &(dh, p, q, db) in &doors {
+            for i in grid.candidates(bbox.lo, bbox.hi) {
+                let (dh, p, q, db) = doors[i as usize];
                 if !bbox.overlaps(&db) {
                     continue;
                 }

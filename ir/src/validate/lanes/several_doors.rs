@@ -28,6 +28,7 @@
 //! ```
 
 use super::geom::{segment_intersection, Bbox, TOUCH};
+use crate::validate::grid::BoxGrid;
 use crate::validate::{Context, Rule};
 use crate::{Diagnostic, Door, Handle, Vertex};
 
@@ -51,6 +52,7 @@ fn check(ctx: &Context, out: &mut Vec<Diagnostic>) {
             .map(|&d| (d, pos(b.doors[d].start), pos(b.doors[d].end)))
             .map(|(d, p, q)| (d, p, q, Bbox::of(p, q)))
             .collect();
+        let mut grid = BoxGrid::new(&doors.iter().map(|d| (d.3.lo, d.3.hi)).collect::<Vec<_>>());
         for &lh in &level.lanes {
             let lane = &b.lanes[lh];
             let (a, z) = (pos(lane.start), pos(lane.end));
@@ -59,10 +61,12 @@ fn check(ctx: &Context, out: &mut Vec<Diagnostic>) {
             }
             let bbox = Bbox::of(a, z);
             // (parameter along the lane, door), the test mapc's nav backend uses.
-            let mut hits: Vec<(f64, Handle<Door>)> = doors
-                .iter()
+            let mut hits: Vec<(f64, Handle<Door>)> = grid
+                .candidates(bbox.lo, bbox.hi)
+                .into_iter()
+                .map(|i| doors[i as usize])
                 .filter(|d| bbox.overlaps(&d.3))
-                .filter_map(|&(d, p, q, _)| segment_intersection(a, z, p, q).map(|t| (t, d)))
+                .filter_map(|(d, p, q, _)| segment_intersection(a, z, p, q).map(|t| (t, d)))
                 .collect();
             if hits.len() < 2 {
                 continue;

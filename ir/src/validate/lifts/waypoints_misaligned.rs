@@ -46,18 +46,20 @@ fn check(ctx: &Context, out: &mut Vec<Diagnostic>) {
     let mut bad: BTreeMap<Pair, Vec<i64>> = BTreeMap::new();
     for (&graph, lanes) in &ctx.lanes_by_graph {
         let mut by_lift: BTreeMap<Handle<Lift>, Vec<Handle<Vertex>>> = BTreeMap::new();
+        let mut seen = std::collections::HashSet::new();
         for &l in lanes {
             let lane = &b.lanes[l];
             for v in [lane.start, lane.end] {
                 if let Some(lift) = ctx.lift_of(v) {
-                    let vs = by_lift.entry(lift).or_default();
-                    if !vs.contains(&v) {
-                        vs.push(v);
+                    if seen.insert(v) {
+                        by_lift.entry(lift).or_default().push(v);
                     }
                 }
             }
         }
         for (lift, vs) in by_lift {
+            // The farthest pair is a pair of hull vertices: compare those only.
+            let vs = hull(b, vs);
             let mut worst: Option<(f64, Handle<Vertex>, Handle<Vertex>)> = None;
             for (i, &a) in vs.iter().enumerate() {
                 for &c in &vs[i + 1..] {
@@ -97,6 +99,38 @@ fn check(ctx: &Context, out: &mut Vec<Diagnostic>) {
             ),
         );
     }
+}
+
+/// The vertices of `vs` on their convex hull (Andrew's monotone chain; collinear points
+/// dropped), in document order. With duplicates or fewer than 3 points, all of them.
+fn hull(b: &crate::Building, mut vs: Vec<Handle<Vertex>>) -> Vec<Handle<Vertex>> {
+    if vs.len() <= 3 {
+        return vs;
+    }
+    let pos = |v: Handle<Vertex>| b.vertices[v].pos;
+    vs.sort_by(|&p, &q| {
+        let (p, q) = (pos(p), pos(q));
+        p.x.total_cmp(&q.x).then(p.y.total_cmp(&q.y))
+    });
+    let turn = |o: Handle<Vertex>, a: Handle<Vertex>, c: Handle<Vertex>| {
+        pos(a).minus(pos(o)).cross(pos(c).minus(pos(o)))
+    };
+    let mut chain: Vec<Handle<Vertex>> = Vec::with_capacity(2 * vs.len());
+    for pass in [vs.clone(), vs.iter().rev().copied().collect()] {
+        let start = chain.len();
+        for v in pass {
+            while chain.len() >= start + 2
+                && turn(chain[chain.len() - 2], chain[chain.len() - 1], v) <= 0.0
+            {
+                chain.pop();
+            }
+            chain.push(v);
+        }
+        chain.pop();
+    }
+    chain.sort_unstable();
+    chain.dedup();
+    chain
 }
 
 #[cfg(test)]

@@ -10,6 +10,7 @@ mod role_off_graph;
 mod spawn_name_without_type;
 mod spawn_without_name;
 mod unnamed_role;
+mod unsafe_characters;
 mod unsafe_name;
 
 pub(super) static RULES: &[&Rule] = &[
@@ -21,6 +22,7 @@ pub(super) static RULES: &[&Rule] = &[
     &duplicate_spawn::RULE,
     &unnamed_role::RULE,
     &unsafe_name::RULE,
+    &unsafe_characters::RULE,
 ];
 
 /// The vertices that lanes of one graph use (the nav graph's waypoints), in document order.
