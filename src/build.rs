@@ -8,10 +8,13 @@
 //! The per-target file producers (`gltf_files`, `mesh_files`, and `mapc_backends::nav_graphs`)
 //! are shared with the single-target commands of `main.rs`.
 
-use crate::{emit, load_and_check, output, summary_line, texture, Checked, DiagOpts, Format};
+use crate::{
+    emit, load_and_check, not_written, output, summary_line, texture, Checked, DiagOpts, Format,
+};
 use mapc_backends::sdf::world::WorldOptions;
 use mapc_backends::sdf::Flavour;
 use mapc_backends::{LevelMeshes, OutputFile, Textures};
+use mapc_ir::lints::Outputs;
 use mapc_ir::{Building, Diagnostic, Handle, Level};
 use std::collections::BTreeMap;
 use std::io::{IsTerminal, Write};
@@ -49,6 +52,18 @@ impl Target {
         Target::Ignition,
         Target::Gz,
     ];
+
+    /// The outputs the target consists of: a world includes its level models' meshes.
+    fn outputs(self) -> Outputs {
+        match self {
+            Target::Nav => Outputs::NAV,
+            Target::Gltf => Outputs::GLTF,
+            Target::Meshes => Outputs::MESHES,
+            Target::Classic | Target::Ignition | Target::Gz => {
+                Outputs::WORLDS.union(Outputs::MESHES)
+            }
+        }
+    }
 
     fn flavour(self) -> Option<(Flavour, &'static str)> {
         match self {
@@ -93,6 +108,10 @@ pub(crate) struct BuildArgs {
     /// over the first floor.
     #[arg(long = "SKIP_CAMERA_POSE")]
     skip_camera_pose: bool,
+    /// Print every warning with its snippet (by default: errors in full, warnings counted
+    /// by code per map).
+    #[arg(short = 'v', long)]
+    verbose: bool,
     /// Maps built at once (default: the available parallelism).
     #[arg(short = 'j', long, value_name = "N")]
     jobs: Option<NonZeroUsize>,
@@ -197,6 +216,9 @@ struct MapResult {
     /// Files read: the map, the files it names, the textures found (and the texture search
     /// directories when a texture was not found).
     deps: Vec<PathBuf>,
+    /// The outputs asked for, and those errors broke (not written).
+    wanted: Outputs,
+    blocked: Outputs,
 }
 
 /// Every file of the selected targets, paths relative to the map's directory, plus texture
@@ -284,6 +306,10 @@ fn target_files(
 }
 
 fn build_one(input: &Path, args: &BuildArgs, opts: &WorldOptions) -> MapResult {
+    let wanted = args
+        .targets
+        .iter()
+        .fold(Outputs::NONE, |o, t| o.union(t.outputs()));
     let mut result = MapResult {
         input: input.to_path_buf(),
         checked: None,
@@ -291,8 +317,10 @@ fn build_one(input: &Path, args: &BuildArgs, opts: &WorldOptions) -> MapResult {
         code: 0,
         outputs: Vec::new(),
         deps: vec![input.to_path_buf()],
+        wanted,
+        blocked: Outputs::NONE,
     };
-    let mut checked = match load_and_check(input) {
+    let mut checked = match load_and_check(input, &args.diag.lints) {
         Ok(c) => c,
         Err(e) => {
             result.error = Some(e);
@@ -303,21 +331,46 @@ fn build_one(input: &Path, args: &BuildArgs, opts: &WorldOptions) -> MapResult {
     for s in checked.parsed.sources.iter().skip(1) {
         result.deps.push(PathBuf::from(&s.name));
     }
+    // Only the targets no error breaks; texture warnings denied to errors can break more,
+    // and then the files are made again for what is left.
+    let unblocked = |c: &Checked| -> Vec<Target> {
+        let t = args.targets.iter();
+        t.filter(|t| c.blocked(t.outputs()).is_empty())
+            .copied()
+            .collect()
+    };
+    let map = map_name(input);
+    let mut targets = unblocked(&checked);
     let mut files = Vec::new();
-    if let Some(b) = &checked.parsed.building {
-        if !checked.diagnostics.iter().any(|d| d.is_error()) {
-            let map = map_name(input);
-            let (f, diags, found) =
-                target_files(b, &map, &args.targets, &args.texture_path, input, opts);
-            files = f;
-            checked.diagnostics.extend(diags);
-            result.deps.extend(found);
+    for round in 0..2 {
+        let Some(b) = checked.parsed.building.as_ref() else {
+            break;
+        };
+        if targets.is_empty() {
+            break;
         }
+        let (f, diags, found) = target_files(b, &map, &targets, &args.texture_path, input, opts);
+        files = f;
+        result.deps.truncate(checked.parsed.sources.len());
+        result.deps.extend(found);
+        if round > 0 {
+            // The second round's texture diagnostics repeat some of the first's.
+            break;
+        }
+        checked.extend(diags);
+        let left = unblocked(&checked);
+        if left == targets {
+            break;
+        }
+        targets = left;
+        files.clear();
     }
-    if checked.failed(args.diag.deny_warnings) {
+    result.blocked = checked.blocked(wanted);
+    if !result.blocked.is_empty() {
         result.code = 1;
-    } else {
-        let dir = args.out_dir.join(map_name(input));
+    }
+    if !files.is_empty() || result.blocked.is_empty() {
+        let dir = args.out_dir.join(&map);
         match output::write_all(&dir, &files) {
             Ok(()) => result.outputs = files.iter().map(|f| dir.join(&f.path)).collect(),
             Err(e) => {
@@ -356,18 +409,43 @@ impl Progress {
     }
 }
 
-fn report(r: &MapResult, format: Format) {
+/// One map's report. On a terminal-style report without `--verbose`, warnings are counted
+/// by code instead of shown one by one (a demo map has over a hundred).
+fn report(r: &MapResult, format: Format, verbose: bool) {
     if let Some(c) = &r.checked {
-        if format != Format::Sarif {
+        if format == Format::Human && !verbose {
+            let errors: Vec<_> = c
+                .diagnostics
+                .iter()
+                .filter(|d| d.is_error())
+                .cloned()
+                .collect();
+            crate::report::emit(&c.parsed.sources, &errors);
+            let mut counts: BTreeMap<&str, usize> = BTreeMap::new();
+            for d in c.diagnostics.iter().filter(|d| !d.is_error()) {
+                *counts.entry(d.code).or_default() += 1;
+            }
+            if !counts.is_empty() {
+                let list: Vec<String> = counts
+                    .iter()
+                    .map(|(code, n)| format!("{code} {} ×{n}", crate::code_name(code)))
+                    .collect();
+                eprintln!(
+                    "{}: warnings: {} (--verbose shows each)",
+                    r.input.display(),
+                    list.join(", ")
+                );
+            }
+        } else if format != Format::Sarif {
             emit(c, format);
         }
         if format == Format::Human {
             summary_line(&r.input, c);
         }
     }
-    match (&r.error, r.code) {
+    match (&r.error, &r.checked) {
         (Some(e), _) => eprintln!("error: {e}"),
-        (None, 1) => eprintln!("error: {}: nothing written", r.input.display()),
+        (None, Some(c)) if !r.blocked.is_empty() => not_written(&r.input, c, r.blocked, r.wanted),
         _ => {}
     }
 }
@@ -471,7 +549,7 @@ pub(crate) fn build(mut args: BuildArgs) -> ExitCode {
             results[i] = Some(r);
             progress.clear();
             while let Some(Some(r)) = results.get(printed) {
-                report(r, args.diag.format);
+                report(r, args.diag.format, args.verbose);
                 printed += 1;
             }
             progress.draw(done + 1, &last);

@@ -2,6 +2,7 @@
 //! 2 usage or I/O error.
 
 mod build;
+mod lints;
 mod output;
 mod report;
 mod report_json;
@@ -10,6 +11,7 @@ mod texture;
 mod world_cmd;
 
 use clap::{Parser, Subcommand, ValueEnum};
+use mapc_ir::lints::{policy, Outputs};
 use mapc_ir::Diagnostic;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
@@ -44,9 +46,30 @@ struct DiagOpts {
     /// How to print diagnostics.
     #[arg(long, value_enum, default_value = "human")]
     format: Format,
-    /// Treat warnings as errors (exit 1 and write nothing when there are any).
+    #[command(flatten)]
+    lints: LintOpts,
+}
+
+/// Lint levels, on every command that reads a map.
+#[derive(clap::Args)]
+struct LintOpts {
+    /// Treat warnings as errors (the same as `--deny warnings`).
     #[arg(long)]
     deny_warnings: bool,
+    /// Do not report CODE (a code such as W0204 or a name such as lane-crosses-wall);
+    /// repeatable. Errors after which no correct output can be written cannot be allowed.
+    #[arg(long, value_name = "CODE")]
+    allow: Vec<String>,
+    /// Report CODE as a warning (repeatable); an error lowered so no longer blocks output.
+    #[arg(long, value_name = "CODE")]
+    warn: Vec<String>,
+    /// Report CODE as an error (repeatable); `--deny warnings` makes every warning an error.
+    #[arg(long, value_name = "CODE")]
+    deny: Vec<String>,
+    /// Lint levels from FILE (a `[lints]` table) instead of the mapc.toml found beside the
+    /// map or in a parent directory. The command line wins over the file.
+    #[arg(long, value_name = "FILE")]
+    config: Option<PathBuf>,
 }
 
 #[derive(Subcommand)]
@@ -178,34 +201,88 @@ pub(crate) fn code_name(code: &str) -> &'static str {
         .unwrap_or("")
 }
 
-/// A map read and checked: frontend diagnostics plus validation passes.
+/// A map read and checked: frontend diagnostics plus validation passes, at the user's
+/// lint levels.
 struct Checked {
     parsed: mapc_frontend::Parsed,
     diagnostics: Vec<Diagnostic>,
+    lints: lints::Lints,
 }
 
 impl Checked {
-    fn failed(&self, deny_warnings: bool) -> bool {
-        self.parsed.building.is_none()
-            || self
-                .diagnostics
-                .iter()
-                .any(|d| d.is_error() || deny_warnings)
+    /// The outputs of `wanted` that the remaining errors break (all of them when the map
+    /// could not be read).
+    fn blocked(&self, wanted: Outputs) -> Outputs {
+        let Some(b) = &self.parsed.building else {
+            return wanted;
+        };
+        let mut blocked = Outputs::NONE;
+        for d in self.diagnostics.iter().filter(|d| d.is_error()) {
+            let p = policy(d.code);
+            let mut blocks = if p.can_allow { p.blocks } else { Outputs::ALL };
+            if p.nav_only_with_lanes && b.lanes.is_empty() {
+                blocks = blocks.without(Outputs::NAV);
+            }
+            blocked = blocked.union(blocks);
+        }
+        blocked.intersection(wanted)
+    }
+
+    /// Adds diagnostics found while producing output (texture warnings), at the user's
+    /// levels.
+    fn extend(&mut self, mut diags: Vec<Diagnostic>) {
+        self.lints.apply(&mut diags);
+        self.diagnostics.extend(diags);
     }
 }
 
-/// Reads a map and runs every validation pass. `Err` is an I/O problem (exit 2).
-fn load_and_check(input: &Path) -> Result<Checked, String> {
+/// The lint levels for `input`: the command line's over those of `--config` or of the
+/// mapc.toml found for the map. `Err` is a usage error (exit 2).
+fn lints_for(input: &Path, opts: &LintOpts) -> Result<lints::Lints, String> {
+    let cli = lints::from_flags(&opts.allow, &opts.warn, &opts.deny, opts.deny_warnings)?;
+    let file = match &opts.config {
+        Some(path) => Some(lints::from_file(path)?),
+        None => match lints::discover(input) {
+            Some(path) => Some(lints::from_file(&path)?),
+            None => None,
+        },
+    };
+    Ok(lints::Lints::new(cli, file))
+}
+
+/// Reads a map and runs every validation pass. `Err` is an I/O or usage problem (exit 2).
+fn load_and_check(input: &Path, opts: &LintOpts) -> Result<Checked, String> {
+    let lints = lints_for(input, opts)?;
     let parsed = mapc_frontend::load(input).map_err(|e| e.to_string())?;
     let mut diagnostics = parsed.diagnostics.clone();
     // Passes run even after frontend errors so one run reports everything it can.
     if let Some(b) = &parsed.building {
         diagnostics.extend(mapc_ir::validate(b));
     }
+    lints.apply(&mut diagnostics);
     Ok(Checked {
         parsed,
         diagnostics,
+        lints,
     })
+}
+
+/// `error: MAP: nothing written` (or which outputs were not), with the codes to blame.
+fn not_written(input: &Path, c: &Checked, blocked: Outputs, wanted: Outputs) {
+    let mut codes: Vec<&str> = c
+        .diagnostics
+        .iter()
+        .filter(|d| d.is_error())
+        .map(|d| d.code)
+        .collect();
+    codes.sort();
+    codes.dedup();
+    let what = if blocked == wanted {
+        "nothing written".to_string()
+    } else {
+        format!("{} not written", blocked.names().join(", "))
+    };
+    eprintln!("error: {}: {what} ({})", input.display(), codes.join(", "));
 }
 
 fn emit(c: &Checked, format: Format) {
@@ -231,21 +308,23 @@ fn summary_line(input: &Path, c: &Checked) {
 }
 
 fn nav(input: &Path, output_dir: &Path, opts: &DiagOpts) -> ExitCode {
-    run_command(input, output_dir, opts, |b| {
+    run_command(input, output_dir, opts, Outputs::NAV, |b| {
         (mapc_backends::nav_graphs(b), Vec::new())
     })
 }
 
-/// The shape every single-map command shares: read and check `input`; when the map has no
-/// errors, `produce` builds the output files (its diagnostics, e.g. texture warnings, join
-/// the report); report; write the files under `out_dir` unless anything failed.
+/// The shape every single-map command shares: read and check `input`; unless an error
+/// breaks the command's `outputs`, `produce` builds the output files (its diagnostics, e.g.
+/// texture warnings, join the report); report; write the files under `out_dir` unless
+/// anything failed.
 fn run_command(
     input: &Path,
     out_dir: &Path,
     opts: &DiagOpts,
+    outputs: Outputs,
     produce: impl FnOnce(&mapc_ir::Building) -> (Vec<mapc_backends::OutputFile>, Vec<Diagnostic>),
 ) -> ExitCode {
-    let mut checked = match load_and_check(input) {
+    let mut checked = match load_and_check(input, &opts.lints) {
         Ok(c) => c,
         Err(e) => {
             eprintln!("error: {e}");
@@ -253,19 +332,20 @@ fn run_command(
         }
     };
     let mut files = Vec::new();
-    if let Some(b) = checked.parsed.building.as_ref() {
-        if !checked.diagnostics.iter().any(|d| d.is_error()) {
+    if checked.blocked(outputs).is_empty() {
+        if let Some(b) = checked.parsed.building.as_ref() {
             let (f, diags) = produce(b);
             files = f;
-            checked.diagnostics.extend(diags);
+            checked.extend(diags);
         }
     }
     emit(&checked, opts.format);
     if opts.format == Format::Human {
         summary_line(input, &checked);
     }
-    if checked.failed(opts.deny_warnings) {
-        eprintln!("error: {}: nothing written", input.display());
+    let blocked = checked.blocked(outputs);
+    if !blocked.is_empty() {
+        not_written(input, &checked, blocked, outputs);
         return ExitCode::from(1);
     }
     match output::write_all(out_dir, &files) {
@@ -303,7 +383,7 @@ fn gltf(
     per_level: bool,
     opts: &DiagOpts,
 ) -> ExitCode {
-    run_command(input, output_dir, opts, |b| {
+    run_command(input, output_dir, opts, Outputs::GLTF, |b| {
         let meshes = build::all_level_meshes(b);
         let names = build::gltf_texture_names(&meshes);
         let (textures, diags) =
@@ -326,7 +406,7 @@ fn textures_for<'a>(
 }
 
 fn meshes(input: &Path, model_dir: &Path, texture_path: &[PathBuf], opts: &DiagOpts) -> ExitCode {
-    run_command(input, model_dir, opts, |b| {
+    run_command(input, model_dir, opts, Outputs::MESHES, |b| {
         let meshes = build::all_level_meshes(b);
         let names = build::mesh_texture_names(&meshes);
         let (textures, diags) =
@@ -339,9 +419,9 @@ fn check(inputs: &[PathBuf], opts: &DiagOpts) -> ExitCode {
     let mut code = 0u8;
     let mut all: Vec<Checked> = Vec::new();
     for input in inputs {
-        match load_and_check(input) {
+        match load_and_check(input, &opts.lints) {
             Ok(c) => {
-                if c.failed(opts.deny_warnings) {
+                if !c.blocked(Outputs::ALL).is_empty() {
                     code = code.max(1);
                 }
                 if opts.format != Format::Sarif {

@@ -1,10 +1,13 @@
 //! `mapc gazebo` (gz-sim, alias `gz`), `mapc ignition` and `mapc classic`: a simulation
 //! world and its level models, with `building_map_generator gazebo`'s arguments.
 
-use crate::{emit, load_and_check, output, summary_line, textures_for, DiagOpts, Format};
+use crate::{
+    emit, load_and_check, not_written, output, summary_line, textures_for, DiagOpts, Format,
+};
 use mapc_backends::sdf::world::{parse_template, world_files, WorldOptions};
 use mapc_backends::sdf::Flavour;
 use mapc_backends::OutputFile;
+use mapc_ir::lints::Outputs;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
@@ -83,7 +86,9 @@ pub(crate) fn run(flavour: Flavour, args: &WorldArgs) -> ExitCode {
         .filter(|p| !p.as_os_str().is_empty())
         .unwrap_or(Path::new("."));
 
-    let mut checked = match load_and_check(&args.input) {
+    // A world includes its level models, so what breaks meshes breaks it too.
+    let wanted = Outputs::WORLDS.union(Outputs::MESHES);
+    let mut checked = match load_and_check(&args.input, &args.diag.lints) {
         Ok(c) => c,
         Err(e) => {
             eprintln!("error: {e}");
@@ -93,7 +98,7 @@ pub(crate) fn run(flavour: Flavour, args: &WorldArgs) -> ExitCode {
     let mut out = None;
     let mut texture_diags = Vec::new();
     if let Some(b) = checked.parsed.building.as_ref() {
-        if !checked.diagnostics.iter().any(|d| d.is_error()) {
+        if checked.blocked(wanted).is_empty() {
             let meshes: Vec<_> = b
                 .levels
                 .iter()
@@ -114,13 +119,14 @@ pub(crate) fn run(flavour: Flavour, args: &WorldArgs) -> ExitCode {
             out = Some(world_files(b, flavour, &opts, &meshes, &textures));
         }
     }
-    checked.diagnostics.extend(texture_diags);
+    checked.extend(texture_diags);
     emit(&checked, args.diag.format);
     if args.diag.format == Format::Human {
         summary_line(&args.input, &checked);
     }
-    if checked.failed(args.diag.deny_warnings) {
-        eprintln!("error: {}: nothing written", args.input.display());
+    let blocked = checked.blocked(wanted);
+    if !blocked.is_empty() {
+        not_written(&args.input, &checked, blocked, wanted);
         return ExitCode::from(1);
     }
     let Some(out) = out else {
