@@ -345,7 +345,8 @@ fn run_command(
     }
     let blocked = checked.blocked(outputs);
     if !blocked.is_empty() {
-        not_written(input, &checked, blocked, outputs);
+        // One output: when any part is blocked, nothing is written.
+        not_written(input, &checked, outputs, outputs);
         return ExitCode::from(1);
     }
     match output::write_all(out_dir, &files) {

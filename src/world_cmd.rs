@@ -126,7 +126,7 @@ pub(crate) fn run(flavour: Flavour, args: &WorldArgs) -> ExitCode {
     }
     let blocked = checked.blocked(wanted);
     if !blocked.is_empty() {
-        not_written(&args.input, &checked, blocked, wanted);
+        not_written(&args.input, &checked, wanted, wanted);
         return ExitCode::from(1);
     }
     let Some(out) = out else {

@@ -275,3 +275,63 @@ fn build_counts_warnings_per_map_unless_verbose() {
     ]);
     assert!(stderr(&o).contains("warning[W0204]"), "{}", stderr(&o));
 }
+
+/// Allowing a rule's error must leave every backend working on what the rule found
+/// (degenerate polygons, duplicate names, misaligned lifts, ...): all targets written.
+#[test]
+fn every_rule_error_can_be_allowed_and_every_target_is_written() {
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("fixtures/invalid");
+    let mut seen = 0;
+    for entry in std::fs::read_dir(dir).unwrap() {
+        let path = entry.unwrap().path();
+        let name = path.file_name().unwrap().to_string_lossy().into_owned();
+        let lint = &name[..5];
+        if !lint.starts_with('E') || lint < "E0200" {
+            continue;
+        }
+        seen += 1;
+        let out = tempfile::tempdir().unwrap();
+        let o = mapc(&["build", &s(&path), "-o", &s(out.path()), "--allow", lint]);
+        assert_eq!(code(&o), 0, "{name}: {}", stderr(&o));
+        let map_dir = std::fs::read_dir(out.path())
+            .unwrap()
+            .next()
+            .unwrap()
+            .unwrap()
+            .path();
+        let files: Vec<String> = std::fs::read_dir(&map_dir)
+            .unwrap()
+            .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+            .collect();
+        assert!(
+            files.iter().any(|f| f.ends_with(".glb")),
+            "{name}: {files:?}"
+        );
+        assert_eq!(
+            files.iter().filter(|f| f.ends_with(".world")).count(),
+            3,
+            "{name}"
+        );
+    }
+    assert!(seen >= 20, "only {seen} rule fixtures");
+}
+
+#[test]
+fn sim_takes_the_lint_options() {
+    let scenario =
+        Path::new(env!("CARGO_MANIFEST_DIR")).join("fixtures/two_level_clinic.scenario.yaml");
+    let o = mapc(&[
+        "sim",
+        &s(&scenario),
+        "--until",
+        "1s",
+        "--deny",
+        "no-such-lint",
+    ]);
+    assert_eq!(code(&o), 2, "{}", stderr(&o));
+    assert!(
+        stderr(&o).contains("unknown diagnostic `no-such-lint`"),
+        "{}",
+        stderr(&o)
+    );
+}

@@ -325,7 +325,8 @@ impl Crs {
                     ((op.accuracy >= 0.0 && op.accuracy < best_acc)
                         || (op.accuracy == best_acc
                             && op.pseudo_area() < cur.pseudo_area()
-                            && !(op.unknown_area && !cur.unknown_area)))
+                            // An unknown area never displaces a known one.
+                            && (!op.unknown_area || cur.unknown_area)))
                         && !op.offshore
                 }
             };

@@ -75,6 +75,18 @@ def main(table_path, points_path):
         if not cands:
             out.append(f"C {code} ! PROJ has no transformation from WGS 84 to it")
             continue
+        # TransformerGroup misses some operations `from_crs` chooses (e.g. PD/83 via ETRS89
+        # for EPSG:3396): add what `from_crs` used at the CRS's area, before the others, as
+        # PROJ sorts known-accuracy operations before ballpark ones.
+        transformer = Transformer.from_crs(4326, code, always_xy=True)
+        if crs.area_of_use is not None:
+            defs = {tr.definition for tr in cands}
+            for lon, lat in inset_points(*crs.area_of_use.bounds):
+                transformer.transform(lon, lat)
+                used = transformer.get_last_used_operation()
+                if used is not None and used.definition not in defs:
+                    defs.add(used.definition)
+                    cands = [used] + list(cands)
         out.append(f"C {code} m")
         for tr in cands:
             aou = tr.area_of_use
@@ -116,7 +128,6 @@ def main(table_path, points_path):
                         continue
                 if b not in boxes:
                     boxes.append(b)
-        transformer = Transformer.from_crs(4326, code, always_xy=True)
         seen = set()
         for box in boxes[:4]:
             for lon, lat in inset_points(*box):
