@@ -104,6 +104,28 @@ fn rmf_site_legacy_export() {
         doc["lifts"]["lift_a"]["dims"][0].as_floating_point(),
         Some(2.0)
     );
+
+    // Its block-style model (with `static` and `z`) and spawn reach the world.
+    let out = tempfile::tempdir().unwrap();
+    let world = out.path().join("w.world");
+    let run = Command::new(env!("CARGO_BIN_EXE_mapc"))
+        .arg("gazebo")
+        .arg(fixture("rmf_site_legacy"))
+        .arg(&world)
+        .arg(out.path().join("models"))
+        .output()
+        .unwrap();
+    assert!(
+        run.status.success(),
+        "{}",
+        String::from_utf8_lossy(&run.stderr)
+    );
+    let text = std::fs::read_to_string(&world).unwrap();
+    assert!(
+        text.contains("<name>chair_1</name>\n      <uri>model://OfficeChairBlack</uri>\n      <pose>4.0 6.0 0.0 0 0 1.5707963267948966</pose>\n      <static>true</static>"),
+        "{text}"
+    );
+    assert!(text.contains("<name>bot_1</name>"), "{text}");
 }
 
 #[test]

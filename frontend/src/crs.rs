@@ -113,6 +113,14 @@ pub fn lookup(code: u32) -> Lookup {
     Lookup::Crs(Crs { ops })
 }
 
+/// Every EPSG code of the table (all projected CRSs of PROJ's EPSG database), ascending.
+pub fn codes() -> impl Iterator<Item = u32> {
+    TABLE
+        .lines()
+        .filter_map(|l| l.strip_prefix("C "))
+        .filter_map(|l| l.split(' ').next()?.parse().ok())
+}
+
 fn step_text(id: usize) -> Option<&'static str> {
     let key = format!("S {id} ");
     TABLE
@@ -491,6 +499,21 @@ mod tests {
         assert!(matches!(lookup(2263), Lookup::NotMetres(u) if u == "US survey foot"));
         assert!(matches!(lookup(4326), Lookup::Unknown));
         assert!(matches!(lookup(32600), Lookup::Refused(_)));
+    }
+
+    /// A CRS in feet is refused at `generate_crs`, not silently turned into a graph in feet.
+    #[test]
+    fn feet_crs_is_refused_at_generate_crs() {
+        let text = "name: t\ncoordinate_system: wgs84\nparameters:\n  generate_crs: [1, EPSG:2263]\nlevels:\n  L1:\n    vertices:\n      - [-73.98, 40.75, 0, a]\n";
+        let parsed = crate::parse_str("t.building.yaml", text);
+        let d: Vec<_> = parsed
+            .diagnostics
+            .iter()
+            .filter(|d| d.code == "E0108")
+            .collect();
+        assert_eq!(d.len(), 1, "{:#?}", parsed.diagnostics);
+        assert_eq!(d[0].span.line, 4);
+        assert!(d[0].message.contains("US survey foot"), "{}", d[0].message);
     }
 
     #[test]
