@@ -269,10 +269,14 @@ fn load_and_check(input: &Path, opts: &LintOpts) -> Result<Checked, String> {
 
 /// `error: MAP: nothing written` (or which outputs were not), with the codes to blame.
 fn not_written(input: &Path, c: &Checked, blocked: Outputs, wanted: Outputs) {
+    // The codes that break what was not written (not every error of the map).
     let mut codes: Vec<&str> = c
         .diagnostics
         .iter()
-        .filter(|d| d.is_error())
+        .filter(|d| {
+            let p = policy(d.code);
+            d.is_error() && (!p.can_allow || p.blocks.intersects(blocked))
+        })
         .map(|d| d.code)
         .collect();
     codes.sort();
@@ -282,7 +286,12 @@ fn not_written(input: &Path, c: &Checked, blocked: Outputs, wanted: Outputs) {
     } else {
         format!("{} not written", blocked.names().join(", "))
     };
-    eprintln!("error: {}: {what} ({})", input.display(), codes.join(", "));
+    let why = if codes.is_empty() {
+        String::new()
+    } else {
+        format!(" ({})", codes.join(", "))
+    };
+    eprintln!("error: {}: {what}{why}", input.display());
 }
 
 fn emit(c: &Checked, format: Format) {

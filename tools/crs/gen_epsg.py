@@ -75,13 +75,18 @@ def main(table_path, points_path):
         if not cands:
             out.append(f"C {code} ! PROJ has no transformation from WGS 84 to it")
             continue
+        boxes = []
+        a = crs.area_of_use
+        # A few deprecated CRSs have a placeholder area (-1000, ...): then the candidates'.
+        if a is not None and -180 <= a.west <= 180 and -90 <= a.south <= 90:
+            boxes.append((a.west, a.south, a.east, a.north))
         # TransformerGroup misses some operations `from_crs` chooses (e.g. PD/83 via ETRS89
         # for EPSG:3396): add what `from_crs` used at the CRS's area, before the others, as
         # PROJ sorts known-accuracy operations before ballpark ones.
         transformer = Transformer.from_crs(4326, code, always_xy=True)
-        if crs.area_of_use is not None:
+        if boxes:
             defs = {tr.definition for tr in cands}
-            for lon, lat in inset_points(*crs.area_of_use.bounds):
+            for lon, lat in inset_points(*boxes[0]):
                 transformer.transform(lon, lat)
                 used = transformer.get_last_used_operation()
                 if used is not None and used.definition not in defs:
@@ -110,15 +115,15 @@ def main(table_path, points_path):
                     *(repr(float(v)) for v in bbox), repr(float(acc)), flags or "-", ",".join(ids)
                 )
             )
-        # Check points: the CRS's area of use and every candidate's own area.
-        boxes = []
-        if crs.area_of_use is not None:
-            a = crs.area_of_use
-            boxes.append((a.west, a.south, a.east, a.north))
+        # Check points: the CRS's area of use and every candidate's own area (not the whole
+        # world of a ballpark operation when the CRS has no area of its own).
+        crs_has_area = bool(boxes)
         for tr in cands:
             if tr.area_of_use is not None:
                 a = tr.area_of_use
                 b = (a.west, a.south, a.east, a.north)
+                if not crs_has_area and b == (-180.0, -90.0, 180.0, 90.0):
+                    continue
                 if boxes and b[0] <= b[2] and boxes[0][0] <= boxes[0][2]:
                     # Only the part inside the CRS's own area: far outside it a projection
                     # means nothing (PROJ and mapc may both give numbers, or fail).
