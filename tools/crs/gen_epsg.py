@@ -118,6 +118,19 @@ def main(table_path, points_path):
         # Check points: the CRS's area of use and every candidate's own area (not the whole
         # world of a ballpark operation when the CRS has no area of its own).
         crs_has_area = bool(boxes)
+        if not crs_has_area:
+            # No area at all (a few deprecated CRSs with only a ballpark operation): around
+            # the projection's origin.
+            lon0 = lat0 = None
+            for prm in crs.coordinate_operation.params if crs.coordinate_operation else []:
+                if prm.unit_name != "degree":
+                    continue
+                if lon0 is None and "Longitude" in prm.name:
+                    lon0 = prm.value
+                if lat0 is None and "Latitude" in prm.name:
+                    lat0 = prm.value
+            if lon0 is not None and lat0 is not None:
+                boxes.append((lon0 - 1, max(lat0 - 1, -89.0), lon0 + 1, min(lat0 + 1, 89.0)))
         for tr in cands:
             if tr.area_of_use is not None:
                 a = tr.area_of_use
