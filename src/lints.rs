@@ -3,9 +3,9 @@
 //! the map or in a parent directory).
 //!
 //! Precedence: a code's level on the command line, else its level in the file, else its
-//! default (the letter of the code). Then, if `warnings` is denied (command line or file,
-//! or `--deny-warnings`), whatever is still a warning becomes an error; an allowed code stays
-//! allowed, as with rustc's `-D warnings`.
+//! default (the letter of the code). Then whatever is still a warning takes the level of
+//! the `warnings` group (command line, else file; `--deny-warnings` is `--deny warnings`):
+//! an allowed code stays allowed under `--deny warnings`, as with rustc's `-D warnings`.
 
 use mapc_ir::lints::policy;
 use mapc_ir::{Diagnostic, Severity};
@@ -41,8 +41,8 @@ impl Level {
 #[derive(Default, Clone, Debug)]
 pub(crate) struct LevelSet {
     codes: BTreeMap<&'static str, Level>,
-    /// The `warnings` group: only `deny` means something (`allow`/`warn` keep defaults).
-    deny_warnings: bool,
+    /// The level of the `warnings` group, if set.
+    warnings: Option<Level>,
 }
 
 /// Every code a map can get, with its name: frontend, validation rules, backends.
@@ -59,9 +59,14 @@ impl LevelSet {
     /// came from for messages.
     fn set(&mut self, what: &str, level: Level, origin: &str) -> Result<(), String> {
         if what == "warnings" {
-            match level {
-                Level::Deny => self.deny_warnings = true,
-                _ => self.deny_warnings = false,
+            if let Some(old) = self.warnings.replace(level) {
+                if old != level {
+                    return Err(format!(
+                        "{origin}: `warnings` is given both `{}` and `{}`",
+                        old.flag(),
+                        level.flag()
+                    ));
+                }
             }
             return Ok(());
         }
@@ -107,7 +112,7 @@ pub(crate) fn from_flags(
         }
     }
     if deny_warnings {
-        set.deny_warnings = true;
+        set.set("warnings", Level::Deny, "--deny-warnings")?;
     }
     Ok(set)
 }
@@ -176,10 +181,9 @@ impl Lints {
             .or_else(|| self.file.codes.get(code))
             .copied()
             .unwrap_or(default);
-        if level == Level::Warn && (self.cli.deny_warnings || self.file.deny_warnings) {
-            Level::Deny
-        } else {
-            level
+        match (level, self.cli.warnings.or(self.file.warnings)) {
+            (Level::Warn, Some(group)) => group,
+            _ => level,
         }
     }
 

@@ -335,3 +335,17 @@ fn sim_takes_the_lint_options() {
         stderr(&o)
     );
 }
+
+#[test]
+fn allow_warnings_silences_what_is_still_a_warning() {
+    let m = s(&invalid("W0204"));
+    let o = mapc(&["check", &m, "--allow", "warnings"]);
+    assert_eq!(code(&o), 0);
+    assert!(!stderr(&o).contains("W0204"), "{}", stderr(&o));
+    // A code denied by name stays denied: the group applies only to warnings.
+    let o = mapc(&["check", &m, "--allow", "warnings", "--deny", "W0204"]);
+    assert_eq!(code(&o), 1, "{}", stderr(&o));
+    // Errors are not warnings.
+    let e = s(&invalid("E0302"));
+    assert_eq!(code(&mapc(&["check", &e, "--allow", "warnings"])), 1);
+}

@@ -176,8 +176,10 @@ warnings = "deny"
 ```
 
 Precedence: a code's level on the command line, else its level in the file, else its
-default (`E` error, `W` warning). Then, if warnings are denied (command line or file), every
-diagnostic still at warning level becomes an error; an allowed code stays allowed.
+default (`E` error, `W` warning). Then every diagnostic still at warning level takes the
+level of the `warnings` group, if one is set (command line over file): `--deny warnings`
+makes them errors, `--allow warnings` silences them; a code allowed or denied by name keeps
+its level.
 
 An error blocks only the outputs it breaks (the **blocks** column: `nav`, `gltf`, `meshes`,
 `worlds`; a world includes its level meshes): `mapc build` writes the other targets and
