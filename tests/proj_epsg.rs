@@ -19,14 +19,9 @@ const REFUSED: &[(&str, &[u32])] = &[
         ],
     ),
     (
-        "the projection method `labrd` is not implemented",
-        &[8441, 29701],
-    ),
-    (
         "the projection method `mod_krovak` is not implemented",
         &[5224, 5225, 5515, 5516],
     ),
-    ("the projection method `nzmg` is not implemented", &[27200]),
 ];
 
 #[test]

@@ -220,7 +220,7 @@ pub const UNKNOWN_LEVEL: Code = Code {
 /// CRS is not a projected CRS of the EPSG database, its unit is not the metre (a CRS in US
 /// survey or international feet is refused, not converted: the nav graph would no longer be
 /// in the CRS the map names), PROJ itself has no transformation to it, its projection
-/// method is one mapc does not implement (New Zealand Map Grid, Laborde, modified Krovak),
+/// method is one mapc does not implement (modified Krovak),
 /// or a position cannot be projected (longitude or latitude out of range).
 ///
 /// **Why it matters:** geographic coordinates must be projected to metres before anything

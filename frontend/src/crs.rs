@@ -76,6 +76,30 @@ enum Step {
         y0: f64,
         h0: f64,
     },
+    /// EPSG method 9811, New Zealand Map Grid (not in proj4rs): PROJ's nzmg.cpp forward,
+    /// a complex polynomial of the isometric-latitude series.
+    Nzmg {
+        a: f64,
+        phi0: f64,
+        lam0: f64,
+        x0: f64,
+        y0: f64,
+    },
+    /// EPSG method 9813, Laborde Oblique Mercator (not in proj4rs): PROJ's labrd.cpp
+    /// forward. `lam0` includes the prime meridian.
+    Labrd {
+        a: f64,
+        e: f64,
+        lam0: f64,
+        k_rg: f64,
+        p0s: f64,
+        big_a: f64,
+        big_c: f64,
+        ca: f64,
+        cb: f64,
+        x0: f64,
+        y0: f64,
+    },
     /// A map projection or `longlat` with a prime meridian, run by proj4rs from the
     /// geographic CRS on the same ellipsoid.
     Proj {
@@ -255,6 +279,59 @@ fn parse_step(text: &str) -> Result<Step, String> {
                 x0: num("x_0")?,
                 y0: num("y_0")?,
                 h0: num("h_0")?,
+            }
+        }
+        "labrd" if !inv => {
+            let (a, es) = ellipsoid()?;
+            let pm = match get("pm") {
+                None => 0.0,
+                Some("paris") => 2.337_229_166_666_667,
+                Some(v) => v
+                    .parse()
+                    .map_err(|_| format!("PROJ step `{text}`: prime meridian {v}"))?,
+            };
+            let phi0 = num("lat_0")?.to_radians();
+            let k0 = get("k").or(get("k_0")).map_or(Ok(1.0), |v| {
+                v.parse::<f64>()
+                    .map_err(|_| format!("PROJ step `{text}`: `k` is not a number"))
+            })?;
+            let e = es.sqrt();
+            let sinp = phi0.sin();
+            let t = 1.0 - es * sinp * sinp;
+            let n = 1.0 / t.sqrt();
+            let r = (1.0 - es) * n / t;
+            let k_rg = k0 * (n * r).sqrt();
+            let p0s = ((r / n).sqrt() * phi0.tan()).atan();
+            let big_a = sinp / p0s.sin();
+            let t = e * sinp;
+            let fortpi = std::f64::consts::FRAC_PI_4;
+            let big_c = 0.5 * e * big_a * ((1.0 + t) / (1.0 - t)).ln()
+                - big_a * (fortpi + 0.5 * phi0).tan().ln()
+                + (fortpi + 0.5 * p0s).tan().ln();
+            let az2 = 2.0 * num("azi")?.to_radians();
+            let cb = 1.0 / (12.0 * k_rg * k_rg);
+            Step::Labrd {
+                a,
+                e,
+                lam0: (num("lon_0")? + pm).to_radians(),
+                k_rg,
+                p0s,
+                big_a,
+                big_c,
+                ca: (1.0 - az2.cos()) * cb,
+                cb: cb * az2.sin(),
+                x0: num("x_0")?,
+                y0: num("y_0")?,
+            }
+        }
+        "nzmg" if !inv => {
+            let (a, _) = ellipsoid()?;
+            Step::Nzmg {
+                a,
+                phi0: num("lat_0")?.to_radians(),
+                lam0: num("lon_0")?.to_radians(),
+                x0: num("x_0")?,
+                y0: num("y_0")?,
             }
         }
         _ => {
@@ -442,6 +519,55 @@ fn run(step: &Step, p: [f64; 3], stack: &mut Vec<f64>) -> Option<[f64; 3]> {
                 z,
             ]
         }
+        Step::Nzmg {
+            a,
+            phi0,
+            lam0,
+            x0,
+            y0,
+        } => {
+            let (re, im) = nzmg(y - phi0, x - lam0);
+            [x0 + a * re, y0 + a * im, z]
+        }
+        Step::Labrd {
+            a,
+            e,
+            lam0,
+            k_rg,
+            p0s,
+            big_a,
+            big_c,
+            ca,
+            cb,
+            x0,
+            y0,
+        } => {
+            let fortpi = std::f64::consts::FRAC_PI_4;
+            let (lam, phi) = (x - lam0, y);
+            let v1 = big_a * (fortpi + 0.5 * phi).tan().ln();
+            let t = e * phi.sin();
+            let v2 = 0.5 * e * big_a * ((1.0 + t) / (1.0 - t)).ln();
+            let ps = 2.0 * ((v1 - v2 + big_c).exp().atan() - fortpi);
+            let i1 = ps - p0s;
+            let (sinps, cosps) = ps.sin_cos();
+            let (sinps2, cosps2) = (sinps * sinps, cosps * cosps);
+            let i4 = big_a * cosps;
+            let i2 = 0.5 * big_a * i4 * sinps;
+            let i3 = i2 * big_a * big_a * (5.0 * cosps2 - sinps2) / 12.0;
+            let mut i6 = i4 * big_a * big_a;
+            let i5 = i6 * (cosps2 - sinps2) / 6.0;
+            i6 *=
+                big_a * big_a * (5.0 * cosps2 * cosps2 + sinps2 * (sinps2 - 18.0 * cosps2)) / 120.0;
+            let t = lam * lam;
+            let mut xx = k_rg * lam * (i4 + t * (i5 + t * i6));
+            let mut yy = k_rg * (i1 + t * (i2 + t * i3));
+            let (x2, y2) = (xx * xx, yy * yy);
+            let w1 = 3.0 * xx * y2 - xx * x2;
+            let w2 = yy * y2 - 3.0 * x2 * yy;
+            xx += ca * w1 + cb * w2;
+            yy += ca * w2 - cb * w1;
+            [x0 + a * xx, y0 + a * yy, z]
+        }
         Step::Proj { geo, proj, inv } => {
             let mut pt = (x, y, z);
             let (from, to) = if *inv { (proj, geo) } else { (geo, proj) };
@@ -449,6 +575,47 @@ fn run(step: &Step, p: [f64; 3], stack: &mut Vec<f64>) -> Option<[f64; 3]> {
             [pt.0, pt.1, pt.2]
         }
     })
+}
+
+/// New Zealand Map Grid on the unit ellipsoid: (easting, northing) of latitude and
+/// longitude offsets from the origin in radians. Coefficients from PROJ's nzmg.cpp (the
+/// published LINZ series).
+fn nzmg(dphi: f64, dlam: f64) -> (f64, f64) {
+    const RAD_TO_SEC5: f64 = 2.062_648_062_470_963_6;
+    const TPSI: [f64; 10] = [
+        0.6399175073,
+        -0.1358797613,
+        0.063294409,
+        -0.02526853,
+        0.0117879,
+        -0.0055161,
+        0.0026906,
+        -0.001333,
+        0.00067,
+        -0.00034,
+    ];
+    const BF: [(f64, f64); 6] = [
+        (0.7557853228, 0.0),
+        (0.249204646, 0.003371507),
+        (-0.001541739, 0.041058560),
+        (-0.10162907, 0.01727609),
+        (-0.26623489, -0.36249218),
+        (-0.6870983, -1.1651967),
+    ];
+    let phi = dphi * RAD_TO_SEC5;
+    let psi = TPSI.iter().rev().fold(0.0, |acc, c| c + phi * acc) * phi;
+    // z * (b0 + z * (b1 + ... )), z = psi + i lam (Horner, as pj_zpoly1).
+    let (zr, zi) = (psi, dlam);
+    let (mut ar, mut ai) = BF[5];
+    for &(br, bi) in BF[..5].iter().rev() {
+        let t = ar;
+        ar = br + zr * t - zi * ai;
+        ai = bi + zr * ai + zi * t;
+    }
+    let t = ar;
+    let (re, im) = (zr * t - zi * ai, zr * ai + zi * t);
+    // PROJ's x is the imaginary part (easting), y the real part (northing).
+    (im, re)
 }
 
 /// Geocentric to geodetic (longitude, latitude in radians, height), iterated to
