@@ -4,6 +4,8 @@
 //! lifts) and cleaning for 8 simulated hours on the hotel demo map (read from
 //! `../shared/maps`; skipped when absent). Real-time factor = 28 800 s / measured time.
 //!
+//! `hotel_8h_64`: the same with the fleets scaled to 64 robots.
+//!
 //! `rings_10min/<n>`: n robots, two per one-way ring of 8 vertices (constant density, every
 //! robot always driving), 10 simulated minutes: the cost per simulated second against the
 //! number of robots (5, 20, 80).
@@ -52,6 +54,31 @@ fn hotel_8h(bencher: Bencher) {
             until: None,
             trace: None,
             progress: None,
+            ..Default::default()
+        };
+        simulate(&building, &scenario, opts).expect("runs")
+    });
+}
+
+/// The hotel scenario with its fleets scaled together to 64 robots (32 / 19 / 13): the
+/// planner's cost when most robots are idle and in the way.
+#[divan::bench(sample_count = 2, sample_size = 1)]
+fn hotel_8h_64(bencher: Bencher) {
+    let Ok(map) = std::fs::read_to_string(HOTEL) else {
+        return;
+    };
+    let scenario = HOTEL_SCENARIO
+        .replace("count: 10,", "count: 32,")
+        .replace("count: 6,", "count: 19,")
+        .replace("count: 4,", "count: 13,");
+    let (building, scenario) = load(&map, &scenario);
+    assert_eq!(scenario.fleets.iter().map(|f| f.count).sum::<usize>(), 64);
+    bencher.bench_local(|| {
+        let opts = RunOptions {
+            until: None,
+            trace: None,
+            progress: None,
+            ..Default::default()
         };
         simulate(&building, &scenario, opts).expect("runs")
     });
@@ -114,6 +141,7 @@ fn rings_10min(bencher: Bencher, n: usize) {
             until: None,
             trace: None,
             progress: None,
+            ..Default::default()
         };
         simulate(&building, &scenario, opts).expect("runs")
     });

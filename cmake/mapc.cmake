@@ -6,7 +6,7 @@
 #     MAPS <file.building.yaml>...       # maps, relative to the current source directory
 #     [OUTPUT_DIR <dir>]                 # default ${CMAKE_CURRENT_BINARY_DIR}/maps
 #     [INSTALL_DESTINATION <dir>]        # default share/${PROJECT_NAME}/maps
-#     [TARGETS <nav|gltf|meshes>...]     # default: every target mapc knows
+#     [TARGETS <nav|gltf|meshes|classic|ignition|gz>...]  # default: all of them
 #     [TEXTURE_PATHS <dir>...]           # searched for <texture>.png before the map's dir
 #     [NO_INSTALL])
 #
@@ -17,7 +17,9 @@
 # texture it read, or the mapc executable changed: through DEPFILE where the generator
 # supports it (Ninja; Makefiles from CMake 3.20; Xcode and Visual Studio from 3.21),
 # otherwise through DEPENDS on the map. mapc does not rewrite files whose content did not
-# change. Each <OUTPUT_DIR>/<map>/ is installed to <INSTALL_DESTINATION>/<map>/, the layout
+# change; files a previous run wrote and this one did not are removed (mapc keeps a
+# manifest, .mapc-manifest, which is not installed). Each <OUTPUT_DIR>/<map>/ is installed to
+# <INSTALL_DESTINATION>/<map>/, the layout
 # rmf_demos_maps uses (share/<package>/maps/<map>/nav_graphs/0.yaml, ...).
 #
 # The executable is MAPC_EXECUTABLE (a cache variable; found on PATH when unset).
@@ -107,8 +109,10 @@ function(mapc_generate_maps)
       VERBATIM)
     list(APPEND stamps "${stamp}")
     if(NOT ARG_NO_INSTALL)
+      # mapc's manifest (what it wrote, for pruning stale files) is not part of the map.
       install(DIRECTORY "${ARG_OUTPUT_DIR}/${name}/"
-              DESTINATION "${ARG_INSTALL_DESTINATION}/${name}")
+              DESTINATION "${ARG_INSTALL_DESTINATION}/${name}"
+              PATTERN ".mapc-manifest*" EXCLUDE)
     endif()
   endforeach()
   add_custom_target(${ARG_TARGET} ALL DEPENDS ${stamps})

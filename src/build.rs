@@ -39,7 +39,9 @@ pub(crate) enum Target {
     /// `<map>/models/`.
     Ignition,
     /// gz-sim (Harmonic onwards) world `<map>/<map>.world` and level models in
-    /// `<map>/models/` (the rmf_demos_maps layout).
+    /// `<map>/models/` (the rmf_demos_maps layout). Also accepted as `gazebo`, like the
+    /// subcommand.
+    #[value(alias = "gazebo")]
     Gz,
 }
 
@@ -65,6 +67,49 @@ impl Target {
         }
     }
 
+    /// The manifest group of a file this map writes (path relative to the map's directory):
+    /// a target, `models` (shared by meshes and every world) or `crowd` (every world).
+    fn group_of(map: &str, rel: &Path) -> String {
+        let first = rel
+            .components()
+            .next()
+            .map(|c| c.as_os_str().to_string_lossy().into_owned())
+            .unwrap_or_default();
+        let name = rel.to_string_lossy();
+        match first.as_str() {
+            "nav_graphs" => "nav".into(),
+            "models" => "models".into(),
+            "config_resource" => "crowd".into(),
+            _ if name == format!("{map}_classic.world") => "classic".into(),
+            _ if name == format!("{map}_ignition.world") => "ignition".into(),
+            _ if name == format!("{map}.world") => "gz".into(),
+            _ => "gltf".into(),
+        }
+    }
+
+    /// The manifest groups a run of `targets` owns.
+    fn owned_groups(targets: &[Target]) -> std::collections::BTreeSet<String> {
+        let mut g = std::collections::BTreeSet::new();
+        for t in targets {
+            g.insert(
+                match t {
+                    Target::Nav => "nav",
+                    Target::Gltf => "gltf",
+                    Target::Meshes => "models",
+                    Target::Classic => "classic",
+                    Target::Ignition => "ignition",
+                    Target::Gz => "gz",
+                }
+                .to_string(),
+            );
+            if t.flavour().is_some() {
+                g.insert("models".into());
+                g.insert("crowd".into());
+            }
+        }
+        g
+    }
+
     fn flavour(self) -> Option<(Flavour, &'static str)> {
         match self {
             Target::Classic => Some((Flavour::Classic, "_classic")),
@@ -84,7 +129,8 @@ pub(crate) struct BuildArgs {
     /// `.building.yaml`).
     #[arg(short = 'o', long = "output", value_name = "OUTDIR")]
     out_dir: PathBuf,
-    /// Comma-separated targets to write (default: all).
+    /// Comma-separated targets to write (default: all): nav, gltf, meshes, classic,
+    /// ignition, gz (or gazebo).
     #[arg(long, value_enum, value_delimiter = ',', default_values_t = Target::ALL)]
     targets: Vec<Target>,
     /// A directory to search for `<texture>.png` (repeatable; searched in order, before
@@ -213,6 +259,10 @@ struct MapResult {
     code: u8,
     /// Files this map's outputs consist of (written or already up to date).
     outputs: Vec<PathBuf>,
+    /// What the write did (for the success line).
+    written: output::Written,
+    /// The success line's description: "1 graph, 2 level meshes".
+    what: String,
     /// Files read: the map, the files it names, the textures found (and the texture search
     /// directories when a texture was not found).
     deps: Vec<PathBuf>,
@@ -255,8 +305,7 @@ fn target_files(
         if models {
             names.extend(mesh_texture_names(&meshes));
         }
-        let search =
-            texture::SearchPath::new(texture_path, std::env::var_os("MAPC_TEXTURE_PATH"), input);
+        let search = texture::SearchPath::from_env(texture_path, input);
         let (textures, d) =
             mapc_backends::resolve_textures(b, names.iter().map(String::as_str), &mut |f| {
                 let Some((path, bytes)) = search.locate(f) else {
@@ -316,6 +365,8 @@ fn build_one(input: &Path, args: &BuildArgs, opts: &WorldOptions) -> MapResult {
         error: None,
         code: 0,
         outputs: Vec::new(),
+        written: output::Written::default(),
+        what: String::new(),
         deps: vec![input.to_path_buf()],
         wanted,
         blocked: Outputs::NONE,
@@ -369,10 +420,55 @@ fn build_one(input: &Path, args: &BuildArgs, opts: &WorldOptions) -> MapResult {
     if !result.blocked.is_empty() {
         result.code = 1;
     }
-    if !files.is_empty() || result.blocked.is_empty() {
+    // What the written targets hold, for the success line; zero of a kind asked for while
+    // keys were ignored is probably a typo.
+    let mut empty = Vec::new();
+    if let (Some(b), false) = (&checked.parsed.building, targets.is_empty()) {
+        let mut what = Vec::new();
+        if targets.contains(&Target::Nav) {
+            let graphs = files
+                .iter()
+                .filter(|f| f.path.starts_with("nav_graphs"))
+                .count();
+            what.push(crate::plural(graphs, "graph"));
+            if graphs == 0 {
+                empty.push("no nav graph (the map has no lanes)");
+            }
+        }
+        if targets.iter().any(|t| *t != Target::Nav) {
+            let meshes: usize = all_level_meshes(b)
+                .iter()
+                .map(|(_, m)| m.all().count())
+                .sum();
+            what.push(crate::plural(meshes, "level mesh"));
+            if meshes == 0 {
+                empty.push("no level mesh (the map has no floors or walls)");
+            }
+        }
+        result.what = what.join(", ");
+    }
+    if !empty.is_empty() && crate::something_ignored(&checked) {
+        // Zero outputs of a kind asked for, while keys were ignored: probably a typo.
+        result.error = Some(format!(
+            "{}: {}, but keys were ignored (see the warnings above); nothing written",
+            map,
+            empty.join(" and ")
+        ));
+        result.code = 1;
+    } else if !files.is_empty() || result.blocked.is_empty() {
         let dir = args.out_dir.join(&map);
-        match output::write_all(&dir, &files) {
-            Ok(()) => result.outputs = files.iter().map(|f| dir.join(&f.path)).collect(),
+        let group = |p: &Path| Target::group_of(&map, p);
+        // Only the targets written own their groups: a blocked target's earlier files stay.
+        let manifest = output::Manifest {
+            name: ".mapc-manifest".into(),
+            group: &group,
+            owned: Target::owned_groups(&targets),
+        };
+        match output::write_dir(&dir, "OUTDIR/<map>", &files, &manifest) {
+            Ok(w) => {
+                result.written = w;
+                result.outputs = files.iter().map(|f| dir.join(&f.path)).collect();
+            }
             Err(e) => {
                 result.error = Some(e);
                 result.code = 2;
@@ -411,7 +507,8 @@ impl Progress {
 
 /// One map's report. On a terminal-style report without `--verbose`, warnings are counted
 /// by code instead of shown one by one (a demo map has over a hundred).
-fn report(r: &MapResult, format: Format, verbose: bool) {
+fn report(r: &MapResult, args: &BuildArgs) {
+    let (format, verbose) = (args.diag.format, args.verbose);
     if let Some(c) = &r.checked {
         if format == Format::Human && !verbose {
             let errors: Vec<_> = c
@@ -445,9 +542,28 @@ fn report(r: &MapResult, format: Format, verbose: bool) {
     }
     match (&r.error, &r.checked) {
         (Some(e), _) => eprintln!("error: {e}"),
-        (None, Some(c)) if !r.blocked.is_empty() => not_written(&r.input, c, r.blocked, r.wanted),
+        (None, Some(c)) if !r.blocked.is_empty() => {
+            // Partially blocked: what was written still gets its line.
+            if r.blocked != r.wanted && !args.diag.quiet {
+                success_of(r, args);
+            }
+            not_written(&r.input, c, r.blocked, r.wanted)
+        }
+        (None, None) => {}
+        _ if !args.diag.quiet => success_of(r, args),
         _ => {}
     }
+}
+
+/// The success line of a map: what was written where.
+fn success_of(r: &MapResult, args: &BuildArgs) {
+    crate::success_line(
+        &map_name(&r.input),
+        &r.what,
+        &args.out_dir.join(map_name(&r.input)),
+        r.written,
+        r.checked.as_ref().map_or(0, |c| c.diagnostics.len()),
+    );
 }
 
 /// Make/Ninja depfile text: `targets: deps`, one dependency per continuation line. No
@@ -485,6 +601,10 @@ pub(crate) fn build(mut args: BuildArgs) -> ExitCode {
     args.targets.sort();
     args.targets.dedup();
     let args = &args;
+    if let Err(e) = crate::sanity::output_dir(&args.out_dir, "OUTDIR") {
+        eprintln!("error: {e}");
+        return ExitCode::from(2);
+    }
     // Two inputs with the same name would write the same directory.
     let mut seen: BTreeMap<String, &Path> = BTreeMap::new();
     for input in &args.inputs {
@@ -549,7 +669,7 @@ pub(crate) fn build(mut args: BuildArgs) -> ExitCode {
             results[i] = Some(r);
             progress.clear();
             while let Some(Some(r)) = results.get(printed) {
-                report(r, args.diag.format, args.verbose);
+                report(r, args);
                 printed += 1;
             }
             progress.draw(done + 1, &last);

@@ -2,10 +2,15 @@
 //! 2 usage or I/O error.
 
 mod build;
+mod info;
 mod lints;
 mod output;
+mod render_cmd;
+mod replay;
 mod report;
 mod report_json;
+mod sanity;
+mod signals;
 mod sim_cmd;
 mod texture;
 mod world_cmd;
@@ -46,6 +51,9 @@ struct DiagOpts {
     /// How to print diagnostics.
     #[arg(long, value_enum, default_value = "human")]
     format: Format,
+    /// Do not print the success line (what was written) on stderr.
+    #[arg(short, long)]
+    quiet: bool,
     #[command(flatten)]
     lints: LintOpts,
 }
@@ -118,10 +126,11 @@ enum Command {
         #[command(flatten)]
         diag: DiagOpts,
     },
-    /// Build many maps to several targets at once: OUTDIR/<map>/nav_graphs/<graph_idx>.yaml,
-    /// OUTDIR/<map>/<building>.glb, OUTDIR/<map>/models/<building>_<level>/meshes/. Maps are
-    /// built in parallel; unchanged files are not rewritten; `--depfile` tells Make or Ninja
-    /// what was read.
+    /// Build many maps to several targets at once (nav, gltf, meshes, classic, ignition,
+    /// gz): OUTDIR/<map>/nav_graphs/<graph_idx>.yaml, OUTDIR/<map>/<building>.glb,
+    /// OUTDIR/<map>/models/<building>_<level>/, OUTDIR/<map>/<map>{_classic,_ignition,}.world.
+    /// Maps are built in parallel; unchanged files are not rewritten, stale ones removed;
+    /// `--depfile` tells Make or Ninja what was read.
     Build(build::BuildArgs),
     /// Write a gz-sim (Harmonic onwards) world and its level models, like today's
     /// `building_map_generator gazebo`: OUTPUT_WORLD and
@@ -138,6 +147,13 @@ enum Command {
     /// report what happened: task times, throughput, door and lift waits, near misses.
     /// Scenario format, trace and report: docs/sim.md.
     Sim(sim_cmd::SimArgs),
+    /// List what a map holds for scenario authors: levels, graphs, named waypoints by role,
+    /// doors, lifts, dispensers and ingestors.
+    Info(info::InfoArgs),
+    /// Draw each level as a picture: OUTPUT/<building>_<level>.svg (or .png) with floors,
+    /// walls, doors, lifts, the lanes of each graph, waypoints and their roles, models, a
+    /// legend and a scale bar; `--diagnostics` draws the problems at their places.
+    Render(render_cmd::RenderArgs),
     /// Check maps and report every problem found, without writing anything.
     Check {
         /// The .building.yaml (or legacy .project.yaml) files to read.
@@ -150,6 +166,9 @@ enum Command {
 
 fn main() -> ExitCode {
     let cli = Cli::parse();
+    // `mapc sim` stops cooperatively on the first signal (it writes what ran); every other
+    // command removes its temporaries and exits.
+    signals::install(usize::from(matches!(cli.command, Command::Sim(_))));
     match cli.command {
         Command::Nav {
             input,
@@ -174,6 +193,8 @@ fn main() -> ExitCode {
         Command::Ignition(args) => world_cmd::run(mapc_backends::sdf::Flavour::Ignition, &args),
         Command::Classic(args) => world_cmd::run(mapc_backends::sdf::Flavour::Classic, &args),
         Command::Sim(args) => sim_cmd::run(&args),
+        Command::Info(args) => info::run(&args),
+        Command::Render(args) => render_cmd::run(&args),
         Command::Check { inputs, diag } => check(&inputs, &diag),
     }
 }
@@ -250,14 +271,41 @@ fn lints_for(input: &Path, opts: &LintOpts) -> Result<lints::Lints, String> {
     Ok(lints::Lints::new(cli, file))
 }
 
-/// Reads a map and runs every validation pass. `Err` is an I/O or usage problem (exit 2).
+/// Validation rules that compare positions with thresholds in metres (a door's width, how
+/// close two waypoints are, a lift cabin's extent): meaningless when the frontend could not
+/// tell the map's units.
+const METRIC_RULES: &[&str] = &[
+    "W0202", "W0204", "W0205", "W0206", "W0207", "W0305", "W0402", "W0404", "E0407",
+];
+
+/// Frontend errors after which positions are in unknown units: an unknown coordinate
+/// system, an unknown reference level, a wgs84 map without a CRS, a zero-length measurement.
+const UNITS_UNKNOWN: &[&str] = &["E0106", "E0107", "E0108", "E0109"];
+
+/// Reads a map and runs every validation pass, at the user's lint levels. `Err` is an I/O
+/// or usage problem (exit 2).
 fn load_and_check(input: &Path, opts: &LintOpts) -> Result<Checked, String> {
+    sanity::map_input(input)?;
     let lints = lints_for(input, opts)?;
-    let parsed = mapc_frontend::load(input).map_err(|e| e.to_string())?;
+    let mut parsed = mapc_frontend::load(input).map_err(|e| {
+        // The frontend names the file as given; print it without `./` noise.
+        e.to_string()
+            .replace(&input.display().to_string(), &output::shown(input))
+    })?;
+    for s in &mut parsed.sources {
+        s.name = output::shown(Path::new(&s.name));
+    }
     let mut diagnostics = parsed.diagnostics.clone();
-    // Passes run even after frontend errors so one run reports everything it can.
+    // Passes run even after frontend errors so one run reports everything it can, except
+    // those whose inputs the errors left unknown: they would only report consequences
+    // (a 224 m wide door in a map whose pixels were taken for metres).
+    let units_unknown = diagnostics.iter().any(|d| UNITS_UNKNOWN.contains(&d.code));
     if let Some(b) = &parsed.building {
-        diagnostics.extend(mapc_ir::validate(b));
+        diagnostics.extend(
+            mapc_ir::validate(b)
+                .into_iter()
+                .filter(|d| !(units_unknown && METRIC_RULES.contains(&d.code))),
+        );
     }
     lints.apply(&mut diagnostics);
     Ok(Checked {
@@ -291,7 +339,7 @@ fn not_written(input: &Path, c: &Checked, blocked: Outputs, wanted: Outputs) {
     } else {
         format!(" ({})", codes.join(", "))
     };
-    eprintln!("error: {}: {what}{why}", input.display());
+    eprintln!("error: {}: {what}{why}", output::shown(input));
 }
 
 fn emit(c: &Checked, format: Format) {
@@ -311,28 +359,101 @@ fn summary_line(input: &Path, c: &Checked) {
     if errors + warnings > 0 {
         eprintln!(
             "{}: {errors} error(s), {warnings} warning(s)",
-            input.display()
+            output::shown(input)
         );
     }
 }
 
 fn nav(input: &Path, output_dir: &Path, opts: &DiagOpts) -> ExitCode {
-    run_command(input, output_dir, opts, Outputs::NAV, |b| {
-        (mapc_backends::nav_graphs(b), Vec::new())
+    let cmd = Cmd {
+        name: "nav",
+        role: "OUTPUT_DIR",
+        kind: "nav graph",
+        none: "the map has no lanes",
+        outputs: Outputs::NAV,
+    };
+    run_command(input, output_dir, opts, &cmd, |b| {
+        let files = mapc_backends::nav_graphs(b);
+        let n = files.len();
+        (files, Vec::new(), n)
     })
 }
 
+/// A single-map command, for its messages.
+struct Cmd {
+    /// Subcommand name (also names the manifest).
+    name: &'static str,
+    /// The output argument, as `--help` names it.
+    role: &'static str,
+    /// What the command exists to write, singular ("nav graph").
+    kind: &'static str,
+    /// Why a map can truly have none of them.
+    none: &'static str,
+    /// The outputs the command writes (what errors must not break).
+    outputs: Outputs,
+}
+
+/// `n thing` or `n things`.
+pub(crate) fn plural(n: usize, thing: &str) -> String {
+    if n == 1 {
+        format!("1 {thing}")
+    } else if thing.ends_with("sh") || thing.ends_with('s') {
+        format!("{n} {thing}es")
+    } else {
+        format!("{n} {thing}s")
+    }
+}
+
+/// Whether the frontend ignored anything that could have held the missing outputs: an
+/// unknown key (W0103), a likely typo (E0112).
+fn something_ignored(c: &Checked) -> bool {
+    c.diagnostics
+        .iter()
+        .any(|d| d.code == "W0103" || d.code == "E0112")
+}
+
+/// The success line on stderr: what was written where, and how many warnings.
+pub(crate) fn success_line(
+    label: &str,
+    what: &str,
+    dir: &Path,
+    w: output::Written,
+    warnings: usize,
+) {
+    let removed = if w.removed > 0 {
+        format!(", {} stale removed", w.removed)
+    } else {
+        String::new()
+    };
+    let warn = if warnings > 0 {
+        format!(", {}", plural(warnings, "warning"))
+    } else {
+        String::new()
+    };
+    eprintln!(
+        "{label}: {what}, {} written to {} ({} unchanged{removed}){warn}",
+        plural(w.files, "file"),
+        output::shown(dir),
+        w.unchanged
+    );
+}
+
 /// The shape every single-map command shares: read and check `input`; unless an error
-/// breaks the command's `outputs`, `produce` builds the output files (its diagnostics, e.g.
-/// texture warnings, join the report); report; write the files under `out_dir` unless
-/// anything failed.
+/// breaks the command's outputs, `produce` builds the output files and counts those of the command's kind (its
+/// diagnostics, e.g. texture warnings, join the report); report; write the files under
+/// `out_dir` unless anything failed. Zero outputs of the kind fail (exit 1) unless the map
+/// truly has none: nothing was ignored on the way.
 fn run_command(
     input: &Path,
     out_dir: &Path,
     opts: &DiagOpts,
-    outputs: Outputs,
-    produce: impl FnOnce(&mapc_ir::Building) -> (Vec<mapc_backends::OutputFile>, Vec<Diagnostic>),
+    cmd: &Cmd,
+    produce: impl FnOnce(&mapc_ir::Building) -> (Vec<mapc_backends::OutputFile>, Vec<Diagnostic>, usize),
 ) -> ExitCode {
+    if let Err(e) = sanity::output_dir(out_dir, cmd.role) {
+        eprintln!("error: {e}");
+        return ExitCode::from(2);
+    }
     let mut checked = match load_and_check(input, &opts.lints) {
         Ok(c) => c,
         Err(e) => {
@@ -341,10 +462,12 @@ fn run_command(
         }
     };
     let mut files = Vec::new();
-    if checked.blocked(outputs).is_empty() {
+    let mut count = 0;
+    if checked.blocked(cmd.outputs).is_empty() {
         if let Some(b) = checked.parsed.building.as_ref() {
-            let (f, diags) = produce(b);
+            let (f, diags, n) = produce(b);
             files = f;
+            count = n;
             checked.extend(diags);
         }
     }
@@ -352,14 +475,32 @@ fn run_command(
     if opts.format == Format::Human {
         summary_line(input, &checked);
     }
-    let blocked = checked.blocked(outputs);
+    let blocked = checked.blocked(cmd.outputs);
     if !blocked.is_empty() {
         // One output: when any part is blocked, nothing is written.
-        not_written(input, &checked, outputs, outputs);
+        not_written(input, &checked, cmd.outputs, cmd.outputs);
         return ExitCode::from(1);
     }
-    match output::write_all(out_dir, &files) {
-        Ok(()) => ExitCode::SUCCESS,
+    let label = build::map_name(input);
+    if count == 0 && something_ignored(&checked) {
+        eprintln!(
+            "error: {label}: no {} written: {}, but keys were ignored (see the warnings above); \
+             nothing written",
+            cmd.kind, cmd.none
+        );
+        return ExitCode::from(1);
+    }
+    match output::single_write(out_dir, cmd.role, &files, cmd.name, &label) {
+        Ok(w) => {
+            if !opts.quiet {
+                if count == 0 {
+                    eprintln!("{label}: no {} written: {}", cmd.kind, cmd.none);
+                }
+                let warnings = checked.diagnostics.len();
+                success_line(&label, &plural(count, cmd.kind), out_dir, w, warnings);
+            }
+            ExitCode::SUCCESS
+        }
         Err(e) => {
             eprintln!("error: {e}");
             ExitCode::from(2)
@@ -393,12 +534,24 @@ fn gltf(
     per_level: bool,
     opts: &DiagOpts,
 ) -> ExitCode {
-    run_command(input, output_dir, opts, Outputs::GLTF, |b| {
+    let cmd = Cmd {
+        name: "gltf",
+        role: "OUTPUT_DIR",
+        kind: "level mesh",
+        none: "the map has no floors or walls",
+        outputs: Outputs::GLTF,
+    };
+    run_command(input, output_dir, opts, &cmd, |b| {
         let meshes = build::all_level_meshes(b);
+        let n = meshes.iter().map(|(_, m)| m.all().count()).sum();
         let names = build::gltf_texture_names(&meshes);
         let (textures, diags) =
             textures_for(b, names.iter().map(String::as_str), texture_path, input);
-        (build::gltf_files(b, &meshes, &textures, per_level), diags)
+        (
+            build::gltf_files(b, &meshes, &textures, per_level),
+            diags,
+            n,
+        )
     })
 }
 
@@ -410,18 +563,25 @@ fn textures_for<'a>(
     texture_path: &[PathBuf],
     input: &Path,
 ) -> (mapc_backends::Textures, Vec<Diagnostic>) {
-    let search =
-        texture::SearchPath::new(texture_path, std::env::var_os("MAPC_TEXTURE_PATH"), input);
+    let search = texture::SearchPath::from_env(texture_path, input);
     mapc_backends::resolve_textures(b, names, &mut |f| search.find(f))
 }
 
 fn meshes(input: &Path, model_dir: &Path, texture_path: &[PathBuf], opts: &DiagOpts) -> ExitCode {
-    run_command(input, model_dir, opts, Outputs::MESHES, |b| {
+    let cmd = Cmd {
+        name: "meshes",
+        role: "OUTPUT_MODEL_DIR",
+        kind: "level mesh",
+        none: "the map has no floors or walls",
+        outputs: Outputs::MESHES,
+    };
+    run_command(input, model_dir, opts, &cmd, |b| {
         let meshes = build::all_level_meshes(b);
+        let n = meshes.iter().map(|(_, m)| m.all().count()).sum();
         let names = build::mesh_texture_names(&meshes);
         let (textures, diags) =
             textures_for(b, names.iter().map(String::as_str), texture_path, input);
-        (build::mesh_files(b, &meshes, &textures), diags)
+        (build::mesh_files(b, &meshes, &textures), diags, n)
     })
 }
 
@@ -439,6 +599,10 @@ fn check(inputs: &[PathBuf], opts: &DiagOpts) -> ExitCode {
                 }
                 if opts.format == Format::Human {
                     summary_line(input, &c);
+                }
+                // A clean map is said out loud too (problems have their count line).
+                if c.diagnostics.is_empty() && !opts.quiet {
+                    eprintln!("{}: no problems found", output::shown(input));
                 }
                 all.push(c);
             }

@@ -85,6 +85,64 @@ pub fn json_lines(sources: &[SourceFile], diags: &[Diagnostic]) -> String {
     out
 }
 
+/// Where a code's documentation is, as an absolute URI (SARIF viewers do not resolve
+/// relative ones): the repository's page when the package names one, else the docs of the
+/// source tree mapc was built from.
+fn help_uri(code: &str) -> String {
+    // The heading's anchor: `## W0213 demo-mock-lift-without-floor`.
+    let anchor = match crate::code_name(code) {
+        "" => code.to_ascii_lowercase(),
+        name => format!("{}-{name}", code.to_ascii_lowercase()),
+    };
+    match option_env!("CARGO_PKG_REPOSITORY").filter(|r| !r.is_empty()) {
+        Some(repo) => format!("{repo}/blob/main/docs/diagnostics.md#{anchor}"),
+        None => format!(
+            "{}#{anchor}",
+            file_uri(&std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("docs/diagnostics.md"))
+        ),
+    }
+}
+
+/// Percent-encodes what may not appear in a URI path (RFC 3986 unreserved and `/` stay).
+fn encode(path: &str) -> String {
+    let mut out = String::new();
+    for b in path.bytes() {
+        match b {
+            b'A'..=b'Z' | b'a'..=b'z' | b'0'..=b'9' | b'-' | b'.' | b'_' | b'~' | b'/' => {
+                out.push(b as char)
+            }
+            _ => out.push_str(&format!("%{b:02X}")),
+        }
+    }
+    out
+}
+
+/// `file:///abs/path`, with `\` as `/` (Windows).
+fn file_uri(p: &std::path::Path) -> String {
+    let s = p.to_string_lossy().replace('\\', "/");
+    let s = if s.starts_with('/') {
+        s
+    } else {
+        format!("/{s}")
+    };
+    format!("file://{}", encode(&s))
+}
+
+/// A SARIF artifact location: relative paths as normalized URI references against
+/// `%SRCROOT%` (the working directory), absolute ones as `file://` URIs.
+fn artifact_location(name: &str) -> Value {
+    let p = std::path::Path::new(name);
+    if p.is_absolute() {
+        return json!({ "uri": file_uri(p) });
+    }
+    let parts: Vec<String> = p
+        .components()
+        .filter(|c| *c != std::path::Component::CurDir)
+        .map(|c| c.as_os_str().to_string_lossy().into_owned())
+        .collect();
+    json!({ "uri": encode(&parts.join("/")), "uriBaseId": "%SRCROOT%" })
+}
+
 /// A SARIF 2.1.0 log with one run.
 pub fn sarif(sources: &[SourceFile], diags: &[Diagnostic]) -> String {
     let mut codes: Vec<&str> = diags.iter().map(|d| d.code).collect();
@@ -96,7 +154,7 @@ pub fn sarif(sources: &[SourceFile], diags: &[Diagnostic]) -> String {
             json!({
                 "id": c,
                 "name": crate::code_name(c),
-                "helpUri": format!("docs/diagnostics.md#{}", c.to_ascii_lowercase()),
+                "helpUri": help_uri(c),
             })
         })
         .collect();
@@ -124,7 +182,7 @@ pub fn sarif(sources: &[SourceFile], diags: &[Diagnostic]) -> String {
                 "message": { "text": text },
                 "locations": [{
                     "physicalLocation": {
-                        "artifactLocation": { "uri": file_name(sources, d.span) },
+                        "artifactLocation": artifact_location(file_name(sources, d.span)),
                         "region": region,
                     }
                 }],
@@ -141,6 +199,13 @@ pub fn sarif(sources: &[SourceFile], diags: &[Diagnostic]) -> String {
                 "informationUri": "https://github.com/open-rmf",
                 "rules": rules,
             }},
+            "originalUriBaseIds": {
+                "%SRCROOT%": {
+                    "uri": std::env::current_dir()
+                        .map(|d| format!("{}/", file_uri(&d).trim_end_matches('/')))
+                        .unwrap_or_default(),
+                },
+            },
             "results": results,
         }],
     });

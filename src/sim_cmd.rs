@@ -2,7 +2,7 @@
 //! trace (JSON Lines) and a report (JSON). Exit codes: 0 ok, 1 invalid scenario or map (or
 //! a scenario that does not fit the map), 2 usage or I/O error.
 
-use crate::{load_and_check, output, report, report_json, summary_line, Checked};
+use crate::{load_and_check, output, report, report_json, signals, summary_line, Checked};
 use clap::ValueEnum;
 use mapc_frontend::SourceFile;
 use mapc_ir::{Diagnostic, FileId, Span};
@@ -29,17 +29,87 @@ pub(crate) struct SimArgs {
     /// duration such as 90s, 15min, 8h, 1h30min.
     #[arg(long, value_name = "TIME", value_parser = parse_until)]
     until: Option<f64>,
-    /// Write every published message here, one JSON object per line.
+    /// Write every published message here, one JSON object per line (zstd-compressed when
+    /// FILE ends in `.zst`, e.g. `run.jsonl.zst`).
     #[arg(long, value_name = "FILE")]
     trace: Option<PathBuf>,
+    /// Only these topics go to the trace (comma-separated, e.g.
+    /// `task_events,door_states`; default: all).
+    #[arg(long, value_name = "TOPICS", value_delimiter = ',', value_parser = parse_topic)]
+    trace_topics: Vec<mapc_sim::msgs::Topic>,
+    /// Trace state topics (robot, fleet, door, lift, dispenser and ingestor states, door
+    /// supervisor heartbeats) at most once per this period per publisher: seconds or a
+    /// duration such as 1s, 1min (default: every message).
+    #[arg(long, value_name = "TIME", value_parser = parse_period)]
+    trace_state_period: Option<f64>,
     /// Write the run report here (JSON).
     #[arg(long, value_name = "FILE")]
     report: Option<PathBuf>,
+    /// Write a self-contained HTML page that replays the run (levels, robots, doors, lifts,
+    /// tasks, charts; no network needed).
+    #[arg(long, value_name = "FILE")]
+    html: Option<PathBuf>,
     /// How to print diagnostics and the summary.
     #[arg(long, value_enum, default_value = "human")]
     format: SimFormat,
     #[command(flatten)]
     lints: crate::LintOpts,
+    /// Do not print the success line (what was written) on stderr.
+    #[arg(short, long)]
+    quiet: bool,
+}
+
+fn parse_topic(s: &str) -> Result<mapc_sim::msgs::Topic, String> {
+    mapc_sim::msgs::Topic::from_name(s.trim()).ok_or_else(|| {
+        let names: Vec<&str> = mapc_sim::msgs::Topic::ALL
+            .iter()
+            .map(|t| &t.name()[1..])
+            .collect();
+        format!("unknown topic; one of: {}", names.join(", "))
+    })
+}
+
+fn parse_period(s: &str) -> Result<f64, String> {
+    let t = mapc_sim::parse_duration(s)?;
+    if !t.is_finite() || t < 0.0 {
+        return Err("must be a time of at least 0".into());
+    }
+    Ok(t)
+}
+
+/// Before simulating (an 8 h run can take minutes): every output path can be written. A
+/// temporary is created and removed in the file's directory, which is created if missing.
+fn check_writable(path: &Path, what: &str) -> Result<(), String> {
+    if path.is_dir() {
+        return Err(format!(
+            "`{}` is a directory; {what} must be a file path",
+            output::shown(path)
+        ));
+    }
+    let dir = path
+        .parent()
+        .filter(|p| !p.as_os_str().is_empty())
+        .unwrap_or(Path::new("."));
+    let err = |e: std::io::Error| {
+        format!(
+            "{what}: {}; nothing simulated",
+            output::io_message(dir, "its directory", path, &e)
+        )
+    };
+    std::fs::create_dir_all(dir).map_err(err)?;
+    let (tmp, _f) = output::create_temporary(path).map_err(err)?;
+    let _ = std::fs::remove_file(&tmp);
+    output::release_temporary(&tmp);
+    Ok(())
+}
+
+/// A building map passed where the scenario belongs: say so instead of reporting that the
+/// "scenario" lacks every scenario key.
+fn looks_like_map(path: &Path, text: &str) -> bool {
+    let name = path.to_string_lossy();
+    name.ends_with(".building.yaml")
+        || name.ends_with(".project.yaml")
+        || text.lines().any(|l| l.starts_with("levels:"))
 }
 
 fn parse_until(s: &str) -> Result<f64, String> {
@@ -125,7 +195,25 @@ pub(crate) fn run(args: &SimArgs) -> ExitCode {
         Ok(x) => x,
         Err(e) => return failed(e),
     };
-    let name = args.scenario.display().to_string();
+    if looks_like_map(&args.scenario, &text) {
+        return failed(format!(
+            "`{}` is a building map; use --map {} and pass a scenario (docs/sim.md)",
+            output::shown(&args.scenario),
+            output::shown(&args.scenario)
+        ));
+    }
+    for (path, what) in [
+        (&args.report, "--report"),
+        (&args.trace, "--trace"),
+        (&args.html, "--html"),
+    ] {
+        if let Some(p) = path {
+            if let Err(e) = check_writable(p, what) {
+                return failed(e);
+            }
+        }
+    }
+    let name = output::shown(&args.scenario);
     let base = args
         .scenario
         .parent()
@@ -207,11 +295,29 @@ pub(crate) fn run(args: &SimArgs) -> ExitCode {
     };
     let mut bar = Progress::new();
     let mut progress = |t: f64, end: f64| bar.update(t, end);
+    let topics =
+        (!args.trace_topics.is_empty()).then(|| args.trace_topics.iter().copied().collect());
+    let mut recorder = args
+        .html
+        .as_ref()
+        .map(|_| crate::replay::Recorder::new(building, &scenario));
+    let mut observe = |p: &mapc_sim::msgs::Published| {
+        if let Some(r) = recorder.as_mut() {
+            r.observe(p);
+        }
+    };
     let opts = mapc_sim::RunOptions {
         until: args.until,
-        trace: trace.as_mut().map(|t| &mut t.writer as &mut dyn Write),
+        trace: trace.as_mut().map(|t| t.writer()),
         progress: if std::io::stderr().is_terminal() {
             Some(&mut progress)
+        } else {
+            None
+        },
+        stop: Some(&signals::INTERRUPTED),
+        trace_filter: mapc_sim::TraceFilter::new(topics, args.trace_state_period.unwrap_or(0.0)),
+        observer: if args.html.is_some() {
+            Some(&mut observe)
         } else {
             None
         },
@@ -233,9 +339,15 @@ pub(crate) fn run(args: &SimArgs) -> ExitCode {
             return failed(format!("{}: {e}", path.display()));
         }
     };
+    // Also after an interruption: the trace up to the stop is kept under its final name.
     if let Some(t) = trace {
         if let Err(e) = t.finish() {
             return failed(e);
+        }
+    }
+    if let (Some(path), Some(r)) = (&args.html, recorder) {
+        if let Err(e) = output::write_atomic(path, r.page().as_bytes()) {
+            return failed(format!("{}: {e}", path.display()));
         }
     }
     if let Some(path) = &args.report {
@@ -250,9 +362,48 @@ pub(crate) fn run(args: &SimArgs) -> ExitCode {
     }
     match args.format {
         SimFormat::Human => print!("{}", run_report.summary()),
-        SimFormat::Json => println!("{}", serde_json::json!({ "report": run_report })),
+        // Through a struct, not `json!`: a `serde_json::Value` map sorts keys, and the
+        // report's key order is documented.
+        SimFormat::Json => match serde_json::to_string(&JsonReport {
+            report: &run_report,
+        }) {
+            Ok(j) => println!("{j}"),
+            Err(e) => return failed(format!("report: {e}")),
+        },
+    }
+    if !args.quiet {
+        let mut written = Vec::new();
+        if let Some(p) = &args.report {
+            written.push(format!("report {}", output::shown(p)));
+        }
+        if let Some(p) = &args.trace {
+            written.push(format!("trace {}", output::shown(p)));
+        }
+        let written = if written.is_empty() {
+            "nothing written (no --report or --trace)".to_string()
+        } else {
+            format!("wrote {}", written.join(", "))
+        };
+        eprintln!(
+            "{}: simulated {:.0} s{}, {written}",
+            output::shown(&args.scenario),
+            run_report.end_time,
+            if run_report.interrupted {
+                " (interrupted)"
+            } else {
+                ""
+            }
+        );
+    }
+    if run_report.interrupted {
+        return ExitCode::from(130);
     }
     ExitCode::SUCCESS
+}
+
+#[derive(serde::Serialize)]
+struct JsonReport<'a> {
+    report: &'a mapc_sim::Report,
 }
 
 fn count_line(name: &str, diags: &[Diagnostic]) {
@@ -263,42 +414,69 @@ fn count_line(name: &str, diags: &[Diagnostic]) {
     }
 }
 
-/// A trace being written: a temporary file next to the target, renamed on success and
-/// removed on failure, so that a reader never sees half a trace under the final name.
+/// A trace being written: a temporary file next to the target, renamed when the run ends
+/// (completed or interrupted) and removed on failure, so a reader never sees half a trace
+/// under the final name. Names ending in `.zst` are zstd-compressed.
 struct TraceFile {
-    writer: BufWriter<std::fs::File>,
+    /// `None` only inside `finish`.
+    writer: Option<TraceWriter>,
     tmp: PathBuf,
     path: PathBuf,
     done: bool,
 }
 
+enum TraceWriter {
+    Plain(BufWriter<std::fs::File>),
+    Zstd(zstd::Encoder<'static, BufWriter<std::fs::File>>),
+}
+
 impl TraceFile {
     fn create(path: &Path) -> Result<TraceFile, String> {
-        let err = |e: std::io::Error| format!("{}: {e}", path.display());
+        let err = |e: std::io::Error| format!("{}: {e}", output::shown(path));
         let dir = path
             .parent()
             .filter(|p| !p.as_os_str().is_empty())
             .unwrap_or(Path::new("."));
         std::fs::create_dir_all(dir).map_err(err)?;
-        let name = path
-            .file_name()
-            .and_then(|n| n.to_str())
-            .ok_or_else(|| format!("{}: not a file path", path.display()))?;
-        let tmp = dir.join(format!(".{name}.mapc-tmp-{}", std::process::id()));
-        let file = std::fs::File::create(&tmp).map_err(err)?;
+        if path.file_name().and_then(|n| n.to_str()).is_none() {
+            return Err(format!("{}: not a file path", output::shown(path)));
+        }
+        output::sweep_temporaries(dir);
+        let (tmp, file) = output::create_temporary(path).map_err(err)?;
+        let buffered = BufWriter::with_capacity(1 << 20, file);
+        let writer = if path.extension().is_some_and(|e| e == "zst") {
+            // Level 3, zstd's default: a trace compresses about 30x, fast enough to keep up.
+            TraceWriter::Zstd(zstd::Encoder::new(buffered, 3).map_err(err)?)
+        } else {
+            TraceWriter::Plain(buffered)
+        };
         Ok(TraceFile {
-            writer: BufWriter::with_capacity(1 << 20, file),
+            writer: Some(writer),
             tmp,
             path: path.to_path_buf(),
             done: false,
         })
     }
 
+    fn writer(&mut self) -> &mut dyn Write {
+        match &mut self.writer {
+            Some(TraceWriter::Plain(w)) => w,
+            Some(TraceWriter::Zstd(w)) => w,
+            None => unreachable!("the writer is only taken by finish, which consumes self"),
+        }
+    }
+
     fn finish(mut self) -> Result<(), String> {
-        let err = |e: std::io::Error| format!("{}: {e}", self.path.display());
-        self.writer.flush().map_err(err)?;
-        self.writer.get_ref().sync_all().map_err(err)?;
+        let err = |e: std::io::Error| format!("{}: {e}", output::shown(&self.path));
+        let mut file = match self.writer.take() {
+            Some(TraceWriter::Plain(w)) => w,
+            Some(TraceWriter::Zstd(w)) => w.finish().map_err(err)?,
+            None => return Ok(()),
+        };
+        file.flush().map_err(err)?;
+        file.get_ref().sync_all().map_err(err)?;
         std::fs::rename(&self.tmp, &self.path).map_err(err)?;
+        output::release_temporary(&self.tmp);
         self.done = true;
         Ok(())
     }
@@ -308,6 +486,7 @@ impl Drop for TraceFile {
     fn drop(&mut self) {
         if !self.done {
             let _ = std::fs::remove_file(&self.tmp);
+            output::release_temporary(&self.tmp);
         }
     }
 }

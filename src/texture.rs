@@ -1,6 +1,8 @@
 //! The texture search path: `--texture-path DIR` options in order, then the directories of
-//! the `MAPC_TEXTURE_PATH` environment variable (colon-separated), then the map file's
-//! directory. The first `<name>.png` found wins.
+//! the `MAPC_TEXTURE_PATH` environment variable (colon-separated), then
+//! `share/rmf_building_map_tools/textures` under every prefix of `AMENT_PREFIX_PATH` (where
+//! an RMF install keeps the editor's textures), then the map file's directory. The first
+//! `<name>.png` found wins.
 
 use std::ffi::OsString;
 use std::path::{Path, PathBuf};
@@ -13,10 +15,32 @@ pub struct SearchPath {
 }
 
 impl SearchPath {
-    pub fn new(cli: &[PathBuf], env: Option<OsString>, map_file: &Path) -> Self {
+    /// The path from the environment's `MAPC_TEXTURE_PATH` and `AMENT_PREFIX_PATH`.
+    pub fn from_env(cli: &[PathBuf], map_file: &Path) -> Self {
+        Self::new(
+            cli,
+            std::env::var_os("MAPC_TEXTURE_PATH"),
+            std::env::var_os("AMENT_PREFIX_PATH"),
+            map_file,
+        )
+    }
+
+    pub fn new(
+        cli: &[PathBuf],
+        env: Option<OsString>,
+        ament: Option<OsString>,
+        map_file: &Path,
+    ) -> Self {
         let mut dirs: Vec<PathBuf> = cli.to_vec();
         if let Some(env) = env {
             dirs.extend(std::env::split_paths(&env).filter(|p| !p.as_os_str().is_empty()));
+        }
+        if let Some(ament) = ament {
+            dirs.extend(
+                std::env::split_paths(&ament)
+                    .filter(|p| !p.as_os_str().is_empty())
+                    .map(|p| p.join("share/rmf_building_map_tools/textures")),
+            );
         }
         let map_dir = map_file.parent().filter(|p| !p.as_os_str().is_empty());
         dirs.push(map_dir.unwrap_or(Path::new(".")).to_path_buf());
@@ -51,14 +75,22 @@ mod tests {
         let sp = SearchPath::new(
             &[PathBuf::from("a"), PathBuf::from("b")],
             Some(OsString::from("c::d")),
+            Some(OsString::from("/opt/ros/jazzy")),
             Path::new("maps/x.building.yaml"),
         );
-        let want: Vec<PathBuf> = ["a", "b", "c", "d", "maps"]
-            .iter()
-            .map(PathBuf::from)
-            .collect();
+        let want: Vec<PathBuf> = [
+            "a",
+            "b",
+            "c",
+            "d",
+            "/opt/ros/jazzy/share/rmf_building_map_tools/textures",
+            "maps",
+        ]
+        .iter()
+        .map(PathBuf::from)
+        .collect();
         assert_eq!(sp.dirs, want);
-        let sp = SearchPath::new(&[], None, Path::new("x.building.yaml"));
+        let sp = SearchPath::new(&[], None, None, Path::new("x.building.yaml"));
         assert_eq!(sp.dirs, [PathBuf::from(".")]);
     }
 }

@@ -2,7 +2,8 @@
 //! world and its level models, with `building_map_generator gazebo`'s arguments.
 
 use crate::{
-    emit, load_and_check, not_written, output, summary_line, textures_for, DiagOpts, Format,
+    emit, load_and_check, not_written, output, plural, sanity, success_line, summary_line,
+    textures_for, DiagOpts, Format,
 };
 use mapc_backends::sdf::world::{parse_template, world_files, WorldOptions};
 use mapc_backends::sdf::Flavour;
@@ -63,6 +64,10 @@ pub(crate) fn read_template(
 }
 
 pub(crate) fn run(flavour: Flavour, args: &WorldArgs) -> ExitCode {
+    if let Err(e) = sanity::world_outputs(&args.output_world, &args.output_model_dir) {
+        eprintln!("error: {e}");
+        return ExitCode::from(2);
+    }
     let template = match &args.template_world_file {
         None => None,
         Some(p) => match read_template(p, args.skip_camera_pose) {
@@ -134,15 +139,62 @@ pub(crate) fn run(flavour: Flavour, args: &WorldArgs) -> ExitCode {
     };
     // Models first: the world refers to them. The crowd simulator's Menge files
     // (config_resource/, next to the world) go with the world, before it.
+    let meshes = out
+        .models
+        .iter()
+        .filter(|f| f.path.extension().is_some_and(|e| e == "obj"))
+        .count();
     let mut world = out.crowd;
     world.push(OutputFile {
         path: PathBuf::from(world_name),
         contents: out.world.into_bytes(),
     });
-    let result = output::write_all(&args.output_model_dir, &out.models)
-        .and_then(|()| output::write_all(world_dir, &world));
+    let cmd = match flavour {
+        Flavour::Gz => "gz",
+        Flavour::Ignition => "ignition",
+        Flavour::Classic => "classic",
+    };
+    let label = crate::build::map_name(&args.input);
+    // A world without any level mesh shows nothing but its models: a failure unless the
+    // map truly has no floors or walls (nothing was ignored on the way).
+    if meshes == 0 && crate::something_ignored(&checked) {
+        eprintln!(
+            "error: {label}: no level mesh written: the map has no floors or walls, but keys \
+             were ignored (see the warnings above); nothing written"
+        );
+        return ExitCode::from(1);
+    }
+    let result = output::single_write(
+        &args.output_model_dir,
+        "OUTPUT_MODEL_DIR",
+        &out.models,
+        cmd,
+        &label,
+    )
+    .and_then(|m| {
+        output::single_write(world_dir, "the world's directory", &world, cmd, &label)
+            .map(|w| (m, w))
+    });
     match result {
-        Ok(()) => ExitCode::SUCCESS,
+        Ok((m, w)) => {
+            if !args.diag.quiet {
+                let total = output::Written {
+                    files: m.files + w.files,
+                    unchanged: m.unchanged + w.unchanged,
+                    removed: m.removed + w.removed,
+                };
+                let what = format!("1 world, {}", plural(meshes, "level mesh"));
+                success_line(
+                    &label,
+                    &what,
+                    &args.output_model_dir,
+                    total,
+                    checked.diagnostics.len(),
+                );
+                eprintln!("  world: {}", output::shown(&args.output_world));
+            }
+            ExitCode::SUCCESS
+        }
         Err(e) => {
             eprintln!("error: {e}");
             ExitCode::from(2)

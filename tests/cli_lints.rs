@@ -49,7 +49,8 @@ fn allow_by_code_and_by_name() {
     for what in ["E0302", "duplicate-door-name"] {
         let o = mapc(&["check", &m, "--allow", what]);
         assert_eq!(code(&o), 0, "{}", stderr(&o));
-        assert!(!stderr(&o).contains("E0302"), "{}", stderr(&o));
+        // `[E0302]`: the file name (in "no problems found") holds the code too.
+        assert!(!stderr(&o).contains("[E0302]"), "{}", stderr(&o));
     }
 }
 
@@ -341,11 +342,68 @@ fn allow_warnings_silences_what_is_still_a_warning() {
     let m = s(&invalid("W0204"));
     let o = mapc(&["check", &m, "--allow", "warnings"]);
     assert_eq!(code(&o), 0);
-    assert!(!stderr(&o).contains("W0204"), "{}", stderr(&o));
+    assert!(!stderr(&o).contains("[W0204]"), "{}", stderr(&o));
     // A code denied by name stays denied: the group applies only to warnings.
     let o = mapc(&["check", &m, "--allow", "warnings", "--deny", "W0204"]);
     assert_eq!(code(&o), 1, "{}", stderr(&o));
     // Errors are not warnings.
     let e = s(&invalid("E0302"));
     assert_eq!(code(&mapc(&["check", &e, "--allow", "warnings"])), 1);
+}
+
+#[test]
+fn a_likely_typo_can_be_allowed_or_lowered() {
+    // E0112 ignores a key as W0103 does, so unlike the other E01xx codes it takes a level.
+    let m = s(&invalid("E0112"));
+    assert_eq!(code(&mapc(&["check", &m])), 1);
+    let o = mapc(&["check", &m, "--allow", "E0112"]);
+    assert_eq!(code(&o), 0, "{}", stderr(&o));
+    let o = mapc(&["check", &m, "--warn", "likely-typo"]);
+    assert_eq!(code(&o), 0, "{}", stderr(&o));
+    assert!(stderr(&o).contains("warning[E0112]"), "{}", stderr(&o));
+    // Lowered to a warning it still counts as something ignored: no nav graph from a map
+    // whose `lane` key was dropped is a failure, not an empty success.
+    let out = tempfile::tempdir().unwrap();
+    let o = mapc(&["nav", &m, &s(out.path()), "--warn", "E0112"]);
+    assert_eq!(code(&o), 1, "{}", stderr(&o));
+    assert!(stderr(&o).contains("keys were ignored"), "{}", stderr(&o));
+}
+
+#[test]
+fn a_blocked_target_keeps_its_earlier_files_and_the_rest_report_success() {
+    // First with E0407 allowed: every target written. Then at the default level: nav is
+    // blocked, its earlier graphs are not pruned as stale (the run does not own them), and
+    // the targets written still get their success line.
+    let m = s(&invalid("E0407"));
+    let out = tempfile::tempdir().unwrap();
+    let build = |extra: &[&str]| {
+        let mut args = vec!["build", &m, "-o"];
+        let o = s(out.path());
+        args.push(&o);
+        args.extend_from_slice(&["--targets", "nav,gltf"]);
+        args.extend_from_slice(extra);
+        mapc(&args)
+    };
+    let o = build(&["--allow", "E0407"]);
+    assert_eq!(code(&o), 0, "{}", stderr(&o));
+    let map_dir = std::fs::read_dir(out.path())
+        .unwrap()
+        .next()
+        .unwrap()
+        .unwrap()
+        .path();
+    let graphs = map_dir.join("nav_graphs");
+    assert!(graphs.is_dir());
+    let o = build(&[]);
+    assert_eq!(code(&o), 1, "{}", stderr(&o));
+    let err = stderr(&o);
+    assert!(err.contains("nav not written (E0407)"), "{err}");
+    assert!(err.contains("written to"), "{err}");
+    assert!(!err.contains("stale removed"), "{err}");
+    assert!(graphs.is_dir(), "{err}");
+    // --quiet drops the success line, not the error.
+    let o = build(&["--quiet"]);
+    assert_eq!(code(&o), 1);
+    assert!(!stderr(&o).contains("written to"), "{}", stderr(&o));
+    assert!(stderr(&o).contains("nav not written"), "{}", stderr(&o));
 }

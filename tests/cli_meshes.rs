@@ -18,6 +18,7 @@ fn mapc(args: &[&str]) -> (i32, String) {
 }
 
 /// Relative paths of every file below `dir`.
+/// Every file below `dir`, except mapc's manifest (what it wrote, for pruning).
 fn files(dir: &Path) -> BTreeSet<String> {
     let mut out = BTreeSet::new();
     let mut stack = vec![dir.to_path_buf()];
@@ -26,7 +27,7 @@ fn files(dir: &Path) -> BTreeSet<String> {
             let p = e.unwrap().path();
             if p.is_dir() {
                 stack.push(p);
-            } else {
+            } else if !p.to_string_lossy().contains(".mapc-manifest") {
                 out.insert(p.strip_prefix(dir).unwrap().display().to_string());
             }
         }

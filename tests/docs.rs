@@ -158,7 +158,7 @@ formats, chosen with `--format`:
 
 Exit codes: 0 every output asked for was written (`mapc check`: no errors; warnings are
 fine), 1 an error (or a denied warning) blocked an output asked for (`mapc check`: any
-error), 2 usage or I/O error.
+error), 2 usage or I/O error, 130/143 interrupted by SIGINT/SIGTERM.
 
 ## Lint levels
 
@@ -186,7 +186,10 @@ An error blocks only the outputs it breaks (the **blocks** column: `nav`, `gltf`
 exits 1, a single-output command whose output is not broken writes it. Errors after which
 no correct output can be written (unreadable input, an element dropped for a wrong type or a
 dangling index, no usable coordinates) cannot be allowed or lowered to warnings: trying is a
-usage error (exit 2). The **can be allowed** column says which codes can.
+usage error (exit 2). The exception among the frontend's errors is `E0112` (a likely typo
+of a known key): the key is only ignored, as with `W0103`, so it can be allowed or lowered
+to a warning when the key really is an extension; while an error it blocks every output.
+The **can be allowed** column says which codes can.
 "#;
 
 /// "yes"/"no" and the outputs blocked, from `mapc_ir::lints::policy` (scenario codes are

@@ -27,8 +27,13 @@ fn nav(name: &str) -> Vec<(String, YamlOwned)> {
         !stderr.contains("warning[") && !stderr.contains("error["),
         "{name}: {stderr}"
     );
+    // The graphs only, not the output manifest (`.mapc-manifest-nav-<map>`).
     let mut files: Vec<(String, YamlOwned)> = std::fs::read_dir(out.path())
         .unwrap()
+        .filter(|e| {
+            let e = e.as_ref().unwrap();
+            !e.file_name().to_string_lossy().starts_with('.')
+        })
         .map(|e| {
             let p = e.unwrap().path();
             let text = std::fs::read_to_string(&p).unwrap();

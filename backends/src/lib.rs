@@ -9,6 +9,7 @@ mod gltf;
 mod mesh;
 mod nav;
 mod obj;
+pub mod render;
 pub mod sdf;
 mod texture;
 mod yaml;

@@ -345,23 +345,46 @@ pub const DUPLICATE_KEY: Code = Code {
 
 /// # W0103 unknown-key
 ///
-/// **What:** a key that the format does not define, at the top level or in a level (also:
-/// elements after a vertex's parameters).
+/// **What:** a key that the format does not define and that is not close to one that it
+/// does, at the top level or in a level (also: elements after a vertex's parameters). Keys
+/// within a small edit distance of a known key are E0112 instead.
 ///
-/// **Why it matters:** it is ignored; usually it is a typo of a real key (`elevaton`), whose
-/// value is then silently lost.
+/// **Why it matters:** it is ignored. Maps carry extensions of other tools, so this is a
+/// warning; but if it was meant as one of the format's keys, its value is lost.
 ///
 /// **Fix:** correct the spelling or remove the key.
 ///
 /// **Example:**
 /// ```yaml
 /// levels:
-///   L1: {elevaton: 3.0}   # W0103
+///   L1: {vendor_notes: "x"}   # W0103
 /// ```
 pub const UNKNOWN_KEY: Code = Code {
     code: "W0103",
     name: "unknown-key",
     summary: "a key is not part of the format and is ignored",
+};
+
+/// # E0112 likely-typo
+///
+/// **What:** a key (top level or level) or a vertex parameter that the format does not
+/// define, within one edit (two for names longer than five characters, case ignored) of one
+/// that it does: `lane` for `lanes`, `is_chargr` for `is_charger`.
+///
+/// **Why it matters:** the value is ignored, so the lanes or the chargers silently
+/// disappear and every output looks fine.
+///
+/// **Fix:** rename it to the key the message suggests.
+///
+/// **Example:**
+/// ```yaml
+/// levels:
+///   L1: {elevaton: 3.0}   # E0112: did you mean `elevation`?
+/// ```
+pub const LIKELY_TYPO: Code = Code {
+    code: "E0112",
+    name: "likely-typo",
+    summary: "an unknown key or vertex parameter is a misspelling of a known one",
 };
 
 /// # W0104 conflicting-building-name
@@ -474,6 +497,7 @@ pub static CODES: &[Code] = &[
     DEGENERATE_ALIGNMENT,
     NO_LEVELS,
     BAD_PROJECT,
+    LIKELY_TYPO,
     NULL_AS_EMPTY,
     DUPLICATE_KEY,
     UNKNOWN_KEY,

@@ -7,6 +7,7 @@
 mod codes;
 pub mod crs;
 mod lower;
+pub mod spelling;
 mod transform;
 mod yaml;
 

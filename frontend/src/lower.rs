@@ -80,6 +80,24 @@ const LEVEL_KEYS: &[&str] = &[
     "physical_cameras",
 ];
 
+/// Vertex parameters the format gives a meaning (waypoint roles).
+const VERTEX_PARAMS: &[&str] = &[
+    "is_charger",
+    "is_parking_spot",
+    "is_holding_point",
+    "is_passthrough_point",
+    "is_cleaning_zone",
+    "dock_name",
+    "pickup_dispenser",
+    "dropoff_ingestor",
+    "spawn_robot_type",
+    "spawn_robot_name",
+    "mutex",
+    "lift_cabin",
+    "merge_radius",
+    "human_goal_set_name",
+];
+
 impl Lower<'_> {
     fn err(&mut self, code: &'static str, span: Span, msg: impl Into<String>, help: &str) {
         self.diags
@@ -175,14 +193,47 @@ impl Lower<'_> {
     fn unknown_keys(&mut self, entries: &[(Node, Node)], known: &[&str], what: &str) {
         for (k, _) in entries {
             if let Some(t) = k.key_text() {
-                if !known.contains(&t) {
-                    self.warn(
+                if known.contains(&t) {
+                    continue;
+                }
+                // Close to a known key: a typo whose value would be silently lost. Far from
+                // every known key: a tool-specific extension, which maps may carry.
+                match crate::spelling::closest(t, known) {
+                    Some(m) => self.err(
+                        "E0112",
+                        k.span,
+                        format!("unknown key `{t}` in {what}; did you mean `{m}`?"),
+                        &format!("rename it to `{m}`; as written it is ignored"),
+                    ),
+                    None => self.warn(
                         "W0103",
                         k.span,
                         format!("unknown key `{t}` in {what}; it is ignored"),
                         "check the spelling against the .building.yaml format",
-                    );
+                    ),
                 }
+            }
+        }
+    }
+
+    /// Vertex parameters close to a known one (`is_chargr`): errors, since the role would
+    /// silently disappear. Others are free-form and stay quiet.
+    fn misspelled_params(&mut self, node: &Node, what: impl Display) {
+        let Some(entries) = node.as_map() else {
+            return;
+        };
+        for (k, _) in entries {
+            let Some(t) = k.key_text() else { continue };
+            if VERTEX_PARAMS.contains(&t) {
+                continue;
+            }
+            if let Some(m) = crate::spelling::closest(t, VERTEX_PARAMS) {
+                self.err(
+                    "E0112",
+                    k.span,
+                    format!("unknown parameter `{t}` of {what}; did you mean `{m}`?"),
+                    &format!("rename it to `{m}`; as written it is ignored"),
+                );
             }
         }
     }
@@ -816,7 +867,10 @@ impl Lower<'_> {
         self.f64(&items[2], "the z of a vertex");
         let name = self.string(&items[3], "a vertex name")?;
         let params = match items.get(4) {
-            Some(p) => self.params(p, format_args!("vertex `{name}`")),
+            Some(p) => {
+                self.misspelled_params(p, format_args!("vertex `{name}`"));
+                self.params(p, format_args!("vertex `{name}`"))
+            }
             None => Params::default(),
         };
         if items.len() > 5 {

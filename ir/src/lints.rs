@@ -76,6 +76,10 @@ pub fn policy(code: &str) -> Policy {
         nav_only_with_lanes: false,
     };
     match code {
+        // A likely typo of a known key (W0103's close cousin): the key is ignored, like an
+        // unknown key, so the user may allow it or lower it to a warning (the key really is
+        // an extension); while it is an error it blocks every output, as W0103 denied does.
+        "E0112" => allow(Outputs::ALL),
         // Reading the file: the model itself is incomplete or wrong after these errors.
         c if c.starts_with("E00") || c.starts_with("E01") => Policy {
             can_allow: false,
@@ -122,6 +126,8 @@ mod tests {
         assert!(p.can_allow && p.blocks.intersects(Outputs::WORLDS) && p.nav_only_with_lanes);
         assert!(!policy("E0001").can_allow && !policy("E0103").can_allow);
         assert_eq!(policy("E0103").blocks, Outputs::ALL);
+        let typo = policy("E0112");
+        assert!(typo.can_allow && typo.blocks == Outputs::ALL);
         assert_eq!(
             Outputs::NAV.union(Outputs::WORLDS).names(),
             ["nav", "worlds"]

@@ -31,12 +31,15 @@ pub use scenario::{
     parse as parse_scenario, parse_duration, FleetSpec, GeneratorSpec, Scenario, SimOptions,
     SpawnSpec, TaskCategory, TaskKind, TaskSpec, WorkcellKind, WorkcellSpec, MAX_DURATION,
 };
+pub use trace::TraceFilter;
 
 use mapc_ir::{Building, Diagnostic};
 use msgs::{Msg, Published, Topic};
 use std::io::Write;
+use std::sync::atomic::{AtomicBool, Ordering};
 
 /// How long to run and what to record.
+#[derive(Default)]
 pub struct RunOptions<'a> {
     /// Stop at this sim time (s); default: the scenario's duration.
     pub until: Option<f64>,
@@ -44,6 +47,14 @@ pub struct RunOptions<'a> {
     pub trace: Option<&'a mut dyn Write>,
     /// Called about once per simulated minute with (t, end).
     pub progress: Option<&'a mut dyn FnMut(f64, f64)>,
+    /// Checked before every step: when set, the run ends there and the report says it was
+    /// interrupted (how a caller stops on Ctrl-C and still gets the report of what ran).
+    pub stop: Option<&'a AtomicBool>,
+    /// Which messages go to the trace (every one by default); the report sees them all.
+    pub trace_filter: trace::TraceFilter,
+    /// Sees every message the trace records, in the same order (e.g. to build a replay);
+    /// it cannot change the run.
+    pub observer: Option<&'a mut dyn FnMut(&Published)>,
 }
 
 /// Why a run could not start or finish.
@@ -84,21 +95,38 @@ pub fn simulate(
     // Ground truth every 0.1 s is enough to see robots pass each other (≤ 0.2 m apart at
     // the fastest presets' speeds), whatever the step.
     let sample_every = ((0.1 / scenario.step).round() as u64).max(1);
+    let mut interrupted = false;
     for i in 0..steps {
+        if opts.stop.is_some_and(|s| s.load(Ordering::Relaxed)) {
+            interrupted = true;
+            break;
+        }
         let t = world.time();
         requests.clear();
         fleets.update(t, &inbox, &mut requests);
         inbox.clear();
         for (topic, msg) in requests.drain(..) {
             let p = Published { t, topic, msg };
-            record(&mut opts.trace, &mut report, &p)?;
+            record(
+                &mut opts.trace,
+                &mut opts.trace_filter,
+                &mut opts.observer,
+                &mut report,
+                &p,
+            )?;
             if topic != Topic::TaskEvents {
                 world.deliver(topic, p.msg);
             }
         }
         world.step(&mut inbox);
         for p in &inbox {
-            record(&mut opts.trace, &mut report, p)?;
+            record(
+                &mut opts.trace,
+                &mut opts.trace_filter,
+                &mut opts.observer,
+                &mut report,
+                p,
+            )?;
         }
         if i % sample_every == 0 {
             report.sample(world.time(), &world.robots());
@@ -116,16 +144,25 @@ pub fn simulate(
     if let Some(w) = opts.trace.as_mut() {
         w.flush().map_err(SimError::Io)?;
     }
-    Ok(report.finish(world.time(), &world.robots()))
+    let mut report = report.finish(world.time(), &world.robots());
+    report.interrupted = interrupted;
+    Ok(report)
 }
 
 fn record(
     trace: &mut Option<&mut dyn Write>,
+    filter: &mut trace::TraceFilter,
+    observer: &mut Option<&mut dyn FnMut(&Published)>,
     report: &mut report::ReportBuilder,
     p: &Published,
 ) -> Result<(), SimError> {
     if let Some(w) = trace.as_mut() {
-        trace::write(&mut **w, p).map_err(SimError::Io)?;
+        if filter.accepts(p) {
+            trace::write(&mut **w, p).map_err(SimError::Io)?;
+        }
+    }
+    if let Some(o) = observer.as_mut() {
+        o(p);
     }
     report.observe(p);
     Ok(())

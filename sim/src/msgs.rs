@@ -275,6 +275,53 @@ pub struct TaskEvent {
     pub fleet: String,
     pub robot: String,
     pub detail: String,
+    /// On `completed` and `failed`: where the task's robot waited, by cause.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub waits: Option<TaskWaits>,
+}
+
+/// Time (s) a task's robot spent waiting, by cause, and where (`places`: "lift Lift2",
+/// "door L1_door2", "dispenser kitchen_dispenser", "traffic at lobby", ...). Charging counts
+/// while a task waits for its robot to charge.
+#[derive(Debug, Clone, PartialEq, Default, Serialize)]
+pub struct TaskWaits {
+    pub traffic_s: f64,
+    pub lift_s: f64,
+    pub door_s: f64,
+    pub workcell_s: f64,
+    pub charging_s: f64,
+    pub places: std::collections::BTreeMap<String, f64>,
+}
+
+impl TaskWaits {
+    /// Adds `dt` seconds of waiting for `cause` at `place`.
+    pub fn add(&mut self, cause: WaitCause, place: &str, dt: f64) {
+        if dt <= 0.0 {
+            return;
+        }
+        *match cause {
+            WaitCause::Traffic => &mut self.traffic_s,
+            WaitCause::Lift => &mut self.lift_s,
+            WaitCause::Door => &mut self.door_s,
+            WaitCause::Workcell => &mut self.workcell_s,
+            WaitCause::Charging => &mut self.charging_s,
+        } += dt;
+        *self.places.entry(place.to_string()).or_insert(0.0) += dt;
+    }
+
+    pub fn total(&self) -> f64 {
+        self.traffic_s + self.lift_s + self.door_s + self.workcell_s + self.charging_s
+    }
+}
+
+/// Why a robot with a task is not moving.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum WaitCause {
+    Traffic,
+    Lift,
+    Door,
+    Workcell,
+    Charging,
 }
 
 /// A message on a topic: what the runtime publishes, what the trace records.
@@ -322,6 +369,48 @@ pub enum Topic {
 }
 
 impl Topic {
+    pub const ALL: [Topic; 19] = [
+        Topic::RobotState,
+        Topic::FleetStates,
+        Topic::RobotPathRequests,
+        Topic::RobotModeRequests,
+        Topic::RobotPauseRequests,
+        Topic::AdapterDoorRequests,
+        Topic::DoorRequests,
+        Topic::DoorStates,
+        Topic::DoorSupervisorHeartbeat,
+        Topic::AdapterLiftRequests,
+        Topic::LiftRequests,
+        Topic::LiftStates,
+        Topic::DispenserRequests,
+        Topic::DispenserResults,
+        Topic::DispenserStates,
+        Topic::IngestorRequests,
+        Topic::IngestorResults,
+        Topic::IngestorStates,
+        Topic::TaskEvents,
+    ];
+
+    /// The topic of a name, with or without the leading `/`.
+    pub fn from_name(name: &str) -> Option<Topic> {
+        let name = name.strip_prefix('/').unwrap_or(name);
+        Topic::ALL.into_iter().find(|t| &t.name()[1..] == name)
+    }
+
+    /// Periodic state topics (what `--trace-state-period` thins out).
+    pub fn is_state(self) -> bool {
+        matches!(
+            self,
+            Topic::RobotState
+                | Topic::FleetStates
+                | Topic::DoorStates
+                | Topic::DoorSupervisorHeartbeat
+                | Topic::LiftStates
+                | Topic::DispenserStates
+                | Topic::IngestorStates
+        )
+    }
+
     pub fn name(self) -> &'static str {
         match self {
             Topic::RobotState => "/robot_state",

@@ -3,7 +3,7 @@
 //! would see. Every list is in a deterministic order (map order, first-seen order, or
 //! sorted), and every struct serialises its fields in declaration order.
 
-use crate::msgs::{door_mode, lift_request, lift_state, Msg, Topic};
+use crate::msgs::{door_mode, lift_request, lift_state, Msg, TaskWaits, Topic};
 use crate::world::RobotTruth;
 use serde::Serialize;
 use std::collections::{BTreeMap, BTreeSet};
@@ -43,6 +43,13 @@ pub struct Report {
     pub contacts: Vec<Encounter>,
     /// By time.
     pub stuck: Vec<StuckReport>,
+    /// Task waits by cause, over every ended task.
+    pub waits: WaitTotals,
+    /// The place tasks waited at longest (none when no task waited).
+    pub bottleneck: Option<Bottleneck>,
+    /// The run was stopped (Ctrl-C) before its end: everything above covers what ran.
+    #[serde(skip_serializing_if = "std::ops::Not::not")]
+    pub interrupted: bool,
 }
 
 #[derive(Debug, Clone, Default, PartialEq, Serialize)]
@@ -60,6 +67,8 @@ pub struct TaskReport {
     pub result: String,
     /// The `detail` of the last event that had one (the failure reason for failed tasks).
     pub detail: String,
+    /// Where its robot waited, by cause (from the end event; null while unfinished).
+    pub waits: Option<TaskWaits>,
 }
 
 #[derive(Debug, Clone, Default, PartialEq, Serialize)]
@@ -115,6 +124,8 @@ pub struct DoorReport {
     pub open_requests: usize,
     /// From the session's first OPEN request to the first DoorState OPEN after it.
     pub wait: Waits,
+    /// Share of the run the door was not closed (DoorState).
+    pub utilisation: f64,
 }
 
 #[derive(Debug, Clone, Default, PartialEq, Serialize)]
@@ -128,6 +139,30 @@ pub struct LiftReport {
     /// From a session's first request to a LiftState of that session at its destination
     /// floor with the doors open.
     pub wait: Waits,
+    /// Share of the run the lift was in someone's session (LiftState `session_id`).
+    pub utilisation: f64,
+}
+
+/// Task waits summed over every ended task, by cause (s).
+#[derive(Debug, Clone, Default, PartialEq, Serialize)]
+pub struct WaitTotals {
+    pub traffic_s: f64,
+    pub lift_s: f64,
+    pub door_s: f64,
+    pub workcell_s: f64,
+    pub charging_s: f64,
+}
+
+/// The place where tasks waited longest in total: what the building saturates on.
+#[derive(Debug, Clone, Default, PartialEq, Serialize)]
+pub struct Bottleneck {
+    /// "lift Lift2", "door L1_door2", "workcell kitchen_dispenser", "traffic at lobby", ...
+    pub place: String,
+    /// `traffic`, `lift`, `door`, `workcell` or `charging`.
+    pub cause: String,
+    /// Seconds tasks waited there, and that as a share of all task waiting.
+    pub wait_s: f64,
+    pub share: f64,
 }
 
 #[derive(Debug, Clone, Default, PartialEq, Serialize)]
@@ -179,6 +214,9 @@ struct RobotAcc {
 #[derive(Default)]
 struct DoorAcc {
     report: DoorReport,
+    /// Since when the door has not been closed, and the time summed so far.
+    open_since: Option<f64>,
+    open_s: f64,
     /// Open sessions by requester: the request time while waiting for the door to open.
     sessions: BTreeMap<String, Option<f64>>,
 }
@@ -186,6 +224,9 @@ struct DoorAcc {
 #[derive(Default)]
 struct LiftAcc {
     report: LiftReport,
+    /// Since when the lift has been in a session, and the time summed so far.
+    busy_since: Option<f64>,
+    busy_s: f64,
     /// Open sessions: (request time, destination) while waiting, None once served.
     sessions: BTreeMap<String, Option<(f64, String)>>,
     moving: bool,
@@ -312,9 +353,21 @@ impl ReportBuilder {
                     }
                 }
             }
-            (Topic::DoorStates, Msg::DoorState(s)) if s.current_mode.value == door_mode::OPEN => {
+            (Topic::DoorStates, Msg::DoorState(s)) => {
                 let i = self.door(&s.door_name);
                 let d = &mut self.doors[i];
+                let closed = s.current_mode.value == door_mode::CLOSED;
+                match (closed, d.open_since) {
+                    (true, Some(t0)) => {
+                        d.open_s += p.t - t0;
+                        d.open_since = None;
+                    }
+                    (false, None) => d.open_since = Some(p.t),
+                    _ => {}
+                }
+                if s.current_mode.value != door_mode::OPEN {
+                    return;
+                }
                 for pending in d.sessions.values_mut() {
                     if let Some(t0) = pending.take() {
                         d.report.wait.add(p.t - t0);
@@ -345,6 +398,14 @@ impl ReportBuilder {
                 );
                 if moving && !l.moving {
                     l.report.trips += 1;
+                }
+                match (s.session_id.is_empty(), l.busy_since) {
+                    (true, Some(t0)) => {
+                        l.busy_s += p.t - t0;
+                        l.busy_since = None;
+                    }
+                    (false, None) => l.busy_since = Some(p.t),
+                    _ => {}
                 }
                 l.moving = moving;
                 if s.door_state == lift_state::DOOR_OPEN {
@@ -410,6 +471,9 @@ impl ReportBuilder {
             }
             if !e.detail.is_empty() {
                 task.detail = e.detail.clone();
+            }
+            if e.waits.is_some() {
+                task.waits = e.waits.clone();
             }
         }
         match e.event.as_str() {
@@ -622,11 +686,13 @@ impl ReportBuilder {
                 }
             })
             .collect();
+        let share = |busy: f64| if t > 0.0 { busy / t } else { 0.0 };
         let doors = self
             .doors
             .into_iter()
             .map(|mut d| {
                 d.report.wait.unserved += d.sessions.values().filter(|p| p.is_some()).count();
+                d.report.utilisation = share(d.open_s + d.open_since.map_or(0.0, |s| t - s));
                 d.report
             })
             .collect();
@@ -635,9 +701,11 @@ impl ReportBuilder {
             .into_iter()
             .map(|mut l| {
                 l.report.wait.unserved += l.sessions.values().filter(|p| p.is_some()).count();
+                l.report.utilisation = share(l.busy_s + l.busy_since.map_or(0.0, |s| t - s));
                 l.report
             })
             .collect();
+        let (waits, bottleneck) = bottleneck(&self.tasks);
         Report {
             end_time: t,
             tasks: self.tasks,
@@ -648,8 +716,40 @@ impl ReportBuilder {
             near_misses: self.near_misses,
             contacts: self.contacts,
             stuck: self.stuck,
+            waits,
+            bottleneck,
+            interrupted: false,
         }
     }
+}
+
+/// Task waits by cause, and the place waited at longest over all tasks (ties by name).
+fn bottleneck(tasks: &[TaskReport]) -> (WaitTotals, Option<Bottleneck>) {
+    let mut totals = WaitTotals::default();
+    let mut places: BTreeMap<&str, f64> = BTreeMap::new();
+    for w in tasks.iter().filter_map(|k| k.waits.as_ref()) {
+        totals.traffic_s += w.traffic_s;
+        totals.lift_s += w.lift_s;
+        totals.door_s += w.door_s;
+        totals.workcell_s += w.workcell_s;
+        totals.charging_s += w.charging_s;
+        for (p, s) in &w.places {
+            *places.entry(p).or_insert(0.0) += s;
+        }
+    }
+    let all =
+        totals.traffic_s + totals.lift_s + totals.door_s + totals.workcell_s + totals.charging_s;
+    let top = places
+        .iter()
+        .max_by(|a, b| a.1.total_cmp(b.1).then_with(|| b.0.cmp(a.0)))
+        .filter(|(_, &s)| s > 0.0)
+        .map(|(p, &s)| Bottleneck {
+            place: p.to_string(),
+            cause: p.split(' ').next().unwrap_or_default().to_string(),
+            wait_s: s,
+            share: if all > 0.0 { s / all } else { 0.0 },
+        });
+    (totals, top)
 }
 
 fn hms(t: f64) -> String {
@@ -669,9 +769,14 @@ impl Report {
         let count = |r: &str| self.tasks.iter().filter(|k| k.result == r).count();
         let _ = writeln!(
             s,
-            "simulated {} ({:.2} s)",
+            "simulated {} ({:.2} s){}",
             hms(self.end_time),
-            self.end_time
+            self.end_time,
+            if self.interrupted {
+                ", interrupted"
+            } else {
+                ""
+            }
         );
         let _ = writeln!(
             s,
@@ -706,24 +811,45 @@ impl Report {
         for d in busy_doors {
             let _ = writeln!(
                 s,
-                "  door {}: {} request(s), wait mean {:.1} s, max {:.1} s{}",
+                "  door {}: {} request(s), wait mean {:.1} s, max {:.1} s, open {:.0} %{}",
                 d.name,
                 d.open_requests,
                 d.wait.mean_s,
                 d.wait.max_s,
+                100.0 * d.utilisation,
                 unserved(d.wait.unserved)
             );
         }
         for l in self.lifts.iter().filter(|l| l.sessions > 0 || l.trips > 0) {
             let _ = writeln!(
                 s,
-                "  lift {}: {} session(s), {} trip(s), wait mean {:.1} s, max {:.1} s{}",
+                "  lift {}: {} session(s), {} trip(s), wait mean {:.1} s, max {:.1} s, busy {:.0} %{}",
                 l.name,
                 l.sessions,
                 l.trips,
                 l.wait.mean_s,
                 l.wait.max_s,
+                100.0 * l.utilisation,
                 unserved(l.wait.unserved)
+            );
+        }
+        let w = &self.waits;
+        let _ = writeln!(
+            s,
+            "task waits: traffic {}, lift {}, door {}, workcell {}, charging {}",
+            hms(w.traffic_s),
+            hms(w.lift_s),
+            hms(w.door_s),
+            hms(w.workcell_s),
+            hms(w.charging_s)
+        );
+        if let Some(b) = &self.bottleneck {
+            let _ = writeln!(
+                s,
+                "bottleneck: {} ({} of waiting there, {:.0} % of all task waits)",
+                b.place,
+                hms(b.wait_s),
+                100.0 * b.share
             );
         }
         let closest = self
@@ -748,7 +874,18 @@ impl Report {
             );
         }
         let _ = writeln!(s);
-        let _ = writeln!(s, "stuck episodes: {}", self.stuck.len());
+        // Resolved: the robot moved on (or the events stopped) well before the end.
+        let unresolved = self
+            .stuck
+            .iter()
+            .filter(|k| k.until >= self.end_time - STUCK_AFTER)
+            .count();
+        let _ = writeln!(
+            s,
+            "stuck episodes: {} ({} resolved, {unresolved} unresolved at the end)",
+            self.stuck.len(),
+            self.stuck.len() - unresolved
+        );
         const SHOWN: usize = 10;
         for k in self.stuck.iter().take(SHOWN) {
             let _ = writeln!(
@@ -782,6 +919,7 @@ mod tests {
     use crate::fleet::Placement;
     use crate::msgs::{
         DoorMode, DoorRequest, DoorState, LiftRequest, LiftState, Published, TaskEvent, Time,
+        WaitCause,
     };
     use crate::params::RobotParams;
     use crate::world::RobotSpawn;
@@ -870,8 +1008,42 @@ mod tests {
                 fleet: fleet.into(),
                 robot: robot.into(),
                 detail: String::new(),
+                waits: None,
             }),
         }
+    }
+
+    #[test]
+    fn bottleneck_is_the_place_tasks_waited_at_longest() {
+        let mut b = builder();
+        let mut done = |t: f64, id: &str, waits: TaskWaits| {
+            let mut p = event(t, id, "completed", "r0", "f");
+            if let Msg::TaskEvent(e) = &mut p.msg {
+                e.waits = Some(waits);
+            }
+            b.observe(&p);
+        };
+        let mut w1 = TaskWaits::default();
+        w1.add(WaitCause::Lift, "lift Lift2", 30.0);
+        w1.add(WaitCause::Traffic, "traffic at lobby", 20.0);
+        let mut w2 = TaskWaits::default();
+        w2.add(WaitCause::Lift, "lift Lift2", 40.0);
+        w2.add(WaitCause::Door, "door d1", 10.0);
+        done(100.0, "t1", w1);
+        done(200.0, "t2", w2);
+        let r = b.finish(300.0, &[]);
+        assert_eq!(r.waits.lift_s, 70.0);
+        assert_eq!(r.waits.traffic_s, 20.0);
+        assert_eq!(r.waits.door_s, 10.0);
+        let top = r.bottleneck.clone().expect("a bottleneck");
+        assert_eq!(
+            (top.place.as_str(), top.cause.as_str()),
+            ("lift Lift2", "lift")
+        );
+        assert_eq!(top.wait_s, 70.0);
+        assert!((top.share - 0.7).abs() < 1e-12);
+        assert_eq!(r.tasks[0].waits.as_ref().map(TaskWaits::total), Some(50.0));
+        assert!(r.summary().contains("bottleneck: lift Lift2"));
     }
 
     #[test]
@@ -1136,7 +1308,12 @@ mod tests {
             s.contains("tasks: 3 seen, 1 completed, 1 failed, 1 unfinished"),
             "{s}"
         );
-        assert!(s.contains("stuck episodes: 3"), "{s}");
+        // Run end 600 s: the no_motion episode lasts to the end; the deadlocks ended at 88 s
+        // and 200 s, more than 300 s before it.
+        assert!(
+            s.contains("stuck episodes: 3 (2 resolved, 1 unresolved at the end)"),
+            "{s}"
+        );
     }
 
     #[test]

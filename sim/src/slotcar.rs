@@ -422,7 +422,7 @@ impl Slotcar {
         self.seq += 1;
         let msg = RobotState {
             name: self.name.clone(),
-            model: String::new(),
+            model: self.p.model.clone(),
             task_id: self.task_id.clone().unwrap_or_default(),
             seq: self.seq,
             mode: RobotMode {

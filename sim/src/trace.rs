@@ -3,9 +3,60 @@
 //! Keys come in a fixed order (struct field order), floats in serde_json's shortest
 //! round-trip form, so identical runs give byte-identical traces.
 
-use crate::msgs::{Msg, Published};
+use crate::msgs::{Msg, Published, Topic};
 use serde::Serialize;
+use std::collections::{BTreeMap, BTreeSet};
 use std::io::{self, Write};
+
+/// Which messages the trace keeps: a set of topics (all when `None`), and state topics at
+/// most once per `state_period` seconds per publisher (a robot, door, lift or workcell), so
+/// an 8 h trace need not hold every 10 Hz state. The report always sees every message.
+#[derive(Debug, Default)]
+pub struct TraceFilter {
+    pub topics: Option<BTreeSet<Topic>>,
+    /// 0: every state message.
+    pub state_period: f64,
+    last: BTreeMap<(Topic, String), f64>,
+}
+
+impl TraceFilter {
+    pub fn new(topics: Option<BTreeSet<Topic>>, state_period: f64) -> TraceFilter {
+        TraceFilter {
+            topics,
+            state_period,
+            last: BTreeMap::new(),
+        }
+    }
+
+    /// Whether `p` goes to the trace (and, when it does, remembers it for the rate limit).
+    pub fn accepts(&mut self, p: &Published) -> bool {
+        if self.topics.as_ref().is_some_and(|t| !t.contains(&p.topic)) {
+            return false;
+        }
+        if self.state_period <= 0.0 || !p.topic.is_state() {
+            return true;
+        }
+        let who = match &p.msg {
+            Msg::RobotState(s) => s.name.clone(),
+            Msg::FleetState(s) => s.name.clone(),
+            Msg::DoorState(s) => s.door_name.clone(),
+            Msg::LiftState(s) => s.lift_name.clone(),
+            Msg::WorkcellState(s) => s.guid.clone(),
+            _ => String::new(),
+        };
+        let key = (p.topic, who);
+        // A small tolerance: publish times are sums of steps.
+        if self
+            .last
+            .get(&key)
+            .is_some_and(|&t| p.t - t < self.state_period - 1e-9)
+        {
+            return false;
+        }
+        self.last.insert(key, p.t);
+        true
+    }
+}
 
 #[derive(Serialize)]
 struct Line<'a> {

@@ -20,6 +20,7 @@ fn min_battery(drain: bool) -> f64 {
             until: Some(600.0),
             trace: Some(&mut trace),
             progress: None,
+            ..Default::default()
         },
     )
     .expect("runs");

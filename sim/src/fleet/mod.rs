@@ -24,7 +24,7 @@ use crate::graph::{EdgeKind, Nav, Regions};
 use crate::msgs::{
     door_mode, lift_request, lift_state, robot_mode, workcell_result, DoorMode, DoorRequest,
     FleetState, ItemType, LiftRequest, Location, Msg, PathRequest, Published, RobotState,
-    TaskEvent, Time, Topic, WorkcellRequest,
+    TaskEvent, TaskWaits, Time, Topic, WaitCause, WorkcellRequest,
 };
 use crate::scenario::{Scenario, SpawnSpec, TaskCategory, TaskKind};
 use crate::traffic::{Clearance, Conflicts, Res, Reservations};
@@ -38,6 +38,7 @@ mod park;
 mod setup;
 mod task;
 mod traffic;
+mod waits;
 
 use park::{park_vertices, parks_after, waypoint_names};
 
@@ -195,6 +196,9 @@ struct Robot {
     task_started: f64,
     /// Its task just ended: once idle, it drives to a parking vertex (`Fleets::park`).
     park_pending: bool,
+    /// What it waits for now (cause, place, since) and the waits of its current task.
+    waiting_for: Option<(WaitCause, String, f64)>,
+    waits: TaskWaits,
 }
 
 impl Robot {
@@ -387,6 +391,9 @@ impl Fleets {
                 ));
             }
         }
+        for i in 0..self.robots.len() {
+            self.account_wait(i, t);
+        }
         let any_waiting = self.robots.iter().any(|r| r.wait_since.is_some());
         self.next_traffic = if any_waiting {
             self.next_traffic.min(t + 1.0).max(t + 1e-9)
@@ -439,6 +446,7 @@ impl Fleets {
                 fleet,
                 robot,
                 detail,
+                waits: None,
             }),
         ));
     }

@@ -343,6 +343,8 @@ impl Fleets {
                     item_from: None,
                     task_started: 0.0,
                     park_pending: false,
+                    waiting_for: None,
+                    waits: TaskWaits::default(),
                 });
             }
             fleets.push(rt);
@@ -559,28 +561,29 @@ fn unknown_waypoint(nav: &Nav, slot: usize, name: &str, span: Span, fleet: &str)
         .collect();
     names.sort_unstable();
     names.dedup();
-    let close: Vec<&str> = names
+    // The nearest name first (a typo is the usual cause), then what else there is, saying
+    // how many names the list leaves out.
+    const LISTED: usize = 12;
+    let nearest = mapc_frontend::spelling::nearest(name, names.iter().copied());
+    let others: Vec<&str> = names
         .iter()
         .copied()
-        .filter(|n| {
-            n.to_lowercase().contains(&name.to_lowercase())
-                || name.to_lowercase().contains(&n.to_lowercase())
-        })
-        .take(5)
+        .filter(|n| Some(*n) != nearest)
         .collect();
-    let help = if close.is_empty() {
-        format!(
-            "named waypoints on this graph: {}",
-            names
-                .iter()
-                .take(12)
-                .copied()
-                .collect::<Vec<_>>()
-                .join(", ")
-        )
-    } else {
-        format!("did you mean: {}?", close.join(", "))
+    let left_out = others.len().saturating_sub(LISTED);
+    let mut help = match nearest {
+        Some(n) => format!("nearest: `{n}`"),
+        None => "this graph has no named waypoints".to_string(),
     };
+    if !others.is_empty() {
+        help.push_str(&format!(
+            "; others: {}",
+            others[..others.len().min(LISTED)].join(", ")
+        ));
+        if left_out > 0 {
+            help.push_str(&format!(" and {left_out} more"));
+        }
+    }
     Diagnostic::error(
         codes::UNKNOWN_WAYPOINT,
         span,

@@ -28,6 +28,10 @@ impl Fleets {
             detail,
             out,
         );
+        let waits = self.take_waits(i, t);
+        if let Some((_, Msg::TaskEvent(e))) = out.last_mut() {
+            e.waits = Some(waits);
+        }
         let r = &mut self.robots[i];
         let ingesting = matches!(
             r.cur,

@@ -31,6 +31,8 @@ const REPUSH_AFTER: f64 = 2.0;
 /// How many robots deep a push may reach (robots waiting at rest in the way of a robot
 /// that makes room are pushed first).
 const PUSH_DEPTH: u32 = 3;
+/// Most robots a jam is searched for (see `unjam`).
+const JAM_MAX: usize = 32;
 /// The claimant waits this long (s) for the robots in its way before it makes room for
 /// one of them instead.
 const YIELD_AFTER: f64 = 5.0;
@@ -175,6 +177,12 @@ impl Fleets {
             && matches!(r.cur, Cur::GoTo { .. })
     }
 
+    /// Standing still and free to be sent elsewhere: idle, or waiting at rest in a move.
+    fn at_rest(&self, o: usize) -> bool {
+        let x = &self.robots[o];
+        x.n_sent == 0 && x.gate == Gate::None && (x.idle() || self.waits_at_rest(o))
+    }
+
     /// Can be sent elsewhere now: idle, or waiting at rest in a move (a robot driving,
     /// at a door or lift, or busy at a task step leaves by itself in bounded time).
     fn pushable(&self, b: usize) -> bool {
@@ -281,7 +289,7 @@ impl Fleets {
         {
             return;
         }
-        for b in cannot {
+        for &b in &cannot {
             // Let `b` out through the claimant's place: the claimant moves too.
             let waiting = self.waits_at_rest(b);
             let pushed = self.push(b, c, &far, PUSH_DEPTH, usize::MAX, t)
@@ -289,13 +297,48 @@ impl Fleets {
             if !pushed {
                 continue;
             }
-            if waiting {
-                let prio = self.robots[c].prio - 1e-3;
-                let rb = &mut self.robots[b];
-                rb.prio = rb.prio.min(prio);
-            }
+            // `b` goes first until its move is done, so that the claimant does not come
+            // back into its way before it is out.
+            let prio = self.robots[c].prio - 1e-3;
+            let rb = &mut self.robots[b];
+            rb.prio = if waiting { rb.prio.min(prio) } else { prio };
             self.claims.retain(|x| x.0 != c);
             return;
+        }
+        if !cannot.is_empty() {
+            self.unjam(c, &far, t);
+        }
+    }
+
+    /// A jam: the robots in the claimant's way can neither get out of it nor be let out.
+    /// Dissolve it from its edges: every robot at rest that holds up the claimant,
+    /// directly or through other robots at rest (the wait-for closure, at most `JAM_MAX`
+    /// robots), and has a free spot off the claimant's way within reach, goes there. Each
+    /// one that leaves makes room for the next; robots keep their priority, so they come
+    /// back in the claimant order.
+    fn unjam(&mut self, c: usize, avoid: &[Res], t: f64) {
+        let mut seen = vec![c];
+        let mut k = 0;
+        while k < seen.len() && seen.len() < JAM_MAX {
+            let o = seen[k];
+            k += 1;
+            let wanted = match self.wanted(o) {
+                Some((_, set)) if o == c || self.waits_at_rest(o) => set,
+                _ => continue,
+            };
+            for b in self.res.blockers(o, &wanted) {
+                if !seen.contains(&b) && self.at_rest(b) {
+                    seen.push(b);
+                }
+            }
+        }
+        for &b in &seen[1..] {
+            if !self.at_rest(b) {
+                continue;
+            }
+            if let Some((v, _)) = self.find_spot(b, avoid, false, c) {
+                self.escape(b, c, v, t);
+            }
         }
     }
 
@@ -387,9 +430,8 @@ impl Fleets {
     /// A vertex robot `b` can go to where it is in nobody's way, nearest first, with the
     /// route there: nobody else holds its standing set, the set is disjoint from `needed`
     /// (sorted), it is not a lift cabin, and every lane of the way is free or held only by
-    /// robots that are driving (they pass) or idle (they are pushed in turn); with
-    /// `through_waiting`, also by robots waiting at rest other than `keep` (the caller
-    /// pushes them first). Parking spots, holding points and chargers count `SPOT_PENALTY`
+    /// robots that are driving (they pass); with `through_waiting`, also by robots at rest
+    /// (idle or waiting) other than `keep`, which the caller pushes first. Parking spots, holding points and chargers count `SPOT_PENALTY`
     /// nearer than other vertices, which are more likely to be on somebody's way.
     fn find_spot(
         &self,
@@ -409,10 +451,7 @@ impl Fleets {
                     self.res.holders(x).iter().all(|&o| {
                         let o = o as usize;
                         let x = &self.robots[o];
-                        o == b
-                            || x.n_sent > 0
-                            || (x.idle() && x.gate == Gate::None)
-                            || (through_waiting && o != keep && self.waits_at_rest(o))
+                        o == b || x.n_sent > 0 || (through_waiting && o != keep && self.at_rest(o))
                     })
                 })
         };
@@ -486,7 +525,7 @@ impl Fleets {
         way.dedup();
         let deeper = union(avoid, &way);
         for o in self.res.blockers(b, &way) {
-            if o != keep && self.waits_at_rest(o) && !self.push(o, c, &deeper, depth - 1, keep, t) {
+            if o != keep && self.at_rest(o) && !self.push(o, c, &deeper, depth - 1, keep, t) {
                 return false;
             }
         }

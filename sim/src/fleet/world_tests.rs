@@ -1103,3 +1103,46 @@ fn guarantee_two_robots_need_the_lift_in_opposite_directions() {
     assert!((robots[0].z - 4.0).abs() < 0.05, "{:?}", robots[0]);
     assert!(robots[1].z.abs() < 0.05, "{:?}", robots[1]);
 }
+
+#[test]
+fn guarantee_three_fleets_cross_in_a_lift_lobby() {
+    // The hotel demo map: three fleets on their own graphs share the ground floor's lift
+    // lobby. Tiny robots ride up, delivery robots ride down, cleaners cross the lobby; two
+    // of each, all at once.
+    let path = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../../shared/maps/hotel/hotel.building.yaml"
+    );
+    let Ok(text) = std::fs::read_to_string(path) else {
+        eprintln!("skipped: ../shared not found");
+        return;
+    };
+    let b = load("hotel", Some(&text));
+    let on = |name: &str, graph: i64, preset: &str, at: &[&str]| FleetSpec {
+        graph,
+        robot: RobotParams::preset(preset).expect("preset"),
+        ..fleet(name, at.len(), spawn(at))
+    };
+    let s = scenario(
+        vec![
+            on("tiny", 0, "TinyRobot", &["lobby", "shop"]),
+            on("delivery", 2, "DeliveryRobot", &["L3_room15", "L2_room1"]),
+            on(
+                "cleaner",
+                1,
+                "CleanerBotA",
+                &["clean_lobby", "clean_restaurant"],
+            ),
+        ],
+        vec![
+            go(0.5, "tiny", "L3_room15"),
+            go(0.5, "tiny", "L2_room1"),
+            go(0.5, "delivery", "restaurant"),
+            go(0.5, "delivery", "kitchen"),
+            go(0.5, "cleaner", "clean_restaurant"),
+            go(0.5, "cleaner", "clean_lobby"),
+        ],
+    );
+    let r = run(&b, &s, 3600.0);
+    assert_all_completed(&r, 6);
+}
