@@ -8,10 +8,13 @@
 //! The per-target file producers (`gltf_files`, `mesh_files`, and `mapc_backends::nav_graphs`)
 //! are shared with the single-target commands of `main.rs`.
 
-use crate::{emit, load_and_check, output, summary_line, texture, Checked, DiagOpts, Format};
+use crate::{
+    emit, load_and_check, not_written, output, summary_line, texture, Checked, DiagOpts, Format,
+};
 use mapc_backends::sdf::world::WorldOptions;
 use mapc_backends::sdf::Flavour;
 use mapc_backends::{LevelMeshes, OutputFile, Textures};
+use mapc_ir::lints::Outputs;
 use mapc_ir::{Building, Diagnostic, Handle, Level};
 use std::collections::BTreeMap;
 use std::io::{IsTerminal, Write};
@@ -51,6 +54,18 @@ impl Target {
         Target::Ignition,
         Target::Gz,
     ];
+
+    /// The outputs the target consists of: a world includes its level models' meshes.
+    fn outputs(self) -> Outputs {
+        match self {
+            Target::Nav => Outputs::NAV,
+            Target::Gltf => Outputs::GLTF,
+            Target::Meshes => Outputs::MESHES,
+            Target::Classic | Target::Ignition | Target::Gz => {
+                Outputs::WORLDS.union(Outputs::MESHES)
+            }
+        }
+    }
 
     /// The manifest group of a file this map writes (path relative to the map's directory):
     /// a target, `models` (shared by meshes and every world) or `crowd` (every world).
@@ -247,6 +262,9 @@ struct MapResult {
     /// Files read: the map, the files it names, the textures found (and the texture search
     /// directories when a texture was not found).
     deps: Vec<PathBuf>,
+    /// The outputs asked for, and those errors broke (not written).
+    wanted: Outputs,
+    blocked: Outputs,
 }
 
 /// Every file of the selected targets, paths relative to the map's directory, plus texture
@@ -333,6 +351,10 @@ fn target_files(
 }
 
 fn build_one(input: &Path, args: &BuildArgs, opts: &WorldOptions) -> MapResult {
+    let wanted = args
+        .targets
+        .iter()
+        .fold(Outputs::NONE, |o, t| o.union(t.outputs()));
     let mut result = MapResult {
         input: input.to_path_buf(),
         checked: None,
@@ -342,13 +364,10 @@ fn build_one(input: &Path, args: &BuildArgs, opts: &WorldOptions) -> MapResult {
         written: output::Written::default(),
         what: String::new(),
         deps: vec![input.to_path_buf()],
+        wanted,
+        blocked: Outputs::NONE,
     };
-    if let Err(e) = crate::sanity::map_input(input) {
-        result.error = Some(e);
-        result.code = 2;
-        return result;
-    }
-    let mut checked = match load_and_check(input) {
+    let mut checked = match load_and_check(input, &args.diag.lints) {
         Ok(c) => c,
         Err(e) => {
             result.error = Some(e);
@@ -359,43 +378,72 @@ fn build_one(input: &Path, args: &BuildArgs, opts: &WorldOptions) -> MapResult {
     for s in checked.parsed.sources.iter().skip(1) {
         result.deps.push(PathBuf::from(&s.name));
     }
-    let mut files = Vec::new();
+    // Only the targets no error breaks; texture warnings denied to errors can break more,
+    // and then the files are made again for what is left.
+    let unblocked = |c: &Checked| -> Vec<Target> {
+        let t = args.targets.iter();
+        t.filter(|t| c.blocked(t.outputs()).is_empty())
+            .copied()
+            .collect()
+    };
     let map = map_name(input);
-    let mut empty = Vec::new();
-    if let Some(b) = &checked.parsed.building {
-        if !checked.diagnostics.iter().any(|d| d.is_error()) {
-            let (f, diags, found) =
-                target_files(b, &map, &args.targets, &args.texture_path, input, opts);
-            files = f;
-            checked.diagnostics.extend(diags);
-            result.deps.extend(found);
-            let mut what = Vec::new();
-            if args.targets.contains(&Target::Nav) {
-                let graphs = files
-                    .iter()
-                    .filter(|f| f.path.starts_with("nav_graphs"))
-                    .count();
-                what.push(crate::plural(graphs, "graph"));
-                if graphs == 0 {
-                    empty.push("no nav graph (the map has no lanes)");
-                }
-            }
-            if args.targets.iter().any(|t| *t != Target::Nav) {
-                let meshes: usize = all_level_meshes(b)
-                    .iter()
-                    .map(|(_, m)| m.all().count())
-                    .sum();
-                what.push(crate::plural(meshes, "level mesh"));
-                if meshes == 0 {
-                    empty.push("no level mesh (the map has no floors or walls)");
-                }
-            }
-            result.what = what.join(", ");
+    let mut targets = unblocked(&checked);
+    let mut files = Vec::new();
+    for round in 0..2 {
+        let Some(b) = checked.parsed.building.as_ref() else {
+            break;
+        };
+        if targets.is_empty() {
+            break;
         }
+        let (f, diags, found) = target_files(b, &map, &targets, &args.texture_path, input, opts);
+        files = f;
+        result.deps.truncate(checked.parsed.sources.len());
+        result.deps.extend(found);
+        if round > 0 {
+            // The second round's texture diagnostics repeat some of the first's.
+            break;
+        }
+        checked.extend(diags);
+        let left = unblocked(&checked);
+        if left == targets {
+            break;
+        }
+        targets = left;
+        files.clear();
     }
-    if checked.failed(args.diag.deny_warnings) {
+    result.blocked = checked.blocked(wanted);
+    if !result.blocked.is_empty() {
         result.code = 1;
-    } else if !empty.is_empty() && crate::something_ignored(&checked) {
+    }
+    // What the written targets hold, for the success line; zero of a kind asked for while
+    // keys were ignored is probably a typo.
+    let mut empty = Vec::new();
+    if let (Some(b), false) = (&checked.parsed.building, targets.is_empty()) {
+        let mut what = Vec::new();
+        if targets.contains(&Target::Nav) {
+            let graphs = files
+                .iter()
+                .filter(|f| f.path.starts_with("nav_graphs"))
+                .count();
+            what.push(crate::plural(graphs, "graph"));
+            if graphs == 0 {
+                empty.push("no nav graph (the map has no lanes)");
+            }
+        }
+        if targets.iter().any(|t| *t != Target::Nav) {
+            let meshes: usize = all_level_meshes(b)
+                .iter()
+                .map(|(_, m)| m.all().count())
+                .sum();
+            what.push(crate::plural(meshes, "level mesh"));
+            if meshes == 0 {
+                empty.push("no level mesh (the map has no floors or walls)");
+            }
+        }
+        result.what = what.join(", ");
+    }
+    if !empty.is_empty() && crate::something_ignored(&checked) {
         // Zero outputs of a kind asked for, while keys were ignored: probably a typo.
         result.error = Some(format!(
             "{}: {}, but keys were ignored (see the warnings above); nothing written",
@@ -403,13 +451,14 @@ fn build_one(input: &Path, args: &BuildArgs, opts: &WorldOptions) -> MapResult {
             empty.join(" and ")
         ));
         result.code = 1;
-    } else {
+    } else if !files.is_empty() || result.blocked.is_empty() {
         let dir = args.out_dir.join(&map);
         let group = |p: &Path| Target::group_of(&map, p);
+        // Only the targets written own their groups: a blocked target's earlier files stay.
         let manifest = output::Manifest {
             name: ".mapc-manifest".into(),
             group: &group,
-            owned: Target::owned_groups(&args.targets),
+            owned: Target::owned_groups(&targets),
         };
         match output::write_dir(&dir, "OUTDIR/<map>", &files, &manifest) {
             Ok(w) => {
@@ -452,29 +501,72 @@ impl Progress {
     }
 }
 
+/// One map's report. On a terminal-style report without `--verbose`, warnings are counted
+/// by code instead of shown one by one (a demo map has over a hundred).
 fn report(r: &MapResult, args: &BuildArgs) {
     let opts = &args.diag;
-    let format = opts.format;
+    let (format, verbose) = (opts.format, opts.verbose);
     if let Some(c) = &r.checked {
-        if format != Format::Sarif {
+        if format == Format::Human && !verbose {
+            let errors: Vec<mapc_ir::Diagnostic> = c
+                .diagnostics
+                .iter()
+                .filter(|d| d.is_error())
+                .cloned()
+                .collect();
+            let (shown, cut) = crate::limit::select(&errors, opts.max_diagnostics);
+            crate::report::emit(
+                &c.parsed.sources,
+                &shown,
+                &cut,
+                crate::report::Style::Snippets,
+            );
+            let mut counts: BTreeMap<&str, usize> = BTreeMap::new();
+            for d in c.diagnostics.iter().filter(|d| !d.is_error()) {
+                *counts.entry(d.code).or_default() += 1;
+            }
+            if !counts.is_empty() {
+                let list: Vec<String> = counts
+                    .iter()
+                    .map(|(code, n)| format!("{code} {} ×{n}", crate::code_name(code)))
+                    .collect();
+                eprintln!(
+                    "{}: warnings: {} (--verbose shows each)",
+                    r.input.display(),
+                    list.join(", ")
+                );
+            }
+        } else if format != Format::Sarif {
             emit(c, opts, crate::report::Style::Snippets);
         }
         if format == Format::Human {
             summary_line(&r.input, c);
         }
     }
-    match (&r.error, r.code) {
+    match (&r.error, &r.checked) {
         (Some(e), _) => eprintln!("error: {e}"),
-        (None, 1) => eprintln!("error: {}: nothing written", output::shown(&r.input)),
-        _ if !args.diag.quiet => crate::success_line(
-            &map_name(&r.input),
-            &r.what,
-            &args.out_dir.join(map_name(&r.input)),
-            r.written,
-            r.checked.as_ref().map_or(0, |c| c.diagnostics.len()),
-        ),
+        (None, Some(c)) if !r.blocked.is_empty() => {
+            // Partially blocked: what was written still gets its line.
+            if r.blocked != r.wanted && !args.diag.quiet {
+                success_of(r, args);
+            }
+            not_written(&r.input, c, r.blocked, r.wanted)
+        }
+        (None, None) => {}
+        _ if !args.diag.quiet => success_of(r, args),
         _ => {}
     }
+}
+
+/// The success line of a map: what was written where.
+fn success_of(r: &MapResult, args: &BuildArgs) {
+    crate::success_line(
+        &map_name(&r.input),
+        &r.what,
+        &args.out_dir.join(map_name(&r.input)),
+        r.written,
+        r.checked.as_ref().map_or(0, |c| c.diagnostics.len()),
+    );
 }
 
 /// Make/Ninja depfile text: `targets: deps`, one dependency per continuation line. No

@@ -24,6 +24,8 @@ pub(crate) struct InfoArgs {
     /// How to print.
     #[arg(long, value_enum, default_value = "human")]
     format: InfoFormat,
+    #[command(flatten)]
+    lints: crate::LintOpts,
 }
 
 /// A named waypoint: (name, level).
@@ -235,7 +237,7 @@ pub(crate) fn human(i: &Value) -> String {
 }
 
 pub(crate) fn run(args: &InfoArgs) -> ExitCode {
-    let checked = match load_and_check(&args.input) {
+    let checked = match load_and_check(&args.input, &args.lints) {
         Ok(c) => c,
         Err(e) => {
             eprintln!("error: {e}");

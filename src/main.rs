@@ -5,6 +5,7 @@ mod build;
 mod escape;
 mod info;
 mod limit;
+mod lints;
 mod output;
 mod render_cmd;
 mod replay;
@@ -18,6 +19,7 @@ mod texture;
 mod world_cmd;
 
 use clap::{Parser, Subcommand, ValueEnum};
+use mapc_ir::lints::{policy, Outputs};
 use mapc_ir::Diagnostic;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
@@ -52,9 +54,6 @@ struct DiagOpts {
     /// How to print diagnostics.
     #[arg(long, value_enum, default_value = "human")]
     format: Format,
-    /// Treat warnings as errors (exit 1 and write nothing when there are any).
-    #[arg(long)]
-    deny_warnings: bool,
     /// Do not print the success line (what was written) on stderr.
     #[arg(short, long)]
     quiet: bool,
@@ -63,9 +62,34 @@ struct DiagOpts {
     #[arg(long, value_name = "N|all", default_value = "20")]
     max_diagnostics: limit::MaxDiagnostics,
     /// Show source snippets in `nav`, `gazebo`, `ignition` and `classic` too (they print
-    /// one `file:line:col` line per diagnostic otherwise).
-    #[arg(long)]
+    /// one `file:line:col` line per diagnostic otherwise); in `build`, every warning with
+    /// its snippet (by default: errors in full, warnings counted by code per map).
+    #[arg(short = 'v', long)]
     verbose: bool,
+    #[command(flatten)]
+    lints: LintOpts,
+}
+
+/// Lint levels, on every command that reads a map.
+#[derive(clap::Args, Clone)]
+struct LintOpts {
+    /// Treat warnings as errors (the same as `--deny warnings`).
+    #[arg(long)]
+    deny_warnings: bool,
+    /// Do not report CODE (a code such as W0204 or a name such as lane-crosses-wall);
+    /// repeatable. Errors after which no correct output can be written cannot be allowed.
+    #[arg(long, value_name = "CODE")]
+    allow: Vec<String>,
+    /// Report CODE as a warning (repeatable); an error lowered so no longer blocks output.
+    #[arg(long, value_name = "CODE")]
+    warn: Vec<String>,
+    /// Report CODE as an error (repeatable); `--deny warnings` makes every warning an error.
+    #[arg(long, value_name = "CODE")]
+    deny: Vec<String>,
+    /// Lint levels from FILE (a `[lints]` table) instead of the mapc.toml found beside the
+    /// map or in a parent directory. The command line wins over the file.
+    #[arg(long, value_name = "FILE")]
+    config: Option<PathBuf>,
 }
 
 #[derive(Subcommand)]
@@ -210,20 +234,53 @@ pub(crate) fn code_name(code: &str) -> &'static str {
         .unwrap_or("")
 }
 
-/// A map read and checked: frontend diagnostics plus validation passes.
+/// A map read and checked: frontend diagnostics plus validation passes, at the user's
+/// lint levels.
 struct Checked {
     parsed: mapc_frontend::Parsed,
     diagnostics: Vec<Diagnostic>,
+    lints: lints::Lints,
 }
 
 impl Checked {
-    fn failed(&self, deny_warnings: bool) -> bool {
-        self.parsed.building.is_none()
-            || self
-                .diagnostics
-                .iter()
-                .any(|d| d.is_error() || deny_warnings)
+    /// The outputs of `wanted` that the remaining errors break (all of them when the map
+    /// could not be read).
+    fn blocked(&self, wanted: Outputs) -> Outputs {
+        let Some(b) = &self.parsed.building else {
+            return wanted;
+        };
+        let mut blocked = Outputs::NONE;
+        for d in self.diagnostics.iter().filter(|d| d.is_error()) {
+            let p = policy(d.code);
+            let mut blocks = if p.can_allow { p.blocks } else { Outputs::ALL };
+            if p.nav_only_with_lanes && b.lanes.is_empty() {
+                blocks = blocks.without(Outputs::NAV);
+            }
+            blocked = blocked.union(blocks);
+        }
+        blocked.intersection(wanted)
     }
+
+    /// Adds diagnostics found while producing output (texture warnings), at the user's
+    /// levels.
+    fn extend(&mut self, mut diags: Vec<Diagnostic>) {
+        self.lints.apply(&mut diags);
+        self.diagnostics.extend(diags);
+    }
+}
+
+/// The lint levels for `input`: the command line's over those of `--config` or of the
+/// mapc.toml found for the map. `Err` is a usage error (exit 2).
+fn lints_for(input: &Path, opts: &LintOpts) -> Result<lints::Lints, String> {
+    let cli = lints::from_flags(&opts.allow, &opts.warn, &opts.deny, opts.deny_warnings)?;
+    let file = match &opts.config {
+        Some(path) => Some(lints::from_file(path)?),
+        None => match lints::discover(input) {
+            Some(path) => Some(lints::from_file(&path)?),
+            None => None,
+        },
+    };
+    Ok(lints::Lints::new(cli, file))
 }
 
 /// Validation rules that compare positions with thresholds in metres (a door's width, how
@@ -237,9 +294,11 @@ const METRIC_RULES: &[&str] = &[
 /// system, an unknown reference level, a wgs84 map without a CRS, a zero-length measurement.
 const UNITS_UNKNOWN: &[&str] = &["E0106", "E0107", "E0108", "E0109"];
 
-/// Reads a map and runs every validation pass. `Err` is an I/O problem (exit 2).
-fn load_and_check(input: &Path) -> Result<Checked, String> {
+/// Reads a map and runs every validation pass, at the user's lint levels. `Err` is an I/O
+/// or usage problem (exit 2).
+fn load_and_check(input: &Path, opts: &LintOpts) -> Result<Checked, String> {
     sanity::map_input(input)?;
+    let lints = lints_for(input, opts)?;
     let mut parsed = mapc_frontend::load(input).map_err(|e| {
         // The frontend names the file as given; print it without `./` noise.
         e.to_string()
@@ -260,9 +319,11 @@ fn load_and_check(input: &Path) -> Result<Checked, String> {
                 .filter(|d| !(units_unknown && METRIC_RULES.contains(&d.code))),
         );
     }
+    lints.apply(&mut diagnostics);
     Ok(Checked {
         parsed,
         diagnostics,
+        lints,
     })
 }
 
@@ -287,6 +348,33 @@ fn emit(c: &Checked, opts: &DiagOpts, style: report::Style) {
     }
 }
 
+/// `error: MAP: nothing written` (or which outputs were not), with the codes to blame.
+fn not_written(input: &Path, c: &Checked, blocked: Outputs, wanted: Outputs) {
+    // The codes that break what was not written (not every error of the map).
+    let mut codes: Vec<&str> = c
+        .diagnostics
+        .iter()
+        .filter(|d| {
+            let p = policy(d.code);
+            d.is_error() && (!p.can_allow || p.blocks.intersects(blocked))
+        })
+        .map(|d| d.code)
+        .collect();
+    codes.sort();
+    codes.dedup();
+    let what = if blocked == wanted {
+        "nothing written".to_string()
+    } else {
+        format!("{} not written", blocked.names().join(", "))
+    };
+    let why = if codes.is_empty() {
+        String::new()
+    } else {
+        format!(" ({})", codes.join(", "))
+    };
+    eprintln!("error: {}: {what}{why}", output::shown(input));
+}
+
 fn summary_line(input: &Path, c: &Checked) {
     let errors = c.diagnostics.iter().filter(|d| d.is_error()).count();
     let warnings = c.diagnostics.len() - errors;
@@ -304,6 +392,7 @@ fn nav(input: &Path, output_dir: &Path, opts: &DiagOpts) -> ExitCode {
         role: "OUTPUT_DIR",
         kind: "nav graph",
         none: "the map has no lanes",
+        outputs: Outputs::NAV,
     };
     // A drop-in for `building_map_generator nav`: one line per diagnostic in build logs.
     run_command(input, output_dir, opts, &cmd, report::Style::OneLine, |b| {
@@ -323,6 +412,8 @@ struct Cmd {
     kind: &'static str,
     /// Why a map can truly have none of them.
     none: &'static str,
+    /// The outputs the command writes (what errors must not break).
+    outputs: Outputs,
 }
 
 /// `n thing` or `n things`.
@@ -370,8 +461,8 @@ pub(crate) fn success_line(
     );
 }
 
-/// The shape every single-map command shares: read and check `input`; when the map has no
-/// errors, `produce` builds the output files and counts those of the command's kind (its
+/// The shape every single-map command shares: read and check `input`; unless an error
+/// breaks the command's outputs, `produce` builds the output files and counts those of the command's kind (its
 /// diagnostics, e.g. texture warnings, join the report); report; write the files under
 /// `out_dir` unless anything failed. Zero outputs of the kind fail (exit 1) unless the map
 /// truly has none: nothing was ignored on the way.
@@ -387,7 +478,7 @@ fn run_command(
         eprintln!("error: {e}");
         return ExitCode::from(2);
     }
-    let mut checked = match load_and_check(input) {
+    let mut checked = match load_and_check(input, &opts.lints) {
         Ok(c) => c,
         Err(e) => {
             eprintln!("error: {e}");
@@ -396,20 +487,22 @@ fn run_command(
     };
     let mut files = Vec::new();
     let mut count = 0;
-    if let Some(b) = checked.parsed.building.as_ref() {
-        if !checked.diagnostics.iter().any(|d| d.is_error()) {
+    if checked.blocked(cmd.outputs).is_empty() {
+        if let Some(b) = checked.parsed.building.as_ref() {
             let (f, diags, n) = produce(b);
             files = f;
             count = n;
-            checked.diagnostics.extend(diags);
+            checked.extend(diags);
         }
     }
     emit(&checked, opts, style);
     if opts.format == Format::Human {
         summary_line(input, &checked);
     }
-    if checked.failed(opts.deny_warnings) {
-        eprintln!("error: {}: nothing written", output::shown(input));
+    let blocked = checked.blocked(cmd.outputs);
+    if !blocked.is_empty() {
+        // One output: when any part is blocked, nothing is written.
+        not_written(input, &checked, cmd.outputs, cmd.outputs);
         return ExitCode::from(1);
     }
     let label = build::map_name(input);
@@ -470,6 +563,7 @@ fn gltf(
         role: "OUTPUT_DIR",
         kind: "level mesh",
         none: "the map has no floors or walls",
+        outputs: Outputs::GLTF,
     };
     run_command(
         input,
@@ -510,6 +604,7 @@ fn meshes(input: &Path, model_dir: &Path, texture_path: &[PathBuf], opts: &DiagO
         role: "OUTPUT_MODEL_DIR",
         kind: "level mesh",
         none: "the map has no floors or walls",
+        outputs: Outputs::MESHES,
     };
     run_command(input, model_dir, opts, &cmd, report::Style::Snippets, |b| {
         let meshes = build::all_level_meshes(b);
@@ -525,9 +620,9 @@ fn check(inputs: &[PathBuf], opts: &DiagOpts) -> ExitCode {
     let mut code = 0u8;
     let mut all: Vec<Checked> = Vec::new();
     for input in inputs {
-        match load_and_check(input) {
+        match load_and_check(input, &opts.lints) {
             Ok(c) => {
-                if c.failed(opts.deny_warnings) {
+                if !c.blocked(Outputs::ALL).is_empty() {
                     code = code.max(1);
                 }
                 if opts.format != Format::Sarif {

@@ -52,6 +52,8 @@ pub(crate) struct SimArgs {
     /// How to print diagnostics and the summary.
     #[arg(long, value_enum, default_value = "human")]
     format: SimFormat,
+    #[command(flatten)]
+    lints: crate::LintOpts,
     /// Do not print the success line (what was written) on stderr.
     #[arg(short, long)]
     quiet: bool,
@@ -245,7 +247,7 @@ pub(crate) fn run(args: &SimArgs) -> ExitCode {
             "{name} names no `map`; add `map: <path>` to it or pass --map"
         ));
     };
-    let checked: Checked = match load_and_check(&map) {
+    let checked: Checked = match load_and_check(&map, &args.lints) {
         Ok(c) => c,
         Err(e) => return failed(e),
     };
@@ -266,7 +268,14 @@ pub(crate) fn run(args: &SimArgs) -> ExitCode {
         }
     }
     let building = match checked.parsed.building.as_ref() {
-        Some(b) if !checked.failed(false) => b,
+        // The runtime needs what nav graphs and worlds carry (lanes, doors, lifts).
+        Some(b)
+            if checked
+                .blocked(mapc_ir::lints::Outputs::NAV.union(mapc_ir::lints::Outputs::WORLDS))
+                .is_empty() =>
+        {
+            b
+        }
         _ => {
             eprintln!("error: {}: invalid map, nothing simulated", map.display());
             return ExitCode::from(1);

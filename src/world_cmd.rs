@@ -2,12 +2,13 @@
 //! world and its level models, with `building_map_generator gazebo`'s arguments.
 
 use crate::{
-    emit, load_and_check, output, plural, sanity, success_line, summary_line, textures_for,
-    DiagOpts, Format,
+    emit, load_and_check, not_written, output, plural, sanity, success_line, summary_line,
+    textures_for, DiagOpts, Format,
 };
 use mapc_backends::sdf::world::{parse_template, world_files, WorldOptions};
 use mapc_backends::sdf::Flavour;
 use mapc_backends::OutputFile;
+use mapc_ir::lints::Outputs;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
@@ -90,7 +91,9 @@ pub(crate) fn run(flavour: Flavour, args: &WorldArgs) -> ExitCode {
         .filter(|p| !p.as_os_str().is_empty())
         .unwrap_or(Path::new("."));
 
-    let mut checked = match load_and_check(&args.input) {
+    // A world includes its level models, so what breaks meshes breaks it too.
+    let wanted = Outputs::WORLDS.union(Outputs::MESHES);
+    let mut checked = match load_and_check(&args.input, &args.diag.lints) {
         Ok(c) => c,
         Err(e) => {
             eprintln!("error: {e}");
@@ -100,7 +103,7 @@ pub(crate) fn run(flavour: Flavour, args: &WorldArgs) -> ExitCode {
     let mut out = None;
     let mut texture_diags = Vec::new();
     if let Some(b) = checked.parsed.building.as_ref() {
-        if !checked.diagnostics.iter().any(|d| d.is_error()) {
+        if checked.blocked(wanted).is_empty() {
             let meshes: Vec<_> = b
                 .levels
                 .iter()
@@ -121,14 +124,15 @@ pub(crate) fn run(flavour: Flavour, args: &WorldArgs) -> ExitCode {
             out = Some(world_files(b, flavour, &opts, &meshes, &textures));
         }
     }
-    checked.diagnostics.extend(texture_diags);
+    checked.extend(texture_diags);
     // A drop-in for `building_map_generator`: one line per diagnostic in build logs.
     emit(&checked, &args.diag, crate::report::Style::OneLine);
     if args.diag.format == Format::Human {
         summary_line(&args.input, &checked);
     }
-    if checked.failed(args.diag.deny_warnings) {
-        eprintln!("error: {}: nothing written", output::shown(&args.input));
+    let blocked = checked.blocked(wanted);
+    if !blocked.is_empty() {
+        not_written(&args.input, &checked, wanted, wanted);
         return ExitCode::from(1);
     }
     let Some(out) = out else {

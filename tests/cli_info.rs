@@ -103,3 +103,15 @@ fn unknown_waypoint_names_the_nearest_and_counts_the_rest() {
     assert!(err.contains("nearest: `room_10`"), "{err}");
     assert!(err.contains("and 7 more"), "{err}");
 }
+
+#[test]
+fn info_takes_the_lint_options() {
+    let bad = "fixtures/invalid/E0201-lane-self-loop.building.yaml";
+    let (code, _, err) = mapc(&["info", bad]);
+    assert_eq!(code, 1, "{err}");
+    let (code, out, err) = mapc(&["info", bad, "--allow", "lane-self-loop"]);
+    assert_eq!(code, 0, "{err}");
+    assert!(!out.is_empty());
+    let (code, _, err) = mapc(&["info", bad, "--deny", "no-such-lint"]);
+    assert_eq!(code, 2, "{err}");
+}

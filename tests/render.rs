@@ -390,6 +390,19 @@ fn command_line_writes_one_picture_per_level() {
     let svg = pictures(Path::new(out3)).into_iter().next().unwrap();
     let text = std::fs::read_to_string(svg).unwrap();
     assert!(text.contains("E0201"));
+
+    // At the user's lint levels: the error allowed, the pictures are written.
+    let dir4 = tempfile::tempdir().unwrap();
+    let o = mapc(&[
+        "render",
+        bad,
+        "-o",
+        dir4.path().to_str().unwrap(),
+        "--allow",
+        "E0201",
+    ]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    assert!(!pictures(dir4.path()).is_empty());
 }
 
 /// Headless Chromium loads every fixture's and demo map's SVG as an image (a broken SVG

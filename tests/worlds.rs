@@ -714,7 +714,8 @@ fn offset_is_subtracted_from_everything() {
     }
 }
 
-/// A failed run (an invalid map) writes nothing: the previous world and models stay.
+/// A failed run (an error that breaks worlds) writes nothing: the previous world and models
+/// stay. (A lane error such as E0201 breaks only nav graphs, so it would not do.)
 #[test]
 fn failed_run_leaves_previous_outputs() {
     let tmp = tempfile::tempdir().unwrap();
@@ -734,7 +735,7 @@ fn failed_run_leaves_previous_outputs() {
     let before = std::fs::read(&world).unwrap();
     let sdf = models.join("legacy_office_L1/model.sdf");
     let sdf_before = std::fs::read(&sdf).unwrap();
-    let bad = args("fixtures/invalid/E0201-lane-self-loop.building.yaml");
+    let bad = args("fixtures/invalid/E0302-duplicate-door-name.building.yaml");
     let (code, err) = mapc(&bad.iter().map(String::as_str).collect::<Vec<_>>());
     assert_eq!(code, 1, "{err}");
     assert!(err.contains("nothing written"), "{err}");

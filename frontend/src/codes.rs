@@ -217,8 +217,11 @@ pub const UNKNOWN_LEVEL: Code = Code {
 /// # E0108 crs-problem
 ///
 /// **What:** a `wgs84` or `web_mercator` map has no `generate_crs` building parameter, the
-/// CRS is not a known EPSG code, or a position cannot be projected (longitude or latitude
-/// out of range).
+/// CRS is not a projected CRS of the EPSG database, its unit is not the metre (a CRS in US
+/// survey or international feet is refused, not converted: the nav graph would no longer be
+/// in the CRS the map names), PROJ itself has no transformation to it, its projection
+/// method is one mapc does not implement (modified Krovak),
+/// or a position cannot be projected (longitude or latitude out of range).
 ///
 /// **Why it matters:** geographic coordinates must be projected to metres before anything
 /// can be placed.
@@ -229,6 +232,7 @@ pub const UNKNOWN_LEVEL: Code = Code {
 /// **Example:**
 /// ```yaml
 /// coordinate_system: wgs84   # E0108: no generate_crs
+/// parameters: {generate_crs: [1, "EPSG:2263"]}   # E0108: US survey feet
 /// ```
 pub const CRS: Code = Code {
     code: "E0108",

@@ -5,6 +5,7 @@
 //! diagnostics, and callers must not generate outputs when any of them is an error.
 
 mod codes;
+pub mod crs;
 mod lower;
 pub mod spelling;
 mod transform;

@@ -76,6 +76,8 @@ const LEVEL_KEYS: &[&str] = &[
     "layers",
     "flattened_x_offset",
     "flattened_y_offset",
+    // rmf_site's legacy export writes it (always empty there); nothing generates from it.
+    "physical_cameras",
 ];
 
 /// Vertex parameters the format gives a meaning (waypoint roles).
@@ -261,6 +263,24 @@ impl Lower<'_> {
             self.wrong_type(node, &what.to_string(), "an integer");
         }
         v
+    }
+
+    /// A `graphs` key: an integer, or an integer written as a string (traffic-editor-js
+    /// and serde-based exporters write `'0':`, which the reference's Python reads too).
+    fn graph_key(&mut self, node: &Node) -> Option<i64> {
+        if let Some(i) = node.as_i64() {
+            return Some(i);
+        }
+        let text = node.key_text().map(str::trim);
+        if let Some(i) = text.and_then(|t| t.parse::<i64>().ok()) {
+            return Some(i);
+        }
+        self.wrong_type(
+            node,
+            "a graph index",
+            "an integer (or an integer in quotes)",
+        );
+        None
     }
 
     pub fn bool(&mut self, node: &Node, what: impl Display) -> Option<bool> {
@@ -579,7 +599,7 @@ impl Lower<'_> {
         if let Some(g) = root.get("graphs") {
             if let Some(entries) = self.map(g, "`graphs`") {
                 for (k, v) in entries {
-                    let Some(index) = self.i64(k, "a graph index") else {
+                    let Some(index) = self.graph_key(k) else {
                         continue;
                     };
                     b.graphs.push(GraphInfo {
@@ -1526,6 +1546,28 @@ mod tests {
 
     fn name(b: &Building, v: Handle<Vertex>) -> &str {
         &b.vertices[v].name
+    }
+
+    /// traffic-editor-js keys `graphs` by strings; an integer in quotes is an index, any
+    /// other string is E0101 at the key.
+    #[test]
+    fn graph_keys_may_be_integers_in_quotes() {
+        let text = "name: t\ncoordinate_system: cartesian_meters\nlevels:\n  L1: {}\ngraphs:\n  '0': {name: a}\n  \"12\": {name: b}\n  3: {name: c}\n  'x1': {name: d}\n";
+        let parsed = crate::parse_str("t.building.yaml", text);
+        let b = parsed.building.expect("a building");
+        let got: Vec<(i64, &str)> = b
+            .graphs
+            .iter()
+            .map(|g| (g.index, g.name.as_str()))
+            .collect();
+        assert_eq!(got, [(0, "a"), (12, "b"), (3, "c")]);
+        assert_eq!(
+            codes(&parsed.diagnostics),
+            ["E0101"],
+            "{:#?}",
+            parsed.diagnostics
+        );
+        assert_eq!(parsed.diagnostics[0].span.line, 9);
     }
 
     /// `[ok, bad, ok]`: the bad one (a string x) is E0101 and is not in the IR.

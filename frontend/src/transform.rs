@@ -107,10 +107,9 @@ fn set_positions(b: &mut Building, mut f: impl FnMut(Span, Vec2) -> Option<Vec2>
     // used for alignment; they keep their file coordinates.
 }
 
+/// WGS 84 to the map's CRS, as PROJ does it (`crate::crs`).
 struct Projector {
-    wgs84: proj4rs::Proj,
-    mercator: proj4rs::Proj,
-    target: proj4rs::Proj,
+    target: crate::crs::Crs,
 }
 
 impl Projector {
@@ -118,16 +117,17 @@ impl Projector {
         if !(-180.0..=180.0).contains(&p.x) || !(-90.0..=90.0).contains(&p.y) {
             return None;
         }
-        let mut pt = (p.x.to_radians(), p.y.to_radians(), 0.0);
-        proj4rs::transform::transform(&self.wgs84, &self.target, &mut pt).ok()?;
-        let out = Vec2::new(pt.0, pt.1);
+        let (e, n) = self.target.project(p.x, p.y)?;
+        let out = Vec2::new(e, n);
         out.is_finite().then_some(out)
     }
+    /// Legacy web_mercator files hold EPSG:3857 metres (a sphere of the WGS 84 radius):
+    /// back to WGS 84 longitude/latitude, then to the target.
     fn mercator_to_target(&self, p: Vec2) -> Option<Vec2> {
-        let mut pt = (p.x, p.y, 0.0);
-        proj4rs::transform::transform(&self.mercator, &self.target, &mut pt).ok()?;
-        let out = Vec2::new(pt.0, pt.1);
-        out.is_finite().then_some(out)
+        let lon = (p.x / EARTH_RADIUS).to_degrees();
+        let lat =
+            (2.0 * (p.y / EARTH_RADIUS).exp().atan() - std::f64::consts::FRAC_PI_2).to_degrees();
+        self.lonlat(Vec2::new(lon, lat))
     }
 }
 
@@ -152,24 +152,35 @@ fn projector(b: &mut Building, diags: &mut Vec<Diagnostic>) -> Option<Projector>
     let code = crs
         .strip_prefix("EPSG:")
         .or(crs.strip_prefix("epsg:"))
-        .and_then(|c| c.trim().parse::<u16>().ok());
-    let target = code.and_then(|c| proj4rs::Proj::from_epsg_code(c).ok());
-    let (Some(target), Ok(wgs84), Ok(mercator)) = (
-        target,
-        proj4rs::Proj::from_epsg_code(4326),
-        proj4rs::Proj::from_epsg_code(3857),
-    ) else {
-        diags.push(
-            Diagnostic::error("E0108", span, format!("unsupported `generate_crs` `{crs}`"))
-                .with_help("use an EPSG code of a projected CRS, such as EPSG:3414 or EPSG:32648"),
-        );
-        return None;
-    };
-    Some(Projector {
-        wgs84,
-        mercator,
-        target,
-    })
+        .and_then(|c| c.trim().parse::<u32>().ok());
+    let refuse = |msg: String, help: &str| Diagnostic::error("E0108", span, msg).with_help(help);
+    let lookup = code.map_or(crate::crs::Lookup::Unknown, crate::crs::lookup);
+    match lookup {
+        crate::crs::Lookup::Crs(target) => Some(Projector { target }),
+        // Refused rather than converted: the nav graph's coordinates (and the world's
+        // `<crs>`) would no longer be in the CRS the map names.
+        crate::crs::Lookup::NotMetres(unit) => {
+            diags.push(refuse(
+                format!("`generate_crs` `{crs}` is in {unit}s, not metres; nav graphs and worlds are in metres"),
+                "use the metre variant of this CRS (most US State Plane zones have one, e.g. EPSG:32118 for EPSG:2263)",
+            ));
+            None
+        }
+        crate::crs::Lookup::Refused(why) => {
+            diags.push(refuse(
+                format!("unsupported `generate_crs` `{crs}`: {why}"),
+                "use another projected CRS of the site, such as its UTM zone",
+            ));
+            None
+        }
+        crate::crs::Lookup::Unknown => {
+            diags.push(refuse(
+                format!("unsupported `generate_crs` `{crs}`"),
+                "use an EPSG code of a projected CRS, such as EPSG:3414 or EPSG:32648",
+            ));
+            None
+        }
+    }
 }
 
 fn reference_image(b: &mut Building, diags: &mut Vec<Diagnostic>) {

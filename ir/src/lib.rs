@@ -7,6 +7,7 @@ mod arena;
 mod building;
 mod diag;
 mod geom;
+pub mod lints;
 mod params;
 mod span;
 mod summary;
