@@ -293,6 +293,12 @@ fn every_rule_error_can_be_allowed_and_every_target_is_written() {
         seen += 1;
         let out = tempfile::tempdir().unwrap();
         let o = mapc(&["build", &s(&path), "-o", &s(out.path()), "--allow", lint]);
+        if lint == "E0509" {
+            // Control or bidi characters in a name that becomes a path: never allowed.
+            assert_eq!(code(&o), 2, "{name}: {}", stderr(&o));
+            assert!(stderr(&o).contains("cannot be allowed"), "{}", stderr(&o));
+            continue;
+        }
         assert_eq!(code(&o), 0, "{name}: {}", stderr(&o));
         let map_dir = std::fs::read_dir(out.path())
             .unwrap()
