@@ -197,7 +197,7 @@ struct Robot {
     /// Its task just ended: once idle, it drives to a parking vertex (`Fleets::park`).
     park_pending: bool,
     /// What it waits for now (cause, place, since) and the waits of its current task.
-    waiting_for: Option<(WaitCause, String, f64)>,
+    waiting_for: Option<(WaitCause, waits::Place, f64)>,
     waits: TaskWaits,
 }
 
