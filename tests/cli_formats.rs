@@ -1,20 +1,9 @@
 //! CLI behaviour around diagnostics: --deny-warnings, SARIF, several inputs, exit codes.
 
+mod support;
 use std::path::Path;
 use std::process::Command;
-
-fn mapc(args: &[&str]) -> (i32, String, String) {
-    let out = Command::new(env!("CARGO_BIN_EXE_mapc"))
-        .current_dir(env!("CARGO_MANIFEST_DIR"))
-        .args(args)
-        .output()
-        .unwrap();
-    (
-        out.status.code().unwrap_or(-1),
-        String::from_utf8_lossy(&out.stdout).into_owned(),
-        String::from_utf8_lossy(&out.stderr).into_owned(),
-    )
-}
+use support::mapc;
 
 const WARN_ONLY: &str = "fixtures/invalid/W0213-demo-mock-lift-without-floor.building.yaml";
 const ERROR: &str = "fixtures/invalid/E0201-lane-self-loop.building.yaml";

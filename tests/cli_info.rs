@@ -1,20 +1,9 @@
 //! Issue 11: `mapc info MAP` lists what scenario authors refer to by name, and S0201 (no
 //! waypoint named) names the nearest match and how many names it leaves out.
 
+mod support;
 use std::process::Command;
-
-fn mapc(args: &[&str]) -> (i32, String, String) {
-    let out = Command::new(env!("CARGO_BIN_EXE_mapc"))
-        .current_dir(env!("CARGO_MANIFEST_DIR"))
-        .args(args)
-        .output()
-        .unwrap();
-    (
-        out.status.code().unwrap_or(-1),
-        String::from_utf8_lossy(&out.stdout).into_owned(),
-        String::from_utf8_lossy(&out.stderr).into_owned(),
-    )
-}
+use support::mapc;
 
 const CLINIC: &str = "fixtures/two_level_clinic.building.yaml";
 

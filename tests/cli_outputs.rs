@@ -2,21 +2,10 @@
 //! run are removed (only those mapc wrote), temporaries of killed runs are swept, I/O
 //! errors say what is wrong, likely argument mistakes are caught with a hint.
 
+mod support;
 use std::path::Path;
 use std::process::Command;
-
-fn mapc(args: &[&str]) -> (i32, String, String) {
-    let out = Command::new(env!("CARGO_BIN_EXE_mapc"))
-        .current_dir(env!("CARGO_MANIFEST_DIR"))
-        .args(args)
-        .output()
-        .unwrap();
-    (
-        out.status.code().unwrap_or(-1),
-        String::from_utf8_lossy(&out.stdout).into_owned(),
-        String::from_utf8_lossy(&out.stderr).into_owned(),
-    )
-}
+use support::mapc;
 
 const CLINIC: &str = "fixtures/two_level_clinic.building.yaml";
 

@@ -3,21 +3,9 @@
 //! a map without lanes, success is said on stderr (`--quiet` silences it), and rules whose
 //! inputs a frontend error left unknown stay quiet.
 
+mod support;
 use std::path::Path;
-use std::process::Command;
-
-fn mapc(args: &[&str]) -> (i32, String, String) {
-    let out = Command::new(env!("CARGO_BIN_EXE_mapc"))
-        .current_dir(env!("CARGO_MANIFEST_DIR"))
-        .args(args)
-        .output()
-        .unwrap();
-    (
-        out.status.code().unwrap_or(-1),
-        String::from_utf8_lossy(&out.stdout).into_owned(),
-        String::from_utf8_lossy(&out.stderr).into_owned(),
-    )
-}
+use support::mapc;
 
 fn write(dir: &Path, name: &str, text: &str) -> String {
     let p = dir.join(name);

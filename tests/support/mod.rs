@@ -67,3 +67,17 @@ pub fn run(args: &[&str], limit: Duration) -> Run {
         peak_rss: peak,
     }
 }
+
+/// Runs mapc in the crate's directory: (exit code, stdout, stderr).
+pub fn mapc(args: &[&str]) -> (i32, String, String) {
+    let out = std::process::Command::new(env!("CARGO_BIN_EXE_mapc"))
+        .current_dir(env!("CARGO_MANIFEST_DIR"))
+        .args(args)
+        .output()
+        .unwrap();
+    (
+        out.status.code().unwrap_or(-1),
+        String::from_utf8_lossy(&out.stdout).into_owned(),
+        String::from_utf8_lossy(&out.stderr).into_owned(),
+    )
+}
