@@ -2,7 +2,6 @@
 
 mod support;
 use std::path::Path;
-use std::process::Command;
 use support::mapc;
 
 const WARN_ONLY: &str = "fixtures/invalid/W0213-demo-mock-lift-without-floor.building.yaml";

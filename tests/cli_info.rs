@@ -2,7 +2,6 @@
 //! waypoint named) names the nearest match and how many names it leaves out.
 
 mod support;
-use std::process::Command;
 use support::mapc;
 
 const CLINIC: &str = "fixtures/two_level_clinic.building.yaml";

@@ -4,7 +4,6 @@
 
 mod support;
 use std::path::Path;
-use std::process::Command;
 use support::mapc;
 
 const CLINIC: &str = "fixtures/two_level_clinic.building.yaml";
