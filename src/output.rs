@@ -108,9 +108,7 @@ pub fn remove_temporaries_and_exit(code: i32) -> ! {
 
 /// Creates a registered temporary for `path`; `None` once a signal asked to stop.
 pub fn create_temporary(path: &Path) -> std::io::Result<(PathBuf, std::fs::File)> {
-    let dir = path.parent().unwrap_or(Path::new("."));
-    let name = path.file_name().and_then(|n| n.to_str()).unwrap_or("out");
-    let tmp = dir.join(format!(".{name}{TMP_MARK}{}", std::process::id()));
+    let tmp = temporary_name(path);
     let mut live = LIVE.lock().unwrap_or_else(|e| e.into_inner());
     // Created under the lock: the watcher either sees it registered or it never exists.
     let f = std::fs::File::create(&tmp)?;
@@ -176,42 +174,300 @@ pub struct Written {
     pub removed: usize,
 }
 
+/// Files read from disk whose bytes an output may repeat verbatim (textures): such an
+/// output is hard-linked to the file instead of written (no data to copy or flush).
+static LINK_SOURCES: Mutex<Vec<(PathBuf, Vec<u8>)>> = Mutex::new(Vec::new());
+
+/// Records that `path` holds `bytes`, so an output with exactly these bytes and the same
+/// file name may be a hard link to it.
+pub fn note_link_source(path: &Path, bytes: &[u8]) {
+    let mut l = LINK_SOURCES.lock().unwrap_or_else(|e| e.into_inner());
+    if !l.iter().any(|(p, _)| p == path) {
+        l.push((path.to_path_buf(), bytes.to_vec()));
+    }
+}
+
+fn link_source(target: &Path, contents: &[u8]) -> Option<PathBuf> {
+    let l = LINK_SOURCES.lock().unwrap_or_else(|e| e.into_inner());
+    l.iter()
+        .find(|(p, b)| p.file_name() == target.file_name() && b.as_slice() == contents)
+        .map(|(p, _)| p.clone())
+}
+
+/// A new file staged as a temporary beside its target, renamed over it at commit.
+struct Staged {
+    tmp: PathBuf,
+    target: PathBuf,
+    /// Written here (its data must be flushed), rather than linked to an existing file.
+    written: bool,
+}
+
+/// Stages `contents` for `path`: a hard link to a known source with the same bytes when
+/// possible (same file system), else a temporary written with those bytes.
+fn stage(path: &Path, contents: &[u8]) -> std::io::Result<Staged> {
+    let dir = path.parent().unwrap_or(Path::new("."));
+    std::fs::create_dir_all(dir)?;
+    if let Some(src) = link_source(path, contents) {
+        let tmp = temporary_name(path);
+        let mut live = LIVE.lock().unwrap_or_else(|e| e.into_inner());
+        if std::fs::hard_link(&src, &tmp).is_ok() {
+            live.push(tmp.clone());
+            return Ok(Staged {
+                tmp,
+                target: path.to_path_buf(),
+                written: false,
+            });
+        }
+        // Another device, or links not allowed: copy.
+    }
+    let (tmp, mut f) = create_temporary(path)?;
+    let result = f.write_all(contents);
+    if let Err(e) = result {
+        let _ = std::fs::remove_file(&tmp);
+        release_temporary(&tmp);
+        return Err(e);
+    }
+    Ok(Staged {
+        tmp,
+        target: path.to_path_buf(),
+        written: true,
+    })
+}
+
+/// Makes the data of every staged temporary durable, in one pass: on Linux one `syncfs`
+/// per file system (one journal commit, instead of one per file), elsewhere `fsync` of
+/// each file.
+fn flush(staged: &[Staged]) -> std::io::Result<()> {
+    let written: Vec<&Staged> = staged.iter().filter(|s| s.written).collect();
+    if written.is_empty() {
+        return Ok(());
+    }
+    #[cfg(target_os = "linux")]
+    {
+        use std::os::fd::AsRawFd;
+        use std::os::unix::fs::MetadataExt;
+        let dirs: BTreeSet<&Path> = written.iter().filter_map(|s| s.tmp.parent()).collect();
+        let mut devices = BTreeSet::new();
+        for d in dirs {
+            let f = std::fs::File::open(d)?;
+            if devices.insert(f.metadata()?.dev()) {
+                // SAFETY: a plain syscall on an open descriptor.
+                if unsafe { libc::syncfs(f.as_raw_fd()) } != 0 {
+                    return Err(std::io::Error::last_os_error());
+                }
+            }
+        }
+        Ok(())
+    }
+    #[cfg(not(target_os = "linux"))]
+    {
+        for s in written {
+            std::fs::File::open(&s.tmp)?.sync_all()?;
+        }
+        Ok(())
+    }
+}
+
+fn discard(staged: &[Staged]) {
+    for s in staged {
+        let _ = std::fs::remove_file(&s.tmp);
+        release_temporary(&s.tmp);
+    }
+}
+
+fn temporary_name(path: &Path) -> PathBuf {
+    let dir = path.parent().unwrap_or(Path::new("."));
+    let name = path.file_name().and_then(|n| n.to_str()).unwrap_or("out");
+    dir.join(format!(".{name}{TMP_MARK}{}", std::process::id()))
+}
+
 /// Writes every file under `root`, skipping files whose content is already identical.
 /// `root` is created even when there is nothing to write (CMake installs the directory).
 /// `role` names the argument in messages (`OUTPUT_DIR`).
 pub fn write_all(root: &Path, role: &str, files: &[OutputFile]) -> Result<Written, String> {
+    write_dirs(&[DirWrite {
+        root,
+        role,
+        files,
+        manifest: None,
+    }])
+    .map(|w| w[0])
+}
+
+/// One directory's share of a [`write_dirs`] call.
+pub struct DirWrite<'a> {
+    pub root: &'a Path,
+    /// The argument that named `root`, for messages (`OUTPUT_DIR`).
+    pub role: &'a str,
+    pub files: &'a [OutputFile],
+    pub manifest: Option<&'a Manifest<'a>>,
+}
+
+/// What one directory of a write will do, computed before anything is written.
+struct Plan {
+    targets: Vec<PathBuf>,
+    /// Earlier files (of owned groups) this run does not write.
+    stale: Vec<PathBuf>,
+    /// The manifest's path and new text, when it changes.
+    manifest: Option<(PathBuf, String)>,
+}
+
+fn plan(d: &DirWrite) -> Result<Plan, String> {
     // Resolve every path first so nothing is written if any name is unsafe.
-    let targets: Vec<PathBuf> = files
+    let targets: Vec<PathBuf> = d
+        .files
         .iter()
-        .map(|f| confined(root, &f.path))
+        .map(|f| confined(d.root, &f.path))
         .collect::<Result<_, _>>()?;
-    if root.exists() && !root.is_dir() {
-        return Err(format!(
-            "`{}` is a file; {role} must be a directory",
-            shown(root)
-        ));
-    }
-    std::fs::create_dir_all(root).map_err(|e| io_message(root, role, &root.join("x"), &e))?;
-    let dirs: BTreeSet<&Path> = targets
-        .iter()
-        .filter_map(|t| t.parent())
-        .chain([root])
-        .collect();
-    for d in dirs {
-        sweep_temporaries(d);
-    }
-    let mut w = Written {
-        files: files.len(),
-        ..Written::default()
+    let Some(manifest) = d.manifest else {
+        return Ok(Plan {
+            targets,
+            stale: Vec::new(),
+            manifest: None,
+        });
     };
-    for (f, path) in files.iter().zip(&targets) {
-        if std::fs::read(path).is_ok_and(|old| old == f.contents) {
-            w.unchanged += 1;
+    let mpath = confined(d.root, Path::new(&manifest.name))?;
+    let old = std::fs::read_to_string(&mpath).unwrap_or_default();
+    let now: BTreeSet<&Path> = d.files.iter().map(|f| f.path.as_path()).collect();
+    let mut text = String::new();
+    let mut stale = Vec::new();
+    for line in old.lines() {
+        let Some((group, rel)) = line.split_once('\t') else {
+            continue;
+        };
+        if !manifest.owned.contains(group) {
+            text.push_str(line);
+            text.push('\n');
             continue;
         }
-        write_atomic(path, &f.contents).map_err(|e| io_message(root, role, path, &e))?;
+        if now.contains(Path::new(rel)) {
+            continue;
+        }
+        if let Ok(path) = confined(d.root, Path::new(rel)) {
+            stale.push(path);
+        }
     }
-    Ok(w)
+    for f in d.files {
+        text.push_str(&format!(
+            "{}\t{}\n",
+            (manifest.group)(&f.path),
+            f.path.display()
+        ));
+    }
+    let manifest = (old != text).then_some((mpath, text));
+    Ok(Plan {
+        targets,
+        stale,
+        manifest,
+    })
+}
+
+/// Writes several directories as one transaction as far as a file system allows: every new
+/// file (and manifest) is first staged as a temporary, all of them are made durable
+/// together, stale files of the previous run are removed, then the temporaries are renamed
+/// over their targets (manifests last). A crash at any moment leaves
+/// each file either old or new, never partly written (ARCHITECTURE.md, "Crash safety").
+pub fn write_dirs(dirs: &[DirWrite]) -> Result<Vec<Written>, String> {
+    let plans: Vec<Plan> = dirs.iter().map(plan).collect::<Result<_, _>>()?;
+    let mut staged: Vec<Staged> = Vec::new();
+    let mut manifests: Vec<Staged> = Vec::new();
+    let mut written = Vec::with_capacity(dirs.len());
+    let fail = |staged: &[Staged], manifests: &[Staged], msg: String| {
+        discard(staged);
+        discard(manifests);
+        msg
+    };
+    for (d, p) in dirs.iter().zip(&plans) {
+        let root = d.root;
+        if root.exists() && !root.is_dir() {
+            return Err(fail(
+                &staged,
+                &manifests,
+                format!("`{}` is a file; {} must be a directory", shown(root), d.role),
+            ));
+        }
+        if let Err(e) = std::fs::create_dir_all(root) {
+            return Err(fail(
+                &staged,
+                &manifests,
+                io_message(root, d.role, &root.join("x"), &e),
+            ));
+        }
+        let targets: BTreeSet<&Path> = p
+            .targets
+            .iter()
+            .filter_map(|t| t.parent())
+            .chain([root])
+            .collect();
+        for t in targets {
+            sweep_temporaries(t);
+        }
+        let mut w = Written {
+            files: d.files.len(),
+            ..Written::default()
+        };
+        for (f, path) in d.files.iter().zip(&p.targets) {
+            if std::fs::read(path).is_ok_and(|old| old == f.contents) {
+                w.unchanged += 1;
+                continue;
+            }
+            match stage(path, &f.contents) {
+                Ok(s) => staged.push(s),
+                Err(e) => {
+                    return Err(fail(
+                        &staged,
+                        &manifests,
+                        io_message(root, d.role, path, &e),
+                    ))
+                }
+            }
+        }
+        if let Some((mpath, text)) = &p.manifest {
+            match stage(mpath, text.as_bytes()) {
+                Ok(s) => manifests.push(s),
+                Err(e) => {
+                    return Err(fail(
+                        &staged,
+                        &manifests,
+                        io_message(root, d.role, mpath, &e),
+                    ))
+                }
+            }
+        }
+        written.push(w);
+    }
+    let all: Vec<Staged> = staged.into_iter().chain(manifests).collect();
+    if let Err(e) = flush(&all) {
+        discard(&all);
+        return Err(format!("cannot write to the output directory: {e}"));
+    }
+    // Stale files go before the new manifest lands: a crash in between leaves the old
+    // manifest, which still names them, so the next run finishes the job.
+    for ((d, p), w) in dirs.iter().zip(&plans).zip(written.iter_mut()) {
+        for path in &p.stale {
+            if path.is_file() && std::fs::remove_file(path).is_ok() {
+                w.removed += 1;
+                // Directories the removal emptied go too (a level model of a renamed level).
+                let mut dir = path.parent();
+                while let Some(dd) = dir.filter(|dd| *dd != d.root && dd.starts_with(d.root)) {
+                    if std::fs::remove_dir(dd).is_err() {
+                        break;
+                    }
+                    dir = dd.parent();
+                }
+            }
+        }
+    }
+    for (i, s) in all.iter().enumerate() {
+        if let Err(e) = std::fs::rename(&s.tmp, &s.target) {
+            discard(&all[i..]);
+            return Err(format!("cannot write `{}`: {e}", shown(&s.target)));
+        }
+        release_temporary(&s.tmp);
+    }
+    // The renames are not synced: a power loss may undo the last of them, which leaves
+    // those files old (and whole); the next run writes them again.
+    Ok(written)
 }
 
 /// A manifest: which files a command wrote into a directory, by group.
@@ -234,54 +490,13 @@ pub fn write_dir(
     files: &[OutputFile],
     manifest: &Manifest,
 ) -> Result<Written, String> {
-    let mut w = write_all(root, role, files)?;
-    let mpath = confined(root, Path::new(&manifest.name))?;
-    let old = std::fs::read_to_string(&mpath).unwrap_or_default();
-    let now: BTreeSet<PathBuf> = files.iter().map(|f| f.path.clone()).collect();
-    let mut kept = Vec::new();
-    for line in old.lines() {
-        let Some((group, rel)) = line.split_once('\t') else {
-            continue;
-        };
-        let rel = PathBuf::from(rel);
-        if !manifest.owned.contains(group) {
-            kept.push(line.to_string());
-            continue;
-        }
-        if now.contains(&rel) {
-            continue;
-        }
-        let Ok(path) = confined(root, &rel) else {
-            continue;
-        };
-        if path.is_file() && std::fs::remove_file(&path).is_ok() {
-            w.removed += 1;
-            // Directories the removal emptied go too (a level model of a renamed level).
-            let mut dir = path.parent();
-            while let Some(d) = dir.filter(|d| *d != root && d.starts_with(root)) {
-                if std::fs::remove_dir(d).is_err() {
-                    break;
-                }
-                dir = d.parent();
-            }
-        }
-    }
-    let mut text = String::new();
-    for l in kept {
-        text.push_str(&l);
-        text.push('\n');
-    }
-    for f in files {
-        text.push_str(&format!(
-            "{}\t{}\n",
-            (manifest.group)(&f.path),
-            f.path.display()
-        ));
-    }
-    if std::fs::read_to_string(&mpath).ok().as_deref() != Some(text.as_str()) {
-        write_atomic(&mpath, text.as_bytes()).map_err(|e| io_message(root, role, &mpath, &e))?;
-    }
-    Ok(w)
+    write_dirs(&[DirWrite {
+        root,
+        role,
+        files,
+        manifest: Some(manifest),
+    }])
+    .map(|w| w[0])
 }
 
 /// The manifest of a single-map command: one group, owned.
@@ -292,13 +507,31 @@ pub fn single_write(
     command: &str,
     map: &str,
 ) -> Result<Written, String> {
+    single_writes(&[(root, role, files)], command, map).map(|w| w[0])
+}
+
+/// [`single_write`] into several directories at once (one flush for all of them).
+pub fn single_writes(
+    dirs: &[(&Path, &str, &[OutputFile])],
+    command: &str,
+    map: &str,
+) -> Result<Vec<Written>, String> {
     let group = |_: &Path| command.to_string();
     let manifest = Manifest {
         name: format!(".mapc-manifest-{command}-{map}"),
         group: &group,
         owned: [command.to_string()].into(),
     };
-    write_dir(root, role, files, &manifest)
+    let jobs: Vec<DirWrite> = dirs
+        .iter()
+        .map(|&(root, role, files)| DirWrite {
+            root,
+            role,
+            files,
+            manifest: Some(&manifest),
+        })
+        .collect();
+    write_dirs(&jobs)
 }
 
 #[cfg(test)]

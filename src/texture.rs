@@ -61,6 +61,8 @@ impl SearchPath {
                 return None;
             }
             let bytes = std::fs::read(&p).ok()?;
+            // An output repeating these bytes can be a link to this file, not a copy.
+            crate::output::note_link_source(&p, &bytes);
             Some((p, bytes))
         })
     }

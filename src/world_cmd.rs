@@ -165,17 +165,15 @@ pub(crate) fn run(flavour: Flavour, args: &WorldArgs) -> ExitCode {
         );
         return ExitCode::from(1);
     }
-    let result = output::single_write(
-        &args.output_model_dir,
-        "OUTPUT_MODEL_DIR",
-        &out.models,
+    let result = output::single_writes(
+        &[
+            (&args.output_model_dir, "OUTPUT_MODEL_DIR", &out.models),
+            (world_dir, "the world's directory", &world),
+        ],
         cmd,
         &label,
     )
-    .and_then(|m| {
-        output::single_write(world_dir, "the world's directory", &world, cmd, &label)
-            .map(|w| (m, w))
-    });
+    .map(|w| (w[0], w[1]));
     match result {
         Ok((m, w)) => {
             if !args.diag.quiet {

@@ -12,7 +12,7 @@ use std::collections::{BTreeMap, BTreeSet};
 /// An image to embed for a texture name.
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub struct TextureImage {
-    /// PNG file contents.
+    /// PNG file contents as read (the glTF writer embeds them without ancillary chunks).
     pub png: Vec<u8>,
     /// True when the texture was not found and `png` is [`placeholder_png`].
     pub placeholder: bool,
@@ -175,8 +175,10 @@ pub fn resolve_textures<'a>(
         } else {
             let found = texture_file_name(name).and_then(|f| find(&f).map(|bytes| (f, bytes)));
             match found {
+                // Kept as read: level models copy (or link) the file as it is; the glTF
+                // embedding strips it.
                 Some((_, png)) if is_png(&png) => TextureImage {
-                    png: strip_png(&png),
+                    png,
                     placeholder: false,
                 },
                 Some((file, _)) => {

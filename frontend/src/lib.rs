@@ -16,7 +16,9 @@ pub use codes::{Code, CODES};
 /// The located YAML tree the frontend reads maps with, for other YAML inputs of mapc
 /// (simulation scenarios) that want the same limits, spans and YAML 1.2 scalars.
 pub mod yaml_tree {
-    pub use crate::yaml::{parse, Kind, Node, Scalar, MAX_ALIAS_NODES, MAX_DEPTH, MAX_NODES};
+    pub use crate::yaml::{
+        max_nodes, parse, Kind, Node, Scalar, MAX_ALIAS_NODES, MAX_DEPTH, MAX_NODES,
+    };
 }
 use mapc_ir::{Building, Diagnostic, FileId, Span};
 use std::path::{Path, PathBuf};
@@ -82,14 +84,15 @@ pub fn parse_str(name: &str, text: &str) -> Parsed {
 }
 
 fn parse_into(file: FileId, text: &str, diags: &mut Vec<Diagnostic>) -> Option<Building> {
-    let root = match yaml::parse(text, file) {
+    let mut root = match yaml::parse(text, file) {
         Ok(r) => r,
         Err(d) => {
             diags.push(d);
             return None;
         }
     };
-    let mut b = lower::Lower { diags: &mut *diags }.building(&root)?;
+    let mut b = lower::Lower { diags: &mut *diags }.building(&mut root)?;
+    drop(root);
     transform::apply(&mut b, diags);
     Some(b)
 }

@@ -471,7 +471,7 @@ impl Lower<'_> {
     }
 
     /// The whole document.
-    pub fn building(&mut self, root: &Node) -> Option<Building> {
+    pub fn building(&mut self, root: &mut Node) -> Option<Building> {
         let root_entries = self.map(root, "the document root")?;
         self.unknown_keys(root_entries, ROOT_KEYS, "the building");
 
@@ -546,6 +546,7 @@ impl Lower<'_> {
             .map(str::to_string);
 
         let levels_node = self.require(root, "levels", "the building")?;
+        let levels_span = levels_node.span;
         let level_entries = self.map(levels_node, "`levels`")?;
         // A duplicated level name (reported by `map`) keeps its last definition, as
         // everywhere else, at the position of that last definition.
@@ -555,19 +556,26 @@ impl Lower<'_> {
                 last.insert(name, i);
             }
         }
-        for (i, (k, v)) in level_entries.iter().enumerate() {
+        let mut chosen = Vec::new();
+        for (i, (k, _)) in level_entries.iter().enumerate() {
             let Some(name) = k.key_text() else {
                 self.wrong_type(k, "a level name", "a string");
                 continue;
             };
             if last.get(name) == Some(&i) {
-                self.level(&mut b, name, v, k.span);
+                chosen.push((i, name.to_string(), k.span));
+            }
+        }
+        // Levels are lowered from the tree mutably: each frees its large lists once read.
+        if let Some(entries) = root.get_mut("levels").and_then(Node::as_map_mut) {
+            for (i, name, span) in chosen {
+                self.level(&mut b, &name, &mut entries[i].1, span);
             }
         }
         if b.levels.is_empty() {
             self.err(
                 "E0110",
-                levels_node.span,
+                levels_span,
                 "the building has no levels",
                 "add at least one level under `levels`",
             );
@@ -632,7 +640,7 @@ impl Lower<'_> {
         h
     }
 
-    fn level(&mut self, b: &mut Building, name: &str, node: &Node, span: Span) {
+    fn level(&mut self, b: &mut Building, name: &str, node: &mut Node, span: Span) {
         let what = format!("level `{name}`");
         let Some(entries) = self.map(node, &what) else {
             return;
@@ -657,14 +665,15 @@ impl Lower<'_> {
 
         // Vertices first: every other element indexes them, by position in the file.
         let mut slots: Vec<Option<Handle<Vertex>>> = Vec::new();
-        if let Some(vs) = node.get("vertices") {
-            let list = self
-                .seq(vs, &format!("the vertices of {what}"))
-                .unwrap_or(&[]);
-            slots.reserve(list.len());
-            b.vertices.reserve(list.len());
-            for v in list {
-                let h = self.vertex(lh, v).map(|vx| {
+        if let Some(vs) = node.get_mut("vertices").map(Node::take) {
+            let len = self
+                .seq(&vs, &format!("the vertices of {what}"))
+                .map_or(0, <[Node]>::len);
+            slots.reserve(len);
+            b.vertices.reserve(len);
+            // By value: each vertex's subtree is freed once lowered.
+            for v in vs.into_seq() {
+                let h = self.vertex(lh, &v).map(|vx| {
                     let h = b.vertices.append(vx, v.span);
                     b.levels[lh].vertices.push(h);
                     h
@@ -674,20 +683,23 @@ impl Lower<'_> {
         }
         let slots = &slots[..];
 
-        let edges = |l: &mut Self, b: &Building, key: &str| -> Vec<Edge> {
-            let Some(list) = node.get(key) else {
+        let edges = |l: &mut Self, b: &Building, node: &mut Node, key: &str| -> Vec<Edge> {
+            let Some(list) = node.get_mut(key).map(Node::take) else {
                 return Vec::new();
             };
+            if l.seq(&list, &format!("the {key} of {what}")).is_none() {
+                return Vec::new();
+            }
             let mut out = Vec::new();
-            for e in l.seq(list, &format!("the {key} of {what}")).unwrap_or(&[]) {
-                if let Some(x) = l.edge(b, lh, e, key, slots) {
+            for e in list.into_seq() {
+                if let Some(x) = l.edge(b, lh, &e, key, slots) {
                     out.push(x);
                 }
             }
             out
         };
 
-        let lanes = edges(self, b, "lanes");
+        let lanes = edges(self, b, node, "lanes");
         b.lanes.reserve(lanes.len());
         for e in lanes {
             let span = e.span;
@@ -702,7 +714,7 @@ impl Lower<'_> {
             params,
             span,
             ..
-        } in edges(self, b, "walls")
+        } in edges(self, b, node, "walls")
         {
             let h = b.walls.append(
                 Wall {
@@ -715,7 +727,7 @@ impl Lower<'_> {
             );
             b.levels[lh].walls.push(h);
         }
-        for e in edges(self, b, "measurements") {
+        for e in edges(self, b, node, "measurements") {
             let (params, span) = (&e.params, e.span);
             let distance = match params.get("distance") {
                 Some(v) => match v.as_f64() {
@@ -754,7 +766,7 @@ impl Lower<'_> {
             );
             b.levels[lh].measurements.push(h);
         }
-        for e in edges(self, b, "doors") {
+        for e in edges(self, b, node, "doors") {
             let span = e.span;
             if let Some(door) = self.door(lh, e) {
                 let h = b.doors.append(door, span);
@@ -767,7 +779,7 @@ impl Lower<'_> {
             params,
             span,
             ..
-        } in edges(self, b, "human_lanes")
+        } in edges(self, b, node, "human_lanes")
         {
             let h = b.human_lanes.append(
                 HumanLane {
@@ -905,7 +917,7 @@ impl Lower<'_> {
             pos: raw,
             raw,
             params,
-            roles,
+            roles: roles.into(),
         })
     }
 

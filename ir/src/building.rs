@@ -174,6 +174,42 @@ pub struct WaypointRoles {
     pub human_goal_set_name: Option<String>,
 }
 
+/// A waypoint's roles, kept out of line and only when it has any: most waypoints have
+/// none, and a `WaypointRoles` is about 200 bytes (maps may hold 10^5 waypoints). Reads as a
+/// `WaypointRoles` (`Deref`).
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct Roles(Option<Box<WaypointRoles>>);
+
+static NO_ROLES: WaypointRoles = WaypointRoles {
+    is_charger: false,
+    is_parking_spot: false,
+    is_holding_point: false,
+    is_passthrough_point: false,
+    is_cleaning_zone: false,
+    dock_name: None,
+    pickup_dispenser: None,
+    dropoff_ingestor: None,
+    spawn_robot_type: None,
+    spawn_robot_name: None,
+    mutex: None,
+    lift_cabin: None,
+    merge_radius: None,
+    human_goal_set_name: None,
+};
+
+impl From<WaypointRoles> for Roles {
+    fn from(r: WaypointRoles) -> Self {
+        Roles((r != NO_ROLES).then(|| Box::new(r)))
+    }
+}
+
+impl std::ops::Deref for Roles {
+    type Target = WaypointRoles;
+    fn deref(&self) -> &WaypointRoles {
+        self.0.as_deref().unwrap_or(&NO_ROLES)
+    }
+}
+
 impl WaypointRoles {
     /// Roles from vertex params. Flags are true only when the bool param is true; names
     /// count only when non-empty. (The reference registers a charger for any `is_charger`
@@ -208,7 +244,7 @@ pub struct Vertex {
     /// Coordinates as written in the file (pixels, metres or lon/lat).
     pub raw: Vec2,
     pub params: Params,
-    pub roles: WaypointRoles,
+    pub roles: Roles,
 }
 
 #[derive(Debug, Clone, PartialEq, Eq)]

@@ -119,7 +119,7 @@ impl Nav {
                     level_name: level.name.clone(),
                     elevation: level.elevation,
                     lift,
-                    roles: v.roles.clone(),
+                    roles: (*v.roles).clone(),
                 });
                 nav.vertices.len() - 1
             })

@@ -44,7 +44,7 @@ impl Map {
                 pos: Vec2::new(x, y),
                 raw: Vec2::new(x, y),
                 params: Params::default(),
-                roles: WaypointRoles::default(),
+                roles: Default::default(),
             },
             Span::default(),
         );

@@ -404,7 +404,8 @@ impl<'t> Writer<'t> {
             return Some(i);
         }
         let image = self.textures.get(name)?;
-        let png = image.png.clone();
+        // Only the chunks that define the pixels (glTF §3.8.4.3; see `strip_png`).
+        let png = crate::texture::strip_png(&image.png);
         let view = self.view(&png, None);
         let image = self.root.push(json::Image {
             buffer_view: Some(view),

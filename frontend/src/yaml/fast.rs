@@ -10,7 +10,7 @@
 //! differential test and a fuzz target check that whenever this reader accepts an input,
 //! it builds exactly the tree (kinds, texts, spans) that the saphyr path builds.
 
-use super::{Kind, Node, MAX_DEPTH, MAX_NODES};
+use super::{max_nodes, Kind, Node, MAX_DEPTH};
 use mapc_ir::{FileId, Span};
 use std::borrow::Cow;
 
@@ -27,11 +27,18 @@ struct P<'a> {
     line_start: usize,
     file: FileId,
     nodes: usize,
+    node_limit: usize,
     /// Indent of the line the cursor's content is on; `None` at end of input.
     indent: Option<usize>,
     /// Whether the current line is ASCII (so columns are byte offsets); computed once per
     /// line on first use.
     line_ascii: Option<bool>,
+    /// Items of the collections being read, innermost last: each collection takes its
+    /// items off the top into an allocation of exactly their number. Growing a `Vec` per
+    /// collection and shrinking it left a hole per collection in the heap (a tree of a
+    /// large map then took about twice its size in resident memory).
+    seq_items: Vec<Node<'a>>,
+    map_items: Vec<(Node<'a>, Node<'a>)>,
 }
 
 pub(super) fn parse(text: &str, file: FileId) -> Option<Node<'_>> {
@@ -46,8 +53,11 @@ pub(super) fn parse(text: &str, file: FileId) -> Option<Node<'_>> {
         line_start: 0,
         file,
         nodes: 0,
+        node_limit: max_nodes(text.len()),
         indent: None,
         line_ascii: None,
+        seq_items: Vec::new(),
+        map_items: Vec::new(),
     };
     let root = (|| {
         p.next_content()?;
@@ -148,7 +158,7 @@ impl<'a> P<'a> {
 
     fn count(&mut self) -> R<()> {
         self.nodes += 1;
-        if self.nodes > MAX_NODES {
+        if self.nodes > self.node_limit {
             return Err(Bail);
         }
         Ok(())
@@ -319,7 +329,7 @@ impl<'a> P<'a> {
         }
         self.count()?;
         let start = self.span(self.pos, self.pos);
-        let mut items = Vec::new();
+        let mark = self.map_items.len();
         loop {
             let key = self.key()?;
             self.skip_spaces()?;
@@ -374,7 +384,7 @@ impl<'a> P<'a> {
                 }
                 v
             };
-            items.push((key, value));
+            self.map_items.push((key, value));
             match self.indent {
                 Some(i) if i == indent => {
                     if self.b[self.pos] == b'-' && self.is_sep(self.pos + 1) {
@@ -385,10 +395,10 @@ impl<'a> P<'a> {
                 _ => break,
             }
         }
+        let items: Vec<_> = self.map_items.drain(mark..).collect();
         let end = items
             .last()
             .map_or(start.start, |(_, v)| v.span.end.max(v.span.start));
-        items.shrink_to_fit();
         Ok(Node {
             kind: Kind::Map(items),
             span: Span { end, ..start },
@@ -401,7 +411,7 @@ impl<'a> P<'a> {
         }
         self.count()?;
         let start = self.span(self.pos, self.pos);
-        let mut items = Vec::new();
+        let mark = self.seq_items.len();
         loop {
             // At `-`.
             self.pos += 1;
@@ -425,7 +435,7 @@ impl<'a> P<'a> {
                 }
                 v
             };
-            items.push(item);
+            self.seq_items.push(item);
             match self.indent {
                 Some(i) if i == indent => {
                     if !(self.b[self.pos] == b'-' && self.is_sep(self.pos + 1)) {
@@ -436,10 +446,10 @@ impl<'a> P<'a> {
                 _ => break,
             }
         }
+        let items: Vec<_> = self.seq_items.drain(mark..).collect();
         let end = items
             .last()
             .map_or(start.start, |v: &Node| v.span.end.max(v.span.start));
-        items.shrink_to_fit();
         Ok(Node {
             kind: Kind::Seq(items),
             span: Span { end, ..start },
@@ -675,14 +685,14 @@ impl<'a> P<'a> {
         let open = self.b[start];
         self.pos += 1;
         let kind = if open == b'[' {
-            // Map entries are short flow lists (vertices have 4-5 items, lanes 3).
-            let mut items = Vec::with_capacity(6);
+            let mark = self.seq_items.len();
             loop {
                 self.flow_skip()?;
                 if self.b.get(self.pos) == Some(&b']') {
                     break;
                 }
-                items.push(self.flow_item(depth + 1)?);
+                let item = self.flow_item(depth + 1)?;
+                self.seq_items.push(item);
                 self.flow_skip()?;
                 match self.b.get(self.pos) {
                     Some(b',') => self.pos += 1,
@@ -690,11 +700,9 @@ impl<'a> P<'a> {
                     _ => return Err(Bail),
                 }
             }
-            // Trees of large maps hold millions of nodes: no spare capacity.
-            items.shrink_to_fit();
-            Kind::Seq(items)
+            Kind::Seq(self.seq_items.drain(mark..).collect())
         } else {
-            let mut items = Vec::new();
+            let mark = self.map_items.len();
             loop {
                 self.flow_skip()?;
                 if self.b.get(self.pos) == Some(&b'}') {
@@ -716,7 +724,7 @@ impl<'a> P<'a> {
                     return Err(Bail); // null value
                 }
                 let value = self.flow_item(depth + 1)?;
-                items.push((key, value));
+                self.map_items.push((key, value));
                 self.flow_skip()?;
                 match self.b.get(self.pos) {
                     Some(b',') => self.pos += 1,
@@ -724,8 +732,7 @@ impl<'a> P<'a> {
                     _ => return Err(Bail),
                 }
             }
-            items.shrink_to_fit();
-            Kind::Map(items)
+            Kind::Map(self.map_items.drain(mark..).collect())
         };
         self.pos += 1; // the closing bracket
         Ok(Node {

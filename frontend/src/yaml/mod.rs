@@ -12,8 +12,20 @@ use std::collections::HashMap;
 
 /// Deepest nesting accepted; real maps use 6 levels.
 pub const MAX_DEPTH: usize = 64;
-/// Most nodes accepted, counting every alias expansion.
+/// Most nodes accepted in a small file, counting every alias expansion; larger files may
+/// hold more ([`max_nodes`]).
 pub const MAX_NODES: usize = 2_000_000;
+/// Bytes of text per node that the node limit allows, beyond [`MAX_NODES`]. Maps written by
+/// the editors take 5 or more bytes per node (a lane of 12 nodes is about 70 bytes), so any
+/// map within the file-size cap is read; text denser than this (`[1,1,1,...]`) is refused
+/// before its tree grows past about 14 times the file.
+pub const BYTES_PER_NODE: usize = 4;
+
+/// The node limit for a text of `len` bytes: the limit follows the file-size cap rather
+/// than a fixed count.
+pub fn max_nodes(len: usize) -> usize {
+    MAX_NODES.max(len / BYTES_PER_NODE)
+}
 /// Most nodes that aliases may add. The editor never writes aliases; this only bounds
 /// alias bombs, cheaply (each expansion is a copy).
 pub const MAX_ALIAS_NODES: usize = 100_000;
@@ -78,6 +90,43 @@ impl<'a> Node<'a> {
             .rev()
             .find(|(k, _)| k.key_text() == Some(key))
             .map(|(_, v)| v)
+    }
+    /// Mutable value of `key` in a mapping (the last one, as [`Node::get`]).
+    pub fn get_mut(&mut self, key: &str) -> Option<&mut Node<'a>> {
+        match &mut self.kind {
+            Kind::Map(m) => m
+                .iter_mut()
+                .rev()
+                .find(|(k, _)| k.key_text() == Some(key))
+                .map(|(_, v)| v),
+            _ => None,
+        }
+    }
+    pub fn as_map_mut(&mut self) -> Option<&mut [(Node<'a>, Node<'a>)]> {
+        match &mut self.kind {
+            Kind::Map(m) => Some(m),
+            _ => None,
+        }
+    }
+    /// Takes the node out of its tree, leaving a null with the same span: lowering frees
+    /// the large lists of a map (vertices, lanes) as it goes, so that the tree and the IR
+    /// built from it are not both whole in memory.
+    pub fn take(&mut self) -> Node<'a> {
+        let null = Node {
+            kind: Kind::Scalar {
+                text: Cow::Borrowed(""),
+                plain: true,
+            },
+            span: self.span,
+        };
+        std::mem::replace(self, null)
+    }
+    /// The items of a sequence (none for any other node), by value.
+    pub fn into_seq(self) -> Vec<Node<'a>> {
+        match self.kind {
+            Kind::Seq(s) => s,
+            _ => Vec::new(),
+        }
     }
     /// Text of a scalar used as a mapping key or a name: any scalar but null.
     pub fn key_text(&self) -> Option<&str> {
@@ -314,6 +363,7 @@ pub(crate) fn parse_general(text: &str, file: FileId) -> Result<Node<'_>, Diagno
     let mut anchors: HashMap<usize, (Node<'_>, usize)> = HashMap::new();
     let mut root: Option<Node<'_>> = None;
     let mut total_nodes = 0usize;
+    let node_limit = max_nodes(text.len());
     let mut alias_nodes = 0usize;
     let mut documents = 0;
 
@@ -444,8 +494,8 @@ pub(crate) fn parse_general(text: &str, file: FileId) -> Result<Node<'_>, Diagno
                 _ => return Err(Diagnostic::error("E0001", span, "unbalanced mapping end")),
             },
         };
-        if total_nodes > MAX_NODES {
-            return Err(limit_error(span, "node count", MAX_NODES));
+        if total_nodes > node_limit {
+            return Err(limit_error(span, "node count", node_limit));
         }
         if let Some((node, anchor, size)) = done {
             if anchor > 0 {

@@ -64,7 +64,7 @@ impl TestMap {
                 pos: Vec2::new(x, y),
                 raw: Vec2::new(x, y),
                 params,
-                roles,
+                roles: roles.into(),
             },
             span(line),
         );

@@ -1,0 +1,89 @@
+#!/usr/bin/env python3
+"""First compile against the reference (issue 12, BENCHMARKS.md), side by side.
+
+For every demo map, ROUNDS times: the reference `building_map_generator gazebo` (run by
+../shared/tools/reference-gen) and `mapc gazebo`, alternately, each into a fresh output
+directory (a first build, as in CI). Prints per map the median wall time of each, the
+median of the per-round ratios (reference / mapc), and both commands' median CPU time
+(user + system, from the children's rusage).
+
+    scripts/first_compile.py [--rounds 9] [--mapc target/release/mapc] [MAP ...]
+
+Textures: the reference copies them from its share directory; mapc is given the same
+directory with --texture-path. Run from the crate root; needs ../shared.
+"""
+
+import argparse
+import os
+import resource
+import shutil
+import statistics
+import subprocess
+import sys
+import tempfile
+import time
+
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+SHARED = os.path.join(ROOT, "..", "shared")
+MAPS = ["triple_H", "battle_royale", "office", "campus", "hotel", "airport_terminal", "clinic"]
+
+
+def timed(cmd):
+    """(wall seconds, CPU seconds) of one run; fails loudly when the command fails."""
+    before = resource.getrusage(resource.RUSAGE_CHILDREN)
+    start = time.perf_counter()
+    r = subprocess.run(cmd, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE)
+    wall = time.perf_counter() - start
+    after = resource.getrusage(resource.RUSAGE_CHILDREN)
+    if r.returncode != 0:
+        sys.exit(f"{' '.join(cmd)} failed ({r.returncode}):\n{r.stderr.decode()[-2000:]}")
+    cpu = (after.ru_utime - before.ru_utime) + (after.ru_stime - before.ru_stime)
+    return wall, cpu
+
+
+def main():
+    ap = argparse.ArgumentParser()
+    ap.add_argument("--rounds", type=int, default=9)
+    ap.add_argument("--mapc", default=os.path.join(ROOT, "target/release/mapc"))
+    ap.add_argument("maps", nargs="*", default=MAPS)
+    a = ap.parse_args()
+    if not os.path.isdir(SHARED):
+        print("skipped: ../shared not found")
+        return
+    ref = os.path.join(SHARED, "tools/reference-gen")
+    textures = os.path.join(SHARED, "textures")
+    work = tempfile.mkdtemp(prefix="mapc-first-compile-")
+    print(f"| map | reference wall (median) | mapc wall (median) | ratio (median of {a.rounds}) "
+          "| min ratio | reference CPU | mapc CPU |")
+    print("| --- | ---: | ---: | ---: | ---: | ---: | ---: |")
+    worst = None
+    try:
+        # One untimed reference run first: its venv and Python caches are made once.
+        first = os.path.join(SHARED, "maps", a.maps[0], a.maps[0] + ".building.yaml")
+        timed([ref, "gazebo", first, os.path.join(work, "w", "x.world"), os.path.join(work, "w", "m")])
+        for name in a.maps:
+            src = os.path.join(SHARED, "maps", name, name + ".building.yaml")
+            rw, rc, mw, mc, ratios = [], [], [], [], []
+            for i in range(a.rounds):
+                out = os.path.join(work, f"{name}-{i}")
+                w, c = timed([ref, "gazebo", src, f"{out}/ref/{name}.world", f"{out}/ref/models"])
+                rw.append(w)
+                rc.append(c)
+                w2, c2 = timed([a.mapc, "gazebo", src, f"{out}/mapc/{name}.world",
+                                f"{out}/mapc/models", "--texture-path", textures, "--quiet"])
+                mw.append(w2)
+                mc.append(c2)
+                ratios.append(w / w2)
+                shutil.rmtree(out)
+            ratio = statistics.median(ratios)
+            worst = ratio if worst is None else min(worst, ratio)
+            ms = lambda v: f"{1000 * statistics.median(v):.1f} ms"
+            print(f"| {name} | {ms(rw)} | {ms(mw)} | **{ratio:.0f}x** | {min(ratios):.0f}x "
+                  f"| {ms(rc)} | {ms(mc)} |", flush=True)
+    finally:
+        shutil.rmtree(work, ignore_errors=True)
+    print(f"\nworst median ratio: {worst:.0f}x (target 50x)")
+
+
+if __name__ == "__main__":
+    main()
