@@ -9,6 +9,10 @@
 //! - `pairs`: n/2 separate two-waypoint lanes (n waypoints);
 //! - `spot`: n/2 waypoints on one spot, each with a lane to its own far waypoint.
 //!
+//! Issue 12's huge building (`huge`: n waypoints, 2n lanes; 100,000 make 17 MB):
+//! `huge_check` as above, `huge_nav` what `mapc nav` computes (parse, lower, every rule,
+//! nav graphs rendered to bytes).
+//!
 //! Run with `cargo bench --bench bounded`. Maps are generated before timing.
 
 #[path = "../tests/shapes/mod.rs"]
@@ -51,4 +55,28 @@ fn pairs(b: Bencher, n: usize) {
 #[divan::bench(args = SIZES, sample_count = 5, sample_size = 1)]
 fn spot(b: Bencher, n: usize) {
     check(b, shapes::spot(n / 2));
+}
+
+const HUGE: [usize; 2] = [10_000, 100_000];
+
+#[divan::bench(args = HUGE, sample_count = 5, sample_size = 1)]
+fn huge_check(b: Bencher, n: usize) {
+    let text = shapes::huge(n);
+    // The node limit follows the file size: the 17 MB map is read, not refused (E0002).
+    let parsed = mapc_frontend::parse_str("huge.building.yaml", &text);
+    assert!(!parsed.has_errors(), "{:?}", parsed.diagnostics.first());
+    check(b, text);
+}
+
+#[divan::bench(args = HUGE, sample_count = 5, sample_size = 1)]
+fn huge_nav(b: Bencher, n: usize) {
+    let text = shapes::huge(n);
+    b.counter(divan::counter::BytesCount::new(text.len()))
+        .bench(|| {
+            let parsed = mapc_frontend::parse_str("huge.building.yaml", black_box(&text));
+            let building = parsed.building.expect("well-formed");
+            let diags = mapc_ir::validate(&building);
+            let files = mapc_backends::nav_graphs(&building);
+            black_box((diags.len(), files))
+        });
 }

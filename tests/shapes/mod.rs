@@ -120,3 +120,23 @@ pub fn acceptance() -> Vec<(&'static str, String)> {
         ("spot", spot(3_000)),
     ]
 }
+
+/// Issue 12's huge building: `n` waypoints scattered at 20,000 per hectare and `2n` lanes,
+/// the first `n` chaining them, the rest random (100,000 and 200,000 make 17 MB).
+pub fn huge(n: usize) -> String {
+    let side = 100.0 * (n as f64 / 20_000.0).sqrt();
+    let mut r = Lcg::new(12);
+    let v: Vec<(f64, f64)> = (0..n).map(|_| (side * r.unit(), side * r.unit())).collect();
+    let l: Vec<(usize, usize)> = (0..2 * n)
+        .map(|i| {
+            if i < n {
+                (i, (i + 1) % n)
+            } else {
+                let a = r.below(n);
+                let b = r.below(n);
+                (a, if a == b { (a + 1) % n } else { b })
+            }
+        })
+        .collect();
+    map("huge", &v, &l)
+}

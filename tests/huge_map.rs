@@ -1,0 +1,59 @@
+//! Issue 12, part 4: a huge building is read, checked and compiled to nav graphs, with
+//! memory that follows the file size. The map is issue 12's shape (waypoints, twice as many
+//! lanes) at 20,000 waypoints (3.4 MB) so that the debug build stays quick; the 100,000
+//! waypoint map (17 MB) is timed by `benches/bounded.rs` (`huge`) and its peak memory is in
+//! BENCHMARKS.md.
+//!
+//! Memory: peak RSS is the child's `VmHWM`, sampled every few milliseconds. Issue 12 and 18
+//! ask for 10 × the file; mapc is at 13-15 × on this shape in a release build, 17-19 × in
+//! the debug build tests run (the located YAML tree, 56 bytes a node, is alive whole at the
+//! end of parsing). `FACTOR` holds it there so that it cannot grow unnoticed; what is left
+//! to reach 10 × is in BENCHMARKS.md.
+
+mod shapes;
+mod support;
+
+use std::time::Duration;
+
+const WAYPOINTS: usize = 20_000;
+/// Peak RSS at most this many times the file (the debug binary itself is a few MB more).
+const FACTOR: u64 = 20;
+
+#[test]
+fn huge_map_is_checked_and_compiled_within_memory() {
+    let text = shapes::huge(WAYPOINTS);
+    let dir = tempfile::tempdir().unwrap();
+    let map = dir.path().join("huge.building.yaml");
+    std::fs::write(&map, &text).unwrap();
+    let out = dir.path().join("nav");
+    let file = text.len() as u64;
+    let map_s = map.to_str().unwrap();
+    for args in [vec!["check", map_s], vec!["nav", map_s, out.to_str().unwrap()]] {
+        let r = support::run(&args, Duration::from_secs(120));
+        let stderr = String::from_utf8_lossy(&r.stderr);
+        let peak = r.peak_rss.unwrap_or(0);
+        eprintln!(
+            "{}: {file} bytes, exit {}, {:.2} s (debug), peak RSS {:.1} MB = {:.1} x file",
+            args[0],
+            r.code,
+            r.elapsed.as_secs_f64(),
+            peak as f64 / 1e6,
+            peak as f64 / file as f64
+        );
+        // Random lanes cross and pass near waypoints: warnings, never a refusal.
+        assert_eq!(r.code, 0, "{}", &stderr[stderr.len().saturating_sub(3000)..]);
+        assert!(!stderr.contains("E0002"), "refused: {stderr}");
+        if r.peak_rss.is_some() {
+            assert!(
+                peak <= FACTOR * file + (8 << 20),
+                "{}: peak RSS {peak} over {FACTOR} x {file}",
+                args[0]
+            );
+        }
+    }
+    // One nav graph with every waypoint and every lane, each bidirectional lane written
+    // both ways: `    - [..]` lines are n vertices and 2 × 2n lanes.
+    let graph = std::fs::read_to_string(out.join("0.yaml")).unwrap();
+    let entries = graph.lines().filter(|l| l.starts_with("    - [")).count();
+    assert_eq!(entries, WAYPOINTS + 4 * WAYPOINTS);
+}
