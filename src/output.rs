@@ -522,16 +522,56 @@ pub fn single_writes(
         group: &group,
         owned: [command.to_string()].into(),
     };
-    let jobs: Vec<DirWrite> = dirs
+    // Two outputs into one directory (a world beside its models) share its manifest: one
+    // job, or each would record only its own files and remove the other's as stale.
+    let mut merged: Vec<(&Path, &str, Vec<OutputFile>, Vec<usize>)> = Vec::new();
+    for (i, &(root, role, files)) in dirs.iter().enumerate() {
+        match merged.iter_mut().find(|m| same_dir(m.0, root)) {
+            Some(m) => {
+                m.2.extend_from_slice(files);
+                m.3.push(i);
+            }
+            None => merged.push((root, role, files.to_vec(), vec![i])),
+        }
+    }
+    if merged.len() == dirs.len() {
+        let jobs: Vec<DirWrite> = dirs
+            .iter()
+            .map(|&(root, role, files)| DirWrite {
+                root,
+                role,
+                files,
+                manifest: Some(&manifest),
+            })
+            .collect();
+        return write_dirs(&jobs);
+    }
+    let jobs: Vec<DirWrite> = merged
         .iter()
-        .map(|&(root, role, files)| DirWrite {
+        .map(|(root, role, files, _)| DirWrite {
             root,
             role,
             files,
             manifest: Some(&manifest),
         })
         .collect();
-    write_dirs(&jobs)
+    let done = write_dirs(&jobs)?;
+    // Reported per directory asked for: the merged job's figures go to its first entry.
+    let mut out = vec![Written::default(); dirs.len()];
+    for (m, w) in merged.iter().zip(done) {
+        out[m.3[0]] = w;
+    }
+    Ok(out)
+}
+
+/// Whether two directory paths name the same directory as written (`out` and `./out`).
+fn same_dir(a: &Path, b: &Path) -> bool {
+    let norm = |p: &Path| -> PathBuf {
+        p.components()
+            .filter(|c| *c != Component::CurDir)
+            .collect()
+    };
+    norm(a) == norm(b)
 }
 
 #[cfg(test)]
