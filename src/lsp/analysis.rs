@@ -80,7 +80,8 @@ fn check_project(doc: &Document, lints: &Lints) -> Vec<Diagnostic> {
     if diags.is_empty() {
         return Vec::new();
     }
-    let first = &diags[0];
+    // The first error (the worst problem), else the first warning.
+    let first = diags.iter().find(|d| d.is_error()).unwrap_or(&diags[0]);
     let message = format!(
         "{}: {errors} error(s), {warnings} warning(s); the first: {}[{}] at line {}",
         bpath.display(),
