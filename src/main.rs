@@ -2,7 +2,7 @@
 //! 2 usage or I/O error.
 
 mod build;
-mod diff_cmd;
+mod diff;
 mod escape;
 mod info;
 mod limit;
@@ -174,7 +174,7 @@ enum Command {
     /// What changed by meaning between two versions of a map: levels, waypoints, lanes,
     /// doors, lifts, walls, floors, connectivity, diagnostics. Exit 0 when nothing
     /// changed, 1 when something did, 2 on errors (like diff).
-    Diff(diff_cmd::DiffArgs),
+    Diff(diff::DiffArgs),
     /// Check maps and report every problem found, without writing anything.
     Check {
         /// The .building.yaml (or legacy .project.yaml) files to read.
@@ -217,7 +217,7 @@ fn main() -> ExitCode {
         Command::Info(args) => info::run(&args),
         Command::Render(args) => render_cmd::run(&args),
         Command::Lsp(args) => lsp::run(&args),
-        Command::Diff(args) => diff_cmd::run(&args),
+        Command::Diff(args) => diff::run(&args),
         Command::Check { inputs, diag } => check(&inputs, &diag),
     }
 }
