@@ -16,13 +16,19 @@ fn fixture() -> (PathBuf, String) {
 }
 
 fn codes(diags: &[Value]) -> Vec<String> {
-    let mut c: Vec<String> = diags.iter().map(|d| d["code"].as_str().unwrap_or("").to_string()).collect();
+    let mut c: Vec<String> = diags
+        .iter()
+        .map(|d| d["code"].as_str().unwrap_or("").to_string())
+        .collect();
     c.sort();
     c
 }
 
 fn diag<'a>(diags: &'a [Value], code: &str) -> &'a Value {
-    diags.iter().find(|d| d["code"] == code).unwrap_or_else(|| panic!("no {code} in {diags:?}"))
+    diags
+        .iter()
+        .find(|d| d["code"] == code)
+        .unwrap_or_else(|| panic!("no {code} in {diags:?}"))
 }
 
 fn td(uri: &str, line: u32, character: u32) -> Value {
@@ -38,7 +44,14 @@ fn editor_session() {
     let init = c.initialize();
     let caps = &init["capabilities"];
     assert_eq!(caps["textDocumentSync"]["change"], 2, "incremental sync");
-    for p in ["hoverProvider", "definitionProvider", "referencesProvider", "documentSymbolProvider", "workspaceSymbolProvider", "codeActionProvider"] {
+    for p in [
+        "hoverProvider",
+        "definitionProvider",
+        "referencesProvider",
+        "documentSymbolProvider",
+        "workspaceSymbolProvider",
+        "codeActionProvider",
+    ] {
         assert_eq!(caps[p], true, "{p}");
     }
     assert_eq!(init["serverInfo"]["name"], "mapc");
@@ -52,9 +65,15 @@ fn editor_session() {
     assert_eq!(self_loop["range"]["start"], pos(line, col));
     assert_eq!(self_loop["severity"], 1);
     assert_eq!(self_loop["source"], "mapc");
-    assert!(self_loop["codeDescription"]["href"].as_str().unwrap().ends_with("docs/diagnostics.md#e0201-lane-self-loop"));
+    assert!(self_loop["codeDescription"]["href"]
+        .as_str()
+        .unwrap()
+        .ends_with("docs/diagnostics.md#e0201-lane-self-loop"));
     let (office, _) = find(&text, "[8, 0, 0, office]");
-    assert_eq!(self_loop["relatedInformation"][0]["location"]["range"]["start"]["line"], office);
+    assert_eq!(
+        self_loop["relatedInformation"][0]["location"]["range"]["start"]["line"],
+        office
+    );
     assert_eq!(self_loop["relatedInformation"][0]["message"], "the vertex");
     assert_eq!(diag(&d1, "W0207")["severity"], 2);
 
@@ -69,19 +88,35 @@ fn editor_session() {
     assert_eq!(h["range"]["end"], pos(l, col + 2));
     // Hover on vertex 0 through a wall-less index: roles and its name with non-ASCII text.
     let (l0, c0) = find(&text, "[0, 1, {bidirectional");
-    let v = c.request("textDocument/hover", td(&uri, l0, c0 + 1))["contents"]["value"].as_str().unwrap().to_string();
-    assert!(v.contains("`café😀dock`") && v.contains("roles: charger, parking spot"), "{v}");
+    let v = c.request("textDocument/hover", td(&uri, l0, c0 + 1))["contents"]["value"]
+        .as_str()
+        .unwrap()
+        .to_string();
+    assert!(
+        v.contains("`café😀dock`") && v.contains("roles: charger, parking spot"),
+        "{v}"
+    );
     // Hover on a parameter after `é` and `😀` (UTF-16 columns: 😀 counts 2).
     let (lp, cp) = find(&text, "is_charger");
     let line_text = text.lines().nth(lp as usize).unwrap();
-    assert_ne!(cp as usize, line_text.find("is_charger").unwrap(), "the line must have non-ASCII text before the key");
+    assert_ne!(
+        cp as usize,
+        line_text.find("is_charger").unwrap(),
+        "the line must have non-ASCII text before the key"
+    );
     let h = c.request("textDocument/hover", td(&uri, lp, cp + 3));
-    assert!(h["contents"]["value"].as_str().unwrap().starts_with("**`is_charger`** — bool (4)"));
+    assert!(h["contents"]["value"]
+        .as_str()
+        .unwrap()
+        .starts_with("**`is_charger`** — bool (4)"));
     assert_eq!(h["range"]["start"], pos(lp, cp));
     assert_eq!(h["range"]["end"], pos(lp, cp + "is_charger".len() as u32));
     // Hover on a diagnostic: its documentation.
     let (ls, cs) = find(&text, "[3, 3,");
-    let v = c.request("textDocument/hover", td(&uri, ls, cs))["contents"]["value"].as_str().unwrap().to_string();
+    let v = c.request("textDocument/hover", td(&uri, ls, cs))["contents"]["value"]
+        .as_str()
+        .unwrap()
+        .to_string();
     assert!(v.contains("**E0201** lane-self-loop (error)"), "{v}");
     assert!(v.contains("**Fix:** delete the lane"), "{v}");
 
@@ -90,15 +125,28 @@ fn editor_session() {
     let (lv4, cv4) = find(&text, "[4, 4, 0, pantry]");
     assert_eq!(def["uri"], uri.as_str());
     assert_eq!(def["range"]["start"], pos(lv4, cv4));
-    assert_eq!(def["range"]["end"], pos(lv4, cv4 + "[4, 4, 0, pantry]".len() as u32));
+    assert_eq!(
+        def["range"]["end"],
+        pos(lv4, cv4 + "[4, 4, 0, pantry]".len() as u32)
+    );
 
     // References of vertex 1 from its own entry: the entry and the three lanes using it.
     let (lv1, cv1) = find(&text, "[4, 0, 0, pantry]");
     let refs = c.request("textDocument/references", json!({"textDocument": {"uri": uri}, "position": pos(lv1, cv1 + 1), "context": {"includeDeclaration": true}}));
-    let mut lines: Vec<u64> = refs.as_array().unwrap().iter().map(|r| r["range"]["start"]["line"].as_u64().unwrap()).collect();
+    let mut lines: Vec<u64> = refs
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|r| r["range"]["start"]["line"].as_u64().unwrap())
+        .collect();
     lines.sort();
     let lane = |s: &str| find(&text, s).0 as u64;
-    let mut want = vec![lv1 as u64, lane("[0, 1, {bidirectional"), lane("[1, 4,"), lane("[0, 1, {bidirectional") + 4];
+    let mut want = vec![
+        lv1 as u64,
+        lane("[0, 1, {bidirectional"),
+        lane("[1, 4,"),
+        lane("[0, 1, {bidirectional") + 4,
+    ];
     want.sort();
     assert_eq!(lines, want);
     // Without the declaration, from the door's `6`: the wall and the door.
@@ -107,68 +155,122 @@ fn editor_session() {
     assert_eq!(refs.as_array().unwrap().len(), 2, "{refs}");
 
     // Document symbols: the level with its door and named waypoints, then the graph.
-    let syms = c.request("textDocument/documentSymbol", json!({"textDocument": {"uri": uri}}));
+    let syms = c.request(
+        "textDocument/documentSymbol",
+        json!({"textDocument": {"uri": uri}}),
+    );
     let syms = syms.as_array().unwrap();
     assert_eq!(syms.len(), 2);
     assert_eq!(syms[0]["name"], "L1");
-    let names: Vec<&str> = syms[0]["children"].as_array().unwrap().iter().map(|s| s["name"].as_str().unwrap()).collect();
-    assert_eq!(names, ["main_door", "café😀dock", "pantry", "office", "pantry"]);
+    let names: Vec<&str> = syms[0]["children"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|s| s["name"].as_str().unwrap())
+        .collect();
+    assert_eq!(
+        names,
+        ["main_door", "café😀dock", "pantry", "office", "pantry"]
+    );
     assert_eq!(syms[1]["name"], "graph 0: tinyRobot");
 
     // Workspace symbols over the open maps.
     let ws = c.request("workspace/symbol", json!({"query": "PANT"}));
     let ws = ws.as_array().unwrap();
     assert_eq!(ws.len(), 2);
-    assert!(ws.iter().all(|s| s["name"] == "pantry" && s["containerName"] == "L1"));
+    assert!(ws
+        .iter()
+        .all(|s| s["name"] == "pantry" && s["containerName"] == "L1"));
 
     // Code actions over the whole map, one per fixable diagnostic.
     let actions = c.request("textDocument/codeAction", json!({"textDocument": {"uri": uri}, "range": {"start": pos(0, 0), "end": pos(40, 0)}, "context": {"diagnostics": []}}));
     let actions = actions.as_array().unwrap();
-    let titles: Vec<&str> = actions.iter().map(|a| a["title"].as_str().unwrap()).collect();
-    assert_eq!(titles, [
-        "Remove this self-loop lane",
-        "Remove this duplicate lane",
-        "Join vertex 2 to vertex 1: reconnect its lanes to vertex 1",
-        "Rename `pantry` to `pantry_2`",
-    ]);
+    let titles: Vec<&str> = actions
+        .iter()
+        .map(|a| a["title"].as_str().unwrap())
+        .collect();
+    assert_eq!(
+        titles,
+        [
+            "Remove this self-loop lane",
+            "Remove this duplicate lane",
+            "Join vertex 2 to vertex 1: reconnect its lanes to vertex 1",
+            "Rename `pantry` to `pantry_2`",
+        ]
+    );
     let edit = |i: usize| actions[i]["edit"]["changes"][uri.as_str()][0].clone();
-    assert_eq!(edit(0)["range"], json!({"start": pos(ls, 0), "end": pos(ls + 1, 0)}));
+    assert_eq!(
+        edit(0)["range"],
+        json!({"start": pos(ls, 0), "end": pos(ls + 1, 0)})
+    );
     assert_eq!(edit(0)["newText"], "");
     let (lj, cj) = find(&text, "[2, 3,");
     assert_eq!(edit(2)["range"]["start"], pos(lj, cj + 1));
     assert_eq!(edit(2)["newText"], "1");
-    assert_eq!(edit(3)["range"]["start"], pos(lv4, cv4 + "[4, 4, 0, ".len() as u32));
+    assert_eq!(
+        edit(3)["range"]["start"],
+        pos(lv4, cv4 + "[4, 4, 0, ".len() as u32)
+    );
     assert_eq!(edit(3)["newText"], "pantry_2");
 
     // Apply the self-loop fix as an incremental change: E0201 is gone, lines moved up.
     c.notify("textDocument/didChange", json!({"textDocument": {"uri": uri, "version": 2}, "contentChanges": [{"range": edit(0)["range"], "text": ""}]}));
     let d2 = c.diagnostics(&uri, 2);
     assert_eq!(codes(&d2), ["E0501", "W0203", "W0207", "W0208"]);
-    assert_eq!(diag(&d2, "W0203")["range"]["start"]["line"], diag(&d1, "W0203")["range"]["start"]["line"].as_u64().unwrap() - 1);
+    assert_eq!(
+        diag(&d2, "W0203")["range"]["start"]["line"],
+        diag(&d1, "W0203")["range"]["start"]["line"]
+            .as_u64()
+            .unwrap()
+            - 1
+    );
 
     // A full change with both remaining fixes applied by hand; and a hover on the new text.
     let fixed = text
-        .replace("      - [3, 3, {bidirectional: [4, true], graph_idx: [2, 0]}]\n", "")
+        .replace(
+            "      - [3, 3, {bidirectional: [4, true], graph_idx: [2, 0]}]\n",
+            "",
+        )
         .replace("[4, 4, 0, pantry]", "[4, 4, 0, pantry_2]")
         .replace("[2, 3, {", "[1, 3, {");
-    c.notify("textDocument/didChange", json!({"textDocument": {"uri": uri, "version": 3}, "contentChanges": [{"text": fixed}]}));
+    c.notify(
+        "textDocument/didChange",
+        json!({"textDocument": {"uri": uri, "version": 3}, "contentChanges": [{"text": fixed}]}),
+    );
     assert_eq!(codes(&c.diagnostics(&uri, 3)), ["W0203"]);
 
     // Several changes in a row, then a request: the answer is about the last text.
     for v in 4..=8 {
         let t = fixed.replace("[8, 0, 0, office]", &format!("[{v}, 0, 0, office]"));
-        c.notify("textDocument/didChange", json!({"textDocument": {"uri": uri, "version": v}, "contentChanges": [{"text": t}]}));
+        c.notify(
+            "textDocument/didChange",
+            json!({"textDocument": {"uri": uri, "version": v}, "contentChanges": [{"text": t}]}),
+        );
     }
     let (lo, co) = find(&fixed, "[1, 3, {");
-    let v = c.request("textDocument/hover", td(&uri, lo, co + 4))["contents"]["value"].as_str().unwrap().to_string();
+    let v = c.request("textDocument/hover", td(&uri, lo, co + 4))["contents"]["value"]
+        .as_str()
+        .unwrap()
+        .to_string();
     assert!(v.contains("position: (8.000, 0.000) m"), "{v}");
-    assert!(c.notifications.iter().any(|n| n["params"]["version"] == 8), "diagnostics of the last version come before the answer");
+    assert!(
+        c.notifications.iter().any(|n| n["params"]["version"] == 8),
+        "diagnostics of the last version come before the answer"
+    );
 
     // Closing clears the file's diagnostics.
-    c.notify("textDocument/didClose", json!({"textDocument": {"uri": uri}}));
+    c.notify(
+        "textDocument/didClose",
+        json!({"textDocument": {"uri": uri}}),
+    );
     let cleared = c.request("workspace/symbol", json!({"query": ""}));
     assert_eq!(cleared, json!([]));
-    assert!(c.notifications.iter().any(|n| n["params"]["uri"] == uri.as_str() && n["params"]["diagnostics"] == json!([]) && n["params"]["version"].is_null()));
+    assert!(c
+        .notifications
+        .iter()
+        .any(|n| n["params"]["uri"] == uri.as_str()
+            && n["params"]["diagnostics"] == json!([])
+            && n["params"]["version"].is_null()));
     assert_eq!(c.shutdown(), 0);
 }
 
@@ -178,7 +280,11 @@ fn lint_levels_as_on_the_command_line() {
     let dir = tempfile::tempdir().expect("tempdir");
     let map = dir.path().join("m.building.yaml");
     std::fs::write(&map, &text).unwrap();
-    std::fs::write(dir.path().join("mapc.toml"), "[lints]\nW0207 = \"allow\"\nduplicate-lane = \"deny\"\n").unwrap();
+    std::fs::write(
+        dir.path().join("mapc.toml"),
+        "[lints]\nW0207 = \"allow\"\nduplicate-lane = \"deny\"\n",
+    )
+    .unwrap();
     let uri = file_uri(&map);
     // The file's levels plus the command line's.
     let mut c = Client::start(&["--allow", "W0208"], dir.path());
@@ -188,12 +294,31 @@ fn lint_levels_as_on_the_command_line() {
     assert_eq!(codes(&d), ["E0201", "E0501", "W0203"]);
     assert_eq!(diag(&d, "W0203")["severity"], 1, "denied: an error");
     // A broken mapc.toml is said in the file, and the command line's levels still apply.
-    std::fs::write(dir.path().join("mapc.toml"), "[lints]\nW0207 = \"sometimes\"\n").unwrap();
-    c.notify("textDocument/didSave", json!({"textDocument": {"uri": uri}}));
-    c.notify("textDocument/didChange", json!({"textDocument": {"uri": uri, "version": 2}, "contentChanges": [{"text": text}]}));
+    std::fs::write(
+        dir.path().join("mapc.toml"),
+        "[lints]\nW0207 = \"sometimes\"\n",
+    )
+    .unwrap();
+    c.notify(
+        "textDocument/didSave",
+        json!({"textDocument": {"uri": uri}}),
+    );
+    c.notify(
+        "textDocument/didChange",
+        json!({"textDocument": {"uri": uri, "version": 2}, "contentChanges": [{"text": text}]}),
+    );
     let d = c.diagnostics(&uri, 2);
-    let cfg = d.iter().find(|x| x["code"].is_null()).expect("a config diagnostic");
-    assert!(cfg["message"].as_str().unwrap().contains("W0207 must be \"allow\", \"warn\" or \"deny\""), "{cfg}");
+    let cfg = d
+        .iter()
+        .find(|x| x["code"].is_null())
+        .expect("a config diagnostic");
+    assert!(
+        cfg["message"]
+            .as_str()
+            .unwrap()
+            .contains("W0207 must be \"allow\", \"warn\" or \"deny\""),
+        "{cfg}"
+    );
     assert_eq!(codes(&d), ["", "E0201", "E0501", "W0203", "W0207", "W0208"]);
     assert_eq!(c.shutdown(), 0);
 
@@ -225,7 +350,14 @@ fn project_and_scenario_files() {
     assert_eq!(d[0]["severity"], 1);
     let (lf, cf) = find(project, "m.building.yaml");
     assert_eq!(d[0]["range"]["start"], pos(lf, cf));
-    assert!(d[0]["message"].as_str().unwrap().contains("2 error(s), 3 warning(s); the first: error[E0201] at line 14"), "{}", d[0]);
+    assert!(
+        d[0]["message"]
+            .as_str()
+            .unwrap()
+            .contains("2 error(s), 3 warning(s); the first: error[E0201] at line 14"),
+        "{}",
+        d[0]
+    );
     let def = c.request("textDocument/definition", td(&puri, lf, cf + 2));
     assert_eq!(def["uri"], file_uri(&dir.path().join("m.building.yaml")));
     c.open(&suri, scenario);
@@ -238,7 +370,10 @@ fn project_and_scenario_files() {
     // Other files are not served.
     c.open("file:///tmp/notes.yaml", "a: 1\n");
     let r = c.send_request("textDocument/hover", td("file:///tmp/notes.yaml", 0, 0));
-    assert!(c.response(r)["error"]["message"].as_str().unwrap().contains("is not open"));
+    assert!(c.response(r)["error"]["message"]
+        .as_str()
+        .unwrap()
+        .contains("is not open"));
     assert_eq!(c.shutdown(), 0);
 }
 
@@ -253,10 +388,16 @@ fn cancelled_and_unknown_requests() {
     assert_eq!(c.response(unknown)["error"]["code"], -32601);
     c.open(&uri, &text);
     // A request cancelled before the server reads it is answered RequestCancelled.
-    let id = c.send_request("textDocument/documentSymbol", json!({"textDocument": {"uri": uri}}));
+    let id = c.send_request(
+        "textDocument/documentSymbol",
+        json!({"textDocument": {"uri": uri}}),
+    );
     c.notify("$/cancelRequest", json!({"id": id}));
     let r = c.response(id);
     // Both arrive together unless the server was quicker than the second write.
-    assert!(r["error"]["code"] == -32800 || r["result"].is_array(), "{r}");
+    assert!(
+        r["error"]["code"] == -32800 || r["result"].is_array(),
+        "{r}"
+    );
     drop(c);
 }

@@ -21,7 +21,10 @@ fn neovim_shows_diagnostics() {
         .args(["--headless", "--clean", "-n"])
         .arg(&map)
         .arg("-c")
-        .arg(format!("luafile {}", root.join("tests/nvim/check_diagnostics.lua").display()))
+        .arg(format!(
+            "luafile {}",
+            root.join("tests/nvim/check_diagnostics.lua").display()
+        ))
         .env("MAPC", env!("CARGO_BIN_EXE_mapc"))
         .env("OUT", &out)
         .current_dir(dir.path())

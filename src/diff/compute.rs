@@ -77,13 +77,20 @@ pub(crate) fn diff(old: &Side, new: &Side) -> Vec<Change> {
     connectivity(old.building, new.building, &ids, &mut out);
     diagnostics(old.diagnostics, new.diagnostics, &mut out);
     out.sort_by(|a, b| {
-        (a.section, &a.level, a.kind, &a.subject, &a.detail).cmp(&(b.section, &b.level, b.kind, &b.subject, &b.detail))
+        (a.section, &a.level, a.kind, &a.subject, &a.detail)
+            .cmp(&(b.section, &b.level, b.kind, &b.subject, &b.detail))
     });
     out.dedup();
     out
 }
 
-fn change(section: Section, level: Option<&str>, kind: Kind, subject: String, detail: String) -> Change {
+fn change(
+    section: Section,
+    level: Option<&str>,
+    kind: Kind,
+    subject: String,
+    detail: String,
+) -> Change {
     Change {
         section,
         level: level.map(str::to_string),
@@ -113,12 +120,21 @@ fn level_name(b: &Building, h: Handle<Level>) -> &str {
 
 fn levels(old: &Building, new: &Building, out: &mut Vec<Change>) {
     let by_name = |b: &Building| -> BTreeMap<String, f64> {
-        b.levels.iter().map(|(_, l)| (l.name.clone(), l.elevation)).collect()
+        b.levels
+            .iter()
+            .map(|(_, l)| (l.name.clone(), l.elevation))
+            .collect()
     };
     let (o, n) = (by_name(old), by_name(new));
     for (name, e) in &o {
         match n.get(name) {
-            None => out.push(change(Section::Levels, None, Kind::Removed, format!("level `{name}`"), format!("elevation {} m", num(*e)))),
+            None => out.push(change(
+                Section::Levels,
+                None,
+                Kind::Removed,
+                format!("level `{name}`"),
+                format!("elevation {} m", num(*e)),
+            )),
             Some(e2) if (e - e2).abs() > 1e-9 => out.push(change(
                 Section::Levels,
                 None,
@@ -131,7 +147,13 @@ fn levels(old: &Building, new: &Building, out: &mut Vec<Change>) {
     }
     for (name, e) in &n {
         if !o.contains_key(name) {
-            out.push(change(Section::Levels, None, Kind::Added, format!("level `{name}`"), format!("elevation {} m", num(*e))));
+            out.push(change(
+                Section::Levels,
+                None,
+                Kind::Added,
+                format!("level `{name}`"),
+                format!("elevation {} m", num(*e)),
+            ));
         }
     }
 }
@@ -170,7 +192,11 @@ pub(crate) struct Ids {
 impl Ids {
     fn id(&mut self, new_side: bool, v: Handle<Vertex>) -> usize {
         let next = &mut self.next;
-        let map = if new_side { &mut self.new } else { &mut self.old };
+        let map = if new_side {
+            &mut self.new
+        } else {
+            &mut self.old
+        };
         *map.entry(v).or_insert_with(|| {
             *next += 1;
             *next
@@ -178,11 +204,17 @@ impl Ids {
     }
 
     fn match_waypoints(old: &Building, new: &Building, out: &mut Vec<Change>) -> Ids {
-        let mut ids = Ids { old: HashMap::new(), new: HashMap::new(), next: 0 };
+        let mut ids = Ids {
+            old: HashMap::new(),
+            new: HashMap::new(),
+            next: 0,
+        };
         let per_level = |b: &Building| -> BTreeMap<String, Vec<Handle<Vertex>>> {
             let mut m: BTreeMap<String, Vec<Handle<Vertex>>> = BTreeMap::new();
             for v in waypoints(b) {
-                m.entry(level_name(b, b.vertices[v].level).to_string()).or_default().push(v);
+                m.entry(level_name(b, b.vertices[v].level).to_string())
+                    .or_default()
+                    .push(v);
             }
             m
         };
@@ -190,20 +222,28 @@ impl Ids {
         let names: BTreeSet<&String> = po.keys().chain(pn.keys()).collect();
         for level in names {
             let empty = Vec::new();
-            let (vo, vn) = (po.get(level).unwrap_or(&empty), pn.get(level).unwrap_or(&empty));
+            let (vo, vn) = (
+                po.get(level).unwrap_or(&empty),
+                pn.get(level).unwrap_or(&empty),
+            );
             let lvl = Some(level.as_str());
             // 1. Same name on the same level.
             let mut new_by_name: HashMap<&str, Vec<Handle<Vertex>>> = HashMap::new();
             for &v in vn {
                 if !new.vertices[v].name.is_empty() {
-                    new_by_name.entry(&new.vertices[v].name).or_default().push(v);
+                    new_by_name
+                        .entry(&new.vertices[v].name)
+                        .or_default()
+                        .push(v);
                 }
             }
             let mut left_old = Vec::new();
             let mut taken_new: BTreeSet<Handle<Vertex>> = BTreeSet::new();
             for &v in vo {
                 let name = &old.vertices[v].name;
-                let m = new_by_name.get_mut(name.as_str()).and_then(|c| (!c.is_empty()).then(|| c.remove(0)));
+                let m = new_by_name
+                    .get_mut(name.as_str())
+                    .and_then(|c| (!c.is_empty()).then(|| c.remove(0)));
                 match m {
                     Some(w) => {
                         taken_new.insert(w);
@@ -212,17 +252,32 @@ impl Ids {
                         let (a, b) = (old.vertices[v].pos, new.vertices[w].pos);
                         let d = a.minus(b).norm();
                         if d > SAME_PLACE {
-                            out.push(change(Section::Waypoints, lvl, Kind::Changed, waypoint_name(old, v), format!("moved {} m: {} → {}", num(d), at(a), at(b))));
+                            out.push(change(
+                                Section::Waypoints,
+                                lvl,
+                                Kind::Changed,
+                                waypoint_name(old, v),
+                                format!("moved {} m: {} → {}", num(d), at(a), at(b)),
+                            ));
                         }
                         roles_changed(old, v, new, w, lvl, out);
                     }
                     None => left_old.push(v),
                 }
             }
-            let left_new: Vec<Handle<Vertex>> = vn.iter().copied().filter(|w| !taken_new.contains(w)).collect();
+            let left_new: Vec<Handle<Vertex>> = vn
+                .iter()
+                .copied()
+                .filter(|w| !taken_new.contains(w))
+                .collect();
             // 2. The rest by place: a new name at the same place is a rename.
             let mut grid: HashMap<(i64, i64), Vec<Handle<Vertex>>> = HashMap::new();
-            let cell = |p: Vec2| ((p.x / SAME_PLACE).floor() as i64, (p.y / SAME_PLACE).floor() as i64);
+            let cell = |p: Vec2| {
+                (
+                    (p.x / SAME_PLACE).floor() as i64,
+                    (p.y / SAME_PLACE).floor() as i64,
+                )
+            };
             for &w in &left_new {
                 grid.entry(cell(new.vertices[w].pos)).or_default().push(w);
             }
@@ -235,7 +290,10 @@ impl Ids {
                     for dy in -1..=1 {
                         for &w in grid.get(&(cx + dx, cy + dy)).map_or(&[][..], |v| v) {
                             let d = new.vertices[w].pos.minus(p).norm();
-                            if d <= SAME_PLACE && !matched_new.contains(&w) && best.is_none_or(|(bd, _)| d < bd) {
+                            if d <= SAME_PLACE
+                                && !matched_new.contains(&w)
+                                && best.is_none_or(|(bd, _)| d < bd)
+                            {
                                 best = Some((d, w));
                             }
                         }
@@ -248,21 +306,45 @@ impl Ids {
                         ids.new.insert(w, id);
                         let (a, b) = (&old.vertices[v].name, &new.vertices[w].name);
                         if a != b {
-                            let what = |s: &str| if s.is_empty() { "(no name)".to_string() } else { format!("`{s}`") };
-                            out.push(change(Section::Waypoints, lvl, Kind::Changed, waypoint_name(old, v), format!("renamed {} → {}", what(a), what(b))));
+                            let what = |s: &str| {
+                                if s.is_empty() {
+                                    "(no name)".to_string()
+                                } else {
+                                    format!("`{s}`")
+                                }
+                            };
+                            out.push(change(
+                                Section::Waypoints,
+                                lvl,
+                                Kind::Changed,
+                                waypoint_name(old, v),
+                                format!("renamed {} → {}", what(a), what(b)),
+                            ));
                         }
                         roles_changed(old, v, new, w, lvl, out);
                     }
                     None => {
                         ids.id(false, v);
-                        out.push(change(Section::Waypoints, lvl, Kind::Removed, waypoint_name(old, v), format!("was at {}", at(old.vertices[v].pos))));
+                        out.push(change(
+                            Section::Waypoints,
+                            lvl,
+                            Kind::Removed,
+                            waypoint_name(old, v),
+                            format!("was at {}", at(old.vertices[v].pos)),
+                        ));
                     }
                 }
             }
             for &w in &left_new {
                 if !matched_new.contains(&w) {
                     ids.id(true, w);
-                    out.push(change(Section::Waypoints, lvl, Kind::Added, waypoint_name(new, w), format!("at {}", at(new.vertices[w].pos))));
+                    out.push(change(
+                        Section::Waypoints,
+                        lvl,
+                        Kind::Added,
+                        waypoint_name(new, w),
+                        format!("at {}", at(new.vertices[w].pos)),
+                    ));
                 }
             }
         }
@@ -302,10 +384,26 @@ fn roles_text(r: &WaypointRoles) -> String {
     }
 }
 
-fn roles_changed(old: &Building, v: Handle<Vertex>, new: &Building, w: Handle<Vertex>, lvl: Option<&str>, out: &mut Vec<Change>) {
-    let (a, b) = (roles_text(&old.vertices[v].roles), roles_text(&new.vertices[w].roles));
+fn roles_changed(
+    old: &Building,
+    v: Handle<Vertex>,
+    new: &Building,
+    w: Handle<Vertex>,
+    lvl: Option<&str>,
+    out: &mut Vec<Change>,
+) {
+    let (a, b) = (
+        roles_text(&old.vertices[v].roles),
+        roles_text(&new.vertices[w].roles),
+    );
     if a != b {
-        out.push(change(Section::Waypoints, lvl, Kind::Changed, waypoint_name(old, v), format!("roles {a} → {b}")));
+        out.push(change(
+            Section::Waypoints,
+            lvl,
+            Kind::Changed,
+            waypoint_name(old, v),
+            format!("roles {a} → {b}"),
+        ));
     }
 }
 
@@ -320,16 +418,28 @@ struct LaneInfo {
     label: String,
 }
 
-fn lane_infos(b: &Building, new_side: bool, ids: &mut Ids) -> BTreeMap<(String, usize, usize), Vec<LaneInfo>> {
+fn lane_infos(
+    b: &Building,
+    new_side: bool,
+    ids: &mut Ids,
+) -> BTreeMap<(String, usize, usize), Vec<LaneInfo>> {
     let mut m: BTreeMap<(String, usize, usize), Vec<LaneInfo>> = BTreeMap::new();
     for (_, l) in b.lanes.iter() {
         let (a, z) = (ids.id(new_side, l.start), ids.id(new_side, l.end));
         let name = |v: Handle<Vertex>| {
             let vx = &b.vertices[v];
-            if vx.name.is_empty() { at(vx.pos) } else { format!("`{}`", vx.name) }
+            if vx.name.is_empty() {
+                at(vx.pos)
+            } else {
+                format!("`{}`", vx.name)
+            }
         };
         let (lo, hi) = (a.min(z), a.max(z));
-        let (first, second) = if a <= z { (l.start, l.end) } else { (l.end, l.start) };
+        let (first, second) = if a <= z {
+            (l.start, l.end)
+        } else {
+            (l.end, l.start)
+        };
         let info = LaneInfo {
             graph: l.graph,
             one_way_up: (!l.bidirectional).then_some(a <= z),
@@ -337,7 +447,9 @@ fn lane_infos(b: &Building, new_side: bool, ids: &mut Ids) -> BTreeMap<(String, 
             orientation: l.orientation.as_str().to_string(),
             label: format!("lane {} – {}", name(first), name(second)),
         };
-        m.entry((level_name(b, l.level).to_string(), lo, hi)).or_default().push(info);
+        m.entry((level_name(b, l.level).to_string(), lo, hi))
+            .or_default()
+            .push(info);
     }
     m
 }
@@ -369,8 +481,15 @@ fn lane_text(i: &LaneInfo) -> String {
 }
 
 fn lanes(old: &Building, new: &Building, ids: &Ids, out: &mut Vec<Change>) {
-    let mut ids = Ids { old: ids.old.clone(), new: ids.new.clone(), next: ids.next };
-    let (o, n) = (lane_infos(old, false, &mut ids), lane_infos(new, true, &mut ids));
+    let mut ids = Ids {
+        old: ids.old.clone(),
+        new: ids.new.clone(),
+        next: ids.next,
+    };
+    let (o, n) = (
+        lane_infos(old, false, &mut ids),
+        lane_infos(new, true, &mut ids),
+    );
     let keys: BTreeSet<&(String, usize, usize)> = o.keys().chain(n.keys()).collect();
     for key in keys {
         let lvl = Some(key.0.as_str());
@@ -378,19 +497,30 @@ fn lanes(old: &Building, new: &Building, ids: &Ids, out: &mut Vec<Change>) {
         let (lo, ln) = (o.get(key).unwrap_or(&empty), n.get(key).unwrap_or(&empty));
         // Identical lanes on both sides are no change.
         let mut lo: Vec<&LaneInfo> = lo.iter().collect();
-        let mut ln: Vec<&LaneInfo> = ln.iter().filter(|x| {
-            let same = |y: &&LaneInfo| y.graph == x.graph && y.one_way_up == x.one_way_up && y.speed == x.speed && y.orientation == x.orientation;
-            match lo.iter().position(same) {
-                Some(i) => {
-                    lo.remove(i);
-                    false
+        let mut ln: Vec<&LaneInfo> = ln
+            .iter()
+            .filter(|x| {
+                let same = |y: &&LaneInfo| {
+                    y.graph == x.graph
+                        && y.one_way_up == x.one_way_up
+                        && y.speed == x.speed
+                        && y.orientation == x.orientation
+                };
+                match lo.iter().position(same) {
+                    Some(i) => {
+                        lo.remove(i);
+                        false
+                    }
+                    None => true,
                 }
-                None => true,
-            }
-        }).collect();
+            })
+            .collect();
         // One left on each side: the same lane, changed; pair by graph first.
         while !lo.is_empty() && !ln.is_empty() {
-            let i = lo.iter().position(|a| ln.iter().any(|b| b.graph == a.graph)).unwrap_or(0);
+            let i = lo
+                .iter()
+                .position(|a| ln.iter().any(|b| b.graph == a.graph))
+                .unwrap_or(0);
             let a = lo.remove(i);
             let j = ln.iter().position(|b| b.graph == a.graph).unwrap_or(0);
             let b = ln.remove(j);
@@ -402,19 +532,51 @@ fn lanes(old: &Building, new: &Building, ids: &Ids, out: &mut Vec<Change>) {
                 what.push(format!("{} → {}", direction(a), direction(b)));
             }
             if a.speed != b.speed {
-                what.push(format!("speed limit {} → {}", speed(a.speed), speed(b.speed)));
+                what.push(format!(
+                    "speed limit {} → {}",
+                    speed(a.speed),
+                    speed(b.speed)
+                ));
             }
             if a.orientation != b.orientation {
-                let o = |s: &str| if s.is_empty() { "any".to_string() } else { s.to_string() };
-                what.push(format!("orientation {} → {}", o(&a.orientation), o(&b.orientation)));
+                let o = |s: &str| {
+                    if s.is_empty() {
+                        "any".to_string()
+                    } else {
+                        s.to_string()
+                    }
+                };
+                what.push(format!(
+                    "orientation {} → {}",
+                    o(&a.orientation),
+                    o(&b.orientation)
+                ));
             }
-            out.push(change(Section::Lanes, lvl, Kind::Changed, b.label.clone(), what.join("; ")));
+            out.push(change(
+                Section::Lanes,
+                lvl,
+                Kind::Changed,
+                b.label.clone(),
+                what.join("; "),
+            ));
         }
         for a in lo {
-            out.push(change(Section::Lanes, lvl, Kind::Removed, a.label.clone(), lane_text(a)));
+            out.push(change(
+                Section::Lanes,
+                lvl,
+                Kind::Removed,
+                a.label.clone(),
+                lane_text(a),
+            ));
         }
         for b in ln {
-            out.push(change(Section::Lanes, lvl, Kind::Added, b.label.clone(), lane_text(b)));
+            out.push(change(
+                Section::Lanes,
+                lvl,
+                Kind::Added,
+                b.label.clone(),
+                lane_text(b),
+            ));
         }
     }
 }
@@ -431,7 +593,15 @@ fn doors(old: &Building, new: &Building, out: &mut Vec<Change>) {
             .iter()
             .map(|(_, d)| {
                 let (s, e) = (b.vertices[d.start].pos, b.vertices[d.end].pos);
-                (d.name.clone(), D { level: level_name(b, d.level).to_string(), kind: d.kind.as_str().to_string(), centre: s.plus(e).scale(0.5), width: s.minus(e).norm() })
+                (
+                    d.name.clone(),
+                    D {
+                        level: level_name(b, d.level).to_string(),
+                        kind: d.kind.as_str().to_string(),
+                        centre: s.plus(e).scale(0.5),
+                        width: s.minus(e).norm(),
+                    },
+                )
             })
             .collect()
     };
@@ -439,7 +609,18 @@ fn doors(old: &Building, new: &Building, out: &mut Vec<Change>) {
     for (name, a) in &o {
         let subject = format!("door `{name}`");
         match n.get(name) {
-            None => out.push(change(Section::Doors, Some(&a.level), Kind::Removed, subject, format!("{} door, {} m wide, at {}", a.kind, num(a.width), at(a.centre)))),
+            None => out.push(change(
+                Section::Doors,
+                Some(&a.level),
+                Kind::Removed,
+                subject,
+                format!(
+                    "{} door, {} m wide, at {}",
+                    a.kind,
+                    num(a.width),
+                    at(a.centre)
+                ),
+            )),
             Some(b) => {
                 let mut what = Vec::new();
                 if a.level != b.level {
@@ -453,40 +634,85 @@ fn doors(old: &Building, new: &Building, out: &mut Vec<Change>) {
                 }
                 let d = a.centre.minus(b.centre).norm();
                 if d > SAME_PLACE {
-                    what.push(format!("moved {} m: {} → {}", num(d), at(a.centre), at(b.centre)));
+                    what.push(format!(
+                        "moved {} m: {} → {}",
+                        num(d),
+                        at(a.centre),
+                        at(b.centre)
+                    ));
                 }
                 if !what.is_empty() {
-                    out.push(change(Section::Doors, Some(&b.level), Kind::Changed, subject, what.join("; ")));
+                    out.push(change(
+                        Section::Doors,
+                        Some(&b.level),
+                        Kind::Changed,
+                        subject,
+                        what.join("; "),
+                    ));
                 }
             }
         }
     }
     for (name, b) in &n {
         if !o.contains_key(name) {
-            out.push(change(Section::Doors, Some(&b.level), Kind::Added, format!("door `{name}`"), format!("{} door, {} m wide, at {}", b.kind, num(b.width), at(b.centre))));
+            out.push(change(
+                Section::Doors,
+                Some(&b.level),
+                Kind::Added,
+                format!("door `{name}`"),
+                format!(
+                    "{} door, {} m wide, at {}",
+                    b.kind,
+                    num(b.width),
+                    at(b.centre)
+                ),
+            ));
         }
     }
 }
 
+/// What a lift change can touch: cabin centre, width, depth, levels served, cabin doors.
+type LiftInfo = (Vec2, f64, f64, Vec<String>, Vec<String>);
+
 fn lifts(old: &Building, new: &Building, out: &mut Vec<Change>) {
-    let all = |b: &Building| -> BTreeMap<String, (Vec2, f64, f64, Vec<String>, Vec<String>)> {
+    let all = |b: &Building| -> BTreeMap<String, LiftInfo> {
         b.lifts
             .iter()
             .map(|(_, l)| {
-                let levels = l.level_doors.iter().map(|ld| level_name(b, ld.level).to_string()).collect();
+                let levels = l
+                    .level_doors
+                    .iter()
+                    .map(|ld| level_name(b, ld.level).to_string())
+                    .collect();
                 let doors = l.doors.iter().map(|d| d.name.clone()).collect();
                 (l.name.clone(), (l.pos, l.width, l.depth, levels, doors))
             })
             .collect()
     };
     let (o, n) = (all(old), all(new));
-    let describe = |(p, w, d, levels, _): &(Vec2, f64, f64, Vec<String>, Vec<String>)| {
-        format!("{} × {} m cabin at {}, serving {}", num(*w), num(*d), at(*p), if levels.is_empty() { "no level".to_string() } else { levels.join(", ") })
+    let describe = |(p, w, d, levels, _): &LiftInfo| {
+        format!(
+            "{} × {} m cabin at {}, serving {}",
+            num(*w),
+            num(*d),
+            at(*p),
+            if levels.is_empty() {
+                "no level".to_string()
+            } else {
+                levels.join(", ")
+            }
+        )
     };
     for (name, a) in &o {
         let subject = format!("lift `{name}`");
         match n.get(name) {
-            None => out.push(change(Section::Lifts, None, Kind::Removed, subject, describe(a))),
+            None => out.push(change(
+                Section::Lifts,
+                None,
+                Kind::Removed,
+                subject,
+                describe(a),
+            )),
             Some(b) => {
                 let mut what = Vec::new();
                 let d = a.0.minus(b.0).norm();
@@ -494,41 +720,83 @@ fn lifts(old: &Building, new: &Building, out: &mut Vec<Change>) {
                     what.push(format!("moved {} m: {} → {}", num(d), at(a.0), at(b.0)));
                 }
                 if (a.1 - b.1).abs() > SAME_PLACE || (a.2 - b.2).abs() > SAME_PLACE {
-                    what.push(format!("cabin {} × {} m → {} × {} m", num(a.1), num(a.2), num(b.1), num(b.2)));
+                    what.push(format!(
+                        "cabin {} × {} m → {} × {} m",
+                        num(a.1),
+                        num(a.2),
+                        num(b.1),
+                        num(b.2)
+                    ));
                 }
                 if a.3 != b.3 {
-                    what.push(format!("levels served {} → {}", a.3.join(", "), b.3.join(", ")));
+                    what.push(format!(
+                        "levels served {} → {}",
+                        a.3.join(", "),
+                        b.3.join(", ")
+                    ));
                 }
                 if a.4 != b.4 {
-                    what.push(format!("cabin doors {} → {}", a.4.join(", "), b.4.join(", ")));
+                    what.push(format!(
+                        "cabin doors {} → {}",
+                        a.4.join(", "),
+                        b.4.join(", ")
+                    ));
                 }
                 if !what.is_empty() {
-                    out.push(change(Section::Lifts, None, Kind::Changed, subject, what.join("; ")));
+                    out.push(change(
+                        Section::Lifts,
+                        None,
+                        Kind::Changed,
+                        subject,
+                        what.join("; "),
+                    ));
                 }
             }
         }
     }
     for (name, b) in &n {
         if !o.contains_key(name) {
-            out.push(change(Section::Lifts, None, Kind::Added, format!("lift `{name}`"), describe(b)));
+            out.push(change(
+                Section::Lifts,
+                None,
+                Kind::Added,
+                format!("lift `{name}`"),
+                describe(b),
+            ));
         }
     }
 }
 
+/// Per level name.
+type PerLevel<T> = BTreeMap<String, T>;
+/// A position rounded to the centimetre.
+type Key = (i64, i64);
+/// Wall segments (ends ordered) with their count and length.
+type Segments = BTreeMap<(Key, Key), (usize, f64)>;
+/// Floor polygons: canonical corners and area.
+type Polygons = Vec<(Vec<Key>, f64)>;
+
 /// A position rounded to the centimetre, as a key.
 fn key(p: Vec2) -> (i64, i64) {
-    ((p.x / SAME_PLACE).round() as i64, (p.y / SAME_PLACE).round() as i64)
+    (
+        (p.x / SAME_PLACE).round() as i64,
+        (p.y / SAME_PLACE).round() as i64,
+    )
 }
 
 fn walls(old: &Building, new: &Building, out: &mut Vec<Change>) {
     // Per level: the multiset of wall segments (unordered ends), with their lengths.
-    let all = |b: &Building| -> BTreeMap<String, BTreeMap<((i64, i64), (i64, i64)), (usize, f64)>> {
-        let mut m: BTreeMap<String, BTreeMap<_, (usize, f64)>> = BTreeMap::new();
+    let all = |b: &Building| -> PerLevel<Segments> {
+        let mut m: PerLevel<Segments> = BTreeMap::new();
         for (_, w) in b.walls.iter() {
             let (s, e) = (b.vertices[w.start].pos, b.vertices[w.end].pos);
             let (ks, ke) = (key(s), key(e));
             let k = (ks.min(ke), ks.max(ke));
-            let entry = m.entry(level_name(b, w.level).to_string()).or_default().entry(k).or_insert((0, s.minus(e).norm()));
+            let entry = m
+                .entry(level_name(b, w.level).to_string())
+                .or_default()
+                .entry(k)
+                .or_insert((0, s.minus(e).norm()));
             entry.0 += 1;
         }
         m
@@ -537,7 +805,10 @@ fn walls(old: &Building, new: &Building, out: &mut Vec<Change>) {
     let levels: BTreeSet<&String> = o.keys().chain(n.keys()).collect();
     let empty = BTreeMap::new();
     for level in levels {
-        let (a, b) = (o.get(level).unwrap_or(&empty), n.get(level).unwrap_or(&empty));
+        let (a, b) = (
+            o.get(level).unwrap_or(&empty),
+            n.get(level).unwrap_or(&empty),
+        );
         let (mut added, mut removed, mut la, mut lr) = (0, 0, 0.0, 0.0);
         for (k, (c, len)) in a {
             let c2 = b.get(k).map_or(0, |x| x.0);
@@ -555,23 +826,44 @@ fn walls(old: &Building, new: &Building, out: &mut Vec<Change>) {
         }
         let lvl = Some(level.as_str());
         if added > 0 {
-            out.push(change(Section::Walls, lvl, Kind::Added, crate::plural(added, "wall"), format!("{} m", num(la))));
+            out.push(change(
+                Section::Walls,
+                lvl,
+                Kind::Added,
+                crate::plural(added, "wall"),
+                format!("{} m", num(la)),
+            ));
         }
         if removed > 0 {
-            out.push(change(Section::Walls, lvl, Kind::Removed, crate::plural(removed, "wall"), format!("{} m", num(lr))));
+            out.push(change(
+                Section::Walls,
+                lvl,
+                Kind::Removed,
+                crate::plural(removed, "wall"),
+                format!("{} m", num(lr)),
+            ));
         }
     }
 }
 
 fn area(points: &[Vec2]) -> f64 {
     let n = points.len();
-    (0..n).map(|i| points[i].cross(points[(i + 1) % n])).sum::<f64>().abs() / 2.0
+    (0..n)
+        .map(|i| points[i].cross(points[(i + 1) % n]))
+        .sum::<f64>()
+        .abs()
+        / 2.0
 }
 
 /// A closed polygon's corners independent of start corner and direction: the smaller of
 /// the two rotations that start at the lowest corner.
 fn canonical(mut keys: Vec<(i64, i64)>) -> Vec<(i64, i64)> {
-    let Some(i) = keys.iter().enumerate().min_by_key(|(_, k)| **k).map(|(i, _)| i) else {
+    let Some(i) = keys
+        .iter()
+        .enumerate()
+        .min_by_key(|(_, k)| **k)
+        .map(|(i, _)| i)
+    else {
         return keys;
     };
     keys.rotate_left(i);
@@ -582,12 +874,14 @@ fn canonical(mut keys: Vec<(i64, i64)>) -> Vec<(i64, i64)> {
 
 fn floors(old: &Building, new: &Building, out: &mut Vec<Change>) {
     // A floor is its corners (from the lowest key, so the start point does not matter).
-    let all = |b: &Building| -> BTreeMap<String, Vec<(Vec<(i64, i64)>, f64)>> {
-        let mut m: BTreeMap<String, Vec<(Vec<(i64, i64)>, f64)>> = BTreeMap::new();
+    let all = |b: &Building| -> PerLevel<Polygons> {
+        let mut m: PerLevel<Polygons> = BTreeMap::new();
         for (_, f) in b.floors.iter() {
             let pts: Vec<Vec2> = f.vertices.iter().map(|&v| b.vertices[v].pos).collect();
             let keys: Vec<(i64, i64)> = pts.iter().map(|&p| key(p)).collect();
-            m.entry(level_name(b, f.level).to_string()).or_default().push((canonical(keys), area(&pts)));
+            m.entry(level_name(b, f.level).to_string())
+                .or_default()
+                .push((canonical(keys), area(&pts)));
         }
         m
     };
@@ -606,17 +900,33 @@ fn floors(old: &Building, new: &Building, out: &mut Vec<Change>) {
         let lvl = Some(level.as_str());
         let total = |v: &[(Vec<(i64, i64)>, f64)]| v.iter().map(|x| x.1).sum::<f64>();
         if !b.is_empty() {
-            out.push(change(Section::Floors, lvl, Kind::Added, crate::plural(b.len(), "floor polygon"), format!("{} m²", num(total(&b)))));
+            out.push(change(
+                Section::Floors,
+                lvl,
+                Kind::Added,
+                crate::plural(b.len(), "floor polygon"),
+                format!("{} m²", num(total(&b))),
+            ));
         }
         if !a.is_empty() {
-            out.push(change(Section::Floors, lvl, Kind::Removed, crate::plural(a.len(), "floor polygon"), format!("{} m²", num(total(&a)))));
+            out.push(change(
+                Section::Floors,
+                lvl,
+                Kind::Removed,
+                crate::plural(a.len(), "floor polygon"),
+                format!("{} m²", num(total(&a))),
+            ));
         }
     }
 }
 
 /// Per graph, the waypoints in the largest connected piece (lanes as undirected edges,
 /// across levels where lanes join them), by shared id.
-fn main_piece(b: &Building, new_side: bool, ids: &mut Ids) -> BTreeMap<i64, (BTreeSet<usize>, HashMap<usize, String>)> {
+fn main_piece(
+    b: &Building,
+    new_side: bool,
+    ids: &mut Ids,
+) -> BTreeMap<i64, (BTreeSet<usize>, HashMap<usize, String>)> {
     let mut edges: BTreeMap<i64, Vec<(usize, usize)>> = BTreeMap::new();
     let mut names: HashMap<usize, String> = HashMap::new();
     for (_, l) in b.lanes.iter() {
@@ -659,18 +969,39 @@ fn main_piece(b: &Building, new_side: bool, ids: &mut Ids) -> BTreeMap<i64, (BTr
 }
 
 fn connectivity(old: &Building, new: &Building, ids: &Ids, out: &mut Vec<Change>) {
-    let mut ids = Ids { old: ids.old.clone(), new: ids.new.clone(), next: ids.next };
-    let (o, n) = (main_piece(old, false, &mut ids), main_piece(new, true, &mut ids));
+    let mut ids = Ids {
+        old: ids.old.clone(),
+        new: ids.new.clone(),
+        next: ids.next,
+    };
+    let (o, n) = (
+        main_piece(old, false, &mut ids),
+        main_piece(new, true, &mut ids),
+    );
     for (g, (a, names_a)) in &o {
-        let Some((b, names_b)) = n.get(g) else { continue };
+        let Some((b, names_b)) = n.get(g) else {
+            continue;
+        };
         // Waypoints on both sides whose reachability from the main piece changed.
         let all_b: BTreeSet<&usize> = names_b.keys().collect();
         let all_a: BTreeSet<&usize> = names_a.keys().collect();
         for id in a.iter().filter(|id| !b.contains(id) && all_b.contains(id)) {
-            out.push(change(Section::Connectivity, None, Kind::Removed, names_b[id].clone(), format!("no longer reachable from the main part of graph {g}")));
+            out.push(change(
+                Section::Connectivity,
+                None,
+                Kind::Removed,
+                names_b[id].clone(),
+                format!("no longer reachable from the main part of graph {g}"),
+            ));
         }
         for id in b.iter().filter(|id| !a.contains(id) && all_a.contains(id)) {
-            out.push(change(Section::Connectivity, None, Kind::Added, names_b[id].clone(), format!("now reachable from the main part of graph {g}")));
+            out.push(change(
+                Section::Connectivity,
+                None,
+                Kind::Added,
+                names_b[id].clone(),
+                format!("now reachable from the main part of graph {g}"),
+            ));
         }
     }
 }
@@ -709,12 +1040,24 @@ fn diagnostics(old: &[Diagnostic], new: &[Diagnostic], out: &mut Vec<Change>) {
     let sev = |e: bool| if e { "error" } else { "warning" };
     for (k, c) in &o {
         for _ in n.get(k).copied().unwrap_or(0)..*c {
-            out.push(change(Section::Diagnostics, None, Kind::Removed, format!("{}[{}]", sev(k.2), k.0), k.1.clone()));
+            out.push(change(
+                Section::Diagnostics,
+                None,
+                Kind::Removed,
+                format!("{}[{}]", sev(k.2), k.0),
+                k.1.clone(),
+            ));
         }
     }
     for (k, c) in &n {
         for _ in o.get(k).copied().unwrap_or(0)..*c {
-            out.push(change(Section::Diagnostics, None, Kind::Added, format!("{}[{}]", sev(k.2), k.0), k.1.clone()));
+            out.push(change(
+                Section::Diagnostics,
+                None,
+                Kind::Added,
+                format!("{}[{}]", sev(k.2), k.0),
+                k.1.clone(),
+            ));
         }
     }
 }

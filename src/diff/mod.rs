@@ -41,7 +41,12 @@ pub(crate) struct DiffArgs {
 fn read(path: &Path, lints: &crate::LintOpts) -> Result<crate::Checked, String> {
     let c = crate::load_and_check(path, lints)?;
     if c.parsed.building.is_none() {
-        let mut codes: Vec<&str> = c.diagnostics.iter().filter(|d| d.is_error()).map(|d| d.code).collect();
+        let mut codes: Vec<&str> = c
+            .diagnostics
+            .iter()
+            .filter(|d| d.is_error())
+            .map(|d| d.code)
+            .collect();
         codes.dedup();
         return Err(format!(
             "{}: the map could not be read ({}); `mapc check {}` shows why",
@@ -87,8 +92,14 @@ pub(crate) fn run(args: &DiffArgs) -> ExitCode {
         return ExitCode::from(2); // `read` refused maps without a building.
     };
     let changes = compute::diff(
-        &compute::Side { building: ba, diagnostics: &a.diagnostics },
-        &compute::Side { building: bb, diagnostics: &b.diagnostics },
+        &compute::Side {
+            building: ba,
+            diagnostics: &a.diagnostics,
+        },
+        &compute::Side {
+            building: bb,
+            diagnostics: &b.diagnostics,
+        },
     );
     let text = match args.format {
         DiffFormat::Human => render::human(&label_old, &label_new, &changes),

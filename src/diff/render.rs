@@ -13,12 +13,20 @@ fn mark(k: Kind) -> &'static str {
 
 fn counts(changes: &[Change]) -> String {
     let n = |k: Kind| changes.iter().filter(|c| c.kind == k).count();
-    format!("{} added, {} removed, {} changed", n(Kind::Added), n(Kind::Removed), n(Kind::Changed))
+    format!(
+        "{} added, {} removed, {} changed",
+        n(Kind::Added),
+        n(Kind::Removed),
+        n(Kind::Changed)
+    )
 }
 
+/// A section (on a level) and its changes.
+type Group<'a> = ((Section, Option<&'a str>), Vec<&'a Change>);
+
 /// Changes grouped by section then level, in order.
-fn groups(changes: &[Change]) -> Vec<((Section, Option<&str>), Vec<&Change>)> {
-    let mut out: Vec<((Section, Option<&str>), Vec<&Change>)> = Vec::new();
+fn groups(changes: &[Change]) -> Vec<Group<'_>> {
+    let mut out: Vec<Group<'_>> = Vec::new();
     for c in changes {
         let k = (c.section, c.level.as_deref());
         match out.last_mut() {
@@ -68,14 +76,21 @@ pub(crate) fn markdown(old: &str, new: &str, changes: &[Change]) -> String {
     }
     s.push_str(&format!("{}.\n", counts(changes)));
     for ((section, level), cs) in groups(changes) {
-        s.push_str(&format!("\n#### {}\n\n| | what | change |\n|---|---|---|\n", heading(section, level)));
+        s.push_str(&format!(
+            "\n#### {}\n\n| | what | change |\n|---|---|---|\n",
+            heading(section, level)
+        ));
         for c in cs {
             let m = match c.kind {
                 Kind::Added => "➕",
                 Kind::Removed => "➖",
                 Kind::Changed => "✏️",
             };
-            s.push_str(&format!("| {m} | {} | {} |\n", cell(&c.subject), cell(&c.detail)));
+            s.push_str(&format!(
+                "| {m} | {} | {} |\n",
+                cell(&c.subject),
+                cell(&c.detail)
+            ));
         }
     }
     s

@@ -10,7 +10,12 @@ use lsp_types::{CodeAction, CodeActionKind, Range, TextEdit, Uri, WorkspaceEdit}
 use mapc_ir::{Diagnostic, Span};
 use std::collections::HashMap;
 
-pub(crate) fn code_actions(doc: &Document, uri: &Uri, analysis: &Analysis, range: Range) -> Vec<CodeAction> {
+pub(crate) fn code_actions(
+    doc: &Document,
+    uri: &Uri,
+    analysis: &Analysis,
+    range: Range,
+) -> Vec<CodeAction> {
     let Some(root) = outline::parse(&doc.text) else {
         return Vec::new();
     };
@@ -22,8 +27,10 @@ pub(crate) fn code_actions(doc: &Document, uri: &Uri, analysis: &Analysis, range
             continue;
         }
         let fix = match d.code {
-            "E0201" => remove_line(doc, d.span).map(|e| ("Remove this self-loop lane".to_string(), vec![e])),
-            "W0203" => remove_line(doc, d.span).map(|e| ("Remove this duplicate lane".to_string(), vec![e])),
+            "E0201" => remove_line(doc, d.span)
+                .map(|e| ("Remove this self-loop lane".to_string(), vec![e])),
+            "W0203" => remove_line(doc, d.span)
+                .map(|e| ("Remove this duplicate lane".to_string(), vec![e])),
             "E0501" => rename(doc, analysis, &levels, d),
             "W0207" => join(doc, &levels, d),
             _ => None,
@@ -58,10 +65,14 @@ fn remove_line(doc: &Document, span: Span) -> Option<TextEdit> {
     }
     let rest = &text[end..];
     let line_end = rest.find('\n').map_or(text.len(), |i| end + i + 1);
-    if !text[end..line_end].trim().is_empty() && !text[end..line_end].trim_start().starts_with('#') {
+    if !text[end..line_end].trim().is_empty() && !text[end..line_end].trim_start().starts_with('#')
+    {
         return None;
     }
-    Some(TextEdit::new(doc.lines.range(text, line_start as u32, line_end as u32), String::new()))
+    Some(TextEdit::new(
+        doc.lines.range(text, line_start as u32, line_end as u32),
+        String::new(),
+    ))
 }
 
 /// The vertex (level, file index) whose entry is at `span`.
@@ -74,13 +85,23 @@ fn vertex_of(levels: &[LevelOutline], span: Span) -> Option<(usize, usize)> {
 
 /// Renames the later of two waypoints with the same name to the first free `name_2`,
 /// `name_3`, ...
-fn rename(doc: &Document, analysis: &Analysis, levels: &[LevelOutline], d: &Diagnostic) -> Option<(String, Vec<TextEdit>)> {
+fn rename(
+    doc: &Document,
+    analysis: &Analysis,
+    levels: &[LevelOutline],
+    d: &Diagnostic,
+) -> Option<(String, Vec<TextEdit>)> {
     let b = analysis.building.as_ref()?;
     let (l, v) = vertex_of(levels, d.span)?;
     let name_span = levels[l].vertices[v].1?;
-    let (_, vx) = b.vertices.iter().find(|(h, _)| b.vertices.span(*h).start == d.span.start)?;
+    let (_, vx) = b
+        .vertices
+        .iter()
+        .find(|(h, _)| b.vertices.span(*h).start == d.span.start)?;
     let taken = |n: &str| b.vertices.iter().any(|(_, x)| x.name == n);
-    let new = (2..).map(|i| format!("{}_{i}", vx.name)).find(|n| !taken(n))?;
+    let new = (2..)
+        .map(|i| format!("{}_{i}", vx.name))
+        .find(|n| !taken(n))?;
     let quoted = crate::lsp::yaml_scalar(&new);
     Some((
         format!("Rename `{}` to `{new}`", vx.name),
@@ -90,7 +111,11 @@ fn rename(doc: &Document, analysis: &Analysis, levels: &[LevelOutline], d: &Diag
 
 /// Reconnects the lanes of the reported waypoint to the waypoint it lies on (the
 /// diagnostic's first label), leaving the emptied vertex in place so no index shifts.
-fn join(doc: &Document, levels: &[LevelOutline], d: &Diagnostic) -> Option<(String, Vec<TextEdit>)> {
+fn join(
+    doc: &Document,
+    levels: &[LevelOutline],
+    d: &Diagnostic,
+) -> Option<(String, Vec<TextEdit>)> {
     let (l, from) = vertex_of(levels, d.span)?;
     let (l2, to) = vertex_of(levels, d.labels.first()?.span)?;
     if l != l2 || from == to {
@@ -104,5 +129,8 @@ fn join(doc: &Document, levels: &[LevelOutline], d: &Diagnostic) -> Option<(Stri
     if edits.is_empty() {
         return None;
     }
-    Some((format!("Join vertex {from} to vertex {to}: reconnect its lanes to vertex {to}"), edits))
+    Some((
+        format!("Join vertex {from} to vertex {to}: reconnect its lanes to vertex {to}"),
+        edits,
+    ))
 }

@@ -90,7 +90,10 @@ fn check_project(doc: &Document, lints: &Lints) -> Vec<Diagnostic> {
         first.span.line
     );
     let d = Diagnostic {
-        span: Span { file: FileId(0), ..span },
+        span: Span {
+            file: FileId(0),
+            ..span
+        },
         ..first.clone()
     };
     vec![Diagnostic {
@@ -102,7 +105,10 @@ fn check_project(doc: &Document, lints: &Lints) -> Vec<Diagnostic> {
 }
 
 /// The building file a project names, as a path.
-pub(crate) fn project_target(doc: &Document, root: &mapc_frontend::yaml_tree::Node) -> Option<std::path::PathBuf> {
+pub(crate) fn project_target(
+    doc: &Document,
+    root: &mapc_frontend::yaml_tree::Node,
+) -> Option<std::path::PathBuf> {
     let target = root.get("building")?.get("filename")?.key_text()?;
     let dir = doc.path.as_deref()?.parent()?;
     Some(dir.join(target))

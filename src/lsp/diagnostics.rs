@@ -2,8 +2,8 @@
 
 use super::document::Document;
 use lsp_types::{
-    CodeDescription, DiagnosticRelatedInformation, DiagnosticSeverity, Location,
-    NumberOrString, Uri,
+    CodeDescription, DiagnosticRelatedInformation, DiagnosticSeverity, Location, NumberOrString,
+    Uri,
 };
 use mapc_ir::{Diagnostic, Severity};
 use std::str::FromStr;
@@ -64,6 +64,8 @@ mod tests {
             let doc = super::code_doc(r.code).unwrap_or_else(|| panic!("{} undocumented", r.code));
             assert!(doc.contains("**What:**"), "{}", r.code);
         }
-        assert!(super::code_doc("E0201").unwrap().contains("starts and ends at the same vertex"));
+        assert!(super::code_doc("E0201")
+            .unwrap()
+            .contains("starts and ends at the same vertex"));
     }
 }

@@ -180,7 +180,10 @@ mod tests {
         let x = text.find('x').unwrap() as u32;
         assert_eq!(idx.position(text, x), Position::new(0, 6));
         assert_eq!(idx.offset(text, Position::new(0, 6)), x as usize);
-        assert_eq!(idx.position(text, text.find('b').unwrap() as u32), Position::new(1, 0));
+        assert_eq!(
+            idx.position(text, text.find('b').unwrap() as u32),
+            Position::new(1, 0)
+        );
         // Past the end of a line: the line's end; past the last line: the text's end.
         assert_eq!(idx.offset(text, Position::new(0, 99)), x as usize + 1);
         assert_eq!(idx.offset(text, Position::new(9, 0)), text.len());
@@ -188,7 +191,12 @@ mod tests {
 
     #[test]
     fn incremental_edits_apply_in_order() {
-        let mut d = Document::new("file:///m.building.yaml".into(), Kind::Building, 1, "ab\ncd\n".into());
+        let mut d = Document::new(
+            "file:///m.building.yaml".into(),
+            Kind::Building,
+            1,
+            "ab\ncd\n".into(),
+        );
         let edit = |l1, c1, l2, c2, t: &str| TextDocumentContentChangeEvent {
             range: Some(Range::new(Position::new(l1, c1), Position::new(l2, c2))),
             range_length: None,
@@ -201,7 +209,10 @@ mod tests {
 
     #[test]
     fn file_uris_decode() {
-        assert_eq!(file_path("file:///tmp/a%20b.yaml"), Some(PathBuf::from("/tmp/a b.yaml")));
+        assert_eq!(
+            file_path("file:///tmp/a%20b.yaml"),
+            Some(PathBuf::from("/tmp/a b.yaml"))
+        );
         assert_eq!(file_path("untitled:1"), None);
     }
 }

@@ -45,12 +45,20 @@ pub(crate) fn hover(doc: &Document, analysis: Option<&Analysis>, pos: Position) 
                     Severity::Error => "error",
                     Severity::Warning => "warning",
                 };
-                let mut s = format!("**{}** {} ({sev}): {}", d.code, crate::code_name(d.code), d.message);
+                let mut s = format!(
+                    "**{}** {} ({sev}): {}",
+                    d.code,
+                    crate::code_name(d.code),
+                    d.message
+                );
                 if let Some(doc) = super::diagnostics::code_doc(d.code) {
                     s.push_str("\n\n");
                     s.push_str(doc);
                 }
-                s.push_str(&format!("\n\n[documentation]({})", crate::report_json::help_uri(d.code)));
+                s.push_str(&format!(
+                    "\n\n[documentation]({})",
+                    crate::report_json::help_uri(d.code)
+                ));
                 parts.push(s);
             }
         }
@@ -83,8 +91,15 @@ fn vertex_text(b: Option<&Building>, level: &LevelOutline, v: usize) -> Option<S
         let list: Vec<String> = uses.iter().map(|(k, n)| crate::plural(*n, k)).collect();
         format!("used by {}", list.join(", "))
     };
-    let Some((_, vx)) = b.and_then(|b| b.vertices.iter().find(|(h, _)| b.vertices.span(*h).start == entry.start)) else {
-        return Some(format!("**vertex {v}** on level `{}`\n\n{uses}", level.name));
+    let Some((_, vx)) = b.and_then(|b| {
+        b.vertices
+            .iter()
+            .find(|(h, _)| b.vertices.span(*h).start == entry.start)
+    }) else {
+        return Some(format!(
+            "**vertex {v}** on level `{}`\n\n{uses}",
+            level.name
+        ));
     };
     let name = if vx.name.is_empty() {
         String::new()

@@ -69,12 +69,14 @@ pub(crate) fn run(args: &LspArgs) -> ExitCode {
     }
     let (conn, io) = Connection::stdio();
     let caps = ServerCapabilities {
-        text_document_sync: Some(TextDocumentSyncCapability::Options(TextDocumentSyncOptions {
-            open_close: Some(true),
-            change: Some(TextDocumentSyncKind::INCREMENTAL),
-            save: Some(TextDocumentSyncSaveOptions::Supported(true)),
-            ..TextDocumentSyncOptions::default()
-        })),
+        text_document_sync: Some(TextDocumentSyncCapability::Options(
+            TextDocumentSyncOptions {
+                open_close: Some(true),
+                change: Some(TextDocumentSyncKind::INCREMENTAL),
+                save: Some(TextDocumentSyncSaveOptions::Supported(true)),
+                ..TextDocumentSyncOptions::default()
+            },
+        )),
         hover_provider: Some(HoverProviderCapability::Simple(true)),
         definition_provider: Some(OneOf::Left(true)),
         references_provider: Some(OneOf::Left(true)),
@@ -125,7 +127,9 @@ impl Server<'_> {
                             return self.shutdown;
                         }
                         if n.method == note::Cancel::METHOD {
-                            if let Ok(p) = serde_json::from_value::<lsp_types::CancelParams>(n.params) {
+                            if let Ok(p) =
+                                serde_json::from_value::<lsp_types::CancelParams>(n.params)
+                            {
                                 cancelled.insert(match p.id {
                                     lsp_types::NumberOrString::Number(i) => RequestId::from(i),
                                     lsp_types::NumberOrString::String(s) => RequestId::from(s),
@@ -143,7 +147,11 @@ impl Server<'_> {
                 let resp = if cancelled.contains(&r.id) {
                     Response::new_err(r.id, ErrorCode::RequestCanceled as i32, "cancelled".into())
                 } else if self.shutdown {
-                    Response::new_err(r.id, ErrorCode::InvalidRequest as i32, "shutting down".into())
+                    Response::new_err(
+                        r.id,
+                        ErrorCode::InvalidRequest as i32,
+                        "shutting down".into(),
+                    )
                 } else {
                     self.request(r)
                 };
@@ -154,22 +162,44 @@ impl Server<'_> {
     }
 
     fn lints_for(&self, doc: &Document) -> Result<Lints, String> {
-        let path = doc.path.clone().unwrap_or_else(|| Path::new("untitled").to_path_buf());
+        let path = doc
+            .path
+            .clone()
+            .unwrap_or_else(|| Path::new("untitled").to_path_buf());
         crate::lints_for(&path, &self.args.lints)
     }
 
     fn notification(&mut self, conn: &Connection, n: Notification) {
         match n.method.as_str() {
             note::DidOpenTextDocument::METHOD => {
-                let Ok(p) = serde_json::from_value::<lsp_types::DidOpenTextDocumentParams>(n.params) else { return };
+                let Ok(p) =
+                    serde_json::from_value::<lsp_types::DidOpenTextDocumentParams>(n.params)
+                else {
+                    return;
+                };
                 let td = p.text_document;
-                let Some(kind) = Kind::of(td.uri.as_str()) else { return };
+                let Some(kind) = Kind::of(td.uri.as_str()) else {
+                    return;
+                };
                 let doc = Document::new(td.uri.as_str().to_string(), kind, td.version, td.text);
                 let lints = self.lints_for(&doc);
-                self.docs.insert(td.uri.as_str().to_string(), Open { uri: td.uri, doc, lints, analysis: None, dirty: true });
+                self.docs.insert(
+                    td.uri.as_str().to_string(),
+                    Open {
+                        uri: td.uri,
+                        doc,
+                        lints,
+                        analysis: None,
+                        dirty: true,
+                    },
+                );
             }
             note::DidChangeTextDocument::METHOD => {
-                let Ok(p) = serde_json::from_value::<lsp_types::DidChangeTextDocumentParams>(n.params) else { return };
+                let Ok(p) =
+                    serde_json::from_value::<lsp_types::DidChangeTextDocumentParams>(n.params)
+                else {
+                    return;
+                };
                 if let Some(o) = self.docs.get_mut(p.text_document.uri.as_str()) {
                     o.doc.apply(p.text_document.version, p.content_changes);
                     o.dirty = true;
@@ -177,7 +207,11 @@ impl Server<'_> {
             }
             note::DidSaveTextDocument::METHOD => {
                 // mapc.toml may have changed meanwhile; a saved project's building too.
-                let Ok(p) = serde_json::from_value::<lsp_types::DidSaveTextDocumentParams>(n.params) else { return };
+                let Ok(p) =
+                    serde_json::from_value::<lsp_types::DidSaveTextDocumentParams>(n.params)
+                else {
+                    return;
+                };
                 let key = p.text_document.uri.as_str().to_string();
                 if let Some(o) = self.docs.get(&key) {
                     let lints = self.lints_for(&o.doc);
@@ -187,7 +221,11 @@ impl Server<'_> {
                 }
             }
             note::DidCloseTextDocument::METHOD => {
-                let Ok(p) = serde_json::from_value::<lsp_types::DidCloseTextDocumentParams>(n.params) else { return };
+                let Ok(p) =
+                    serde_json::from_value::<lsp_types::DidCloseTextDocumentParams>(n.params)
+                else {
+                    return;
+                };
                 if self.docs.remove(p.text_document.uri.as_str()).is_some() {
                     publish(conn, p.text_document.uri, Vec::new(), None);
                 }
@@ -230,19 +268,25 @@ impl Server<'_> {
             return Response::new_ok(id, ());
         }
         match self.answer(r) {
-            Ok(v) => Response { id, response_result: Ok(v) },
+            Ok(v) => Response {
+                id,
+                response_result: Ok(v),
+            },
             Err((code, msg)) => Response::new_err(id, code as i32, msg),
         }
     }
 
     fn open(&self, uri: &Uri) -> Result<&Open, (ErrorCode, String)> {
-        self.docs
-            .get(uri.as_str())
-            .ok_or((ErrorCode::InvalidParams, format!("{} is not open", uri.as_str())))
+        self.docs.get(uri.as_str()).ok_or((
+            ErrorCode::InvalidParams,
+            format!("{} is not open", uri.as_str()),
+        ))
     }
 
     fn answer(&self, r: Request) -> Result<serde_json::Value, (ErrorCode, String)> {
-        fn params<P: serde::de::DeserializeOwned>(v: serde_json::Value) -> Result<P, (ErrorCode, String)> {
+        fn params<P: serde::de::DeserializeOwned>(
+            v: serde_json::Value,
+        ) -> Result<P, (ErrorCode, String)> {
             serde_json::from_value(v).map_err(|e| (ErrorCode::InvalidParams, e.to_string()))
         }
         let json = |v: serde_json::Value| Ok(v);
@@ -250,30 +294,54 @@ impl Server<'_> {
             req::HoverRequest::METHOD => {
                 let p: lsp_types::HoverParams = params(r.params)?;
                 let o = self.open(&p.text_document_position_params.text_document.uri)?;
-                json(serde_json::to_value(hover::hover(&o.doc, o.analysis.as_ref(), p.text_document_position_params.position)).unwrap_or_default())
+                json(
+                    serde_json::to_value(hover::hover(
+                        &o.doc,
+                        o.analysis.as_ref(),
+                        p.text_document_position_params.position,
+                    ))
+                    .unwrap_or_default(),
+                )
             }
             req::GotoDefinition::METHOD => {
                 let p: lsp_types::GotoDefinitionParams = params(r.params)?;
                 let tdp = p.text_document_position_params;
                 let o = self.open(&tdp.text_document.uri)?;
-                json(serde_json::to_value(navigation::definition(&o.doc, &o.uri, tdp.position)).unwrap_or_default())
+                json(
+                    serde_json::to_value(navigation::definition(&o.doc, &o.uri, tdp.position))
+                        .unwrap_or_default(),
+                )
             }
             req::References::METHOD => {
                 let p: lsp_types::ReferenceParams = params(r.params)?;
                 let tdp = p.text_document_position;
                 let o = self.open(&tdp.text_document.uri)?;
-                let locs = navigation::references(&o.doc, &o.uri, tdp.position, p.context.include_declaration);
+                let locs = navigation::references(
+                    &o.doc,
+                    &o.uri,
+                    tdp.position,
+                    p.context.include_declaration,
+                );
                 json(serde_json::to_value(locs).unwrap_or_default())
             }
             req::DocumentSymbolRequest::METHOD => {
                 let p: lsp_types::DocumentSymbolParams = params(r.params)?;
                 let o = self.open(&p.text_document.uri)?;
-                json(serde_json::to_value(symbols::document_symbols(&o.doc, o.analysis.as_ref())).unwrap_or_default())
+                json(
+                    serde_json::to_value(symbols::document_symbols(&o.doc, o.analysis.as_ref()))
+                        .unwrap_or_default(),
+                )
             }
             req::WorkspaceSymbolRequest::METHOD => {
                 let p: lsp_types::WorkspaceSymbolParams = params(r.params)?;
-                let docs = self.docs.values().map(|o| (&o.uri, &o.doc, o.analysis.as_ref()));
-                json(serde_json::to_value(symbols::workspace_symbols(docs, &p.query)).unwrap_or_default())
+                let docs = self
+                    .docs
+                    .values()
+                    .map(|o| (&o.uri, &o.doc, o.analysis.as_ref()));
+                json(
+                    serde_json::to_value(symbols::workspace_symbols(docs, &p.query))
+                        .unwrap_or_default(),
+                )
             }
             req::CodeActionRequest::METHOD => {
                 let p: lsp_types::CodeActionParams = params(r.params)?;
@@ -284,13 +352,25 @@ impl Server<'_> {
                 };
                 json(serde_json::to_value(actions).unwrap_or_default())
             }
-            m => Err((ErrorCode::MethodNotFound, format!("mapc lsp does not handle {m}"))),
+            m => Err((
+                ErrorCode::MethodNotFound,
+                format!("mapc lsp does not handle {m}"),
+            )),
         }
     }
 }
 
-fn publish(conn: &Connection, uri: Uri, diagnostics: Vec<lsp_types::Diagnostic>, version: Option<i32>) {
-    let params = PublishDiagnosticsParams { uri, diagnostics, version };
+fn publish(
+    conn: &Connection,
+    uri: Uri,
+    diagnostics: Vec<lsp_types::Diagnostic>,
+    version: Option<i32>,
+) {
+    let params = PublishDiagnosticsParams {
+        uri,
+        diagnostics,
+        version,
+    };
     let n = Notification::new(note::PublishDiagnostics::METHOD.to_string(), params);
     let _ = conn.sender.send(n.into());
 }
@@ -299,7 +379,9 @@ fn publish(conn: &Connection, uri: Uri, diagnostics: Vec<lsp_types::Diagnostic>,
 /// string, double-quoted otherwise.
 pub(crate) fn yaml_scalar(text: &str) -> String {
     let plain = !text.is_empty()
-        && text.chars().all(|c| c.is_ascii_alphanumeric() || c == '_' || c == '-' || c == '.')
+        && text
+            .chars()
+            .all(|c| c.is_ascii_alphanumeric() || c == '_' || c == '-' || c == '.')
         && text.starts_with(|c: char| c.is_ascii_alphabetic() || c == '_')
         && !matches!(
             text.to_ascii_lowercase().as_str(),

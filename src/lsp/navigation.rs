@@ -28,9 +28,10 @@ pub(crate) fn definition(doc: &Document, uri: &Uri, pos: Position) -> Option<Loc
             Some(Location::new(uri.clone(), doc.range(entry)))
         }
         // On the vertex itself: the definition is where it is.
-        outline::VertexAt::Entry(l, v) => {
-            Some(Location::new(uri.clone(), doc.range(levels[l].vertices[v].0)))
-        }
+        outline::VertexAt::Entry(l, v) => Some(Location::new(
+            uri.clone(),
+            doc.range(levels[l].vertices[v].0),
+        )),
     }
 }
 

@@ -24,7 +24,11 @@ fn symbol(
         selection = range;
     }
     DocumentSymbol {
-        name: if name.is_empty() { "(unnamed)".into() } else { name },
+        name: if name.is_empty() {
+            "(unnamed)".into()
+        } else {
+            name
+        },
         detail,
         kind,
         tags: None,
@@ -45,12 +49,22 @@ pub(crate) fn document_symbols(doc: &Document, analysis: Option<&Analysis>) -> V
     for lo in &levels {
         let mut children = Vec::new();
         if let Some(b) = b {
-            if let Some((lh, _)) = b.levels.iter().find(|(h, _)| b.levels.span(*h).start == lo.span.start || b.levels[*h].name == lo.name) {
+            if let Some((lh, _)) = b.levels.iter().find(|(h, _)| {
+                b.levels.span(*h).start == lo.span.start || b.levels[*h].name == lo.name
+            }) {
                 let level = &b.levels[lh];
                 for &d in &level.doors {
                     let door = &b.doors[d];
                     let span = b.doors.span(d);
-                    children.push(symbol(doc, door.name.clone(), Some(format!("{} door", door.kind.as_str())), SymbolKind::INTERFACE, span, span, Vec::new()));
+                    children.push(symbol(
+                        doc,
+                        door.name.clone(),
+                        Some(format!("{} door", door.kind.as_str())),
+                        SymbolKind::INTERFACE,
+                        span,
+                        span,
+                        Vec::new(),
+                    ));
                 }
                 for &v in &level.vertices {
                     let vx = &b.vertices[v];
@@ -58,25 +72,57 @@ pub(crate) fn document_symbols(doc: &Document, analysis: Option<&Analysis>) -> V
                         continue;
                     }
                     let span = b.vertices.span(v);
-                    children.push(symbol(doc, vx.name.clone(), Some("waypoint".into()), SymbolKind::CONSTANT, span, span, Vec::new()));
+                    children.push(symbol(
+                        doc,
+                        vx.name.clone(),
+                        Some("waypoint".into()),
+                        SymbolKind::CONSTANT,
+                        span,
+                        span,
+                        Vec::new(),
+                    ));
                 }
             }
         }
-        out.push(symbol(doc, lo.name.clone(), Some("level".into()), SymbolKind::NAMESPACE, join(lo.name_span, lo.span), lo.name_span, children));
+        out.push(symbol(
+            doc,
+            lo.name.clone(),
+            Some("level".into()),
+            SymbolKind::NAMESPACE,
+            join(lo.name_span, lo.span),
+            lo.name_span,
+            children,
+        ));
     }
     if let Some(b) = b {
         for (h, lift) in b.lifts.iter() {
             let span = b.lifts.span(h);
-            out.push(symbol(doc, lift.name.clone(), Some("lift".into()), SymbolKind::CLASS, span, span, Vec::new()));
+            out.push(symbol(
+                doc,
+                lift.name.clone(),
+                Some("lift".into()),
+                SymbolKind::CLASS,
+                span,
+                span,
+                Vec::new(),
+            ));
         }
     }
     if let Some(graphs) = root.get("graphs").and_then(|g| g.as_map()) {
         for (k, v) in graphs {
-            let name = v
-                .get("name")
-                .and_then(|n| n.key_text())
-                .map_or_else(|| format!("graph {}", k.key_text().unwrap_or("")), |n| format!("graph {}: {n}", k.key_text().unwrap_or("")));
-            out.push(symbol(doc, name, Some("graph".into()), SymbolKind::STRUCT, join(k.span, v.span), k.span, Vec::new()));
+            let name = v.get("name").and_then(|n| n.key_text()).map_or_else(
+                || format!("graph {}", k.key_text().unwrap_or("")),
+                |n| format!("graph {}: {n}", k.key_text().unwrap_or("")),
+            );
+            out.push(symbol(
+                doc,
+                name,
+                Some("graph".into()),
+                SymbolKind::STRUCT,
+                join(k.span, v.span),
+                k.span,
+                Vec::new(),
+            ));
         }
     }
     out

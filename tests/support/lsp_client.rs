@@ -133,7 +133,10 @@ impl Client {
         loop {
             if let Some(i) = self.notifications.iter().position(is_it) {
                 let n = self.notifications.remove(i);
-                return n["params"]["diagnostics"].as_array().cloned().unwrap_or_default();
+                return n["params"]["diagnostics"]
+                    .as_array()
+                    .cloned()
+                    .unwrap_or_default();
             }
             let v = self.recv(deadline);
             if v.get("method").is_some() && v.get("id").is_none() {
