@@ -401,3 +401,131 @@ fn cancelled_and_unknown_requests() {
     );
     drop(c);
 }
+
+/// The (code, line, UTF-16 column) of each diagnostic `mapc check` finds in `text`.
+fn check_positions(dir: &Path, text: &str) -> Vec<(String, u64, u64)> {
+    let path = dir.join("check.building.yaml");
+    std::fs::write(&path, text).unwrap();
+    let out = std::process::Command::new(env!("CARGO_BIN_EXE_mapc"))
+        .args(["check", "--format", "json", "--max-diagnostics", "all"])
+        .arg(&path)
+        .output()
+        .unwrap();
+    let mut v: Vec<(String, u64, u64)> = String::from_utf8_lossy(&out.stdout)
+        .lines()
+        .map(|l| serde_json::from_str::<Value>(l).unwrap())
+        .filter(|d| d["code"].is_string())
+        .map(|d| {
+            let start = d["location"]["byte_start"].as_u64().unwrap() as usize;
+            let line_start = text[..start].rfind('\n').map_or(0, |i| i + 1);
+            let col = text[line_start..start].encode_utf16().count() as u64;
+            let line = text[..start].matches('\n').count() as u64;
+            (d["code"].as_str().unwrap().to_string(), line, col)
+        })
+        .collect();
+    v.sort();
+    v
+}
+
+/// Random incremental edits with multi-byte text (é: 2 bytes, 1 UTF-16 unit; 😀: 4 bytes,
+/// 2 units), including edits spanning lines: after them, the server's diagnostics are those
+/// `mapc check` gives for the text the client holds, so both hold the same text.
+#[test]
+fn incremental_edits_keep_the_server_in_step() {
+    let (path, mut text) = fixture();
+    let uri = file_uri(&path);
+    let dir = tempfile::tempdir().expect("tempdir");
+    let mut c = Client::start(&[], dir.path());
+    c.initialize();
+    c.open(&uri, &text);
+    c.diagnostics(&uri, 1);
+    let mut seed: u64 = 0x2545_f491_4f6c_dd1d;
+    let mut rand = |n: usize| {
+        seed ^= seed << 13;
+        seed ^= seed >> 7;
+        seed ^= seed << 17;
+        (seed % n as u64) as usize
+    };
+    let mut seen = std::collections::BTreeSet::new();
+    let position = |t: &str, byte: usize| {
+        let line_start = t[..byte].rfind('\n').map_or(0, |i| i + 1);
+        pos(
+            t[..byte].matches('\n').count() as u32,
+            t[line_start..byte].encode_utf16().count() as u32,
+        )
+    };
+    let inserts = ["", "1", "é", "😀", "9", "x😀é", "0", " "];
+    for version in 2..=41 {
+        let boundary = |t: &str, mut b: usize| {
+            while !t.is_char_boundary(b) {
+                b -= 1;
+            }
+            b
+        };
+        // Entry lines (`      - [...]`): vertices, lanes, walls, doors.
+        let entries: Vec<(usize, &str)> = {
+            let mut off = 0;
+            let mut v = Vec::new();
+            for l in text.split_inclusive('\n') {
+                if l.starts_with("      - [") {
+                    v.push((off, l));
+                }
+                off += l.len();
+            }
+            v
+        };
+        let i = rand(entries.len() - 1);
+        let ((a, la), (b, lb)) = (entries[i], entries[i + 1]);
+        let (start, end, new) = if a + la.len() == b && rand(3) == 0 {
+            // Two neighbouring entries swapped: an edit over two lines.
+            (a, a + la.len() + lb.len(), format!("{lb}{la}"))
+        } else {
+            // Inside the brackets, before the params: indices, coordinates, names.
+            let (off, line) = entries[rand(entries.len())];
+            let lo = off + line.find('[').unwrap() + 1;
+            let hi = off + line.find('{').or(line.find(']')).unwrap();
+            let start = boundary(&text, lo + rand(hi - lo));
+            // A digit may be replaced by something (an empty entry would be a YAML error);
+            // anything else is an insertion.
+            if text.as_bytes()[start].is_ascii_digit() && rand(2) == 0 {
+                (
+                    start,
+                    start + 1,
+                    inserts[1 + rand(inserts.len() - 2)].to_string(),
+                )
+            } else {
+                (start, start, inserts[rand(inserts.len())].to_string())
+            }
+        };
+        let range = json!({"start": position(&text, start), "end": position(&text, end)});
+        text.replace_range(start..end, &new);
+        c.notify("textDocument/didChange", json!({"textDocument": {"uri": uri, "version": version}, "contentChanges": [{"range": range, "text": new}]}));
+        if version % 10 == 1 {
+            let mut got: Vec<(String, u64, u64)> = c
+                .diagnostics(&uri, version)
+                .iter()
+                .map(|d| {
+                    (
+                        d["code"].as_str().unwrap_or("").to_string(),
+                        d["range"]["start"]["line"].as_u64().unwrap(),
+                        d["range"]["start"]["character"].as_u64().unwrap(),
+                    )
+                })
+                .collect();
+            got.sort();
+            assert_eq!(
+                got,
+                check_positions(dir.path(), &text),
+                "after edit {version}"
+            );
+            assert!(
+                !got.iter().any(|d| d.0 == "E0001"),
+                "the edits keep the YAML valid:\n{text}"
+            );
+            seen.extend(got.into_iter().map(|d| d.0));
+        }
+    }
+    // The edits made the map say different things along the way.
+    assert!(seen.len() >= 5, "{seen:?}");
+    assert_eq!(c.shutdown(), 0);
+}
