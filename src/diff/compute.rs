@@ -1061,3 +1061,32 @@ fn diagnostics(old: &[Diagnostic], new: &[Diagnostic], out: &mut Vec<Change>) {
         }
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn polygons_compare_whatever_their_start_and_direction() {
+        let sq = vec![(0, 0), (10, 0), (10, 8), (0, 8)];
+        let other_start = vec![(10, 8), (0, 8), (0, 0), (10, 0)];
+        let reversed = vec![(0, 8), (10, 8), (10, 0), (0, 0)];
+        assert_eq!(canonical(sq.clone()), canonical(other_start));
+        assert_eq!(canonical(sq.clone()), canonical(reversed));
+        assert_ne!(
+            canonical(sq),
+            canonical(vec![(0, 0), (10, 0), (0, 8), (10, 8)])
+        );
+    }
+
+    #[test]
+    fn diagnostics_compare_without_indices() {
+        let span = mapc_ir::Span::UNKNOWN;
+        let a = Diagnostic::error("E0201", span, "at vertex `a` (index 3 of level `L1`)");
+        let b = Diagnostic::error("E0201", span, "at vertex `a` (index 12 of level `L1`)");
+        assert_eq!(diag_key(&a), diag_key(&b));
+        assert_eq!(diag_key(&a).1, "at vertex `a` (index # of level `L1`)");
+        let c = Diagnostic::error("E0201", span, "at vertex `b` (index 3 of level `L1`)");
+        assert_ne!(diag_key(&a), diag_key(&c));
+    }
+}
