@@ -529,3 +529,50 @@ fn incremental_edits_keep_the_server_in_step() {
     assert!(seen.len() >= 5, "{seen:?}");
     assert_eq!(c.shutdown(), 0);
 }
+
+#[test]
+fn symbols_of_a_two_level_map_with_a_lift() {
+    let path =
+        Path::new(env!("CARGO_MANIFEST_DIR")).join("fixtures/two_level_clinic.building.yaml");
+    let text = std::fs::read_to_string(&path).unwrap();
+    let uri = file_uri(&path);
+    let dir = tempfile::tempdir().expect("tempdir");
+    let mut c = Client::start(&[], dir.path());
+    c.initialize();
+    c.open(&uri, &text);
+    c.diagnostics(&uri, 1);
+    let syms = c.request(
+        "textDocument/documentSymbol",
+        json!({"textDocument": {"uri": uri}}),
+    );
+    let top: Vec<(String, u64, u64)> = syms
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|s| {
+            (
+                s["name"].as_str().unwrap().to_string(),
+                s["kind"].as_u64().unwrap(),
+                s["selectionRange"]["start"]["line"].as_u64().unwrap(),
+            )
+        })
+        .collect();
+    let line = |s: &str| find(&text, s).0 as u64;
+    // Levels (namespace 3), then the lift (class 5), then graphs (struct 23; none here).
+    assert_eq!(
+        top,
+        [
+            ("L1".to_string(), 3, line("  L1:")),
+            ("L2".to_string(), 3, line("  L2:")),
+            ("lift_1".to_string(), 5, line("  lift_1:")),
+        ]
+    );
+    let l2: Vec<&str> = syms[1]["children"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|s| s["name"].as_str().unwrap())
+        .collect();
+    assert_eq!(&l2[..2], ["L2_ward_a_door", "L2_ward_b_door"]);
+    assert_eq!(c.shutdown(), 0);
+}
