@@ -576,3 +576,47 @@ fn symbols_of_a_two_level_map_with_a_lift() {
     assert_eq!(&l2[..2], ["L2_ward_a_door", "L2_ward_b_door"]);
     assert_eq!(c.shutdown(), 0);
 }
+
+#[test]
+fn bad_input_never_stops_the_server() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let uri = file_uri(&dir.path().join("broken.building.yaml"));
+    let mut c = Client::start(&[], dir.path());
+    c.initialize();
+    let text = "levels: {L1: [1, 2}\n\t😀\u{0}\n";
+    c.open(&uri, text);
+    let d = c.diagnostics(&uri, 1);
+    assert_eq!(codes(&d), ["E0001"]);
+    for method in [
+        "textDocument/hover",
+        "textDocument/definition",
+        "textDocument/references",
+    ] {
+        let r = c.request(method, json!({"textDocument": {"uri": uri}, "position": pos(1, 2), "context": {"includeDeclaration": true}}));
+        assert!(r.is_null() || r == json!([]), "{method}: {r}");
+    }
+    assert_eq!(
+        c.request(
+            "textDocument/documentSymbol",
+            json!({"textDocument": {"uri": uri}})
+        ),
+        json!([])
+    );
+    // Positions past the end, inside a surrogate pair, reversed ranges: clamped, not fatal.
+    c.notify(
+        "textDocument/didChange",
+        json!({"textDocument": {"uri": uri, "version": 2}, "contentChanges": [
+            {"range": {"start": pos(1, 2), "end": pos(1, 2)}, "text": "x"},
+            {"range": {"start": pos(99, 99), "end": pos(0, 3)}, "text": "y"},
+            {"range": {"start": pos(1, 1), "end": pos(1, 2)}, "text": ""}
+        ]}),
+    );
+    c.diagnostics(&uri, 2);
+    // Malformed params are an error answer, and the server goes on.
+    let id = c.send_request("textDocument/hover", json!({"bogus": true}));
+    assert_eq!(c.response(id)["error"]["code"], -32602);
+    c.notify("textDocument/didChange", json!({"textDocument": {"uri": uri, "version": 3}, "contentChanges": [{"text": "name: ok\nlevels: {L1: {vertices: [[0, 0, 0, a]]}}\n"}]}));
+    let d = c.diagnostics(&uri, 3);
+    assert!(!codes(&d).contains(&"E0001".to_string()), "{d:?}");
+    assert_eq!(c.shutdown(), 0);
+}
