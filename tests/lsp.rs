@@ -111,6 +111,16 @@ fn editor_session() {
         .starts_with("**`is_charger`** — bool (4)"));
     assert_eq!(h["range"]["start"], pos(lp, cp));
     assert_eq!(h["range"]["end"], pos(lp, cp + "is_charger".len() as u32));
+    // The building's own `name` is not the door parameter `name`.
+    let (ln, _) = find(&text, "name: lsp_test");
+    assert!(c.request("textDocument/hover", td(&uri, ln, 1)).is_null());
+    // A door's `name` parameter is.
+    let (ldn, cdn) = find(&text, "name: [1, main_door]");
+    let v = c.request("textDocument/hover", td(&uri, ldn, cdn + 1))["contents"]["value"]
+        .as_str()
+        .unwrap()
+        .to_string();
+    assert!(v.starts_with("**`name`** — string (1)"), "{v}");
     // Hover on a diagnostic: its documentation.
     let (ls, cs) = find(&text, "[3, 3,");
     let v = c.request("textDocument/hover", td(&uri, ls, cs))["contents"]["value"]

@@ -24,9 +24,21 @@ pub(crate) fn hover(doc: &Document, analysis: Option<&Analysis>, pos: Position) 
                 }
             } else if at.on_key || at.path.len() >= 2 {
                 // A parameter key, or a value inside `name: [type, value]`.
-                let name = at.path.iter().rev().find_map(|s| match s {
-                    outline::Seg::Key(k) => params_doc::param(k).map(|p| (k, p)),
-                    _ => None,
+                // A key of a params mapping: inside an entry (`[0, 1, {graph_idx: ...}]`)
+                // or under `parameters` (the building's, a floor's); not e.g. the
+                // building's own `name`.
+                let name = at.path.iter().enumerate().rev().find_map(|(i, s)| {
+                    match (s, i.checked_sub(1).map(|j| &at.path[j])) {
+                        (outline::Seg::Key(k), Some(outline::Seg::Index(_))) => {
+                            params_doc::param(k).map(|p| (k, p))
+                        }
+                        (outline::Seg::Key(k), Some(outline::Seg::Key(parent)))
+                            if parent == "parameters" =>
+                        {
+                            params_doc::param(k).map(|p| (k, p))
+                        }
+                        _ => None,
+                    }
                 });
                 if let Some((name, (ty, meaning))) = name {
                     parts.push(format!("**`{name}`** — {ty}\n\n{meaning}"));
