@@ -59,6 +59,7 @@ fn waypoints_added_removed_renamed_moved() {
         "waypoints | L1 | added | waypoint `storage` | at (8.00, 5.00)",
         "waypoints | L1 | removed | waypoint `office` | was at (5.00, 5.00)",
         "waypoints | L1 | changed | waypoint `lobby` | moved 0.50 m: (5.00, 2.00) → (5.00, 2.50)",
+        "waypoints | L1 | changed | waypoint `lobby` | roles none → holding point",
         "waypoints | L1 | changed | waypoint `pantry` | renamed `pantry` → `kitchen`",
         "lanes | L1 | added | lane `kitchen` – `storage` | graph 0, two-way",
         "lanes | L1 | removed | lane `lobby` – `office` | graph 0, two-way",
