@@ -383,7 +383,11 @@ pub fn write_dirs(dirs: &[DirWrite]) -> Result<Vec<Written>, String> {
             return Err(fail(
                 &staged,
                 &manifests,
-                format!("`{}` is a file; {} must be a directory", shown(root), d.role),
+                format!(
+                    "`{}` is a file; {} must be a directory",
+                    shown(root),
+                    d.role
+                ),
             ));
         }
         if let Err(e) = std::fs::create_dir_all(root) {
@@ -566,11 +570,8 @@ pub fn single_writes(
 
 /// Whether two directory paths name the same directory as written (`out` and `./out`).
 fn same_dir(a: &Path, b: &Path) -> bool {
-    let norm = |p: &Path| -> PathBuf {
-        p.components()
-            .filter(|c| *c != Component::CurDir)
-            .collect()
-    };
+    let norm =
+        |p: &Path| -> PathBuf { p.components().filter(|c| *c != Component::CurDir).collect() };
     norm(a) == norm(b)
 }
 

@@ -13,8 +13,7 @@ const CLINIC: &str = "fixtures/two_level_clinic.building.yaml";
 /// A texture directory holding a copy of `name.png` for every texture the clinic fixture
 /// names, each a distinct valid PNG (with a text chunk, which the glTF writer strips).
 fn textures(dir: &Path) -> Vec<PathBuf> {
-    let map = std::fs::read_to_string(Path::new(env!("CARGO_MANIFEST_DIR")).join(CLINIC))
-        .unwrap();
+    let map = std::fs::read_to_string(Path::new(env!("CARGO_MANIFEST_DIR")).join(CLINIC)).unwrap();
     let mut names: Vec<String> = Vec::new();
     for key in ["texture_name: [1, ", "texture: [1, "] {
         for part in map.split(key).skip(1) {
@@ -33,7 +32,8 @@ fn textures(dir: &Path) -> Vec<PathBuf> {
             {
                 let mut enc = png::Encoder::new(&mut png, 2, 2);
                 enc.set_color(png::ColorType::Rgb);
-                enc.add_text_chunk("Comment".into(), format!("texture {i}")).unwrap();
+                enc.add_text_chunk("Comment".into(), format!("texture {i}"))
+                    .unwrap();
                 let mut w = enc.write_header().unwrap();
                 w.write_image_data(&[i as u8; 12]).unwrap();
             }
@@ -83,7 +83,10 @@ fn textures_are_linked_not_copied() {
     assert!(!pngs.is_empty());
     for p in &pngs {
         let src = tex.join(p.file_name().unwrap());
-        let (a, b) = (std::fs::metadata(p).unwrap(), std::fs::metadata(&src).unwrap());
+        let (a, b) = (
+            std::fs::metadata(p).unwrap(),
+            std::fs::metadata(&src).unwrap(),
+        );
         // The same file (same inode), so the same bytes as read, chunks and all.
         assert_eq!((a.dev(), a.ino()), (b.dev(), b.ino()), "{}", p.display());
     }
@@ -98,7 +101,10 @@ fn textures_are_linked_not_copied() {
         tex.to_str().unwrap(),
     ]);
     assert_eq!(code, 0);
-    let line = err.lines().find(|l| l.contains(" files written to ")).unwrap();
+    let line = err
+        .lines()
+        .find(|l| l.contains(" files written to "))
+        .unwrap();
     let (total, rest) = line.split_once(" files written to ").unwrap();
     let total = total.rsplit(' ').next().unwrap();
     assert!(rest.contains(&format!("({total} unchanged)")), "{line}");
@@ -136,10 +142,19 @@ fn world_beside_its_models_keeps_them() {
     // One manifest naming every file, and a rerun changes nothing.
     let manifests: Vec<_> = written
         .iter()
-        .filter(|p| p.file_name().unwrap().to_str().unwrap().starts_with(".mapc-manifest"))
+        .filter(|p| {
+            p.file_name()
+                .unwrap()
+                .to_str()
+                .unwrap()
+                .starts_with(".mapc-manifest")
+        })
         .collect();
     assert_eq!(manifests.len(), 1, "{manifests:?}");
-    let listed = std::fs::read_to_string(manifests[0]).unwrap().lines().count();
+    let listed = std::fs::read_to_string(manifests[0])
+        .unwrap()
+        .lines()
+        .count();
     assert_eq!(listed, written.len() - 1);
     let (code, _, err) = mapc(&["gazebo", CLINIC, world.to_str().unwrap(), o]);
     assert_eq!(code, 0, "{err}");

@@ -28,7 +28,10 @@ fn huge_map_is_checked_and_compiled_within_memory() {
     let out = dir.path().join("nav");
     let file = text.len() as u64;
     let map_s = map.to_str().unwrap();
-    for args in [vec!["check", map_s], vec!["nav", map_s, out.to_str().unwrap()]] {
+    for args in [
+        vec!["check", map_s],
+        vec!["nav", map_s, out.to_str().unwrap()],
+    ] {
         let r = support::run(&args, Duration::from_secs(120));
         let stderr = String::from_utf8_lossy(&r.stderr);
         let peak = r.peak_rss.unwrap_or(0);
@@ -41,7 +44,12 @@ fn huge_map_is_checked_and_compiled_within_memory() {
             peak as f64 / file as f64
         );
         // Random lanes cross and pass near waypoints: warnings, never a refusal.
-        assert_eq!(r.code, 0, "{}", &stderr[stderr.len().saturating_sub(3000)..]);
+        assert_eq!(
+            r.code,
+            0,
+            "{}",
+            &stderr[stderr.len().saturating_sub(3000)..]
+        );
         assert!(!stderr.contains("E0002"), "refused: {stderr}");
         if r.peak_rss.is_some() {
             assert!(

@@ -4,7 +4,6 @@
 use super::*;
 use mapc_ir::{
     CoordinateSystem, Lift, Param, ParamValue, Params, Polygon, Span, Vec2, Vertex, Wall,
-    WaypointRoles,
 };
 
 pub(crate) struct Map {
