@@ -111,7 +111,13 @@ pub fn create_temporary(path: &Path) -> std::io::Result<(PathBuf, std::fs::File)
     let tmp = temporary_name(path);
     let mut live = LIVE.lock().unwrap_or_else(|e| e.into_inner());
     // Created under the lock: the watcher either sees it registered or it never exists.
-    let f = std::fs::File::create(&tmp)?;
+    // A new file, never one found there: a temporary left by an earlier process with
+    // this pid may be a hard link to a texture, which truncating would empty.
+    let _ = std::fs::remove_file(&tmp);
+    let f = std::fs::OpenOptions::new()
+        .write(true)
+        .create_new(true)
+        .open(&tmp)?;
     live.push(tmp.clone());
     Ok((tmp, f))
 }
@@ -210,6 +216,7 @@ fn stage(path: &Path, contents: &[u8]) -> std::io::Result<Staged> {
     if let Some(src) = link_source(path, contents) {
         let tmp = temporary_name(path);
         let mut live = LIVE.lock().unwrap_or_else(|e| e.into_inner());
+        let _ = std::fs::remove_file(&tmp);
         if std::fs::hard_link(&src, &tmp).is_ok() {
             live.push(tmp.clone());
             return Ok(Staged {
@@ -370,6 +377,8 @@ fn plan(d: &DirWrite) -> Result<Plan, String> {
 pub fn write_dirs(dirs: &[DirWrite]) -> Result<Vec<Written>, String> {
     let plans: Vec<Plan> = dirs.iter().map(plan).collect::<Result<_, _>>()?;
     let mut staged: Vec<Staged> = Vec::new();
+    // Target -> position in `staged`.
+    let mut index: std::collections::HashMap<PathBuf, usize> = std::collections::HashMap::new();
     let mut manifests: Vec<Staged> = Vec::new();
     let mut written = Vec::with_capacity(dirs.len());
     let fail = |staged: &[Staged], manifests: &[Staged], msg: String| {
@@ -416,7 +425,14 @@ pub fn write_dirs(dirs: &[DirWrite]) -> Result<Vec<Written>, String> {
                 continue;
             }
             match stage(path, &f.contents) {
-                Ok(s) => staged.push(s),
+                // A path given twice: the last contents win, in the one temporary.
+                Ok(s) => match index.get(&s.target) {
+                    Some(&i) => staged[i] = s,
+                    None => {
+                        index.insert(s.target.clone(), staged.len());
+                        staged.push(s);
+                    }
+                },
                 Err(e) => {
                     return Err(fail(
                         &staged,
@@ -590,6 +606,32 @@ mod tests {
             confined(root, Path::new("./a/b.yaml")).unwrap(),
             Path::new("/out/a/b.yaml")
         );
+    }
+
+    #[test]
+    fn a_leftover_temporary_linked_to_a_source_is_replaced_not_truncated() {
+        let dir = tempfile::tempdir().unwrap();
+        let src = dir.path().join("brick.png");
+        std::fs::write(&src, b"source texture").unwrap();
+        let out = dir.path().join("out");
+        std::fs::create_dir_all(&out).unwrap();
+        // What a killed earlier process with this pid left: a link to the source.
+        std::fs::hard_link(&src, temporary_name(&out.join("brick.png"))).unwrap();
+        let files = [
+            OutputFile {
+                path: "brick.png".into(),
+                contents: b"first".to_vec(),
+            },
+            // Given twice: the last contents win.
+            OutputFile {
+                path: "brick.png".into(),
+                contents: b"generated".to_vec(),
+            },
+        ];
+        write_all(&out, "DIR", &files).unwrap();
+        assert_eq!(std::fs::read(&src).unwrap(), b"source texture");
+        assert_eq!(std::fs::read(out.join("brick.png")).unwrap(), b"generated");
+        assert_eq!(std::fs::read_dir(&out).unwrap().count(), 1);
     }
 
     #[test]
