@@ -2,6 +2,7 @@
 //! 2 usage or I/O error.
 
 mod build;
+mod convert;
 mod escape;
 mod info;
 mod limit;
@@ -166,6 +167,9 @@ enum Command {
     /// walls, doors, lifts, the lanes of each graph, waypoints and their roles, models, a
     /// legend and a scale bar; `--diagnostics` draws the problems at their places.
     Render(render_cmd::RenderArgs),
+    /// Convert a map between traffic_editor's .building.yaml and rmf_site's .site.json
+    /// (formats from the file names); what the target cannot say is a warning (docs/sites.md).
+    Convert(convert::ConvertArgs),
     /// Check maps and report every problem found, without writing anything.
     Check {
         /// The .building.yaml (or legacy .project.yaml) files to read.
@@ -208,6 +212,7 @@ fn main() -> ExitCode {
         Command::Info(args) => info::run(&args),
         Command::Render(args) => render_cmd::run(&args),
         Command::Check { inputs, diag } => check(&inputs, &diag),
+        Command::Convert(args) => convert::run(&args),
     }
 }
 
@@ -216,6 +221,7 @@ fn main() -> ExitCode {
 pub(crate) fn code_name(code: &str) -> &'static str {
     mapc_frontend::CODES
         .iter()
+        .chain(mapc_frontend::site::codes::CODES)
         .find(|c| c.code == code)
         .map(|c| c.name)
         .or_else(|| mapc_ir::rule(code).map(|r| r.name))

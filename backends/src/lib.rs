@@ -11,6 +11,8 @@ mod nav;
 mod obj;
 pub mod render;
 pub mod sdf;
+mod site;
+mod building_yaml;
 mod texture;
 mod yaml;
 
@@ -22,7 +24,9 @@ pub use gltf::{
     CABIN_HEIGHT, DOOR_HEIGHT, DOOR_THICKNESS, GLTF_PBR_MAPS,
 };
 pub use mesh::{Material, Mesh, MeshKind};
-pub use nav::{nav_graph, nav_graphs};
+pub use building_yaml::building_yaml;
+pub use nav::{graph_file_stem, nav_graph, nav_graphs};
+pub use site::site_json;
 pub use obj::{
     level_obj_files, level_obj_files_from, level_texture_files, mesh_mtl, mesh_obj, model_material,
     wall_origin,
