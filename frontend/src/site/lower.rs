@@ -699,7 +699,7 @@ impl<'d, 'n, 's> SiteLower<'d, 'n, 's> {
             let site_d = cabin.get("depth").and_then(|w| w.as_f64()).unwrap_or(1.65);
             let (width, depth) = (site_d, site_w);
             let lr = pl.minus(pr);
-            let yaw: f64 = (-lr.x).atan2(lr.y);
+            let yaw: f64 = (-lr.x).atan2(lr.y) + 0.0;
             let mid = pl.plus(pr).scale(0.5);
             let mut pos = mid.minus(Vec2::new(width / 2.0, 0.0).rotate(yaw));
             let mut yaw = yaw;
