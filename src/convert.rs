@@ -43,7 +43,10 @@ pub(crate) fn run(args: &ConvertArgs) -> ExitCode {
         return ExitCode::from(2);
     };
     if args.output.is_dir() {
-        eprintln!("error: `{}` is a directory; OUTPUT must be a file", output::shown(&args.output));
+        eprintln!(
+            "error: `{}` is a directory; OUTPUT must be a file",
+            output::shown(&args.output)
+        );
         return ExitCode::from(2);
     }
     let mut checked = match load_and_check(&args.input, &args.diag.lints) {

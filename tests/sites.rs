@@ -91,7 +91,9 @@ fn meaning(doc: &Value) -> Vec<(String, BTreeSet<Lane>, BTreeSet<Place>)> {
             .iter()
             .map(|lane| {
                 let p = &lane[2];
-                let speed = p["speed_limit"].as_f64().map_or(0, |s| (s * 1000.0).round() as i64);
+                let speed = p["speed_limit"]
+                    .as_f64()
+                    .map_or(0, |s| (s * 1000.0).round() as i64);
                 (
                     pos(&lane[0]),
                     pos(&lane[1]),
@@ -159,17 +161,35 @@ fn demo_maps_convert_both_ways() {
     for (name, map) in &maps {
         let site_path = tmp.path().join(format!("{name}.site.json"));
         let back = tmp.path().join(format!("{name}.building.yaml"));
-        ok(&["convert", map.to_str().unwrap(), site_path.to_str().unwrap(), "-q"]);
-        ok(&["convert", site_path.to_str().unwrap(), back.to_str().unwrap(), "-q"]);
+        ok(&[
+            "convert",
+            map.to_str().unwrap(),
+            site_path.to_str().unwrap(),
+            "-q",
+        ]);
+        ok(&[
+            "convert",
+            site_path.to_str().unwrap(),
+            back.to_str().unwrap(),
+            "-q",
+        ]);
 
         let site = Site::from_bytes_json(&std::fs::read(&site_path).unwrap())
             .unwrap_or_else(|e| panic!("{name}: rmf_site_format cannot read it: {e}"));
         let parsed = mapc_frontend::load(map).unwrap();
         let b = parsed.building.unwrap();
-        let levels: BTreeSet<String> = site.levels.values().map(|l| l.properties.name.0.clone()).collect();
+        let levels: BTreeSet<String> = site
+            .levels
+            .values()
+            .map(|l| l.properties.name.0.clone())
+            .collect();
         let ours: BTreeSet<String> = b.levels.iter().map(|(_, l)| l.name.clone()).collect();
         assert_eq!(levels, ours, "{name}: levels");
-        let lifts: BTreeSet<String> = site.lifts.values().map(|l| l.properties.name.0.clone()).collect();
+        let lifts: BTreeSet<String> = site
+            .lifts
+            .values()
+            .map(|l| l.properties.name.0.clone())
+            .collect();
         let ours: BTreeSet<String> = b.lifts.iter().map(|(_, l)| l.name.clone()).collect();
         assert_eq!(lifts, ours, "{name}: lifts");
         let graphs: BTreeSet<String> = site
@@ -180,7 +200,10 @@ fn demo_maps_convert_both_ways() {
             .map(|g| g.name.0.clone())
             .collect();
         let ours: BTreeSet<String> = b.graph_indices().iter().map(|g| g.to_string()).collect();
-        assert!(ours.is_subset(&graphs), "{name}: graphs {graphs:?} vs {ours:?}");
+        assert!(
+            ours.is_subset(&graphs),
+            "{name}: graphs {graphs:?} vs {ours:?}"
+        );
 
         let original = nav_dir(map, &tmp.path().join(format!("{name}_nav_a")));
         let from_site = nav_dir(&site_path, &tmp.path().join(format!("{name}_nav_b")));
@@ -190,11 +213,18 @@ fn demo_maps_convert_both_ways() {
         let round: Vec<(String, String)> = round
             .into_iter()
             .map(|(f, t)| {
-                let t = if had_offset { t } else { t.replace("\noffset: [0.0, 0.0]", "") };
+                let t = if had_offset {
+                    t
+                } else {
+                    t.replace("\noffset: [0.0, 0.0]", "")
+                };
                 (f, t)
             })
             .collect();
-        assert_eq!(original, round, "{name}: nav after building -> site -> building");
+        assert_eq!(
+            original, round,
+            "{name}: nav after building -> site -> building"
+        );
 
         if site.lifts.is_empty() {
             assert_rmf_site_nav_equal(&site, &original, name);
@@ -217,7 +247,10 @@ fn sites_written_by_rmf_site() {
         // rmf_site refuses wgs84 maps and telescope lift doors (the reasons mapc converts
         // itself); those are skipped here.
         let legacy = BuildingMap::from_bytes(&std::fs::read(map).unwrap());
-        let Ok(site) = legacy.map_err(|e| e.to_string()).and_then(|l| l.to_site().map_err(|e| format!("{e:?}"))) else {
+        let Ok(site) = legacy
+            .map_err(|e| e.to_string())
+            .and_then(|l| l.to_site().map_err(|e| format!("{e:?}")))
+        else {
             println!("{name}: rmf_site_format cannot import it, skipped");
             continue;
         };
@@ -238,7 +271,10 @@ fn sites_written_by_rmf_site() {
         ]);
         let text = std::fs::read_to_string(&world).unwrap();
         let level_model = format!("{}_", site.properties.name.0);
-        assert!(text.contains("<world") && text.contains(&level_model), "{name}");
+        assert!(
+            text.contains("<world") && text.contains(&level_model),
+            "{name}"
+        );
         sdf_check(&path, &world, &models);
         read += 1;
     }
@@ -257,7 +293,11 @@ fn sdf_check(map: &Path, world: &Path, models: &Path) {
         .collect();
     let mut files = vec![world.to_path_buf()];
     files.extend(levels.iter().map(|l| models.join(l).join("model.sdf")));
-    let Ok(out) = Command::new(&tool).env("SDF_PATH", models).args(&files).output() else {
+    let Ok(out) = Command::new(&tool)
+        .env("SDF_PATH", models)
+        .args(&files)
+        .output()
+    else {
         println!("skipped: sdf-check not found");
         return;
     };
@@ -274,7 +314,12 @@ fn sdf_check(map: &Path, world: &Path, models: &Path) {
                 .is_some_and(|(_, m)| !levels.iter().any(|lv| *lv == m.trim_end_matches(']')))
         })
         .collect();
-    assert!(errors.is_empty(), "{}:\n{}", map.display(), errors.join("\n"));
+    assert!(
+        errors.is_empty(),
+        "{}:\n{}",
+        map.display(),
+        errors.join("\n")
+    );
 }
 
 fn fixture() -> PathBuf {
@@ -294,7 +339,10 @@ fn fixture_nav_graph_values() {
     let doc = yaml_value(&nav[0].1);
     // Lift: reference anchors (6, ±1) are the cabin front corners; the legacy cabin is
     // 1 m (site depth) by 2 m (site width), so the centre is 0.5 m behind them.
-    assert_eq!(doc["lifts"]["lift1"]["position"], serde_json::json!([5.5, 0.0, 0.0]));
+    assert_eq!(
+        doc["lifts"]["lift1"]["position"],
+        serde_json::json!([5.5, 0.0, 0.0])
+    );
     assert_eq!(doc["lifts"]["lift1"]["dims"], serde_json::json!([1.0, 2.0]));
     let l1 = &doc["levels"]["L1"];
     let cabin: Vec<&Value> = l1["vertices"]
@@ -304,31 +352,67 @@ fn fixture_nav_graph_values() {
         .filter(|v| v[2]["lift"] == "lift1")
         .collect();
     assert_eq!(cabin.len(), 1);
-    assert_eq!((cabin[0][0].as_f64(), cabin[0][1].as_f64()), (Some(5.5), Some(0.0)));
+    assert_eq!(
+        (cabin[0][0].as_f64(), cabin[0][1].as_f64()),
+        (Some(5.5), Some(0.0))
+    );
     let lanes = l1["lanes"].as_array().unwrap();
     assert_eq!(lanes.len(), 6, "three two-way lanes on L1");
-    assert_eq!(lanes.iter().filter(|l| l[2]["door_name"] == "d1").count(), 2);
-    assert_eq!(lanes.iter().filter(|l| l[2]["dock_name"] == "dock1").count(), 1);
+    assert_eq!(
+        lanes.iter().filter(|l| l[2]["door_name"] == "d1").count(),
+        2
+    );
+    assert_eq!(
+        lanes
+            .iter()
+            .filter(|l| l[2]["dock_name"] == "dock1")
+            .count(),
+        1
+    );
     let l2 = doc["levels"]["L2"]["lanes"].as_array().unwrap();
-    let one_way: Vec<&Value> = l2.iter().filter(|l| l[2]["is_bidirectional"] == false).collect();
+    let one_way: Vec<&Value> = l2
+        .iter()
+        .filter(|l| l[2]["is_bidirectional"] == false)
+        .collect();
     assert_eq!(one_way.len(), 1);
     assert_eq!(one_way[0][2]["speed_limit"], 0.5);
 
     // Fiducials in metres: drawing at (1, 2), 10 px/m: pixel (10, 20) is (2, 4).
     let parsed = mapc_frontend::load(&fixture()).unwrap();
     let b = parsed.building.unwrap();
-    let f: Vec<(f64, f64)> = b.fiducials.iter().map(|(_, f)| (f.pos.x, f.pos.y)).collect();
+    let f: Vec<(f64, f64)> = b
+        .fiducials
+        .iter()
+        .map(|(_, f)| (f.pos.x, f.pos.y))
+        .collect();
     assert_eq!(f, vec![(2.0, 4.0), (4.0, 4.0)]);
-    assert_eq!(b.levels.iter().next().unwrap().1.drawing.as_deref(), Some("L1_plan.png"));
+    assert_eq!(
+        b.levels.iter().next().unwrap().1.drawing.as_deref(),
+        Some("L1_plan.png")
+    );
     let lift = b.lifts.iter().next().unwrap().1;
-    assert_eq!(lift.level_doors.len(), 2, "the cabin door visits both levels");
+    assert_eq!(
+        lift.level_doors.len(),
+        2,
+        "the cabin door visits both levels"
+    );
     assert_eq!(lift.doors[0].pos.x, -0.5);
 
     // Converted back and forth, the nav graph stays the same.
     let bpath = tmp.path().join("x.building.yaml");
     let spath = tmp.path().join("x.site.json");
-    ok(&["convert", fixture().to_str().unwrap(), bpath.to_str().unwrap(), "-q"]);
-    ok(&["convert", bpath.to_str().unwrap(), spath.to_str().unwrap(), "-q"]);
+    ok(&[
+        "convert",
+        fixture().to_str().unwrap(),
+        bpath.to_str().unwrap(),
+        "-q",
+    ]);
+    ok(&[
+        "convert",
+        bpath.to_str().unwrap(),
+        spath.to_str().unwrap(),
+        "-q",
+    ]);
     Site::from_bytes_json(&std::fs::read(&spath).unwrap()).expect("rmf_site_format reads it");
     let again = nav_dir(&spath, &tmp.path().join("again"));
     let b_nav = nav_dir(&bpath, &tmp.path().join("b"));
@@ -366,12 +450,18 @@ fn line_col(text: &str, needle: &str) -> (u64, u64) {
 fn site_errors_are_located() {
     let good = std::fs::read_to_string(fixture()).unwrap();
     // A lane pointing at a missing anchor: E0121 on that anchor id of that lane.
-    let bad = good.replace(r#""52": {"anchors": [21, 41]"#, r#""52": {"anchors": [21, 999]"#);
+    let bad = good.replace(
+        r#""52": {"anchors": [21, 41]"#,
+        r#""52": {"anchors": [21, 999]"#,
+    );
     let d = diagnostics(&bad);
     let (line, col) = line_col(&bad, "999");
     assert!(d.contains(&("E0121".into(), line, col)), "{d:?}");
     // A lane between levels.
-    let bad = good.replace(r#""51": {"anchors": [10, 11]"#, r#""51": {"anchors": [10, 21]"#);
+    let bad = good.replace(
+        r#""51": {"anchors": [10, 11]"#,
+        r#""51": {"anchors": [10, 21]"#,
+    );
     let d = diagnostics(&bad);
     let (line, col) = line_col(&bad, r#""51": {"anchors": [10, 21]"#);
     assert!(d.contains(&("E0122".into(), line, col)), "{d:?}");
@@ -381,7 +471,10 @@ fn site_errors_are_located() {
     let (line, col) = line_col(&bad, "77, \"tags\"");
     assert!(d.contains(&("E0123".into(), line, col)), "{d:?}");
     // A cabin anchor outside the cabin (1 m x 2 m).
-    let bad = good.replace(r#""41": {"Translate2D": [0.0, 0.0]}"#, r#""41": {"Translate2D": [3.0, 0.0]}"#);
+    let bad = good.replace(
+        r#""41": {"Translate2D": [0.0, 0.0]}"#,
+        r#""41": {"Translate2D": [3.0, 0.0]}"#,
+    );
     let d = diagnostics(&bad);
     assert!(d.iter().any(|x| x.0 == "W0120"), "{d:?}");
     // A newer major format version is refused.
@@ -390,7 +483,10 @@ fn site_errors_are_located() {
     let (line, col) = line_col(&bad, r#""1.0""#);
     assert_eq!(d, vec![("E0120".into(), line, col)]);
     // An unknown field is reported, not dropped silently.
-    let bad = good.replace(r#""name": "L2", "elevation": 4.0"#, r#""name": "L2", "elevaton": 4.0"#);
+    let bad = good.replace(
+        r#""name": "L2", "elevation": 4.0"#,
+        r#""name": "L2", "elevaton": 4.0"#,
+    );
     let d = diagnostics(&bad);
     let (line, col) = line_col(&bad, "\"elevaton\"");
     assert!(d.contains(&("W0121".into(), line, col)), "{d:?}");
@@ -435,7 +531,10 @@ fn cmake_builds_a_site() {
         &format!("-DMAPC_EXECUTABLE={}", env!("CARGO_BIN_EXE_mapc")),
     ]);
     let log = run(&["--build", build.to_str().unwrap()]);
-    assert!(log.contains("mapc: generating map lift_two_levels"), "{log}");
+    assert!(
+        log.contains("mapc: generating map lift_two_levels"),
+        "{log}"
+    );
     let out = std::fs::read_dir(&build)
         .unwrap()
         .map(|e| e.unwrap().path())
@@ -447,10 +546,14 @@ fn cmake_builds_a_site() {
         });
     let found = walk(&build);
     assert!(
-        found.iter().any(|p| p.ends_with("lift_two_levels/nav_graphs/fleet_a.yaml")),
+        found
+            .iter()
+            .any(|p| p.ends_with("lift_two_levels/nav_graphs/fleet_a.yaml")),
         "{out:?} {found:?}"
     );
-    assert!(found.iter().any(|p| p.ends_with("lift_two_levels/lift_two_levels.glb")));
+    assert!(found
+        .iter()
+        .any(|p| p.ends_with("lift_two_levels/lift_two_levels.glb")));
     // The depfile names the site, so a second build regenerates nothing.
     let log = run(&["--build", build.to_str().unwrap()]);
     assert!(!log.contains("mapc: generating map"), "{log}");
@@ -467,4 +570,30 @@ fn walk(dir: &Path) -> Vec<PathBuf> {
         }
     }
     out
+}
+
+/// A site as the simulation's map: the clinic fixture converted to a site runs the same
+/// scenario to the same outcome as the `.building.yaml`.
+#[test]
+fn sim_on_a_site() {
+    let tmp = tempfile::tempdir().unwrap();
+    let site = tmp.path().join("two_level_clinic.site.json");
+    let map = format!("{ROOT}/fixtures/two_level_clinic.building.yaml");
+    let scenario = format!("{ROOT}/fixtures/two_level_clinic.scenario.yaml");
+    ok(&["convert", &map, site.to_str().unwrap(), "-q"]);
+    let outcome = |map: &str| -> Vec<String> {
+        let r = mapc(&["sim", &scenario, "--map", map, "--until", "30min"]);
+        assert_eq!(r.code, 0, "{}", String::from_utf8_lossy(&r.stderr));
+        let text =
+            String::from_utf8_lossy(&r.stdout).into_owned() + &String::from_utf8_lossy(&r.stderr);
+        text.lines()
+            .filter(|l| {
+                l.contains("simulated") || l.contains("bottleneck") || l.starts_with("tasks")
+            })
+            .map(str::to_string)
+            .collect()
+    };
+    let a = outcome(&map);
+    assert!(a.iter().any(|l| l.contains("simulated")), "{a:?}");
+    assert_eq!(a, outcome(site.to_str().unwrap()));
 }

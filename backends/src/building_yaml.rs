@@ -20,7 +20,11 @@ fn param(v: &ParamValue) -> Yaml {
 }
 
 fn params(p: &Params) -> Yaml {
-    Yaml::Map(p.iter().map(|p| (p.name.clone(), param(&p.value))).collect())
+    Yaml::Map(
+        p.iter()
+            .map(|p| (p.name.clone(), param(&p.value)))
+            .collect(),
+    )
 }
 
 fn flow(items: Vec<Yaml>) -> Yaml {
@@ -45,7 +49,11 @@ pub fn building_yaml(b: &Building) -> (String, Vec<Diagnostic>) {
         .filter(|p| {
             !matches!(
                 p.name.as_str(),
-                "offset_x" | "offset_y" | "suggested_offset_x" | "suggested_offset_y" | "generate_crs"
+                "offset_x"
+                    | "offset_y"
+                    | "suggested_offset_x"
+                    | "suggested_offset_y"
+                    | "generate_crs"
             )
         })
         .map(|p| (p.name.clone(), param(&p.value)))
@@ -66,7 +74,10 @@ pub fn building_yaml(b: &Building) -> (String, Vec<Diagnostic>) {
         graphs.push((
             g.index.to_string(),
             Yaml::Map(vec![
-                ("default_lane_width".into(), Yaml::Float(g.default_lane_width)),
+                (
+                    "default_lane_width".into(),
+                    Yaml::Float(g.default_lane_width),
+                ),
                 ("name".into(), Yaml::str(&g.name)),
             ]),
         ));
@@ -118,7 +129,10 @@ pub fn building_yaml(b: &Building) -> (String, Vec<Diagnostic>) {
             .map(|&h| {
                 let lane = &b.lanes[h];
                 let mut p = vec![
-                    ("bidirectional".to_string(), param(&ParamValue::Bool(lane.bidirectional))),
+                    (
+                        "bidirectional".to_string(),
+                        param(&ParamValue::Bool(lane.bidirectional)),
+                    ),
                     ("graph_idx".into(), param(&ParamValue::Int(lane.graph))),
                     ("orientation".into(), p_str(lane.orientation.as_str())),
                 ];
@@ -143,7 +157,14 @@ pub fn building_yaml(b: &Building) -> (String, Vec<Diagnostic>) {
             .iter()
             .map(|&h| {
                 let w = &b.walls[h];
-                edge(w.start, w.end, w.params.iter().map(|p| (p.name.clone(), param(&p.value))).collect())
+                edge(
+                    w.start,
+                    w.end,
+                    w.params
+                        .iter()
+                        .map(|p| (p.name.clone(), param(&p.value)))
+                        .collect(),
+                )
             })
             .collect();
         l.push(("walls".into(), Yaml::Seq(walls)));
@@ -158,18 +179,37 @@ pub fn building_yaml(b: &Building) -> (String, Vec<Diagnostic>) {
                     .filter(|p| {
                         !matches!(
                             p.name.as_str(),
-                            "name" | "type" | "motion_axis" | "motion_degrees" | "motion_direction" | "right_left_ratio" | "plugin"
+                            "name"
+                                | "type"
+                                | "motion_axis"
+                                | "motion_degrees"
+                                | "motion_direction"
+                                | "right_left_ratio"
+                                | "plugin"
                         )
                     })
                     .map(|p| (p.name.clone(), param(&p.value)))
                     .collect();
                 p.push(("name".into(), p_str(&d.name)));
                 p.push(("type".into(), p_str(d.kind.as_str())));
-                let axis = if d.motion_axis == MotionAxis::Start { "start" } else { "end" };
+                let axis = if d.motion_axis == MotionAxis::Start {
+                    "start"
+                } else {
+                    "end"
+                };
                 p.push(("motion_axis".into(), p_str(axis)));
-                p.push(("motion_degrees".into(), param(&ParamValue::Double(d.motion_degrees))));
-                p.push(("motion_direction".into(), param(&ParamValue::Int(d.motion_direction))));
-                p.push(("right_left_ratio".into(), param(&ParamValue::Double(d.right_left_ratio))));
+                p.push((
+                    "motion_degrees".into(),
+                    param(&ParamValue::Double(d.motion_degrees)),
+                ));
+                p.push((
+                    "motion_direction".into(),
+                    param(&ParamValue::Int(d.motion_direction)),
+                ));
+                p.push((
+                    "right_left_ratio".into(),
+                    param(&ParamValue::Double(d.right_left_ratio)),
+                ));
                 if !d.plugin {
                     p.push(("plugin".into(), p_str("none")));
                 }
@@ -186,7 +226,12 @@ pub fn building_yaml(b: &Building) -> (String, Vec<Diagnostic>) {
                             ("parameters".into(), params(&f.params)),
                             (
                                 "vertices".into(),
-                                flow(f.vertices.iter().map(|v| Yaml::Int(index[v] as i64)).collect()),
+                                flow(
+                                    f.vertices
+                                        .iter()
+                                        .map(|v| Yaml::Int(index[v] as i64))
+                                        .collect(),
+                                ),
                             ),
                         ])
                     })
@@ -221,7 +266,11 @@ pub fn building_yaml(b: &Building) -> (String, Vec<Diagnostic>) {
                 .iter()
                 .map(|&h| {
                     let f = &b.fiducials[h];
-                    flow(vec![Yaml::Float(f.pos.x), Yaml::Float(f.pos.y), Yaml::str(&f.name)])
+                    flow(vec![
+                        Yaml::Float(f.pos.x),
+                        Yaml::Float(f.pos.y),
+                        Yaml::str(&f.name),
+                    ])
                 })
                 .collect();
             l.push(("fiducials".into(), Yaml::Seq(f)));
@@ -259,7 +308,10 @@ pub fn building_yaml(b: &Building) -> (String, Vec<Diagnostic>) {
                     d.name.clone(),
                     Yaml::Map(vec![
                         ("door_type".into(), Yaml::Int(d.door_type)),
-                        ("motion_axis_orientation".into(), Yaml::Float(d.motion_axis_orientation)),
+                        (
+                            "motion_axis_orientation".into(),
+                            Yaml::Float(d.motion_axis_orientation),
+                        ),
                         ("width".into(), Yaml::Float(d.width)),
                         ("x".into(), Yaml::Float(d.pos.x)),
                         ("y".into(), Yaml::Float(d.pos.y)),

@@ -99,11 +99,23 @@ const VERTEX_PARAMS: &[&str] = &[
 ];
 
 impl Lower<'_> {
-    pub(crate) fn err(&mut self, code: &'static str, span: Span, msg: impl Into<String>, help: &str) {
+    pub(crate) fn err(
+        &mut self,
+        code: &'static str,
+        span: Span,
+        msg: impl Into<String>,
+        help: &str,
+    ) {
         self.diags
             .push(Diagnostic::error(code, span, msg).with_help(help));
     }
-    pub(crate) fn warn(&mut self, code: &'static str, span: Span, msg: impl Into<String>, help: &str) {
+    pub(crate) fn warn(
+        &mut self,
+        code: &'static str,
+        span: Span,
+        msg: impl Into<String>,
+        help: &str,
+    ) {
         self.diags
             .push(Diagnostic::warning(code, span, msg).with_help(help));
     }

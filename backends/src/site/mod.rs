@@ -269,7 +269,13 @@ pub fn site_json(b: &Building) -> (String, Vec<Diagnostic>) {
         let mut ext_doors = Map::new();
         for &dh in &level.doors {
             let d = &b.doors[dh];
-            let side = |a: MotionAxis| if a == MotionAxis::Start { "Left" } else { "Right" };
+            let side = |a: MotionAxis| {
+                if a == MotionAxis::Start {
+                    "Left"
+                } else {
+                    "Right"
+                }
+            };
             let angle = json!({"deg": d.motion_degrees});
             let swing = if d.motion_direction < 0 {
                 json!({ "Backward": angle })
@@ -364,7 +370,12 @@ pub fn site_json(b: &Building) -> (String, Vec<Diagnostic>) {
             "properties": {"name": level.name, "elevation": level.elevation},
             "anchors": anchors,
         });
-        for (k, m) in [("doors", doors), ("walls", walls), ("floors", floors), ("drawings", drawings)] {
+        for (k, m) in [
+            ("doors", doors),
+            ("walls", walls),
+            ("floors", floors),
+            ("drawings", drawings),
+        ] {
             if !m.is_empty() {
                 o[k] = Value::Object(m);
             }
@@ -437,7 +448,8 @@ pub fn site_json(b: &Building) -> (String, Vec<Diagnostic>) {
                 );
                 continue;
             }
-            cabin[face] = json!({"door": did, "width": door.width, "shifted": shifted, "custom_gap": gap});
+            cabin[face] =
+                json!({"door": did, "width": door.width, "shifted": shifted, "custom_gap": gap});
             let kind = match door.door_type {
                 2 | 4 => json!({"DoubleSliding": {"left_right_ratio": 1.0}}),
                 _ => json!({"SingleSliding": {"towards": "Left"}}),
@@ -463,8 +475,14 @@ pub fn site_json(b: &Building) -> (String, Vec<Diagnostic>) {
             let a1 = ids.next();
             let half = door.width / 2.0;
             let along = Vec2::new(1.0, 0.0).rotate(door.motion_axis_orientation);
-            cabin_anchor_map.insert(key(a0), json!({"Translate2D": pt(door.pos.plus(along.scale(half)))}));
-            cabin_anchor_map.insert(key(a1), json!({"Translate2D": pt(door.pos.minus(along.scale(half)))}));
+            cabin_anchor_map.insert(
+                key(a0),
+                json!({"Translate2D": pt(door.pos.plus(along.scale(half)))}),
+            );
+            cabin_anchor_map.insert(
+                key(a1),
+                json!({"Translate2D": pt(door.pos.minus(along.scale(half)))}),
+            );
             cabin_doors.insert(
                 key(did),
                 json!({"kind": kind, "reference_anchors": [a0, a1], "visits": visits}),
@@ -586,7 +604,10 @@ pub fn site_json(b: &Building) -> (String, Vec<Diagnostic>) {
         if r.is_holding_point {
             tags.push(json!("HoldingPoint"));
         }
-        for n in [&r.pickup_dispenser, &r.dropoff_ingestor].into_iter().flatten() {
+        for n in [&r.pickup_dispenser, &r.dropoff_ingestor]
+            .into_iter()
+            .flatten()
+        {
             tags.push(json!({"Workcell": {
                 "name": n,
                 "source": {"Local": ""},
@@ -596,7 +617,9 @@ pub fn site_json(b: &Building) -> (String, Vec<Diagnostic>) {
         if v.name.is_empty() && tags.is_empty() {
             continue;
         }
-        let Some(&a) = anchor_of.get(&vh) else { continue };
+        let Some(&a) = anchor_of.get(&vh) else {
+            continue;
+        };
         // One location per anchor (a cabin anchor is shared by the levels).
         if !seen.insert(a) {
             continue;
@@ -708,8 +731,14 @@ fn geographic_anchor(b: &Building) -> Option<[f64; 2]> {
     }
     // Least squares raw = A * (pos - c) + r0, per output coordinate.
     let n = pts.len() as f64;
-    let c = pts.iter().fold(Vec2::default(), |s, (p, _)| s.plus(*p)).scale(1.0 / n);
-    let r0 = pts.iter().fold(Vec2::default(), |s, (_, r)| s.plus(*r)).scale(1.0 / n);
+    let c = pts
+        .iter()
+        .fold(Vec2::default(), |s, (p, _)| s.plus(*p))
+        .scale(1.0 / n);
+    let r0 = pts
+        .iter()
+        .fold(Vec2::default(), |s, (_, r)| s.plus(*r))
+        .scale(1.0 / n);
     let (mut sxx, mut sxy, mut syy) = (0.0, 0.0, 0.0);
     let (mut bx, mut by) = ([0.0; 2], [0.0; 2]);
     for (p, r) in &pts {
@@ -727,7 +756,12 @@ fn geographic_anchor(b: &Building) -> Option<[f64; 2]> {
     if det.abs() < 1e-12 {
         return None;
     }
-    let solve = |v: [f64; 2]| [(syy * v[0] - sxy * v[1]) / det, (sxx * v[1] - sxy * v[0]) / det];
+    let solve = |v: [f64; 2]| {
+        [
+            (syy * v[0] - sxy * v[1]) / det,
+            (sxx * v[1] - sxy * v[0]) / det,
+        ]
+    };
     let (ax, ay) = (solve(bx), solve(by));
     let d = b.offset.minus(c);
     let lon = r0.x + ax[0] * d.x + ax[1] * d.y;

@@ -124,7 +124,12 @@ impl<'d, 'n, 's> SiteLower<'d, 'n, 's> {
         }
     }
 
-    fn entries<'a, 'b>(&mut self, parent: &'a Node<'b>, key: &str, what: &str) -> Vec<(u32, &'a Node<'b>, Span)> {
+    fn entries<'a, 'b>(
+        &mut self,
+        parent: &'a Node<'b>,
+        key: &str,
+        what: &str,
+    ) -> Vec<(u32, &'a Node<'b>, Span)> {
         let Some(n) = parent.get(key) else {
             return Vec::new();
         };
@@ -135,7 +140,9 @@ impl<'d, 'n, 's> SiteLower<'d, 'n, 's> {
         for (k, v) in m {
             match id_of(k) {
                 Some(id) => out.push((id, v, k.span)),
-                None => self.l.wrong_type(k, "a site id", "an unsigned integer in quotes"),
+                None => self
+                    .l
+                    .wrong_type(k, "a site id", "an unsigned integer in quotes"),
             }
         }
         // rmf_site keeps every map as a BTreeMap<u32, _>: numeric id order.
@@ -177,7 +184,10 @@ impl<'d, 'n, 's> SiteLower<'d, 'n, 's> {
 
     fn name(&mut self, n: &Node, what: &str) -> String {
         match n.get("name") {
-            Some(v) => self.l.string(v, format_args!("the name of {what}")).unwrap_or_default(),
+            Some(v) => self
+                .l
+                .string(v, format_args!("the name of {what}"))
+                .unwrap_or_default(),
             None => String::new(),
         }
     }
@@ -201,13 +211,22 @@ impl<'d, 'n, 's> SiteLower<'d, 'n, 's> {
             Some(("CategorizedTranslate2D", Some(v))) => match v.get("General") {
                 Some(g) => self.point(g, "an anchor"),
                 None => {
-                    self.l.err("E0102", v.span, "categorized anchor has no `General` point", "add `General: [x, y]`");
+                    self.l.err(
+                        "E0102",
+                        v.span,
+                        "categorized anchor has no `General` point",
+                        "add `General: [x, y]`",
+                    );
                     None
                 }
             },
             Some(("Pose3D", Some(v))) => v.get("trans").and_then(|t| self.point(t, "an anchor")),
             _ => {
-                self.l.wrong_type(n, "an anchor", "Translate2D, CategorizedTranslate2D or Pose3D");
+                self.l.wrong_type(
+                    n,
+                    "an anchor",
+                    "Translate2D, CategorizedTranslate2D or Pose3D",
+                );
                 None
             }
         }
@@ -238,9 +257,17 @@ impl<'d, 'n, 's> SiteLower<'d, 'n, 's> {
         let props = root.get("properties");
         let name = props.map(|p| self.name(p, "the site")).unwrap_or_default();
         if props.is_none() {
-            self.l.err("E0102", root.span, "the site has no `properties`", "add `properties: {name: ...}`");
+            self.l.err(
+                "E0102",
+                root.span,
+                "the site has no `properties`",
+                "add `properties: {name: ...}`",
+            );
         }
-        let coordinate_system = match ext.and_then(|e| e.get("coordinate_system")).and_then(|c| c.key_text()) {
+        let coordinate_system = match ext
+            .and_then(|e| e.get("coordinate_system"))
+            .and_then(|c| c.key_text())
+        {
             Some("reference_image") => CoordinateSystem::ReferenceImage,
             Some("wgs84") => CoordinateSystem::Wgs84,
             Some("web_mercator") => CoordinateSystem::WebMercator,
@@ -254,20 +281,30 @@ impl<'d, 'n, 's> SiteLower<'d, 'n, 's> {
         b.format = SourceFormat::Site;
         b.spans = BuildingSpans {
             root: root.span,
-            name: props.and_then(|p| p.get("name")).map_or(root.span, |n| n.span),
+            name: props
+                .and_then(|p| p.get("name"))
+                .map_or(root.span, |n| n.span),
             coordinate_system: root.span,
-            parameters: ext.and_then(|e| e.get("parameters")).map_or(root.span, |n| n.span),
+            parameters: ext
+                .and_then(|e| e.get("parameters"))
+                .map_or(root.span, |n| n.span),
         };
         if let Some(e) = ext {
             if let Some(o) = e.get("offset") {
                 b.offset = self.point(o, "the mapc offset").unwrap_or_default();
             }
-            b.crs_name = e.get("crs_name").and_then(|c| c.key_text()).map(str::to_string);
+            b.crs_name = e
+                .get("crs_name")
+                .and_then(|c| c.key_text())
+                .map(str::to_string);
         }
         let shift = b.offset;
 
         for (id, v, _) in self.entries(root, "textures", "the site") {
-            let src = v.get("texture").and_then(|t| t.get("source")).and_then(variant);
+            let src = v
+                .get("texture")
+                .and_then(|t| t.get("source"))
+                .and_then(variant);
             if let Some((_, Some(path))) = src {
                 if let Some(p) = path.key_text() {
                     self.textures.insert(id, stem(p));
@@ -289,7 +326,12 @@ impl<'d, 'n, 's> SiteLower<'d, 'n, 's> {
 
         let level_entries = self.entries(root, "levels", "the site");
         if level_entries.is_empty() {
-            self.l.err("E0110", root.span, "the site has no levels", "add a level in rmf_site");
+            self.l.err(
+                "E0110",
+                root.span,
+                "the site has no levels",
+                "add a level in rmf_site",
+            );
             return None;
         }
         let ext_vertices = ext.and_then(|e| e.get("vertices"));
@@ -301,7 +343,11 @@ impl<'d, 'n, 's> SiteLower<'d, 'n, 's> {
         self.graphs(root, &mut b);
         self.lifts(root, &mut b, shift, ext);
         if let Some(g) = root.get("navigation").and_then(|n| n.get("guided")) {
-            self.unknown(g, &["graphs", "ranking", "lanes", "locations", "mutex_groups"], "`navigation.guided`");
+            self.unknown(
+                g,
+                &["graphs", "ranking", "lanes", "locations", "mutex_groups"],
+                "`navigation.guided`",
+            );
             let ext_lanes = ext.and_then(|e| e.get("lanes"));
             for (id, v, span) in self.entries(g, "lanes", "`navigation.guided`") {
                 self.lane(&mut b, id, v, span, ext_lanes);
@@ -320,7 +366,12 @@ impl<'d, 'n, 's> SiteLower<'d, 'n, 's> {
 
     fn format_version(&mut self, root: &Node) -> bool {
         let Some(v) = root.get("format_version") else {
-            self.l.err("E0120", root.span, "the site has no `format_version`", "rmf_site writes `\"format_version\": \"0.1\"`");
+            self.l.err(
+                "E0120",
+                root.span,
+                "the site has no `format_version`",
+                "rmf_site writes `\"format_version\": \"0.1\"`",
+            );
             return false;
         };
         let major = v
@@ -339,13 +390,26 @@ impl<'d, 'n, 's> SiteLower<'d, 'n, 's> {
                 false
             }
             None => {
-                self.l.err("E0120", v.span, "`format_version` must be \"MAJOR.MINOR\"", "write `\"format_version\": \"0.1\"`");
+                self.l.err(
+                    "E0120",
+                    v.span,
+                    "`format_version` must be \"MAJOR.MINOR\"",
+                    "write `\"format_version\": \"0.1\"`",
+                );
                 false
             }
         }
     }
 
-    fn level(&mut self, b: &mut Building, id: u32, node: &Node, span: Span, shift: Vec2, ext_vertices: Option<&Node>) {
+    fn level(
+        &mut self,
+        b: &mut Building,
+        id: u32,
+        node: &Node,
+        span: Span,
+        shift: Vec2,
+        ext_vertices: Option<&Node>,
+    ) {
         if self.l.map(node, "a level").is_none() {
             return;
         }
@@ -357,7 +421,16 @@ impl<'d, 'n, 's> SiteLower<'d, 'n, 's> {
             .and_then(|e| self.l.f64(e, "the level elevation"))
             .unwrap_or(0.0);
         if let Some(p) = props {
-            self.unknown(p, &["name", "elevation", "global_floor_visibility", "global_drawing_visibility"], "level properties");
+            self.unknown(
+                p,
+                &[
+                    "name",
+                    "elevation",
+                    "global_floor_visibility",
+                    "global_drawing_visibility",
+                ],
+                "level properties",
+            );
         }
         self.unused(node, UNUSED_LEVEL, &format!("level `{name}`"));
         let lh = b.levels.append(
@@ -371,7 +444,9 @@ impl<'d, 'n, 's> SiteLower<'d, 'n, 's> {
         self.levels.insert(id, lh);
 
         for (aid, v, aspan) in self.entries(node, "anchors", "a level") {
-            let Some(p) = self.anchor_pos(v) else { continue };
+            let Some(p) = self.anchor_pos(v) else {
+                continue;
+            };
             let mut params = Params::default();
             if let Some(ps) = ext_vertices.and_then(|e| e.get(&aid.to_string())) {
                 params = self.l.params(ps, "a vertex");
@@ -417,7 +492,9 @@ impl<'d, 'n, 's> SiteLower<'d, 'n, 's> {
                 }
             }
             for (_, f, fspan) in self.entries(d, "fiducials", "a drawing") {
-                let Some(aid) = f.get("anchor").and_then(ref_of) else { continue };
+                let Some(aid) = f.get("anchor").and_then(ref_of) else {
+                    continue;
+                };
                 let Some(px) = danchors.get(&aid) else {
                     self.dangling(fspan, "a drawing fiducial", aid);
                     continue;
@@ -442,23 +519,43 @@ impl<'d, 'n, 's> SiteLower<'d, 'n, 's> {
         }
 
         for (_, w, wspan) in self.entries(node, "walls", "a level") {
-            let Some((s, e)) = self.edge(w, wspan, lh, "a wall") else { continue };
+            let Some((s, e)) = self.edge(w, wspan, lh, "a wall") else {
+                continue;
+            };
             let mut params = Params::default();
-            if let Some(t) = w.get("texture").and_then(ref_of).and_then(|t| self.textures.get(&t)) {
+            if let Some(t) = w
+                .get("texture")
+                .and_then(ref_of)
+                .and_then(|t| self.textures.get(&t))
+            {
                 params.insert(Param {
                     name: "texture_name".into(),
                     value: ParamValue::String(t.clone()),
                     span: wspan,
                 });
             }
-            let h = b.walls.append(Wall { level: lh, start: s, end: e, params }, wspan);
+            let h = b.walls.append(
+                Wall {
+                    level: lh,
+                    start: s,
+                    end: e,
+                    params,
+                },
+                wspan,
+            );
             b.levels[lh].walls.push(h);
         }
         for (did, d, dspan) in self.entries(node, "doors", "a level") {
-            let Some((s, e)) = self.edge(d, dspan, lh, "a door") else { continue };
+            let Some((s, e)) = self.edge(d, dspan, lh, "a door") else {
+                continue;
+            };
             let dname = self.name(d, "a door");
             let mut door = self.door(d, lh, s, e, dname, did);
-            if let Some(x) = self.ext.and_then(|e| e.get("doors")).and_then(|m| m.get(&did.to_string())) {
+            if let Some(x) = self
+                .ext
+                .and_then(|e| e.get("doors"))
+                .and_then(|m| m.get(&did.to_string()))
+            {
                 if let Some(t) = x.get("type").and_then(|t| t.key_text()) {
                     door.kind = DoorKind::parse(t);
                 }
@@ -477,7 +574,8 @@ impl<'d, 'n, 's> SiteLower<'d, 'n, 's> {
         }
         for (_, f, fspan) in self.entries(node, "floors", "a level") {
             let Some(list) = f.get("anchors").and_then(|a| a.as_seq()) else {
-                self.l.wrong_type(f, "a floor's `anchors`", "a list of anchor ids");
+                self.l
+                    .wrong_type(f, "a floor's `anchors`", "a list of anchor ids");
                 continue;
             };
             let mut vs = Vec::with_capacity(list.len());
@@ -486,7 +584,12 @@ impl<'d, 'n, 's> SiteLower<'d, 'n, 's> {
                 match ref_of(a).and_then(|id| self.anchors.get(&id).copied().map(|x| (id, x))) {
                     Some((_, Anchor::Level(l2, v))) if l2 == lh => vs.push(v),
                     Some((id, _)) => {
-                        self.l.err("E0121", a.span, format!("floor anchor {id} is not an anchor of this level"), "use anchors of the floor's level");
+                        self.l.err(
+                            "E0121",
+                            a.span,
+                            format!("floor anchor {id} is not an anchor of this level"),
+                            "use anchors of the floor's level",
+                        );
                         ok = false;
                     }
                     None => {
@@ -499,14 +602,25 @@ impl<'d, 'n, 's> SiteLower<'d, 'n, 's> {
                 continue;
             }
             let mut params = Params::default();
-            if let Some(t) = f.get("texture").and_then(ref_of).and_then(|t| self.textures.get(&t)) {
+            if let Some(t) = f
+                .get("texture")
+                .and_then(ref_of)
+                .and_then(|t| self.textures.get(&t))
+            {
                 params.insert(Param {
                     name: "texture_name".into(),
                     value: ParamValue::String(t.clone()),
                     span: fspan,
                 });
             }
-            let h = b.floors.append(Polygon { level: lh, vertices: vs, params }, fspan);
+            let h = b.floors.append(
+                Polygon {
+                    level: lh,
+                    vertices: vs,
+                    params,
+                },
+                fspan,
+            );
             b.levels[lh].floors.push(h);
         }
     }
@@ -523,7 +637,12 @@ impl<'d, 'n, 's> SiteLower<'d, 'n, 's> {
         let yaw = match p.get("rot").and_then(variant) {
             Some(("yaw", Some(a))) => angle_rad(a).unwrap_or(0.0),
             Some(("quat", Some(q))) => {
-                let q: Vec<f64> = q.as_seq().unwrap_or(&[]).iter().filter_map(|v| v.as_f64()).collect();
+                let q: Vec<f64> = q
+                    .as_seq()
+                    .unwrap_or(&[])
+                    .iter()
+                    .filter_map(|v| v.as_f64())
+                    .collect();
                 if let [x, y, z, w] = q[..] {
                     (2.0 * (w * z + x * y)).atan2(1.0 - 2.0 * (y * y + z * z))
                 } else {
@@ -536,22 +655,42 @@ impl<'d, 'n, 's> SiteLower<'d, 'n, 's> {
     }
 
     /// The two anchors of a wall or door, both on level `lh`.
-    fn edge(&mut self, n: &Node, span: Span, lh: Handle<Level>, what: &str) -> Option<(Handle<Vertex>, Handle<Vertex>)> {
-        let a = n.get("anchors").and_then(|a| a.as_seq()).filter(|s| s.len() == 2);
+    fn edge(
+        &mut self,
+        n: &Node,
+        span: Span,
+        lh: Handle<Level>,
+        what: &str,
+    ) -> Option<(Handle<Vertex>, Handle<Vertex>)> {
+        let a = n
+            .get("anchors")
+            .and_then(|a| a.as_seq())
+            .filter(|s| s.len() == 2);
         let Some(a) = a else {
-            self.l.err("E0102", span, format!("{what} needs `anchors: [start, end]`"), "give the two anchor ids");
+            self.l.err(
+                "E0102",
+                span,
+                format!("{what} needs `anchors: [start, end]`"),
+                "give the two anchor ids",
+            );
             return None;
         };
         let mut out = [None, None];
         for (i, node) in a.iter().enumerate() {
             let Some(id) = ref_of(node) else {
-                self.l.wrong_type(node, "an anchor id", "an unsigned integer");
+                self.l
+                    .wrong_type(node, "an anchor id", "an unsigned integer");
                 return None;
             };
             match self.anchors.get(&id) {
                 Some(Anchor::Level(l2, v)) if *l2 == lh => out[i] = Some(*v),
                 Some(_) => {
-                    self.l.err("E0121", node.span, format!("{what} uses anchor {id}, which is not an anchor of its level"), "use anchors of the same level");
+                    self.l.err(
+                        "E0121",
+                        node.span,
+                        format!("{what} uses anchor {id}, which is not an anchor of its level"),
+                        "use anchors of the same level",
+                    );
                     return None;
                 }
                 None => {
@@ -563,7 +702,15 @@ impl<'d, 'n, 's> SiteLower<'d, 'n, 's> {
         Some((out[0]?, out[1]?))
     }
 
-    fn door(&mut self, d: &Node, lh: Handle<Level>, s: Handle<Vertex>, e: Handle<Vertex>, name: String, did: u32) -> Door {
+    fn door(
+        &mut self,
+        d: &Node,
+        lh: Handle<Level>,
+        s: Handle<Vertex>,
+        e: Handle<Vertex>,
+        name: String,
+        did: u32,
+    ) -> Door {
         let mut door = Door {
             level: lh,
             start: s,
@@ -598,7 +745,10 @@ impl<'d, 'n, 's> SiteLower<'d, 'n, 's> {
             }
             Some(("DoubleSliding", v)) => {
                 door.kind = DoorKind::DoubleSliding;
-                if let Some(r) = v.and_then(|v| v.get("left_right_ratio")).and_then(|r| r.as_f64()) {
+                if let Some(r) = v
+                    .and_then(|v| v.get("left_right_ratio"))
+                    .and_then(|r| r.as_f64())
+                {
                     door.right_left_ratio = if r > 0.0 { 1.0 / r } else { 1.0 };
                 }
             }
@@ -611,7 +761,10 @@ impl<'d, 'n, 's> SiteLower<'d, 'n, 's> {
             }
             Some(("DoubleSwing", v)) => {
                 door.kind = DoorKind::DoubleHinged;
-                if let Some(r) = v.and_then(|v| v.get("left_right_ratio")).and_then(|r| r.as_f64()) {
+                if let Some(r) = v
+                    .and_then(|v| v.get("left_right_ratio"))
+                    .and_then(|r| r.as_f64())
+                {
                     door.right_left_ratio = if r > 0.0 { 1.0 / r } else { 1.0 };
                 }
                 swing(&mut door, v.and_then(|v| v.get("swing")));
@@ -620,7 +773,12 @@ impl<'d, 'n, 's> SiteLower<'d, 'n, 's> {
                 door.kind = DoorKind::Other(other.to_string());
             }
             None => {
-                self.l.err("E0102", d.span, "the door has no `kind`", "give the door a kind such as SingleSwing");
+                self.l.err(
+                    "E0102",
+                    d.span,
+                    "the door has no `kind`",
+                    "give the door a kind such as SingleSwing",
+                );
             }
         }
         let _ = did;
@@ -628,7 +786,9 @@ impl<'d, 'n, 's> SiteLower<'d, 'n, 's> {
     }
 
     fn graphs(&mut self, root: &Node, b: &mut Building) {
-        let Some(g) = root.get("navigation").and_then(|n| n.get("guided")) else { return };
+        let Some(g) = root.get("navigation").and_then(|n| n.get("guided")) else {
+            return;
+        };
         let list: Vec<(u32, String, Span)> = self
             .entries(g, "graphs", "`navigation.guided`")
             .into_iter()
@@ -677,9 +837,16 @@ impl<'d, 'n, 's> SiteLower<'d, 'n, 's> {
                 .and_then(|r| r.as_seq())
                 .map(|s| s.iter().filter_map(ref_of).collect())
                 .unwrap_or_default();
-            let cabin = props.and_then(|p| p.get("cabin")).and_then(|c| c.get("Rect"));
+            let cabin = props
+                .and_then(|p| p.get("cabin"))
+                .and_then(|c| c.get("Rect"));
             let (Some(cabin), &[l, r]) = (cabin, &refs[..]) else {
-                self.l.err("E0102", span, format!("{what} needs `reference_anchors` and a `Rect` cabin"), "rmf_site writes both for every lift");
+                self.l.err(
+                    "E0102",
+                    span,
+                    format!("{what} needs `reference_anchors` and a `Rect` cabin"),
+                    "rmf_site writes both for every lift",
+                );
                 continue;
             };
             let pos_of = |s: &Self, id: u32| match s.anchors.get(&id) {
@@ -703,7 +870,9 @@ impl<'d, 'n, 's> SiteLower<'d, 'n, 's> {
             let mid = pl.plus(pr).scale(0.5);
             let mut pos = mid.minus(Vec2::new(width / 2.0, 0.0).rotate(yaw));
             let mut yaw = yaw;
-            let lx = ext.and_then(|e| e.get("lifts")).and_then(|l| l.get(&id.to_string()));
+            let lx = ext
+                .and_then(|e| e.get("lifts"))
+                .and_then(|l| l.get(&id.to_string()));
             if let (Some(x), Some(y), Some(w)) = (
                 lx.and_then(|e| e.get("x")).and_then(|v| v.as_f64()),
                 lx.and_then(|e| e.get("y")).and_then(|v| v.as_f64()),
@@ -717,7 +886,9 @@ impl<'d, 'n, 's> SiteLower<'d, 'n, 's> {
                 .and_then(|p| p.get("initial_level"))
                 .and_then(ref_of)
                 .and_then(|l| self.levels.get(&l).copied());
-            let lext = ext.and_then(|e| e.get("lifts")).and_then(|l| l.get(&id.to_string()));
+            let lext = ext
+                .and_then(|e| e.get("lifts"))
+                .and_then(|l| l.get(&id.to_string()));
             let level_opt = |s: &Self, key: &str| {
                 lext.and_then(|e| e.get(key))
                     .and_then(|n| n.key_text())
@@ -729,13 +900,18 @@ impl<'d, 'n, 's> SiteLower<'d, 'n, 's> {
             };
             let lowest_level = level_opt(self, "lowest_floor");
             let highest_level = level_opt(self, "highest_floor");
-            let plugins = lext.and_then(|e| e.get("plugins")).and_then(|p| p.as_bool()).unwrap_or(true);
+            let plugins = lext
+                .and_then(|e| e.get("plugins"))
+                .and_then(|p| p.as_bool())
+                .unwrap_or(true);
             let mut doors = Vec::new();
             let mut level_doors: BTreeMap<Handle<Level>, Vec<(String, Span)>> = BTreeMap::new();
             let hx = width / 2.0;
             let hy = depth / 2.0;
             for (did, d, dspan) in self.entries(v, "cabin_doors", &what) {
-                let dext = lext.and_then(|e| e.get("doors")).and_then(|e| e.get(&did.to_string()));
+                let dext = lext
+                    .and_then(|e| e.get("doors"))
+                    .and_then(|e| e.get(&did.to_string()));
                 let dname = dext
                     .and_then(|e| e.get("name"))
                     .and_then(|n| n.key_text())
@@ -759,10 +935,19 @@ impl<'d, 'n, 's> SiteLower<'d, 'n, 's> {
                     placed = Some((Vec2::new(dx, dy), w, mao));
                 }
                 let Some((dpos, dw, mao)) = placed else {
-                    self.l.err("E0121", dspan, format!("cabin door {did} of {what} is on no face of the cabin"), "place the door on a face of the cabin in rmf_site");
+                    self.l.err(
+                        "E0121",
+                        dspan,
+                        format!("cabin door {did} of {what} is on no face of the cabin"),
+                        "place the door on a face of the cabin in rmf_site",
+                    );
                     continue;
                 };
-                let door_type = match (dext.and_then(|e| e.get("door_type")).and_then(|t| t.as_i64()), d.get("kind").and_then(variant)) {
+                let door_type = match (
+                    dext.and_then(|e| e.get("door_type"))
+                        .and_then(|t| t.as_i64()),
+                    d.get("kind").and_then(variant),
+                ) {
                     (Some(t), _) => t,
                     (None, Some(("DoubleSliding", _))) => 2,
                     _ => 1,
@@ -773,8 +958,15 @@ impl<'d, 'n, 's> SiteLower<'d, 'n, 's> {
                     .unwrap_or(mao);
                 for lv in d.get("visits").and_then(|v| v.as_seq()).unwrap_or(&[]) {
                     match ref_of(lv).and_then(|l| self.levels.get(&l).copied()) {
-                        Some(lh) => level_doors.entry(lh).or_default().push((dname.clone(), lv.span)),
-                        None => self.dangling(lv.span, &format!("a cabin door of {what}"), ref_of(lv).unwrap_or(0)),
+                        Some(lh) => level_doors
+                            .entry(lh)
+                            .or_default()
+                            .push((dname.clone(), lv.span)),
+                        None => self.dangling(
+                            lv.span,
+                            &format!("a cabin door of {what}"),
+                            ref_of(lv).unwrap_or(0),
+                        ),
                     }
                 }
                 doors.push(LiftDoor {
@@ -791,12 +983,20 @@ impl<'d, 'n, 's> SiteLower<'d, 'n, 's> {
                 .and_then(|d| d.as_map())
                 .unwrap_or(&[])
                 .iter()
-                .flat_map(|(_, d)| d.get("reference_anchors").and_then(|r| r.as_seq()).unwrap_or(&[]))
+                .flat_map(|(_, d)| {
+                    d.get("reference_anchors")
+                        .and_then(|r| r.as_seq())
+                        .unwrap_or(&[])
+                })
                 .filter_map(ref_of)
                 .collect();
             for (aid, a, aspan) in self.entries(v, "cabin_anchors", &what) {
-                let Some(p) = self.anchor_pos(a) else { continue };
-                if !door_anchors.contains(&aid) && (p.x.abs() > width / 2.0 + 1e-6 || p.y.abs() > depth / 2.0 + 1e-6) {
+                let Some(p) = self.anchor_pos(a) else {
+                    continue;
+                };
+                if !door_anchors.contains(&aid)
+                    && (p.x.abs() > width / 2.0 + 1e-6 || p.y.abs() > depth / 2.0 + 1e-6)
+                {
                     self.l.warn(
                         "W0120",
                         aspan,
@@ -833,7 +1033,15 @@ impl<'d, 'n, 's> SiteLower<'d, 'n, 's> {
     }
 
     /// The vertex of anchor `id` on level `lh` (for a cabin anchor: made on first use).
-    fn cabin_vertex(&mut self, b: &mut Building, id: u32, lift: usize, p: Vec2, lh: Handle<Level>, span: Span) -> Option<Handle<Vertex>> {
+    fn cabin_vertex(
+        &mut self,
+        b: &mut Building,
+        id: u32,
+        lift: usize,
+        p: Vec2,
+        lh: Handle<Level>,
+        span: Span,
+    ) -> Option<Handle<Vertex>> {
         if let Some(v) = self.cabin_vertices.get(&(id, lh)) {
             return Some(*v);
         }
@@ -846,7 +1054,11 @@ impl<'d, 'n, 's> SiteLower<'d, 'n, 's> {
             .and_then(|p| p.as_seq())
             .and_then(|s| Some(Vec2::new(s.first()?.as_f64()?, s.get(1)?.as_f64()?)));
         let pos = exact.unwrap_or_else(|| p.rotate(l.yaw).plus(l.pos));
-        let mut params = match self.ext.and_then(|e| e.get("vertices")).and_then(|v| v.get(&id.to_string())) {
+        let mut params = match self
+            .ext
+            .and_then(|e| e.get("vertices"))
+            .and_then(|v| v.get(&id.to_string()))
+        {
             Some(ps) => self.l.params(ps, "a vertex"),
             None => Params::default(),
         };
@@ -911,15 +1123,24 @@ impl<'d, 'n, 's> SiteLower<'d, 'n, 's> {
             return;
         }
         self.unknown(n, LANE_KEYS, "a lane");
-        let a = n.get("anchors").and_then(|a| a.as_seq()).filter(|s| s.len() == 2);
+        let a = n
+            .get("anchors")
+            .and_then(|a| a.as_seq())
+            .filter(|s| s.len() == 2);
         let Some(a) = a else {
-            self.l.err("E0102", span, "a lane needs `anchors: [start, end]`", "give the two anchor ids");
+            self.l.err(
+                "E0102",
+                span,
+                "a lane needs `anchors: [start, end]`",
+                "give the two anchor ids",
+            );
             return;
         };
         let mut ends = [None, None];
         for (i, node) in a.iter().enumerate() {
             let Some(aid) = ref_of(node) else {
-                self.l.wrong_type(node, "an anchor id", "an unsigned integer");
+                self.l
+                    .wrong_type(node, "an anchor id", "an unsigned integer");
                 return;
             };
             match self.anchors.get(&aid) {
@@ -989,7 +1210,11 @@ impl<'d, 'n, 's> SiteLower<'d, 'n, 's> {
             Some(("Disable", _)) => (false, None),
             Some(("Different", m)) => (true, Some(self.motion(m))),
             Some((other, _)) => {
-                self.l.wrong_type(reverse.unwrap_or(n), &format!("lane reverse `{other}`"), "Same, Disable or Different");
+                self.l.wrong_type(
+                    reverse.unwrap_or(n),
+                    &format!("lane reverse `{other}`"),
+                    "Same, Disable or Different",
+                );
                 (true, None)
             }
         };
@@ -1000,8 +1225,15 @@ impl<'d, 'n, 's> SiteLower<'d, 'n, 's> {
             .filter(|m| !m.is_empty());
         let graphs = self.lane_graphs(n, id);
         let lext = ext_lanes.and_then(|e| e.get(&id.to_string()));
-        let ext_str = |k: &str| lext.and_then(|e| e.get(k)).and_then(|v| v.key_text()).map(str::to_string);
-        let (demo_floor, demo_lift) = (ext_str("demo_mock_floor_name"), ext_str("demo_mock_lift_name"));
+        let ext_str = |k: &str| {
+            lext.and_then(|e| e.get(k))
+                .and_then(|v| v.key_text())
+                .map(str::to_string)
+        };
+        let (demo_floor, demo_lift) = (
+            ext_str("demo_mock_floor_name"),
+            ext_str("demo_mock_lift_name"),
+        );
         let orientation = match ext_str("orientation") {
             Some(o) if !o.is_empty() => Orientation::Other(o),
             _ => orientation,
@@ -1066,7 +1298,12 @@ impl<'d, 'n, 's> SiteLower<'d, 'n, 's> {
             for g in v.and_then(|v| v.as_seq()).unwrap_or(&[]) {
                 match ref_of(g) {
                     Some(gid) if s.graphs.contains_key(&gid) => out.push(gid),
-                    Some(gid) => s.l.err("E0121", g.span, format!("lane {id} refers to graph {gid}, which the site does not have"), "point the lane at an existing graph"),
+                    Some(gid) => s.l.err(
+                        "E0121",
+                        g.span,
+                        format!("lane {id} refers to graph {gid}, which the site does not have"),
+                        "point the lane at an existing graph",
+                    ),
                     None => s.l.wrong_type(g, "a graph id", "an unsigned integer"),
                 }
             }
@@ -1077,11 +1314,19 @@ impl<'d, 'n, 's> SiteLower<'d, 'n, 's> {
             Some(("Only", v)) => set(self, v).iter().map(|g| self.graphs[g]).collect(),
             Some(("AllExcept", v)) => {
                 let ex = set(self, v);
-                all.iter().filter(|(g, _)| !ex.contains(g)).map(|(_, i)| *i).collect()
+                all.iter()
+                    .filter(|(g, _)| !ex.contains(g))
+                    .map(|(_, i)| *i)
+                    .collect()
             }
             Some((other, _)) => {
                 let span = n.get("graphs").map_or(n.span, |g| g.span);
-                self.l.err("E0101", span, format!("unknown lane graphs `{other}`"), "use All, Only or AllExcept");
+                self.l.err(
+                    "E0101",
+                    span,
+                    format!("unknown lane graphs `{other}`"),
+                    "use All, Only or AllExcept",
+                );
                 Vec::new()
             }
         };
@@ -1117,7 +1362,10 @@ impl<'d, 'n, 's> SiteLower<'d, 'n, 's> {
                 self.l.err(
                     "E0123",
                     at,
-                    format!("location `{name}` is on anchor {}, which is not an anchor of a level", aid.map_or("?".into(), |a| a.to_string())),
+                    format!(
+                        "location `{name}` is on anchor {}, which is not an anchor of a level",
+                        aid.map_or("?".into(), |a| a.to_string())
+                    ),
                     "move the location onto an anchor of a level",
                 );
                 return;
@@ -1140,7 +1388,11 @@ impl<'d, 'n, 's> SiteLower<'d, 'n, 's> {
                 span: t.span,
             });
         }
-        if let Some(m) = n.get("mutex").and_then(ref_of).and_then(|m| self.mutexes.get(&m)) {
+        if let Some(m) = n
+            .get("mutex")
+            .and_then(ref_of)
+            .and_then(|m| self.mutexes.get(&m))
+        {
             if !m.is_empty() {
                 vx.params.insert(Param {
                     name: "mutex".into(),
@@ -1154,12 +1406,20 @@ impl<'d, 'n, 's> SiteLower<'d, 'n, 's> {
     fn models(&mut self, root: &Node, b: &mut Building, shift: Vec2) {
         let mut descs: HashMap<u32, (String, bool)> = HashMap::new();
         for (id, d, _) in self.entries(root, "model_descriptions", "the site") {
-            let src = d.get("source").and_then(variant).and_then(|(_, v)| v?.key_text().map(str::to_string));
-            let is_static = d.get("is_static").and_then(|s| s.as_bool()).unwrap_or(false);
+            let src = d
+                .get("source")
+                .and_then(variant)
+                .and_then(|(_, v)| v?.key_text().map(str::to_string));
+            let is_static = d
+                .get("is_static")
+                .and_then(|s| s.as_bool())
+                .unwrap_or(false);
             descs.insert(id, (src.unwrap_or_default(), is_static));
         }
         for (_, m, span) in self.entries(root, "model_instances", "the site") {
-            let Some(parent) = m.get("parent").and_then(ref_of) else { continue };
+            let Some(parent) = m.get("parent").and_then(ref_of) else {
+                continue;
+            };
             let Some(&lh) = self.levels.get(&parent) else {
                 // Models on other parents (robots, workcells) are not level furniture.
                 continue;

@@ -24,7 +24,11 @@ pub fn is_site_file(name: &str) -> bool {
     name.ends_with(".site.json")
 }
 
-pub(crate) fn parse_into(file: FileId, text: &str, diags: &mut Vec<Diagnostic>) -> Option<Building> {
+pub(crate) fn parse_into(
+    file: FileId,
+    text: &str,
+    diags: &mut Vec<Diagnostic>,
+) -> Option<Building> {
     let root = match crate::yaml::parse(text, file) {
         Ok(r) => r,
         Err(mut d) => {
