@@ -379,7 +379,7 @@ impl<'d, 'n, 's> SiteLower<'d, 'n, 's> {
             .and_then(|t| t.split('.').next())
             .and_then(|m| m.trim().parse::<u32>().ok());
         match major {
-            Some(m) if m <= FORMAT_MAJOR => true,
+            Some(m) if m == FORMAT_MAJOR => true,
             Some(m) => {
                 self.l.err(
                     "E0120",
@@ -471,6 +471,11 @@ impl<'d, 'n, 's> SiteLower<'d, 'n, 's> {
         // Drawings: the first names the level's drawing; their fiducials become the
         // level's fiducials, in metres.
         for (_, d, _) in self.entries(node, "drawings", "a level") {
+            self.unknown(
+                d,
+                &["properties", "anchors", "fiducials", "measurements"],
+                "a drawing",
+            );
             let dp = d.get("properties");
             if b.levels[lh].drawing.is_none() {
                 let src = dp.and_then(|p| p.get("source")).and_then(variant);
@@ -519,6 +524,7 @@ impl<'d, 'n, 's> SiteLower<'d, 'n, 's> {
         }
 
         for (_, w, wspan) in self.entries(node, "walls", "a level") {
+            self.unknown(w, &["anchors", "texture"], "a wall");
             let Some((s, e)) = self.edge(w, wspan, lh, "a wall") else {
                 continue;
             };
@@ -546,6 +552,7 @@ impl<'d, 'n, 's> SiteLower<'d, 'n, 's> {
             b.levels[lh].walls.push(h);
         }
         for (did, d, dspan) in self.entries(node, "doors", "a level") {
+            self.unknown(d, &["anchors", "name", "kind"], "a door");
             let Some((s, e)) = self.edge(d, dspan, lh, "a door") else {
                 continue;
             };
@@ -573,6 +580,11 @@ impl<'d, 'n, 's> SiteLower<'d, 'n, 's> {
             b.levels[lh].doors.push(h);
         }
         for (_, f, fspan) in self.entries(node, "floors", "a level") {
+            self.unknown(
+                f,
+                &["anchors", "texture", "preferred_semi_transparency"],
+                "a floor",
+            );
             let Some(list) = f.get("anchors").and_then(|a| a.as_seq()) else {
                 self.l
                     .wrong_type(f, "a floor's `anchors`", "a list of anchor ids");
@@ -827,6 +839,20 @@ impl<'d, 'n, 's> SiteLower<'d, 'n, 's> {
 
     fn lifts(&mut self, root: &Node, b: &mut Building, shift: Vec2, ext: Option<&Node>) {
         for (id, v, span) in self.entries(root, "lifts", "the site") {
+            self.unknown(v, &["cabin_doors", "properties", "cabin_anchors"], "a lift");
+            if let Some(p) = v.get("properties") {
+                self.unknown(
+                    p,
+                    &[
+                        "name",
+                        "reference_anchors",
+                        "cabin",
+                        "is_static",
+                        "initial_level",
+                    ],
+                    "lift properties",
+                );
+            }
             let idx = self.lift_handles.len();
             self.lift_handles.push(None);
             let props = v.get("properties");
@@ -1417,6 +1443,11 @@ impl<'d, 'n, 's> SiteLower<'d, 'n, 's> {
             descs.insert(id, (src.unwrap_or_default(), is_static));
         }
         for (_, m, span) in self.entries(root, "model_instances", "the site") {
+            self.unknown(
+                m,
+                &["parent", "name", "pose", "description"],
+                "a model instance",
+            );
             let Some(parent) = m.get("parent").and_then(ref_of) else {
                 continue;
             };
