@@ -205,6 +205,34 @@ fn demo_maps_convert_both_ways() {
             "{name}: graphs {graphs:?} vs {ours:?}"
         );
 
+        if b.coordinate_system == mapc_ir::CoordinateSystem::Wgs84 {
+            // The geographic offset is the site origin (the map's offset): projected to the
+            // map's CRS again, it lands within 2 m of it.
+            let (lat, lon) = site
+                .properties
+                .geographic_offset
+                .0
+                .expect("geographic offset")
+                .anchor;
+            let code: u32 = b
+                .crs_name
+                .as_deref()
+                .unwrap()
+                .trim_start_matches("EPSG:")
+                .parse()
+                .unwrap();
+            let mapc_frontend::crs::Lookup::Crs(crs) = mapc_frontend::crs::lookup(code) else {
+                panic!("{name}: CRS");
+            };
+            let (e, n) = crs.project(lon as f64, lat as f64).unwrap();
+            let d = (e - b.offset.x).hypot(n - b.offset.y);
+            // rmf_site keeps f32 degrees: 0.85 m steps of longitude near 100°.
+            assert!(
+                d < 2.0,
+                "{name}: geographic offset is {d} m from the map offset"
+            );
+            println!("{name}: geographic offset {d:.3} m from the map offset");
+        }
         let original = nav_dir(map, &tmp.path().join(format!("{name}_nav_a")));
         let from_site = nav_dir(&site_path, &tmp.path().join(format!("{name}_nav_b")));
         let round = nav_dir(&back, &tmp.path().join(format!("{name}_nav_c")));
