@@ -5,6 +5,8 @@
 //! Nothing here changes a run: the recorder and the bridge see what the runtime's observer
 //! sees, and the bridge only adds the requests other nodes send.
 
+#[cfg(feature = "dds")]
+pub mod bridge;
 pub mod building_map;
 pub mod cdr;
 pub mod mcap;

@@ -55,6 +55,12 @@ pub struct RunOptions<'a> {
     /// Sees every message the trace records, in the same order (e.g. to build a replay);
     /// it cannot change the run.
     pub observer: Option<&'a mut dyn FnMut(&Published)>,
+    /// Called before every step with the sim time: appends the requests other nodes sent
+    /// (a DDS bridge), which are recorded and delivered like the fleet layer's.
+    pub inject: Option<&'a mut dyn FnMut(f64, &mut Vec<(Topic, Msg)>)>,
+    /// Only the plugins run (slotcars, doors, lifts, workcells, as Gazebo would): the fleet
+    /// layer sends nothing and the run lasts its whole duration; requests come from `inject`.
+    pub plugins_only: bool,
 }
 
 /// Why a run could not start or finish.
@@ -103,7 +109,12 @@ pub fn simulate(
         }
         let t = world.time();
         requests.clear();
-        fleets.update(t, &inbox, &mut requests);
+        if !opts.plugins_only {
+            fleets.update(t, &inbox, &mut requests);
+        }
+        if let Some(inject) = opts.inject.as_mut() {
+            inject(t, &mut requests);
+        }
         inbox.clear();
         for (topic, msg) in requests.drain(..) {
             let p = Published { t, topic, msg };
@@ -137,7 +148,7 @@ pub fn simulate(
                 next_progress += 60.0;
             }
         }
-        if fleets.all_done(world.time()) && scenario.options.stop_when_done {
+        if !opts.plugins_only && fleets.all_done(world.time()) && scenario.options.stop_when_done {
             break;
         }
     }

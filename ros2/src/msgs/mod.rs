@@ -22,7 +22,7 @@ pub trait RosMsg: Serialize + DeserializeOwned {
 }
 
 /// A type's name and `.msg` text.
-pub(crate) type Definition = (&'static str, &'static str);
+pub type Definition = (&'static str, &'static str);
 
 /// Ties a struct to its definition constant.
 macro_rules! ros_msg {
@@ -36,7 +36,7 @@ pub(crate) use ros_msg;
 
 /// Every message definition: (`package/msg/Name`, `.msg` text with fully qualified field
 /// types). Kept as one table so that schema text can follow dependencies.
-pub(crate) fn definitions() -> &'static [Definition] {
+pub fn definitions() -> &'static [Definition] {
     &[
         builtin_interfaces::TIME,
         std_msgs::STRING,
@@ -142,6 +142,20 @@ mod tests {
         assert_eq!(s.matches("MSG: rmf_fleet_msgs/RobotMode\n").count(), 1);
         for (name, _) in definitions() {
             assert!(schema_text(name).is_some(), "{name}");
+        }
+    }
+
+    #[test]
+    fn definitions_are_one_field_per_line() {
+        for (name, def) in definitions() {
+            for line in def.lines() {
+                let words: Vec<&str> = line.split(' ').collect();
+                assert_eq!(words.len(), 2, "{name}: `{line}`");
+                assert!(
+                    !words[0].is_empty() && !words[1].is_empty(),
+                    "{name}: `{line}`"
+                );
+            }
         }
     }
 

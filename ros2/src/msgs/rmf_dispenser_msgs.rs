@@ -26,7 +26,7 @@ pub struct DispenserRequest {
 }
 pub(crate) const REQUEST: Definition = (
     "rmf_dispenser_msgs/msg/DispenserRequest",
-    "builtin_interfaces/Time time\nstring request_guid\nstring target_guid\nstring transporter_type\n     rmf_dispenser_msgs/DispenserRequestItem[] items\n",
+    "builtin_interfaces/Time time\nstring request_guid\nstring target_guid\nstring transporter_type\nrmf_dispenser_msgs/DispenserRequestItem[] items\n",
 );
 ros_msg!(DispenserRequest, REQUEST);
 
@@ -53,6 +53,6 @@ pub struct DispenserState {
 }
 pub(crate) const STATE: Definition = (
     "rmf_dispenser_msgs/msg/DispenserState",
-    "builtin_interfaces/Time time\nstring guid\nint32 mode\nstring[] request_guid_queue\n     float32 seconds_remaining\n",
+    "builtin_interfaces/Time time\nstring guid\nint32 mode\nstring[] request_guid_queue\nfloat32 seconds_remaining\n",
 );
 ros_msg!(DispenserState, STATE);

@@ -26,7 +26,7 @@ pub struct IngestorRequest {
 }
 pub(crate) const REQUEST: Definition = (
     "rmf_ingestor_msgs/msg/IngestorRequest",
-    "builtin_interfaces/Time time\nstring request_guid\nstring target_guid\nstring transporter_type\n     rmf_ingestor_msgs/IngestorRequestItem[] items\n",
+    "builtin_interfaces/Time time\nstring request_guid\nstring target_guid\nstring transporter_type\nrmf_ingestor_msgs/IngestorRequestItem[] items\n",
 );
 ros_msg!(IngestorRequest, REQUEST);
 
@@ -53,6 +53,6 @@ pub struct IngestorState {
 }
 pub(crate) const STATE: Definition = (
     "rmf_ingestor_msgs/msg/IngestorState",
-    "builtin_interfaces/Time time\nstring guid\nint32 mode\nstring[] request_guid_queue\n     float32 seconds_remaining\n",
+    "builtin_interfaces/Time time\nstring guid\nint32 mode\nstring[] request_guid_queue\nfloat32 seconds_remaining\n",
 );
 ros_msg!(IngestorState, STATE);
