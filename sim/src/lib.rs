@@ -91,6 +91,7 @@ pub fn simulate(
     let mut world = world::World::new(building, &setup);
     let o = &scenario.options;
     world.set_charging(o.charging, o.instant_charging, o.battery_drain);
+    world.set_supervisors(!opts.plugins_only);
     let mut report = report::ReportBuilder::new(building, scenario, &placement);
     let end = opts.until.unwrap_or(scenario.duration);
     // Whole steps: comparing accumulated float time with `end` would depend on rounding.
