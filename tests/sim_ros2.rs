@@ -26,7 +26,12 @@ fn python() -> Option<PathBuf> {
 
 fn namespace_works() -> bool {
     Command::new("unshare")
-        .args(["-rn", "sh", "-c", "ip link set lo up && ip link add t0 type veth peer name t1"])
+        .args([
+            "-rn",
+            "sh",
+            "-c",
+            "ip link set lo up && ip link add t0 type veth peer name t1",
+        ])
         .output()
         .is_ok_and(|o| o.status.success())
 }
@@ -94,7 +99,10 @@ fn rmf_side_drives_mapc_over_cyclone_dds() {
     let out = Command::new("unshare")
         .args(["-rn", "sh", "-c", SCRIPT])
         .env("MAPC", env!("CARGO_BIN_EXE_mapc"))
-        .env("SCENARIO", root.join("fixtures/two_level_clinic.scenario.yaml"))
+        .env(
+            "SCENARIO",
+            root.join("fixtures/two_level_clinic.scenario.yaml"),
+        )
         .env("RATE", RATE.to_string())
         .env("DIR", dir.path())
         .env("PY", &py)
@@ -109,7 +117,10 @@ fn rmf_side_drives_mapc_over_cyclone_dds() {
         read("mapc.err")
     );
     assert!(out.status.success(), "{context}");
-    assert!(context.contains("mapc exit 130"), "mapc stops on SIGINT\n{context}");
+    assert!(
+        context.contains("mapc exit 130"),
+        "mapc stops on SIGINT\n{context}"
+    );
     let r: serde_json::Value = serde_json::from_str(&read("peer.json"))
         .unwrap_or_else(|e| panic!("peer output: {e}\n{context}"));
     println!("{r:#}\nwall {:?}", started.elapsed());
@@ -122,7 +133,10 @@ fn rmf_side_drives_mapc_over_cyclone_dds() {
 
     // /clock advances at the requested rate (within 5 %) and never backwards.
     let rate = r["clock_rate"].as_f64().expect("clock rate");
-    assert!((rate / RATE - 1.0).abs() < 0.05, "clock rate {rate}, asked {RATE}");
+    assert!(
+        (rate / RATE - 1.0).abs() < 0.05,
+        "clock rate {rate}, asked {RATE}"
+    );
     assert_eq!(r["clock_monotonic"], true);
 
     // The door opened and closed again; the lift arrived with its doors open.
@@ -133,7 +147,9 @@ fn rmf_side_drives_mapc_over_cyclone_dds() {
 
     // The robot drove the path to its end, reporting the task id and moving on the way.
     assert_eq!(r["path"]["task_id"], "mapc-test-7");
-    assert!(r["path"]["distinct_positions"].as_u64().is_some_and(|n| n > 5));
+    assert!(r["path"]["distinct_positions"]
+        .as_u64()
+        .is_some_and(|n| n > 5));
 
     // The dispenser served the robot's fleet.
     assert_eq!(r["dispenser"]["status"], 1, "SUCCESS");

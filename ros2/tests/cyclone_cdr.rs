@@ -83,12 +83,15 @@ impl Gen {
     }
 }
 
+/// Decodes Cyclone's bytes as the case's type and compares with its value.
+type Check = Box<dyn Fn(&[u8]) -> Result<(), String>>;
+
 /// One sample per type: its value, mapc's bytes, and a check of Cyclone's answer.
 struct Case {
     name: &'static str,
     value: Value,
     mapc: Vec<u8>,
-    check: Box<dyn Fn(&[u8]) -> Result<(), String>>,
+    check: Check,
 }
 
 fn case<T: RosMsg + std::fmt::Debug + PartialEq + 'static>(gen: &mut Gen) -> Case {

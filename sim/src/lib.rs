@@ -57,11 +57,14 @@ pub struct RunOptions<'a> {
     pub observer: Option<&'a mut dyn FnMut(&Published)>,
     /// Called before every step with the sim time: appends the requests other nodes sent
     /// (a DDS bridge), which are recorded and delivered like the fleet layer's.
-    pub inject: Option<&'a mut dyn FnMut(f64, &mut Vec<(Topic, Msg)>)>,
+    pub inject: Option<&'a mut Inject<'a>>,
     /// Only the plugins run (slotcars, doors, lifts, workcells, as Gazebo would): the fleet
     /// layer sends nothing and the run lasts its whole duration; requests come from `inject`.
     pub plugins_only: bool,
 }
+
+/// Appends, at sim time `t`, the requests other nodes sent (see `RunOptions::inject`).
+pub type Inject<'a> = dyn FnMut(f64, &mut Vec<(Topic, Msg)>) + 'a;
 
 /// Why a run could not start or finish.
 #[derive(Debug)]
