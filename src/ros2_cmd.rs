@@ -7,6 +7,7 @@ use crate::output;
 use mapc_sim::msgs::{Msg, Published, Topic};
 use std::io::{BufWriter, Write};
 use std::path::{Path, PathBuf};
+#[cfg(feature = "dds")]
 use std::time::{Duration, Instant};
 
 #[derive(clap::Args, Default)]
@@ -108,11 +109,13 @@ impl Drop for McapFile {
 }
 
 /// Holds the run to `rate` simulated seconds per wall-clock second.
+#[cfg(feature = "dds")]
 struct Pace {
     rate: f64,
     start: Option<(Instant, f64)>,
 }
 
+#[cfg(feature = "dds")]
 impl Pace {
     fn wait(&mut self, t: f64) {
         let (start, t0) = *self.start.get_or_insert((Instant::now(), t));
@@ -193,7 +196,7 @@ impl Ros2Run {
     }
 
     /// Before each step: keep pace, publish `/clock`, take what other nodes sent.
-    #[allow(unused_variables)]
+    #[cfg_attr(not(feature = "dds"), allow(unused_variables, clippy::ptr_arg))]
     pub(crate) fn inject(&mut self, t: f64, out: &mut Vec<(Topic, Msg)>) {
         #[cfg(feature = "dds")]
         if let Some((b, pace, last_clock)) = self.bridge.as_mut() {
