@@ -38,6 +38,17 @@ fn namespace_works() -> bool {
 
 const RATE: f64 = 10.0;
 
+/// A temporary directory; with MAPC_KEEP_TEST_DIR set, one that stays (its path is printed)
+/// for a look at the trace and the logs after a failure.
+fn test_dir() -> tempfile::TempDir {
+    let mut dir = tempfile::tempdir().expect("tempdir");
+    if std::env::var_os("MAPC_KEEP_TEST_DIR").is_some() {
+        dir.disable_cleanup(true);
+        eprintln!("files in {}", dir.path().display());
+    }
+    dir
+}
+
 /// The namespace: `lo` up, the veth pair with multicast, the multicast route, Cyclone told
 /// to use that interface; then mapc and the peer, mapc stopped with SIGINT when the peer is
 /// done.
@@ -69,15 +80,7 @@ fn rmf_side_drives_mapc_over_cyclone_dds() {
         return;
     }
     let root = Path::new(env!("CARGO_MANIFEST_DIR"));
-    let dir = tempfile::tempdir().expect("tempdir");
-    // MAPC_KEEP_TEST_DIR=1 keeps the trace and logs for a look after a failure.
-    let dir = if std::env::var_os("MAPC_KEEP_TEST_DIR").is_some() {
-        let p = dir.keep();
-        eprintln!("files in {}", p.display());
-        tempfile::TempDir::new_in(p).expect("tempdir")
-    } else {
-        dir
-    };
+    let dir = test_dir();
     let defs: serde_json::Map<String, serde_json::Value> = mapc_ros2::msgs::definitions()
         .iter()
         .map(|(n, d)| (n.to_string(), serde_json::json!(d)))
@@ -159,4 +162,133 @@ fn rmf_side_drives_mapc_over_cyclone_dds() {
     let trace = read("trace.jsonl");
     assert!(trace.contains(r#""requester_id":"door_supervisor""#));
     assert!(trace.contains(r#""task_id":"mapc-test-7""#));
+}
+
+/// Without `--plugins-only` mapc's own fleet layer and supervisors run and everything is
+/// published: a listener (as rmf-web's dashboard) sees the fleet states, task events,
+/// supervisor heartbeats and the fleet layer's requests, each equal to a message of the trace.
+const WATCH_SCRIPT: &str = r#"set -e
+ip link set lo up
+ip link add dds0 type veth peer name dds1
+ip addr add 192.0.2.1/24 dev dds0
+ip link set dds1 up
+ip link set dds0 up multicast on
+ip route add 224.0.0.0/4 dev dds0
+export CYCLONEDDS_URI='<CycloneDDS><Domain><General><Interfaces><NetworkInterface name="dds0" multicast="true"/></Interfaces></General></Domain></CycloneDDS>'
+"$PY" "$WATCH" "$DIR/config.json" 14 > "$DIR/watch.json" 2> "$DIR/watch.err" &
+pid=$!
+sleep 2
+"$MAPC" sim "$SCENARIO" --ros2 --rate 40 --domain-id 8 --until 300 \
+  --trace "$DIR/trace.jsonl" -q > "$DIR/mapc.out" 2> "$DIR/mapc.err"
+wait $pid
+"#;
+
+#[test]
+fn full_run_publishes_what_the_trace_holds() {
+    let Some(py) = python() else {
+        println!("skipped: cyclonedds (Python) not found; .ci/run makes target/ros2-venv");
+        return;
+    };
+    if !namespace_works() {
+        println!("skipped: no private network namespace (unshare -rn, ip, veth) here");
+        return;
+    }
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let dir = test_dir();
+    let defs: serde_json::Map<String, serde_json::Value> = mapc_ros2::msgs::definitions()
+        .iter()
+        .map(|(n, d)| (n.to_string(), serde_json::json!(d)))
+        .collect();
+    let config = serde_json::json!({"definitions": defs, "domain_id": 8});
+    std::fs::write(dir.path().join("config.json"), config.to_string()).expect("config");
+    let out = Command::new("unshare")
+        .args(["-rn", "sh", "-c", WATCH_SCRIPT])
+        .env("MAPC", env!("CARGO_BIN_EXE_mapc"))
+        .env(
+            "SCENARIO",
+            root.join("fixtures/two_level_clinic.scenario.yaml"),
+        )
+        .env("DIR", dir.path())
+        .env("PY", &py)
+        .env("WATCH", root.join("ros2/tests/python/rmf_watch.py"))
+        .output()
+        .expect("unshare runs");
+    let read = |n: &str| std::fs::read_to_string(dir.path().join(n)).unwrap_or_default();
+    let context = format!(
+        "script: {}\nwatch: {}\nmapc: {}",
+        String::from_utf8_lossy(&out.stderr),
+        read("watch.err"),
+        read("mapc.err")
+    );
+    assert!(out.status.success(), "{context}");
+    let seen: serde_json::Value = serde_json::from_str(&read("watch.json"))
+        .unwrap_or_else(|e| panic!("watch output: {e}\n{context}"));
+    let trace: Vec<serde_json::Value> = read("trace.jsonl")
+        .lines()
+        .map(|l| serde_json::from_str(l).expect("trace line"))
+        .collect();
+    for topic in [
+        "/fleet_states",
+        "/task_events",
+        "/door_supervisor_heartbeat",
+        "/adapter_door_requests",
+        "/robot_path_requests",
+    ] {
+        let got = seen[topic].as_array().expect("topic listened to");
+        let traced: Vec<&serde_json::Value> = trace
+            .iter()
+            .filter(|l| l["topic"] == topic)
+            .map(|l| &l["msg"])
+            .collect();
+        // Not all: what is published before discovery ends is missed, and event streams
+        // (heartbeats, requests, task events) stall after a few samples (a known problem,
+        // docs/ros2.md); periodic states arrive throughout. The task events (4, three of
+        // them at t = 0) are not always seen at all.
+        if topic != "/task_events" {
+            assert!(!got.is_empty(), "{topic}: nothing received\n{context}");
+        }
+        assert!(got.len() <= traced.len(), "{topic}");
+        for m in got {
+            let m = if topic == "/task_events" {
+                serde_json::from_str(m["data"].as_str().expect("json text")).expect("json")
+            } else {
+                m.clone()
+            };
+            let same = |t: &&serde_json::Value| approx_eq(&m, t);
+            assert!(traced.iter().any(same), "{topic}: {m} is not in the trace");
+        }
+        println!(
+            "{topic}: {} of {} traced messages received",
+            got.len(),
+            traced.len()
+        );
+    }
+    let states = seen["/fleet_states"].as_array().map_or(0, |v| v.len());
+    assert!(
+        states * 10 >= 9 * 300,
+        "fleet states at 2 Hz for 300 s: {states} received"
+    );
+}
+
+/// JSON equality with float32 tolerance for numbers.
+fn approx_eq(a: &serde_json::Value, b: &serde_json::Value) -> bool {
+    use serde_json::Value as V;
+    match (a, b) {
+        (V::Number(x), V::Number(y)) => {
+            let (x, y) = (
+                x.as_f64().unwrap_or(f64::NAN),
+                y.as_f64().unwrap_or(f64::NAN),
+            );
+            (x - y).abs() <= 1e-6 * x.abs().max(y.abs()).max(1.0)
+        }
+        (V::Array(x), V::Array(y)) => {
+            x.len() == y.len() && x.iter().zip(y).all(|(a, b)| approx_eq(a, b))
+        }
+        (V::Object(x), V::Object(y)) => {
+            y.iter()
+                .all(|(k, v)| x.get(k).is_some_and(|w| approx_eq(w, v)))
+                && x.len() == y.len()
+        }
+        _ => a == b,
+    }
 }

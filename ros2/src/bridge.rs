@@ -120,6 +120,9 @@ fn dds_qos(q: Qos) -> QosPolicies {
         .build()
 }
 
+/// History kept by every writer for repairs.
+const WRITER_DEPTH: i32 = 1000;
+
 pub struct Bridge {
     // Writers and readers hold the participant alive; it is kept for clarity.
     _participant: DomainParticipant,
@@ -150,7 +153,13 @@ impl Bridge {
             .create_subscriber(&default)
             .map_err(|e| err(&e))?;
         let writer = |name: &str, ros_type: &str, q: Qos| {
-            let qos = dds_qos(q);
+            // Writers keep a deep history so that a reliable reader that missed a sample
+            // gets it repaired instead of waiting for a gap (history does not affect
+            // matching; readers keep their own depth).
+            let qos = dds_qos(Qos {
+                depth: q.depth.max(WRITER_DEPTH),
+                ..q
+            });
             let topic = participant
                 .create_topic(
                     format!("rt{name}"),
@@ -159,9 +168,13 @@ impl Bridge {
                     TopicKind::NoKey,
                 )
                 .map_err(|e| err(&e))?;
-            publisher
+            let w = publisher
                 .create_datawriter_no_key::<Raw, RawAdapter>(&topic, Some(qos))
-                .map_err(|e| err(&e))
+                .map_err(|e| err(&e));
+            // RustDDS hands new writers to its event loop through a channel of 10; creating
+            // more in one burst can block for good (seen with 21), so let it take each one.
+            std::thread::sleep(std::time::Duration::from_millis(5));
+            w
         };
         let outputs: Vec<Topic> = if plugins_only {
             PLUGIN_OUTPUTS.to_vec()

@@ -60,6 +60,8 @@ clock = []  # (wall, sim)
 def pump():
     for kind, r in readers.items():
         for s in r.take(N=1000):
+            if type(s).__name__ == "InvalidSample":  # a writer went away
+                continue
             if kind == "clock":
                 clock.append((time.monotonic(), s.clock.sec + s.clock.nanosec * 1e-9))
             elif kind == "door":
