@@ -359,7 +359,7 @@ impl<'d, 'n, 's> SiteLower<'d, 'n, 's> {
         self.models(root, &mut b, shift);
         // Roles follow the final parameters (locations and extension data both set them).
         for (_, v) in b.vertices.iter_mut() {
-            v.roles = WaypointRoles::from_params(&v.params);
+            v.roles = WaypointRoles::from_params(&v.params).into();
         }
         Some(b)
     }
@@ -460,7 +460,7 @@ impl<'d, 'n, 's> SiteLower<'d, 'n, 's> {
                     pos: p.plus(shift),
                     raw: p,
                     params,
-                    roles: WaypointRoles::default(),
+                    roles: Default::default(),
                 },
                 aspan,
             );
@@ -1102,7 +1102,7 @@ impl<'d, 'n, 's> SiteLower<'d, 'n, 's> {
                 pos,
                 raw: p,
                 params,
-                roles: WaypointRoles::default(),
+                roles: Default::default(),
             },
             span,
         );
