@@ -181,7 +181,7 @@ pub(crate) fn plan(
             }
         }
     }
-    overlaps(&spec.axes, &targets, &mut sweep_diags);
+    overlaps(&spec.axes, &mut targets, &mut sweep_diags);
     // The map: the sweep's `map`, else an axis on `map`, else the scenario's.
     let map_axis = spec.axes.iter().position(|a| a.path == "map");
     if let (Some(i), true) = (map_axis, spec.map.is_some()) {
@@ -205,7 +205,9 @@ pub(crate) fn plan(
             .with_help("add `map: FILE` to the sweep file or to the scenario"),
         );
     }
-    if sweep_diags.iter().any(Diagnostic::is_error) {
+    // Without a map nothing can be checked further; bad axes are left out of the runs
+    // below (they are reported), so that the values of the others are checked too.
+    if spec.map.is_none() && map_axis.is_none() && base_map.is_none() {
         report.groups.push((sweep_src, sweep_diags));
         return Err(Failed(1));
     }
@@ -317,7 +319,7 @@ pub(crate) fn plan(
         for d in diags {
             match remap(&spec, r, sid, &d) {
                 Some(nd) => {
-                    if !remapped.iter().any(|x| {
+                    if !remapped.iter().chain(&sweep_diags).any(|x| {
                         x.code == nd.code && x.span == nd.span && x.message == nd.message
                     }) {
                         remapped.push(nd);
@@ -340,8 +342,10 @@ pub(crate) fn plan(
             }
         }
     }
-    if !remapped.is_empty() {
-        report.groups.push((sweep_src, remapped));
+    sweep_diags.extend(remapped);
+    sweep_diags.sort_by_key(|d| (d.span.start, d.span.end));
+    if !sweep_diags.is_empty() {
+        report.groups.push((sweep_src, sweep_diags));
     }
     if other_groups > 0 || report.errors() > 0 {
         if other_groups > 3 {
@@ -400,29 +404,20 @@ fn remap(spec: &Spec, r: &Run, sid: FileId, d: &Diagnostic) -> Option<Diagnostic
 }
 
 /// Two axes writing the same place.
-fn overlaps(axes: &[Axis], targets: &[Option<Target>], diags: &mut Vec<Diagnostic>) {
-    let range = |t: &Target| match t {
-        Target::Replace { start, end } => (*start, *end),
-        Target::Insert { at, .. } => (*at, *at),
-    };
+fn overlaps(axes: &[Axis], targets: &mut [Option<Target>], diags: &mut Vec<Diagnostic>) {
     for i in 0..axes.len() {
         for j in 0..i {
-            let (Some(a), Some(b)) = (&targets[i], &targets[j]) else {
+            let clash = match (&targets[i], &targets[j]) {
+                (Some(a), Some(b)) => clashes(a, b),
+                _ => false,
+            };
+            if !clash {
                 continue;
-            };
-            let clash = match (a, b) {
-                (
-                    Target::Insert { at: x, key: k, .. },
-                    Target::Insert { at: y, key: l, .. },
-                ) => x == y && k == l,
-                _ => {
-                    let ((s1, e1), (s2, e2)) = (range(a), range(b));
-                    // Inserting at the very end of a replaced value is inside it too.
-                    (s1 < e2 && s2 < e1) || (s1 == e1 && s2 < s1 && s1 <= e2)
-                        || (s2 == e2 && s1 < s2 && s2 <= e1)
-                }
-            };
-            if clash && axes[i].path != axes[j].path {
+            }
+            // Only the first of the two is applied (the same path twice is reported by
+            // the spec already).
+            targets[i] = None;
+            if axes[i].path != axes[j].path {
                 diags.push(
                     Diagnostic::error(
                         codes::OVERLAPPING_AXES.code,
@@ -436,6 +431,25 @@ fn overlaps(axes: &[Axis], targets: &[Option<Target>], diags: &mut Vec<Diagnosti
                     .with_help("keep one; to vary two values together, put both in `zip`"),
                 );
             }
+        }
+    }
+}
+
+fn clashes(a: &Target, b: &Target) -> bool {
+    let range = |t: &Target| match t {
+        Target::Replace { start, end } => (*start, *end),
+        Target::Insert { at, .. } => (*at, *at),
+    };
+    match (a, b) {
+        (Target::Insert { at: x, key: k, .. }, Target::Insert { at: y, key: l, .. }) => {
+            x == y && k == l
+        }
+        _ => {
+            let ((s1, e1), (s2, e2)) = (range(a), range(b));
+            // Inserting at the very end of a replaced value is inside it too.
+            (s1 < e2 && s2 < e1)
+                || (s1 == e1 && s2 < s1 && s1 <= e2)
+                || (s2 == e2 && s1 < s2 && s2 <= e1)
         }
     }
 }
@@ -646,6 +660,10 @@ fn relative(from: &Path, to: &Path) -> PathBuf {
         return to.to_path_buf();
     }
     let common = f.iter().zip(&t).take_while(|(a, b)| a == b).count();
+    // Nothing shared but the root: the absolute path says more than a chain of `..`.
+    if common <= 1 {
+        return to.to_path_buf();
+    }
     let mut out = PathBuf::new();
     for _ in common..f.len() {
         out.push("..");

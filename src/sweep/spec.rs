@@ -55,8 +55,10 @@ impl Spec {
     /// Sizes of the dimensions, outermost first (the zip group, then the `runs` axes).
     pub fn dimensions(&self) -> Vec<usize> {
         let mut dims = Vec::new();
-        if let Some(z) = self.axes.iter().find(|a| a.zipped) {
-            dims.push(z.values.len());
+        // The shortest list when the lengths differ (an error, reported; the runs are
+        // still built so that their values can be checked too).
+        if let Some(z) = self.axes.iter().filter(|a| a.zipped).map(|a| a.values.len()).min() {
+            dims.push(z);
         }
         dims.extend(
             self.axes
@@ -242,7 +244,9 @@ pub(crate) fn parse(path: &Path, text: &str, file: FileId) -> (Option<Spec>, Vec
             );
         }
     }
-    if diags.iter().any(Diagnostic::is_error) {
+    // Axes that overlap or do not zip are reported with whatever the plan finds next;
+    // a file that cannot be read as a sweep stops here.
+    if diags.iter().any(|d| d.code == codes::SWEEP_INVALID.code) {
         return (None, diags);
     }
     let Some((scenario, scenario_span)) = scenario else {

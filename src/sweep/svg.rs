@@ -219,7 +219,12 @@ fn summary(series: &[Series], x_label: &str, per_point: usize) -> String {
             Some((place, share)) => {
                 let _ = writeln!(
                     s,
-                    "; saturates on {place} ({:.0} % of task waiting)",
+                    "; {} {place} ({:.0} % of task waiting)",
+                    if se.knee.is_some() {
+                        "saturates on"
+                    } else {
+                        "most waiting at"
+                    },
                     100.0 * share
                 );
             }
