@@ -35,7 +35,9 @@ fn sweep(out: &Path, extra: &[&str]) -> (i32, String, String) {
 /// results.csv as (header, rows).
 fn csv(out: &Path) -> (Vec<String>, Vec<Vec<String>>) {
     let text = std::fs::read_to_string(out.join("results.csv")).unwrap();
-    let mut lines = text.lines().map(|l| l.split(',').map(String::from).collect());
+    let mut lines = text
+        .lines()
+        .map(|l| l.split(',').map(String::from).collect());
     (lines.next().unwrap(), lines.collect())
 }
 
@@ -53,7 +55,10 @@ fn rows_equal_plain_sim_runs_and_reruns_redo_only_what_changed() {
     let out = tmp.path().join("out");
     let (code, stdout, stderr) = sweep(&out, &[]);
     assert_eq!(code, 0, "{stderr}");
-    assert!(stderr.contains("6 runs, 6 to run, 0 up to date"), "{stderr}");
+    assert!(
+        stderr.contains("6 runs, 6 to run, 0 up to date"),
+        "{stderr}"
+    );
     assert!(stdout.starts_with("6 of 6 runs done"), "{stdout}");
 
     let (header, rows) = csv(&out);
@@ -92,24 +97,40 @@ fn rows_equal_plain_sim_runs_and_reruns_redo_only_what_changed() {
         ]);
         assert_eq!(code, 0, "{err}");
         let plain = std::fs::read(&mine).unwrap();
-        assert_eq!(plain, std::fs::read(dir.join("report.json")).unwrap(), "run {run}");
+        assert_eq!(
+            plain,
+            std::fs::read(dir.join("report.json")).unwrap(),
+            "run {run}"
+        );
         // The row holds that report's numbers.
         let report: Value = serde_json::from_slice(&plain).unwrap();
         let fleets = report["fleets"].as_array().unwrap();
         let sum = |k: &str| fleets.iter().map(|f| f[k].as_f64().unwrap()).sum::<f64>();
         let num = |k: &str| row[col(&header, k)].parse::<f64>().unwrap();
         assert_eq!(num("robots"), row[1].parse::<f64>().unwrap());
-        assert_eq!(num("robots"), report["robots"].as_array().unwrap().len() as f64);
+        assert_eq!(
+            num("robots"),
+            report["robots"].as_array().unwrap().len() as f64
+        );
         assert_eq!(num("tasks_completed"), sum("tasks_completed"));
         assert_eq!(num("throughput_per_hour"), sum("throughput_per_hour"));
-        assert_eq!(num("wait_lift_s"), report["waits"]["lift_s"].as_f64().unwrap());
+        assert_eq!(
+            num("wait_lift_s"),
+            report["waits"]["lift_s"].as_f64().unwrap()
+        );
         assert_eq!(
             row[col(&header, "bottleneck")],
             report["bottleneck"]["place"].as_str().unwrap_or("")
         );
         let scenario = std::fs::read_to_string(dir.join("scenario.yaml")).unwrap();
-        assert!(scenario.contains(&format!("    count: {}\n", row[1])), "{scenario}");
-        assert!(scenario.contains(&format!("\nseed: {}\n", row[2])), "{scenario}");
+        assert!(
+            scenario.contains(&format!("    count: {}\n", row[1])),
+            "{scenario}"
+        );
+        assert!(
+            scenario.contains(&format!("\nseed: {}\n", row[2])),
+            "{scenario}"
+        );
         assert!(scenario.contains("\nduration: 4min\n"), "{scenario}");
     }
     // Throughput is completed tasks per simulated hour: 4 minutes are 1/15 h.
@@ -128,12 +149,18 @@ fn rows_equal_plain_sim_runs_and_reruns_redo_only_what_changed() {
     let before = mtime(&kept);
     let (code, _, stderr) = sweep(&out, &[]);
     assert_eq!(code, 0, "{stderr}");
-    assert!(stderr.contains("6 runs, 0 to run, 6 up to date"), "{stderr}");
+    assert!(
+        stderr.contains("6 runs, 0 to run, 6 up to date"),
+        "{stderr}"
+    );
     // Deleting one run's directory redoes that run only.
     std::fs::remove_dir_all(out.join("runs/0003")).unwrap();
     let (code, _, stderr) = sweep(&out, &[]);
     assert_eq!(code, 0, "{stderr}");
-    assert!(stderr.contains("6 runs, 1 to run, 5 up to date"), "{stderr}");
+    assert!(
+        stderr.contains("6 runs, 1 to run, 5 up to date"),
+        "{stderr}"
+    );
     assert_eq!(mtime(&kept), before, "run 0000 was redone");
     assert!(out.join("runs/0003/report.json").is_file());
     assert_eq!(std::fs::read(out.join("results.csv")).unwrap(), csv1);
@@ -141,7 +168,10 @@ fn rows_equal_plain_sim_runs_and_reruns_redo_only_what_changed() {
     // A changed input (here the stamp of another version) redoes that run.
     std::fs::write(out.join("runs/0005/inputs.sha256"), "0\n").unwrap();
     let (_, _, stderr) = sweep(&out, &[]);
-    assert!(stderr.contains("6 runs, 1 to run, 5 up to date"), "{stderr}");
+    assert!(
+        stderr.contains("6 runs, 1 to run, 5 up to date"),
+        "{stderr}"
+    );
 
     // One core or all: the same bytes.
     let out1 = tmp.path().join("one_core");
@@ -193,7 +223,12 @@ fn bad_axes_are_reported_at_their_place_before_anything_runs() {
         ("S0402", 6, 3, "`fleets` has no item `tinyRobots`"),
         ("S0402", 7, 3, "unknown key `cont`"),
         ("S0403", 8, 13, "`seed` must be an integer"),
-        ("S0403", 9, 16, "`step: 1`: `step` of 1 s is larger than 0.1 s"),
+        (
+            "S0403",
+            9,
+            16,
+            "`step: 1`: `step` of 1 s is larger than 0.1 s",
+        ),
         ("S0405", 12, 3, "has 2 value(s), but"),
     ] {
         let at = format!("{file}:{line}:{col}");
@@ -201,7 +236,10 @@ fn bad_axes_are_reported_at_their_place_before_anything_runs() {
             .split("error[")
             .find(|d| d.starts_with(code) && d.contains(&at))
             .unwrap_or_else(|| panic!("no {code} at {at}:\n{stderr}"));
-        assert!(head.contains(what), "{code} at {at} does not say {what:?}:\n{head}");
+        assert!(
+            head.contains(what),
+            "{code} at {at} does not say {what:?}:\n{head}"
+        );
     }
     assert!(stderr.contains("did you mean `tinyRobot`?"), "{stderr}");
     assert!(stderr.contains("did you mean `count`?"), "{stderr}");
@@ -213,7 +251,8 @@ fn a_scenario_that_does_not_fit_the_map_is_reported_before_anything_runs() {
     // spawn_points: the clinic has one tinyRobot spawn, so two robots cannot be placed.
     let tmp = tempfile::tempdir().unwrap();
     let sweep = tmp.path().join("s.sweep.yaml");
-    let scenario = Path::new(env!("CARGO_MANIFEST_DIR")).join("fixtures/two_level_clinic.scenario.yaml");
+    let scenario =
+        Path::new(env!("CARGO_MANIFEST_DIR")).join("fixtures/two_level_clinic.scenario.yaml");
     std::fs::write(
         &sweep,
         format!(
@@ -229,7 +268,10 @@ fn a_scenario_that_does_not_fit_the_map_is_reported_before_anything_runs() {
     );
     assert_eq!(code, 1, "{stderr}");
     assert!(stderr.contains("error[S0202]"), "{stderr}");
-    assert!(stderr.contains("(run 0001: fleets.tinyRobot.count=2)"), "{stderr}");
+    assert!(
+        stderr.contains("(run 0001: fleets.tinyRobot.count=2)"),
+        "{stderr}"
+    );
     assert!(!out.exists());
 }
 
@@ -313,7 +355,10 @@ fn capacity_svg_draws_the_mean_over_seeds_against_robots() {
     assert!(((pts[1].0 - pts[0].0) - (pts[2].0 - pts[1].0)).abs() < 0.2);
     for (k, m) in means.iter().enumerate() {
         let want = format!("{} robots: {m:.2} tasks/h", k + 1);
-        assert!(titles.iter().any(|t| t.starts_with(&want)), "{want} not in {titles:?}");
+        assert!(
+            titles.iter().any(|t| t.starts_with(&want)),
+            "{want} not in {titles:?}"
+        );
     }
     // Higher throughput is drawn higher.
     for a in 0..3 {
@@ -353,7 +398,10 @@ fn capacity_svg_draws_the_mean_over_seeds_against_robots() {
         .unwrap();
     assert!(shot.exists(), "{}", String::from_utf8_lossy(&res.stderr));
     let png = std::fs::read(&shot).unwrap();
-    assert!(count_colour(&png, [0x1f, 0x77, 0xb4]) > 300, "no line drawn");
+    assert!(
+        count_colour(&png, [0x1f, 0x77, 0xb4]) > 300,
+        "no line drawn"
+    );
 }
 
 fn kubernetes_validate() -> Option<PathBuf> {
@@ -392,7 +440,10 @@ fn kubernetes_manifest_is_a_valid_indexed_job_whose_pods_do_the_runs() {
     assert_eq!(command[0], "mapc");
     assert!(command.contains(&"$(JOB_COMPLETION_INDEX)".to_string()));
     // What each pod does: the command with its index, in the working directory.
-    assert!(!out.join("runs").exists(), "the manifest executor ran something");
+    assert!(
+        !out.join("runs").exists(),
+        "the manifest executor ran something"
+    );
     for i in 0..6 {
         let args: Vec<String> = command[1..]
             .iter()

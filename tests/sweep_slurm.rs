@@ -74,7 +74,10 @@ impl Cluster {
         let child = Command::new(munged)
             .arg(format!("--socket={}", socket.display()))
             .arg(format!("--key-file={}", key_file.display()))
-            .arg(format!("--pid-file={}", d.join("munge/munged.pid").display()))
+            .arg(format!(
+                "--pid-file={}",
+                d.join("munge/munged.pid").display()
+            ))
             .arg(format!("--seed-file={}", d.join("munge/seed").display()))
             .args(["--foreground", "--force"])
             .stdout(Stdio::null())
@@ -82,7 +85,9 @@ impl Cluster {
             .spawn()
             .unwrap();
         cluster.children.push(child);
-        wait_for("munge's socket", Duration::from_secs(10), || socket.exists());
+        wait_for("munge's socket", Duration::from_secs(10), || {
+            socket.exists()
+        });
 
         let host = std::fs::read_to_string("/proc/sys/kernel/hostname")
             .unwrap()
@@ -183,7 +188,13 @@ impl Cluster {
 }
 
 fn cluster_log(socket: &Path, name: &str) -> PathBuf {
-    socket.parent().unwrap().parent().unwrap().join("log").join(name)
+    socket
+        .parent()
+        .unwrap()
+        .parent()
+        .unwrap()
+        .join("log")
+        .join(name)
 }
 
 fn wait_for(what: &str, limit: Duration, mut ok: impl FnMut() -> bool) {
@@ -227,8 +238,14 @@ fn slurm_job_array_gives_the_local_results() {
     assert_eq!(code, 0, "{err}");
     assert!(err.contains("submitted Slurm job"), "{err}");
     assert!(stdout.starts_with("6 of 6 runs done"), "{stdout}");
-    assert_eq!(read(out.join("results.csv")), read(local.join("results.csv")));
-    assert_eq!(read(out.join("results.json")), read(local.join("results.json")));
+    assert_eq!(
+        read(out.join("results.csv")),
+        read(local.join("results.csv"))
+    );
+    assert_eq!(
+        read(out.join("results.json")),
+        read(local.join("results.json"))
+    );
     for run in ["0000", "0001", "0002", "0003", "0004", "0005"] {
         let p = Path::new("runs").join(run).join("report.json");
         assert_eq!(read(out.join(&p)), read(local.join(&p)), "{}", p.display());
@@ -236,21 +253,33 @@ fn slurm_job_array_gives_the_local_results() {
     // Every task wrote its log where the job script says.
     let logs = std::fs::read_dir(out.join("slurm"))
         .unwrap()
-        .filter(|e| e.as_ref().unwrap().path().extension().is_some_and(|x| x == "log"))
+        .filter(|e| {
+            e.as_ref()
+                .unwrap()
+                .path()
+                .extension()
+                .is_some_and(|x| x == "log")
+        })
         .count();
     assert_eq!(logs, 6);
 
     // --no-wait, then collect: only the two missing runs are submitted.
     std::fs::remove_dir_all(out.join("runs/0002")).unwrap();
     std::fs::remove_dir_all(out.join("runs/0004")).unwrap();
-    let (code, _, err) = cluster.mapc(&["sweep", SWEEP, "-o", o, "--executor", "slurm", "--no-wait"]);
+    let (code, _, err) =
+        cluster.mapc(&["sweep", SWEEP, "-o", o, "--executor", "slurm", "--no-wait"]);
     assert_eq!(code, 0, "{err}");
     assert!(err.contains(": 2 run(s)"), "{err}");
     assert!(err.contains(&format!("mapc sweep collect {o}")), "{err}");
-    wait_for("the array", Duration::from_secs(120), || cluster.queue_empty());
+    wait_for("the array", Duration::from_secs(120), || {
+        cluster.queue_empty()
+    });
     let (code, _, err) = cluster.mapc(&["sweep", "collect", o]);
     assert_eq!(code, 0, "{err}");
-    assert_eq!(read(out.join("results.csv")), read(local.join("results.csv")));
+    assert_eq!(
+        read(out.join("results.csv")),
+        read(local.join("results.csv"))
+    );
 
     // A run that cannot be written fails twice: resubmitted once, then reported.
     std::fs::remove_dir_all(out.join("runs/0001")).unwrap();

@@ -136,8 +136,8 @@ pub(crate) fn read(out: &Path) -> Result<(PlanFile, Vec<Row>), String> {
             output::shown(out)
         )
     })?;
-    let plan: PlanFile = serde_json::from_str(&text)
-        .map_err(|e| format!("{}: {e}", output::shown(&path)))?;
+    let plan: PlanFile =
+        serde_json::from_str(&text).map_err(|e| format!("{}: {e}", output::shown(&path)))?;
     let mut rows = Vec::new();
     for r in &plan.runs {
         let numbers = if up_to_date(out, &r.run, &r.inputs) {
@@ -201,7 +201,11 @@ pub(crate) fn json(plan: &PlanFile, rows: &[Row]) -> Result<Vec<u8>, String> {
             let mut o = vec![("run".to_string(), Value::from(r.run.clone()))];
             o.push((
                 "status".into(),
-                Value::from(if r.numbers.is_some() { "done" } else { "missing" }),
+                Value::from(if r.numbers.is_some() {
+                    "done"
+                } else {
+                    "missing"
+                }),
             ));
             for (a, v) in plan.axes.iter().zip(&r.values) {
                 o.push((a.path.clone(), v.value.clone()));

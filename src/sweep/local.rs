@@ -11,7 +11,12 @@ use std::sync::mpsc;
 use std::time::Instant;
 
 /// Runs `todo` on `jobs` threads; returns the failures (run name, message).
-pub(crate) fn execute(plan: &Plan, todo: &[&Run], out: &Path, jobs: usize) -> Vec<(String, String)> {
+pub(crate) fn execute(
+    plan: &Plan,
+    todo: &[&Run],
+    out: &Path,
+    jobs: usize,
+) -> Vec<(String, String)> {
     let next = AtomicUsize::new(0);
     let (tx, rx) = mpsc::channel::<(usize, Result<(), String>)>();
     let mut failures = Vec::new();

@@ -136,7 +136,9 @@ pub(crate) fn run(args: &SweepArgs) -> ExitCode {
     // A cluster task: one run, nothing else.
     if let Some(i) = args.run {
         let Some(r) = plan.runs.get(i) else {
-            return failed(format!("--run {i}: the sweep has {count} runs (0..{count})"));
+            return failed(format!(
+                "--run {i}: the sweep has {count} runs (0..{count})"
+            ));
         };
         if run::up_to_date(out, &r.name, &r.inputs) {
             if !args.quiet {
@@ -204,9 +206,9 @@ pub(crate) fn run(args: &SweepArgs) -> ExitCode {
     }
     match args.executor {
         Executor::Local => {
-            let jobs = args.jobs.unwrap_or_else(|| {
-                std::thread::available_parallelism().map_or(1, |n| n.get())
-            });
+            let jobs = args
+                .jobs
+                .unwrap_or_else(|| std::thread::available_parallelism().map_or(1, |n| n.get()));
             let failures = local::execute(&plan, &todo, out, jobs);
             let code = finish(out, args.quiet);
             if !failures.is_empty() {
@@ -234,7 +236,14 @@ pub(crate) fn run(args: &SweepArgs) -> ExitCode {
             }
         }
         Executor::K8sManifest => {
-            match k8s::write(sweep, out, count, args.max_parallel, &args.image, &args.claim) {
+            match k8s::write(
+                sweep,
+                out,
+                count,
+                args.max_parallel,
+                &args.image,
+                &args.claim,
+            ) {
                 Ok(p) => {
                     if !args.quiet {
                         eprintln!(

@@ -284,9 +284,7 @@ pub(crate) fn plan(
                 .filter(|d| d.is_error())
                 .cloned()
                 .collect();
-            report
-                .groups
-                .push((checked.parsed.sources.clone(), errors));
+            report.groups.push((checked.parsed.sources.clone(), errors));
             eprintln!("error: {}: invalid map, nothing run", output::shown(&path));
             return Err(Failed(1));
         }
@@ -309,9 +307,7 @@ pub(crate) fn plan(
                 until: Some(0.0),
                 ..Default::default()
             };
-            if let Err(mapc_sim::SimError::Invalid(d)) =
-                mapc_sim::simulate(m.building(), s, opts)
-            {
+            if let Err(mapc_sim::SimError::Invalid(d)) = mapc_sim::simulate(m.building(), s, opts) {
                 diags.extend(d);
             }
         }
@@ -319,9 +315,11 @@ pub(crate) fn plan(
         for d in diags {
             match remap(&spec, r, sid, &d) {
                 Some(nd) => {
-                    if !remapped.iter().chain(&sweep_diags).any(|x| {
-                        x.code == nd.code && x.span == nd.span && x.message == nd.message
-                    }) {
+                    if !remapped
+                        .iter()
+                        .chain(&sweep_diags)
+                        .any(|x| x.code == nd.code && x.span == nd.span && x.message == nd.message)
+                    {
                         remapped.push(nd);
                     }
                 }
@@ -394,7 +392,10 @@ fn remap(spec: &Spec, r: &Run, sid: FileId, d: &Diagnostic) -> Option<Diagnostic
         Diagnostic::error(
             codes::AXIS_VALUE.code,
             value.span,
-            format!("`{}: {}`: {} ({})", axis.path, value.text, d.message, d.code),
+            format!(
+                "`{}: {}`: {} ({})",
+                axis.path, value.text, d.message, d.code
+            ),
         )
     };
     Some(match &d.help {
@@ -687,10 +688,7 @@ fn inputs_hash(scenario: &str, map_sources: &[SourceFile]) -> String {
         h.update((s.text.len() as u64).to_le_bytes());
         h.update(s.text.as_bytes());
     }
-    h.finalize()
-        .iter()
-        .map(|b| format!("{b:02x}"))
-        .collect()
+    h.finalize().iter().map(|b| format!("{b:02x}")).collect()
 }
 
 #[cfg(test)]
@@ -722,10 +720,7 @@ mod tests {
             edit(base, "fleets.b.count", "3"),
             format!("{base}    count: 3\n")
         );
-        assert_eq!(
-            edit(base, "step", "0.02"),
-            format!("{base}step: 0.02\n")
-        );
+        assert_eq!(edit(base, "step", "0.02"), format!("{base}step: 0.02\n"));
         let quoted = "duration: '1h'\nfleets: []\n";
         assert_eq!(edit(quoted, "duration", "2h"), "duration: 2h\nfleets: []\n");
     }

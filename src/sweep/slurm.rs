@@ -168,7 +168,11 @@ pub(crate) fn run(
                 "{} run(s) failed (logs in {}){}",
                 todo.len(),
                 output::shown(&o.out.join("slurm")),
-                if attempt == 0 { "; resubmitting them once" } else { "" }
+                if attempt == 0 {
+                    "; resubmitting them once"
+                } else {
+                    ""
+                }
             );
         }
     }

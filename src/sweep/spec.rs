@@ -57,7 +57,13 @@ impl Spec {
         let mut dims = Vec::new();
         // The shortest list when the lengths differ (an error, reported; the runs are
         // still built so that their values can be checked too).
-        if let Some(z) = self.axes.iter().filter(|a| a.zipped).map(|a| a.values.len()).min() {
+        if let Some(z) = self
+            .axes
+            .iter()
+            .filter(|a| a.zipped)
+            .map(|a| a.values.len())
+            .min()
+        {
             dims.push(z);
         }
         dims.extend(
@@ -218,7 +224,9 @@ pub(crate) fn parse(path: &Path, text: &str, file: FileId) -> (Option<Spec>, Vec
                             ),
                         )
                         .with_label(first.span, "the first axis of the group")
-                        .with_help("zipped axes take their values together: give them equally many"),
+                        .with_help(
+                            "zipped axes take their values together: give them equally many",
+                        ),
                     );
                 }
             }
@@ -263,7 +271,13 @@ pub(crate) fn parse(path: &Path, text: &str, file: FileId) -> (Option<Spec>, Vec
     )
 }
 
-fn read_axes(node: &Node, section: &str, text: &str, axes: &mut Vec<Axis>, diags: &mut Vec<Diagnostic>) {
+fn read_axes(
+    node: &Node,
+    section: &str,
+    text: &str,
+    axes: &mut Vec<Axis>,
+    diags: &mut Vec<Diagnostic>,
+) {
     let Some(entries) = node.as_map() else {
         diags.push(
             error(
@@ -271,7 +285,11 @@ fn read_axes(node: &Node, section: &str, text: &str, axes: &mut Vec<Axis>, diags
                 node.span,
                 format!(
                     "`{section}` must be a mapping of scenario paths to {}, found {}",
-                    if section == "set" { "values" } else { "lists of values" },
+                    if section == "set" {
+                        "values"
+                    } else {
+                        "lists of values"
+                    },
                     node.type_name()
                 ),
             )

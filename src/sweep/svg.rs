@@ -48,7 +48,9 @@ pub(crate) fn knee(xs: &[f64], ys: &[f64]) -> Option<usize> {
     let (x0, x1) = (xs[0], xs[n - 1]);
     let (lo, hi) = ys
         .iter()
-        .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &y| (a.min(y), b.max(y)));
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &y| {
+            (a.min(y), b.max(y))
+        });
     if x1 <= x0 || hi <= lo {
         return None;
     }
@@ -66,8 +68,7 @@ pub(crate) fn capacity(plan: &PlanFile, rows: &[Row]) -> Option<Chart> {
         Some(i) => vec![i],
         None => {
             let j = (0..axes.len()).find(|&j| {
-                axes[j].path != "seed"
-                    && rows.iter().all(|r| r.values[j].value.is_number())
+                axes[j].path != "seed" && rows.iter().all(|r| r.values[j].value.is_number())
             })?;
             vec![j]
         }
@@ -166,11 +167,7 @@ pub(crate) fn capacity(plan: &PlanFile, rows: &[Row]) -> Option<Chart> {
             saturates,
         });
     }
-    let seeds = rows
-        .iter()
-        .filter(|r| r.numbers.is_some())
-        .count()
-        .max(1);
+    let seeds = rows.iter().filter(|r| r.numbers.is_some()).count().max(1);
     let per_point = series
         .iter()
         .flat_map(|s| s.points.iter().map(|p| p.ys.len()))
@@ -191,7 +188,11 @@ fn summary(series: &[Series], x_label: &str, per_point: usize) -> String {
             "{} (throughput per hour, mean over {per_point} run(s) per point):",
             se.label
         );
-        let _ = writeln!(s, "  {:>8}  {:>9}  {:>9}  {:>9}", x_label, "mean", "min", "max");
+        let _ = writeln!(
+            s,
+            "  {:>8}  {:>9}  {:>9}  {:>9}",
+            x_label, "mean", "min", "max"
+        );
         for p in &se.points {
             let _ = writeln!(
                 s,
@@ -374,7 +375,13 @@ fn draw(series: &[Series], x_label: &str, per_point: usize) -> String {
         if se.points.iter().any(|p| p.max > p.min) {
             let mut d = String::new();
             for (k, p) in se.points.iter().enumerate() {
-                let _ = write!(d, "{}{:.1} {:.1}", if k == 0 { "M" } else { "L" }, sx(p.x), sy(p.max));
+                let _ = write!(
+                    d,
+                    "{}{:.1} {:.1}",
+                    if k == 0 { "M" } else { "L" },
+                    sx(p.x),
+                    sy(p.max)
+                );
             }
             for p in se.points.iter().rev() {
                 let _ = write!(d, "L{:.1} {:.1}", sx(p.x), sy(p.min));
@@ -449,7 +456,9 @@ fn draw(series: &[Series], x_label: &str, per_point: usize) -> String {
         ly += 18.0;
         let note = match (&se.knee, &se.saturates) {
             (Some(_), Some((p, share))) => format!("saturates: {p} ({:.0} %)", 100.0 * share),
-            (None, Some((p, share))) => format!("no knee; most waiting: {p} ({:.0} %)", 100.0 * share),
+            (None, Some((p, share))) => {
+                format!("no knee; most waiting: {p} ({:.0} %)", 100.0 * share)
+            }
             (Some(_), None) => "knee; no task waited".to_string(),
             (None, None) => "no knee".to_string(),
         };
