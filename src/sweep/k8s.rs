@@ -12,16 +12,21 @@ fn q(s: &str) -> String {
     serde_json::Value::from(s).to_string()
 }
 
-pub(crate) fn manifest(
-    sweep: &Path,
-    out: &Path,
-    runs: usize,
-    max_parallel: Option<usize>,
-    image: &str,
-    claim: &str,
-) -> String {
-    let parallelism = max_parallel.unwrap_or(runs).clamp(1, runs.max(1));
-    let command = [
+pub(crate) struct Job<'a> {
+    pub sweep: &'a Path,
+    pub out: &'a Path,
+    pub runs: usize,
+    pub max_parallel: Option<usize>,
+    pub image: &'a str,
+    pub claim: &'a str,
+    /// The lint options, passed on to every pod.
+    pub lint_args: Vec<String>,
+}
+
+fn manifest(j: &Job) -> String {
+    let (sweep, out, runs, image, claim) = (j.sweep, j.out, j.runs, j.image, j.claim);
+    let parallelism = j.max_parallel.unwrap_or(runs).clamp(1, runs.max(1));
+    let mut command = vec![
         "mapc".to_string(),
         "sweep".into(),
         output::shown(sweep),
@@ -31,6 +36,7 @@ pub(crate) fn manifest(
         "$(JOB_COMPLETION_INDEX)".into(),
         "--quiet".into(),
     ];
+    command.extend(j.lint_args.iter().cloned());
     let command: Vec<String> = command.iter().map(|s| q(s)).collect();
     format!(
         "# One pod per run of a mapc sweep (written by `mapc sweep --executor k8s-manifest`).\n\
@@ -71,16 +77,9 @@ pub(crate) fn manifest(
 }
 
 /// Writes OUT/k8s/job.yaml; returns its path.
-pub(crate) fn write(
-    sweep: &Path,
-    out: &Path,
-    runs: usize,
-    max_parallel: Option<usize>,
-    image: &str,
-    claim: &str,
-) -> Result<PathBuf, String> {
-    let path = out.join("k8s").join("job.yaml");
-    let text = manifest(sweep, out, runs, max_parallel, image, claim);
+pub(crate) fn write(j: &Job) -> Result<PathBuf, String> {
+    let path = j.out.join("k8s").join("job.yaml");
+    let text = manifest(j);
     output::write_atomic(&path, text.as_bytes())
         .map_err(|e| format!("{}: {e}", output::shown(&path)))?;
     Ok(path)

@@ -90,6 +90,27 @@ enum SweepCommand {
     },
 }
 
+/// The lint options again, for the cluster tasks' command lines.
+fn lint_args(l: &crate::LintOpts) -> Vec<String> {
+    let mut v = Vec::new();
+    if l.deny_warnings {
+        v.push("--deny-warnings".to_string());
+    }
+    for (flag, codes) in [
+        ("--allow", &l.allow),
+        ("--warn", &l.warn),
+        ("--deny", &l.deny),
+    ] {
+        for c in codes {
+            v.push(format!("{flag}={c}"));
+        }
+    }
+    if let Some(c) = &l.config {
+        v.push(format!("--config={}", plan::absolute(c).display()));
+    }
+    v
+}
+
 fn failed(msg: String) -> ExitCode {
     eprintln!("error: {msg}");
     ExitCode::from(2)
@@ -225,6 +246,7 @@ pub(crate) fn run(args: &SweepArgs) -> ExitCode {
                 sbatch_args: args.sbatch_args.as_deref().unwrap_or(""),
                 max_parallel: args.max_parallel,
                 quiet: args.quiet,
+                lint_args: lint_args(&args.lints),
             };
             match slurm::run(&opts, &indices, |i| {
                 let r = &plan.runs[i];
@@ -236,14 +258,16 @@ pub(crate) fn run(args: &SweepArgs) -> ExitCode {
             }
         }
         Executor::K8sManifest => {
-            match k8s::write(
+            let job = k8s::Job {
                 sweep,
                 out,
-                count,
-                args.max_parallel,
-                &args.image,
-                &args.claim,
-            ) {
+                runs: count,
+                max_parallel: args.max_parallel,
+                image: &args.image,
+                claim: &args.claim,
+                lint_args: lint_args(&args.lints),
+            };
+            match k8s::write(&job) {
                 Ok(p) => {
                     if !args.quiet {
                         eprintln!(

@@ -721,6 +721,18 @@ mod tests {
             format!("{base}    count: 3\n")
         );
         assert_eq!(edit(base, "step", "0.02"), format!("{base}step: 0.02\n"));
+        // A key added to a mapping whose last value is a block list, before the next item.
+        let nested =
+            "fleets:\n  - name: a\n    tasks:\n      - loop\n      - clean\n  - name: b\nseed: 1\n";
+        assert_eq!(
+            edit(nested, "fleets.a.count", "2"),
+            nested.replace("- clean\n", "- clean\n    count: 2\n")
+        );
+        let nested_flow = "fleets:\n  - name: a\n    robot:\n      preset: TinyRobot\n      footprint: 0.3\nseed: 1\n";
+        assert_eq!(
+            edit(nested_flow, "fleets.a.robot.speed", "1"),
+            nested_flow.replace("0.3\n", "0.3\n      speed: 1\n")
+        );
         let quoted = "duration: '1h'\nfleets: []\n";
         assert_eq!(edit(quoted, "duration", "2h"), "duration: 2h\nfleets: []\n");
     }

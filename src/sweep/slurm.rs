@@ -17,6 +17,8 @@ pub(crate) struct Options<'a> {
     pub sbatch_args: &'a str,
     pub max_parallel: Option<usize>,
     pub quiet: bool,
+    /// The lint options, passed on to every task.
+    pub lint_args: Vec<String>,
 }
 
 pub(crate) enum Outcome {
@@ -53,10 +55,14 @@ fn quote(p: &Path) -> String {
 fn script(o: &Options) -> Result<PathBuf, String> {
     let exe = std::env::current_exe().map_err(|e| format!("cannot find mapc itself: {e}"))?;
     let text = format!(
-        "#!/bin/sh\n# One run of a mapc sweep per array task (written by `mapc sweep --executor slurm`).\nexec {} sweep {} -o {} --run \"$SLURM_ARRAY_TASK_ID\" --quiet\n",
+        "#!/bin/sh\n# One run of a mapc sweep per array task (written by `mapc sweep --executor slurm`).\nexec {} sweep {} -o {} --run \"$SLURM_ARRAY_TASK_ID\" --quiet{}\n",
         quote(&exe),
         quote(&absolute(o.sweep)),
-        quote(&absolute(o.out))
+        quote(&absolute(o.out)),
+        o.lint_args
+            .iter()
+            .map(|a| format!(" {}", quote(Path::new(a))))
+            .collect::<String>()
     );
     let path = o.out.join("slurm").join("job.sh");
     output::write_atomic(&path, text.as_bytes())
