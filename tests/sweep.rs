@@ -497,3 +497,65 @@ fn collect_reports_runs_that_are_not_done() {
     assert!(rows.iter().all(|r| r[3].is_empty()));
     assert!(!out.join("capacity.svg").exists());
 }
+
+#[test]
+fn a_killed_sweep_resumes_where_it_stopped() {
+    let tmp = tempfile::tempdir().unwrap();
+    let scenario =
+        Path::new(env!("CARGO_MANIFEST_DIR")).join("fixtures/two_level_clinic.scenario.yaml");
+    let sweep = tmp.path().join("s.sweep.yaml");
+    std::fs::write(
+        &sweep,
+        format!(
+            "scenario: {}\nset: {{duration: 30min, fleets.tinyRobot.spawn: auto}}\nruns:\n  fleets.tinyRobot.count: [1, 2, 3]\n  seed: [1, 2]\n",
+            scenario.display()
+        ),
+    )
+    .unwrap();
+    let out = tmp.path().join("out");
+    let mut child = Command::new(env!("CARGO_BIN_EXE_mapc"))
+        .args([
+            "sweep",
+            sweep.to_str().unwrap(),
+            "-o",
+            out.to_str().unwrap(),
+            "--jobs",
+            "1",
+        ])
+        .stderr(std::process::Stdio::null())
+        .stdout(std::process::Stdio::null())
+        .spawn()
+        .unwrap();
+    let start = std::time::Instant::now();
+    while !out.join("runs/0000/inputs.sha256").exists() {
+        assert!(start.elapsed().as_secs() < 120, "no run finished");
+        std::thread::sleep(std::time::Duration::from_millis(20));
+    }
+    child.kill().unwrap();
+    child.wait().unwrap();
+    let done = (0..6)
+        .filter(|i| out.join(format!("runs/{i:04}/inputs.sha256")).exists())
+        .count();
+    assert!(done >= 1);
+    let s = sweep.to_str().unwrap();
+    let (code, _, stderr) = support::mapc(&["sweep", s, "-o", out.to_str().unwrap()]);
+    assert_eq!(code, 0, "{stderr}");
+    assert!(
+        stderr.contains(&format!("6 runs, {} to run, {done} up to date", 6 - done)),
+        "{stderr}"
+    );
+    // The same results as a sweep that was never interrupted, and no temporaries left.
+    let clean = tmp.path().join("clean");
+    let (code, _, stderr) = support::mapc(&["sweep", s, "-o", clean.to_str().unwrap()]);
+    assert_eq!(code, 0, "{stderr}");
+    assert_eq!(
+        std::fs::read(out.join("results.csv")).unwrap(),
+        std::fs::read(clean.join("results.csv")).unwrap()
+    );
+    for i in 0..6 {
+        for e in std::fs::read_dir(out.join(format!("runs/{i:04}"))).unwrap() {
+            let name = e.unwrap().file_name().into_string().unwrap();
+            assert!(!name.contains(".mapc-tmp-"), "{name} left in run {i}");
+        }
+    }
+}
