@@ -313,16 +313,15 @@ pub(crate) fn plan(
         }
         let mut left = Vec::new();
         for d in diags {
+            let seen = |nd: &Diagnostic| {
+                remapped
+                    .iter()
+                    .chain(&sweep_diags)
+                    .any(|x| x.code == nd.code && x.span == nd.span && x.message == nd.message)
+            };
             match remap(&spec, r, sid, &d) {
-                Some(nd) => {
-                    if !remapped
-                        .iter()
-                        .chain(&sweep_diags)
-                        .any(|x| x.code == nd.code && x.span == nd.span && x.message == nd.message)
-                    {
-                        remapped.push(nd);
-                    }
-                }
+                Some(nd) if !seen(&nd) => remapped.push(nd),
+                Some(_) => {}
                 None if d.is_error() => left.push(d),
                 None => {}
             }
