@@ -390,7 +390,7 @@ fn capacity_svg_draws_the_mean_over_seeds_against_robots() {
             "--disable-gpu",
             "--hide-scrollbars",
             "--no-first-run",
-            "--window-size=860,520",
+            "--window-size=940,520",
         ])
         .arg(format!("--screenshot={}", shot.display()))
         .arg(format!("file://{}", out.join("capacity.svg").display()))

@@ -3,7 +3,8 @@
 //! line marked and the resource that saturates there named from the reports' `bottleneck`.
 //!
 //! x is the number of robots of the run (from the report) when an axis sets a fleet's
-//! `count`, else the first numeric axis other than `seed`. The knee is found with Kneedle
+//! `count` (of several, the one with most values; the others make lines), else the first
+//! numeric axis other than `seed`. The knee is found with Kneedle
 //! (Satopää et al., 2011): on the curve scaled to the unit square, the point farthest above
 //! the chord from the first to the last point; a curve that stays within 0.1 of its chord
 //! has no knee (throughput still grows in proportion).
@@ -32,7 +33,18 @@ struct Series {
     knee: Option<usize>,
     /// (place, share of the waiting of the runs at and beyond the knee).
     saturates: Option<(String, f64)>,
+    /// All task waiting there by cause, largest first (shares).
+    causes: Vec<(String, f64)>,
 }
+
+/// The report's waits by cause: (results.csv column, name).
+const CAUSES: &[(&str, &str)] = &[
+    ("wait_traffic_s", "traffic"),
+    ("wait_lift_s", "lifts"),
+    ("wait_door_s", "doors"),
+    ("wait_workcell_s", "workcells"),
+    ("wait_charging_s", "charging"),
+];
 
 fn is_count(path: &str) -> bool {
     let s: Vec<&str> = path.split('.').collect();
@@ -61,8 +73,18 @@ pub(crate) fn knee(xs: &[f64], ys: &[f64]) -> Option<usize> {
 
 pub(crate) fn capacity(plan: &PlanFile, rows: &[Row]) -> Option<Chart> {
     let axes = &plan.axes;
-    let count_axis = axes.iter().position(|a| is_count(&a.path));
-    // The axes that decide x: the first count axis and those zipped with it.
+    // The fleet count axis with the most values (the first of equals) is x; the others
+    // make lines.
+    let distinct = |j: usize| {
+        let mut v: Vec<&str> = rows.iter().map(|r| r.values[j].text.as_str()).collect();
+        v.sort_unstable();
+        v.dedup();
+        v.len()
+    };
+    let count_axis = (0..axes.len())
+        .filter(|&j| is_count(&axes[j].path))
+        .max_by(|&a, &b| distinct(a).cmp(&distinct(b)).then(b.cmp(&a)));
+    // The axes that decide x: that count axis and those zipped with it.
     let x_axes: Vec<usize> = match count_axis {
         Some(i) if axes[i].zipped => (0..axes.len()).filter(|&j| axes[j].zipped).collect(),
         Some(i) => vec![i],
@@ -131,15 +153,20 @@ pub(crate) fn capacity(plan: &PlanFile, rows: &[Row]) -> Option<Chart> {
         let xs: Vec<f64> = points.iter().map(|p| p.x).collect();
         let means: Vec<f64> = points.iter().map(|p| p.mean).collect();
         let k = knee(&xs, &means);
-        // What tasks waited at most in the runs at and beyond the knee (or at the largest x).
-        let from = k.map_or(xs[xs.len() - 1], |i| xs[i]);
+        // Where tasks waited longest in the runs at the knee (or at the largest x): the
+        // reports' bottleneck places summed, and all waiting by cause.
+        let at = k.map_or(xs[xs.len() - 1], |i| xs[i]);
         let mut waits: BTreeMap<String, f64> = BTreeMap::new();
         let mut total = 0.0;
+        let mut causes: Vec<(&str, f64)> = CAUSES.iter().map(|&(_, c)| (c, 0.0)).collect();
         for (&bits, rs) in by_x {
-            if f64::from_bits(bits) < from {
+            if f64::from_bits(bits) != at {
                 continue;
             }
             for r in rs {
+                for (i, (col, _)) in CAUSES.iter().enumerate() {
+                    causes[i].1 += r.number(col).unwrap_or(0.0);
+                }
                 if let (Some(place), Some(w), Some(share)) = (
                     r.text("bottleneck"),
                     r.number("bottleneck_wait_s"),
@@ -156,6 +183,12 @@ pub(crate) fn capacity(plan: &PlanFile, rows: &[Row]) -> Option<Chart> {
             .into_iter()
             .max_by(|a, b| a.1.total_cmp(&b.1).then(b.0.cmp(&a.0)))
             .map(|(p, w)| (p, if total > 0.0 { w / total } else { 0.0 }));
+        let all: f64 = causes.iter().map(|c| c.1).sum();
+        causes.retain(|c| c.1 > 0.0);
+        causes.sort_by(|a, b| b.1.total_cmp(&a.1));
+        for c in &mut causes {
+            c.1 /= all;
+        }
         series.push(Series {
             label: if key.is_empty() {
                 "all runs".into()
@@ -165,6 +198,10 @@ pub(crate) fn capacity(plan: &PlanFile, rows: &[Row]) -> Option<Chart> {
             points,
             knee: k,
             saturates,
+            causes: causes
+                .into_iter()
+                .map(|(c, f)| (c.to_string(), f))
+                .collect(),
         });
     }
     let seeds = rows.iter().filter(|r| r.numbers.is_some()).count().max(1);
@@ -220,7 +257,7 @@ fn summary(series: &[Series], x_label: &str, per_point: usize) -> String {
             Some((place, share)) => {
                 let _ = writeln!(
                     s,
-                    "; {} {place} ({:.0} % of task waiting)",
+                    "; {} {place} ({:.0} % of the task waiting there)",
                     if se.knee.is_some() {
                         "saturates on"
                     } else {
@@ -228,6 +265,12 @@ fn summary(series: &[Series], x_label: &str, per_point: usize) -> String {
                     },
                     100.0 * share
                 );
+                let by: Vec<String> = se
+                    .causes
+                    .iter()
+                    .map(|(c, f)| format!("{c} {:.0} %", 100.0 * f))
+                    .collect();
+                let _ = writeln!(s, "  task waiting there by cause: {}", by.join(", "));
             }
             None => {
                 let _ = writeln!(s, "; no task waited");
@@ -274,8 +317,8 @@ const COLOURS: &[&str] = &[
 ];
 
 fn draw(series: &[Series], x_label: &str, per_point: usize) -> String {
-    let (w, h) = (860.0, 520.0);
-    let (left, right, top, bottom) = (70.0, 250.0, 60.0, 60.0);
+    let (w, h) = (940.0, 520.0);
+    let (left, right, top, bottom) = (70.0, 330.0, 60.0, 60.0);
     let (pw, ph) = (w - left - right, h - top - bottom);
     let all = series.iter().flat_map(|s| s.points.iter());
     let (mut x0, mut x1, mut y1) = (f64::INFINITY, f64::NEG_INFINITY, 0.0f64);
@@ -357,7 +400,12 @@ fn draw(series: &[Series], x_label: &str, per_point: usize) -> String {
         r##"<text x="{:.1}" y="{:.1}" text-anchor="middle">{}</text>"##,
         left + pw / 2.0,
         h - 16.0,
-        esc(x_label)
+        // x counts every robot of the run, not only the fleet whose count varies.
+        esc(&if x_label == "robots" {
+            "robots (all fleets)".to_string()
+        } else {
+            x_label.to_string()
+        })
     );
     let _ = writeln!(
         s,
@@ -455,7 +503,9 @@ fn draw(series: &[Series], x_label: &str, per_point: usize) -> String {
         );
         ly += 18.0;
         let note = match (&se.knee, &se.saturates) {
-            (Some(_), Some((p, share))) => format!("saturates: {p} ({:.0} %)", 100.0 * share),
+            (Some(_), Some((p, share))) => {
+                format!("saturates: {p} ({:.0} % of waiting)", 100.0 * share)
+            }
             (None, Some((p, share))) => {
                 format!("no knee; most waiting: {p} ({:.0} %)", 100.0 * share)
             }
@@ -469,7 +519,23 @@ fn draw(series: &[Series], x_label: &str, per_point: usize) -> String {
             ly + 2.0,
             esc(&note)
         );
-        ly += 22.0;
+        ly += 16.0;
+        if !se.causes.is_empty() {
+            let by: Vec<String> = se
+                .causes
+                .iter()
+                .map(|(c, f)| format!("{c} {:.0} %", 100.0 * f))
+                .collect();
+            let _ = writeln!(
+                s,
+                r##"<text x="{:.1}" y="{:.1}" fill="#555" font-size="11">waiting: {}</text>"##,
+                lx + 24.0,
+                ly + 2.0,
+                esc(&by.join(", "))
+            );
+            ly += 16.0;
+        }
+        ly += 8.0;
     }
     let _ = writeln!(s, "</g>");
     let _ = writeln!(s, "</svg>");
