@@ -21,7 +21,7 @@ pub(crate) fn execute(
     let (tx, rx) = mpsc::channel::<(usize, Result<(), String>)>();
     let mut failures = Vec::new();
     let started = Instant::now();
-    let mut bar = Bar::new(todo.len());
+    let mut bar = Bar::new(todo.len(), !quiet);
     std::thread::scope(|s| {
         for _ in 0..jobs.clamp(1, todo.len().max(1)) {
             let tx = tx.clone();
@@ -59,12 +59,12 @@ struct Bar {
 }
 
 impl Bar {
-    fn new(total: usize) -> Bar {
+    fn new(total: usize, wanted: bool) -> Bar {
         let mut b = Bar {
             total,
             finished: 0,
             shown: false,
-            on: std::io::stderr().is_terminal(),
+            on: wanted && std::io::stderr().is_terminal(),
         };
         b.draw(0, None);
         b

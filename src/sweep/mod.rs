@@ -230,7 +230,7 @@ pub(crate) fn run(args: &SweepArgs) -> ExitCode {
             let jobs = args
                 .jobs
                 .unwrap_or_else(|| std::thread::available_parallelism().map_or(1, |n| n.get()));
-            let failures = local::execute(&plan, &todo, out, jobs);
+            let failures = local::execute(&plan, &todo, out, jobs, args.quiet);
             let code = finish(out, args.quiet);
             if !failures.is_empty() {
                 return ExitCode::from(1);
