@@ -10,12 +10,14 @@ use std::sync::atomic::{AtomicUsize, Ordering};
 use std::sync::mpsc;
 use std::time::Instant;
 
-/// Runs `todo` on `jobs` threads; returns the failures (run name, message).
+/// Runs `todo` on `jobs` threads; returns the failures (run name, message). `quiet`: no
+/// progress line.
 pub(crate) fn execute(
     plan: &Plan,
     todo: &[&Run],
     out: &Path,
     jobs: usize,
+    quiet: bool,
 ) -> Vec<(String, String)> {
     let next = AtomicUsize::new(0);
     let (tx, rx) = mpsc::channel::<(usize, Result<(), String>)>();
