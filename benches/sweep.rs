@@ -1,6 +1,6 @@
 //! `mapc sweep` on all cores against the same runs one after another: the 24-run sweep of
 //! `fixtures/sweep/bench.sweep.yaml` (the two-level clinic fixture, 1-4 tiny robots × 6
-//! seeds, one simulated hour each), run by the mapc binary into a fresh output directory
+//! seeds, four simulated hours each), run by the mapc binary into a fresh output directory
 //! each time (nothing reused), with `--jobs 1` and with `--jobs` = the number of CPUs.
 //!
 //! Run with `cargo bench --bench sweep`; the speed-up is `serial / all_cores`.
