@@ -559,3 +559,30 @@ fn a_killed_sweep_resumes_where_it_stopped() {
         }
     }
 }
+
+#[test]
+fn a_sweep_of_more_than_100000_runs_is_refused_at_once() {
+    let tmp = tempfile::tempdir().unwrap();
+    let values: Vec<String> = (0..400).map(|i| i.to_string()).collect();
+    let values = values.join(", ");
+    let sweep = tmp.path().join("huge.sweep.yaml");
+    std::fs::write(
+        &sweep,
+        format!("scenario: base.yaml\nruns:\n  seed: [{values}]\n  duration: [{values}]\n"),
+    )
+    .unwrap();
+    let out = tmp.path().join("out");
+    let (code, _, stderr) = support::mapc(&[
+        "sweep",
+        sweep.to_str().unwrap(),
+        "-o",
+        out.to_str().unwrap(),
+    ]);
+    assert_eq!(code, 1, "{stderr}");
+    assert!(
+        stderr.contains("error[S0401]: the axes make more than 100000 runs"),
+        "{stderr}"
+    );
+    assert!(stderr.contains("huge.sweep.yaml:3:3"), "{stderr}");
+    assert!(!out.exists());
+}

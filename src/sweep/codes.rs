@@ -8,7 +8,8 @@ pub use mapc_ir::Code;
 ///
 /// **What:** the sweep file is not well-formed YAML, or its structure is wrong: no
 /// `scenario`, an unknown top-level key, `runs` or `zip` that is not a mapping, an axis
-/// whose values are not a non-empty list, or a value written over several lines.
+/// whose values are not a non-empty list, a value written over several lines, or axes
+/// whose product is more than 100,000 runs.
 ///
 /// **Why it matters:** nothing can be planned from a file that cannot be read; a misspelt
 /// key would silently drop an axis.

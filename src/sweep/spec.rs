@@ -9,6 +9,9 @@ use std::path::{Path, PathBuf};
 
 const TOP_KEYS: &[&str] = &["scenario", "map", "set", "runs", "zip", "description"];
 
+/// Most runs one sweep may have.
+pub(crate) const MAX_RUNS: usize = 100_000;
+
 /// One value of an axis, as written in the sweep file.
 #[derive(Clone, Debug)]
 pub(crate) struct Value {
@@ -239,6 +242,30 @@ pub(crate) fn parse(path: &Path, text: &str, file: FileId) -> (Option<Spec>, Vec
                 .with_help("add `runs:` with at least one axis, e.g. `seed: [1, 2, 3]`"),
         ),
         None => {}
+    }
+    // Every run gets a directory and a line: a product in the millions is a mistake.
+    let runs = axes
+        .iter()
+        .filter(|a| !a.fixed && !a.zipped)
+        .map(|a| a.values.len())
+        .chain(
+            axes.iter()
+                .filter(|a| a.zipped)
+                .map(|a| a.values.len())
+                .min(),
+        )
+        .try_fold(1usize, |n, k| n.checked_mul(k))
+        .filter(|&n| n <= MAX_RUNS);
+    if runs.is_none() {
+        let span = root.get("runs").map_or(whole, |r| r.span);
+        diags.push(
+            error(
+                &codes::SWEEP_INVALID,
+                span,
+                format!("the axes make more than {MAX_RUNS} runs"),
+            )
+            .with_help("split the study into several sweeps, or use fewer values per axis"),
+        );
     }
     for (i, a) in axes.iter().enumerate() {
         if let Some(b) = axes[..i].iter().find(|b| b.path == a.path) {
