@@ -318,7 +318,10 @@ const COLOURS: &[&str] = &[
 
 fn draw(series: &[Series], x_label: &str, per_point: usize) -> String {
     let (w, h) = (940.0, 520.0);
-    let (left, right, top, bottom) = (70.0, 330.0, 60.0, 60.0);
+    // One line above the plot per knee label, so that labels never cross a curve.
+    let knees = series.iter().filter(|s| s.knee.is_some()).count() as f64;
+    let (left, right, top, bottom) = (70.0, 330.0, 64.0 + 16.0 * knees, 60.0);
+    let mut knee_row = 0.0;
     let (pw, ph) = (w - left - right, h - top - bottom);
     let all = series.iter().flat_map(|s| s.points.iter());
     let (mut x0, mut x1, mut y1) = (f64::INFINITY, f64::NEG_INFINITY, 0.0f64);
@@ -481,7 +484,10 @@ fn draw(series: &[Series], x_label: &str, per_point: usize) -> String {
                 s,
                 r##"<text x="{:.1}" y="{:.1}" text-anchor="{anchor}" fill="{c}" font-weight="bold">{}</text></g>"##,
                 kx + dx,
-                (ky - 12.0 - 16.0 * i as f64).max(top + 12.0),
+                {
+                    knee_row += 1.0;
+                    top - 6.0 - 16.0 * (knee_row - 1.0)
+                },
                 esc(&label)
             );
         }
