@@ -586,3 +586,29 @@ fn a_sweep_of_more_than_100000_runs_is_refused_at_once() {
     assert!(stderr.contains("huge.sweep.yaml:3:3"), "{stderr}");
     assert!(!out.exists());
 }
+
+/// The walkthrough's sweep (docs/sweep.md) stays valid: planned and checked on the clinic
+/// demo map, without running it (the manifest executor runs nothing).
+#[test]
+fn the_walkthrough_sweep_plans_on_the_clinic_demo_map() {
+    let shared = Path::new(env!("CARGO_MANIFEST_DIR")).join("../shared/maps/clinic");
+    if !shared.is_dir() {
+        println!("skipped: ../shared not found");
+        return;
+    }
+    let tmp = tempfile::tempdir().unwrap();
+    let out = tmp.path().join("out");
+    let (code, _, stderr) = support::mapc(&[
+        "sweep",
+        "fixtures/sweep/clinic_demo.sweep.yaml",
+        "-o",
+        out.to_str().unwrap(),
+        "--executor",
+        "k8s-manifest",
+    ]);
+    assert_eq!(code, 0, "{stderr}");
+    assert!(stderr.contains("18 runs, 18 to run"), "{stderr}");
+    let plan: Value =
+        serde_json::from_slice(&std::fs::read(out.join("plan.json")).unwrap()).unwrap();
+    assert_eq!(plan["runs"].as_array().unwrap().len(), 18);
+}
