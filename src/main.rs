@@ -2,6 +2,7 @@
 //! 2 usage or I/O error.
 
 mod build;
+mod convert;
 mod diff;
 mod escape;
 mod info;
@@ -13,6 +14,7 @@ mod render_cmd;
 mod replay;
 mod report;
 mod report_json;
+mod ros2_cmd;
 mod sanity;
 mod signals;
 mod sim_cmd;
@@ -173,6 +175,9 @@ enum Command {
     /// walls, doors, lifts, the lanes of each graph, waypoints and their roles, models, a
     /// legend and a scale bar; `--diagnostics` draws the problems at their places.
     Render(render_cmd::RenderArgs),
+    /// Convert a map between traffic_editor's .building.yaml and rmf_site's .site.json
+    /// (formats from the file names); what the target cannot say is a warning (docs/sites.md).
+    Convert(convert::ConvertArgs),
     /// Serve maps to editors: a language server on stdin/stdout (diagnostics as you type,
     /// hover, go to definition, references, symbols, fixes). Set-up: docs/editors.md.
     Lsp(lsp::LspArgs),
@@ -225,6 +230,7 @@ fn main() -> ExitCode {
         Command::Lsp(args) => lsp::run(&args),
         Command::Diff(args) => diff::run(&args),
         Command::Check { inputs, diag } => check(&inputs, &diag),
+        Command::Convert(args) => convert::run(&args),
     }
 }
 
@@ -233,6 +239,7 @@ fn main() -> ExitCode {
 pub(crate) fn code_name(code: &str) -> &'static str {
     mapc_frontend::CODES
         .iter()
+        .chain(mapc_frontend::site::codes::CODES)
         .find(|c| c.code == code)
         .map(|c| c.name)
         .or_else(|| mapc_ir::rule(code).map(|r| r.name))

@@ -228,8 +228,19 @@ impl Fleets {
                 since: t,
                 sent: false,
             };
-            if matches!(step, Step::GoTo(_)) && r.prio_until.is_none() {
-                r.prio = t;
+            if let Step::GoTo(goal) = step {
+                // The priority kept for a goal no step leads to any more (a spot to make
+                // room at, replaced by another) would be kept for ever: drop it.
+                let kept = r.prio_until.is_some_and(|u| {
+                    u == goal
+                        || r.steps
+                            .iter()
+                            .any(|s| matches!(s, Step::GoTo(v) if *v == u))
+                });
+                if !kept {
+                    r.prio_until = None;
+                    r.prio = t;
+                }
             }
             r.cur = match step {
                 Step::GoTo(goal) => Cur::GoTo {
