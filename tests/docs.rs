@@ -37,7 +37,7 @@ fn parse_block(lines: &[String], source: &str) -> Entry {
 }
 
 /// Files that list `pub const` codes with `///` docs.
-const CODE_LISTS: [&str; 4] = [
+const CODE_LISTS: [&str; 5] = [
     "frontend/src/codes.rs",
     "frontend/src/site/codes.rs",
     "backends/src/codes.rs",
