@@ -1130,3 +1130,62 @@ fn an_empty_dispensers_item_is_coming_while_its_carrier_is_on_its_way() {
     assert!(f.item_coming("disp", 2.0 + ITEM_HOME - 1.0));
     assert!(!f.item_coming("disp", 2.0 + ITEM_HOME + 1.0));
 }
+
+#[test]
+fn a_robot_waiting_at_an_empty_dispenser_makes_room() {
+    // park_w - w - e - park_e in a line. a_0 waits at e for a dispenser's item (asked,
+    // answered empty, asks again much later); b_0 must pass e to reach w. The item could
+    // be the one b_0 brings back, so a_0 must make room (to park_w) and come back.
+    let b = cross();
+    let s = scenario(
+        vec![
+            fleet("a", 1, SpawnSpec::Waypoints(vec!["e".into()])),
+            fleet("b", 1, SpawnSpec::Waypoints(vec!["park_e".into()])),
+        ],
+        vec![TaskSpec {
+            fleet: Some("b".into()),
+            ..task(0.5, TaskKind::GoToPlace { place: "w".into() })
+        }],
+    );
+    let placement = Fleets::place(&b, &s).expect("placement");
+    let mut f = Fleets::new(&b, &s, &placement).expect("fleets");
+    let mut mock = Mock::new(&b, &placement);
+    let a = f.by_name["a_0"];
+    let e = f.robots[a].at;
+    f.robots[a].cur = Cur::Workcell {
+        guid: "x_pickup_retry1".into(),
+        target: "disp".into(),
+        dispenser: true,
+        next_send: 1e9,
+        deadline: 1e9,
+        tries: 1,
+        since: 0.0,
+        sent: false,
+    };
+    let (mut inbox, mut out, mut events) = (Vec::new(), Vec::new(), Vec::new());
+    let mut asked_again = false;
+    while mock.t < 120.0 {
+        out.clear();
+        f.update(mock.t, &inbox, &mut out);
+        inbox.clear();
+        for (topic, msg) in out.drain(..) {
+            match &msg {
+                Msg::TaskEvent(ev) => events.push(ev.clone()),
+                Msg::WorkcellRequest(w) if w.target_guid == "disp" => asked_again = true,
+                _ => {}
+            }
+            if !matches!(msg, Msg::TaskEvent(_)) {
+                mock.deliver(topic, msg);
+            }
+        }
+        mock.step(s.step, &mut inbox);
+    }
+    assert_eq!(
+        ended(&events),
+        vec![("go_to_place_0".to_string(), "completed".to_string())],
+        "{events:#?}"
+    );
+    // a_0 came back to its dispenser and asked for the item again.
+    assert!(asked_again);
+    assert_eq!(f.robots[a].at, e);
+}
