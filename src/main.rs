@@ -19,6 +19,7 @@ mod sanity;
 mod signals;
 mod sim_cmd;
 mod snippet;
+mod sweep;
 mod texture;
 mod world_cmd;
 
@@ -163,6 +164,10 @@ enum Command {
     /// report what happened: task times, throughput, door and lift waits, near misses.
     /// Scenario format, trace and report: docs/sim.md.
     Sim(sim_cmd::SimArgs),
+    /// Run a capacity study: a base scenario varied along axes (fleet sizes, task rates,
+    /// seeds...), every run on all cores, a Slurm cluster or Kubernetes; writes
+    /// OUT/results.csv, OUT/results.json and OUT/capacity.svg. Format: docs/sweep.md.
+    Sweep(sweep::SweepArgs),
     /// List what a map holds for scenario authors: levels, graphs, named waypoints by role,
     /// doors, lifts, dispensers and ingestors.
     Info(info::InfoArgs),
@@ -219,6 +224,7 @@ fn main() -> ExitCode {
         Command::Ignition(args) => world_cmd::run(mapc_backends::sdf::Flavour::Ignition, &args),
         Command::Classic(args) => world_cmd::run(mapc_backends::sdf::Flavour::Classic, &args),
         Command::Sim(args) => sim_cmd::run(&args),
+        Command::Sweep(args) => sweep::run(&args),
         Command::Info(args) => info::run(&args),
         Command::Render(args) => render_cmd::run(&args),
         Command::Lsp(args) => lsp::run(&args),
@@ -246,6 +252,7 @@ pub(crate) fn code_name(code: &str) -> &'static str {
         .or_else(|| {
             mapc_sim::codes::CODES
                 .iter()
+                .chain(sweep::CODES)
                 .find(|c| c.code == code)
                 .map(|c| c.name)
         })
