@@ -50,6 +50,9 @@ pub struct Report {
     /// The run was stopped (Ctrl-C) before its end: everything above covers what ran.
     #[serde(skip_serializing_if = "std::ops::Not::not")]
     pub interrupted: bool,
+    /// People (`crowd/`), when the map's crowd walked.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub crowd: Option<crate::crowd::CrowdReport>,
 }
 
 #[derive(Debug, Clone, Default, PartialEq, Serialize)]
@@ -719,6 +722,7 @@ impl ReportBuilder {
             waits,
             bottleneck,
             interrupted: false,
+            crowd: None,
         }
     }
 }
