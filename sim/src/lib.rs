@@ -23,7 +23,7 @@ mod traffic;
 mod workcell;
 mod world;
 
-pub use crowd::CrowdReport;
+pub use crowd::{compare_crowd, CrowdReport, FleetCompare, SpeedStats, Spread};
 pub use params::RobotParams;
 pub use report::{
     DoorReport, Encounter, FleetReport, LiftReport, Report, RobotReport, StuckReport, TaskReport,

@@ -25,7 +25,7 @@ mod stats;
 #[cfg(test)]
 mod tests;
 
-pub use stats::CrowdReport;
+pub use stats::{compare_crowd, CrowdReport, FleetCompare, SpeedStats, Spread};
 
 use crate::msgs::{self, Msg, Published, Topic};
 use crate::world::RobotTruth;
@@ -44,6 +44,8 @@ pub const PERSON_HEIGHT: f64 = 1.8;
 pub const SOURCE: &str = "mapc_crowd";
 /// Clearance (m, between the outlines) under which a robot and a person near-miss.
 pub const NEAR_MISS: f64 = 0.5;
+/// Extra clearance (m) people keep from a robot's footprint.
+pub const ROBOT_BERTH: f64 = 0.15;
 /// Most people a run may have (`crowd.scale` times the map's groups).
 pub const MAX_PEOPLE: usize = 100_000;
 
@@ -97,7 +99,6 @@ pub(crate) struct Person {
 }
 
 pub(crate) struct Crowd {
-    level: Handle<Level>,
     level_name: String,
     z: f64,
     mesh: Mesh,
@@ -199,7 +200,6 @@ impl Crowd {
             .collect();
         let wall_segments = mesh.walls.clone();
         let mut crowd = Crowd {
-            level,
             level_name: b.levels[level].name.clone(),
             z: b.levels[level].elevation,
             mesh,
@@ -265,10 +265,6 @@ impl Crowd {
         crowd.stats = stats::Stats::new(crowd.people.len());
         crowd.grid.rebuild(crowd.people.iter().map(|p| p.pos));
         Ok(Some(crowd))
-    }
-
-    pub fn level(&self) -> Handle<Level> {
-        self.level
     }
 
     /// `n` spots for people of radius `r` around `centre` (local frame): a hexagonal
@@ -440,7 +436,8 @@ impl Crowd {
             .map(|r| Agent {
                 position: f32v(Vec2::new(r.x, r.y).minus(origin)),
                 velocity: f32v(Vec2::new(r.v * r.yaw.cos(), r.v * r.yaw.sin())),
-                radius: r.footprint as f32,
+                // People keep a berth from robots, which neither avoid nor brake hard.
+                radius: (r.footprint + ROBOT_BERTH) as f32,
                 // Robots do not avoid: people take the whole correction.
                 avoidance_responsibility: 0.0,
             })
@@ -611,7 +608,8 @@ impl Crowd {
         msgs::Obstacles { obstacles }
     }
 
-    /// People positions in the map frame (tests, replay).
+    /// People positions in the map frame.
+    #[cfg(test)]
     pub fn positions(&self) -> Vec<Vec2> {
         self.people
             .iter()

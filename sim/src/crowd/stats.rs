@@ -141,3 +141,39 @@ impl Stats {
         }
     }
 }
+
+/// Fills `with.crowd.compare` from the same scenario run without people.
+pub fn compare_crowd(with: &mut crate::Report, without: &crate::Report) {
+    let stats = |r: &crate::Report, fleet: &str| {
+        let times: Vec<f64> = r
+            .tasks
+            .iter()
+            .filter(|t| t.fleet == fleet && t.result == "completed")
+            .filter_map(|t| Some(t.finished? - t.requested?))
+            .collect();
+        let mean = (!times.is_empty()).then(|| round(times.iter().sum::<f64>() / times.len() as f64));
+        (times.len(), mean)
+    };
+    let fleets: Vec<String> = with.fleets.iter().map(|f| f.name.clone()).collect();
+    let rows: Vec<FleetCompare> = fleets
+        .iter()
+        .map(|f| {
+            let (n, m) = stats(with, f);
+            let (n0, m0) = stats(without, f);
+            FleetCompare {
+                fleet: f.clone(),
+                completed: n,
+                completed_without_crowd: n0,
+                mean_task_s: m,
+                mean_task_s_without_crowd: m0,
+                slowdown: match (m, m0) {
+                    (Some(a), Some(b)) if b > 0.0 => Some(round(a / b)),
+                    _ => None,
+                },
+            }
+        })
+        .collect();
+    if let Some(c) = with.crowd.as_mut() {
+        c.compare = rows;
+    }
+}
