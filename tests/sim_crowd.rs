@@ -66,7 +66,10 @@ fn airport_people_walk_among_robots() {
     assert_eq!(c["humans"], 10, "{c}");
     // 6 min at the profile's 2 m/s: tens of metres each, at most max_speed·t.
     let min = c["walked_m"]["min"].as_f64().unwrap();
-    assert!(min > 20.0 && c["walked_m"]["max"].as_f64().unwrap() < 4.0 * 360.0, "{c}");
+    assert!(
+        min > 20.0 && c["walked_m"]["max"].as_f64().unwrap() < 4.0 * 360.0,
+        "{c}"
+    );
     let v = c["speed_m_s"]["mean"].as_f64().unwrap();
     assert!(v > 1.0 && v <= 2.05, "{c}");
     assert!(c["speed_m_s"]["max"].as_f64().unwrap() <= 4.0 + 1e-9, "{c}");

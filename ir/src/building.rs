@@ -543,7 +543,9 @@ pub struct Transition {
 #[derive(Debug, Clone, PartialEq)]
 pub enum Condition {
     /// The agent is within `distance` of its goal.
-    GoalReached { distance: f64 },
+    GoalReached {
+        distance: f64,
+    },
     /// A time after entering the state.
     Timer(Timer),
     /// Always true.

@@ -30,8 +30,9 @@ pub use report::{
     Waits,
 };
 pub use scenario::{
-    parse as parse_scenario, CrowdOptions, parse_duration, FleetSpec, GeneratorSpec, Scenario, SimOptions,
-    SpawnSpec, TaskCategory, TaskKind, TaskSpec, WorkcellKind, WorkcellSpec, MAX_DURATION,
+    parse as parse_scenario, parse_duration, CrowdOptions, FleetSpec, GeneratorSpec, Scenario,
+    SimOptions, SpawnSpec, TaskCategory, TaskKind, TaskSpec, WorkcellKind, WorkcellSpec,
+    MAX_DURATION,
 };
 pub use trace::TraceFilter;
 

@@ -122,7 +122,9 @@ impl Fsm {
                 t.targets
                     .iter()
                     .filter_map(|(n, w, _)| {
-                        index(n).filter(|_| w.is_finite() && *w > 0.0).map(|s| (s, *w))
+                        index(n)
+                            .filter(|_| w.is_finite() && *w > 0.0)
+                            .map(|s| (s, *w))
                     })
                     .collect()
             };
@@ -130,9 +132,10 @@ impl Fsm {
                 continue;
             }
             let mut used = Vec::new();
-            let cond = t.condition.as_ref().map_or(Cond::Never, |c| {
-                compile(c, &mut timers, &mut used, rng)
-            });
+            let cond = t
+                .condition
+                .as_ref()
+                .map_or(Cond::Never, |c| compile(c, &mut timers, &mut used, rng));
             states[from].timers.extend(used);
             states[from].trans.push(Trans { cond, targets });
         }

@@ -72,7 +72,12 @@ impl Mesh {
             .iter()
             .map(|r| {
                 r.iter().fold(
-                    [f64::INFINITY, f64::NEG_INFINITY, f64::INFINITY, f64::NEG_INFINITY],
+                    [
+                        f64::INFINITY,
+                        f64::NEG_INFINITY,
+                        f64::INFINITY,
+                        f64::NEG_INFINITY,
+                    ],
                     |b, &i| {
                         let v = verts[i];
                         [b[0].min(v.x), b[1].max(v.x), b[2].min(v.y), b[3].max(v.y)]

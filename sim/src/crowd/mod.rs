@@ -329,7 +329,9 @@ impl Crowd {
     fn enter(&mut self, i: usize, state: usize, t: f64) {
         let mut mind = std::mem::take(&mut self.people[i].mind);
         self.fsm.enter(&mut mind, state, t, &mut self.rng);
-        let goal = mind.goal.map(|g| self.fsm.goals[g].pos.minus(self.mesh.origin));
+        let goal = mind
+            .goal
+            .map(|g| self.fsm.goals[g].pos.minus(self.mesh.origin));
         self.people[i].mind = mind;
         let r = self.profiles[self.people[i].profile].r;
         let p = &mut self.people[i];
@@ -351,7 +353,11 @@ impl Crowd {
     fn goal_dist(&self, i: usize) -> f64 {
         let p = &self.people[i];
         p.mind.goal.map_or(f64::INFINITY, |g| {
-            self.fsm.goals[g].pos.minus(self.mesh.origin).minus(p.pos).norm()
+            self.fsm.goals[g]
+                .pos
+                .minus(self.mesh.origin)
+                .minus(p.pos)
+                .norm()
         })
     }
 
@@ -597,10 +603,7 @@ impl Crowd {
                     data_resolution: 0.0,
                     data: Vec::new(),
                     // Valid until the next message and one more.
-                    lifetime: msgs::Time {
-                        sec: 1,
-                        nanosec: 0,
-                    },
+                    lifetime: msgs::Time { sec: 1, nanosec: 0 },
                     action: 0,
                 }
             })
@@ -633,12 +636,15 @@ fn crowd_level(b: &Building) -> Option<Handle<Level>> {
             .map(|(h, _)| h)
     });
     let goal = || {
-        c.goal_sets.iter().flat_map(|g| g.set_area.iter()).find_map(|a| {
-            b.vertices
-                .iter()
-                .find(|(_, v)| v.roles.human_goal_set_name.as_deref() == Some(a.as_str()))
-                .map(|(_, v)| v.level)
-        })
+        c.goal_sets
+            .iter()
+            .flat_map(|g| g.set_area.iter())
+            .find_map(|a| {
+                b.vertices
+                    .iter()
+                    .find(|(_, v)| v.roles.human_goal_set_name.as_deref() == Some(a.as_str()))
+                    .map(|(_, v)| v.level)
+            })
     };
     named
         .filter(|&h| has_lanes(h))

@@ -127,7 +127,13 @@ impl Stats {
             walked_m: Spread {
                 total: round(total),
                 mean: round(total / n),
-                min: round(walked.iter().copied().fold(f64::INFINITY, f64::min).min(total)),
+                min: round(
+                    walked
+                        .iter()
+                        .copied()
+                        .fold(f64::INFINITY, f64::min)
+                        .min(total),
+                ),
                 max: round(walked.iter().copied().fold(0.0, f64::max)),
             },
             speed_m_s: SpeedStats {
@@ -151,7 +157,8 @@ pub fn compare_crowd(with: &mut crate::Report, without: &crate::Report) {
             .filter(|t| t.fleet == fleet && t.result == "completed")
             .filter_map(|t| Some(t.finished? - t.requested?))
             .collect();
-        let mean = (!times.is_empty()).then(|| round(times.iter().sum::<f64>() / times.len() as f64));
+        let mean =
+            (!times.is_empty()).then(|| round(times.iter().sum::<f64>() / times.len() as f64));
         (times.len(), mean)
     };
     let fleets: Vec<String> = with.fleets.iter().map(|f| f.name.clone()).collect();

@@ -45,7 +45,10 @@ fn building(m: &MapSpec) -> Building {
     y.push_str("  goal_sets:\n");
     for (_, g) in &m.states {
         if let Some(g) = g {
-            let _ = writeln!(y, "    - {{set_id: {g}, capacity: 100000, set_area: [g{g}]}}");
+            let _ = writeln!(
+                y,
+                "    - {{set_id: {g}, capacity: 100000, set_area: [g{g}]}}"
+            );
         }
     }
     y.push_str("  states:\n");
@@ -94,9 +97,7 @@ fn min_gap(c: &Crowd) -> f64 {
     for i in 0..c.people.len() {
         for j in i + 1..c.people.len() {
             let (a, b) = (&c.people[i], &c.people[j]);
-            let g = a.pos.minus(b.pos).norm()
-                - c.profiles[a.profile].r
-                - c.profiles[b.profile].r;
+            let g = a.pos.minus(b.pos).norm() - c.profiles[a.profile].r - c.profiles[b.profile].r;
             m = m.min(g);
         }
     }
@@ -117,7 +118,12 @@ fn free_walking_time_is_distance_over_speed() {
         r: 0.25,
     });
     let mut c = crowd(&b);
-    let arrived = c.fsm.states.iter().position(|s| s.name == "arrived").unwrap();
+    let arrived = c
+        .fsm
+        .states
+        .iter()
+        .position(|s| s.name == "arrived")
+        .unwrap();
     let mut t_arrive = None;
     for k in 1..=600u64 {
         let t = k as f64 * 0.1;
@@ -133,7 +139,11 @@ fn free_walking_time_is_distance_over_speed() {
     assert!((t - want).abs() <= 0.15, "{t} s, want {want} s");
     // RiMEA's accepted band: 26 s to 34 s.
     assert!((26.0..=34.0).contains(&t));
-    assert!((c.people[0].walked - 40.0).abs() < 0.05, "{}", c.people[0].walked);
+    assert!(
+        (c.people[0].walked - 40.0).abs() < 0.05,
+        "{}",
+        c.people[0].walked
+    );
 }
 
 /// A ring corridor of `n` lanes on a circle of radius `rad`, `width` wide, with four goals
@@ -152,7 +162,9 @@ fn ring(people: usize, rad: f64, width: f64, pref: f64, r: f64) -> (Building, f6
     let lanes = (0..n).map(|k| (k, (k + 1) % n, width)).collect();
     let q = n / 4;
     let names = ["q0", "q1", "q2", "q3"];
-    let states = (0..4).map(|k| (names[k], Some(((k + 1) * q) % n))).collect();
+    let states = (0..4)
+        .map(|k| (names[k], Some(((k + 1) * q) % n)))
+        .collect();
     let transitions = (0..4)
         .map(|k| (names[k], names[(k + 1) % 4], width))
         .collect();
@@ -222,7 +234,10 @@ fn ring_corridor_speed_against_weidmann() {
     }
     println!("ρ, v, Weidmann, min gap: {rows:?}");
     for &(rho, v, w, _) in rows.iter().filter(|r| r.0 <= 0.5) {
-        assert!((v - w).abs() < 0.06, "ρ = {rho}: {v} vs Weidmann {w}: {rows:?}");
+        assert!(
+            (v - w).abs() < 0.06,
+            "ρ = {rho}: {v} vs Weidmann {w}: {rows:?}"
+        );
     }
 }
 

@@ -92,8 +92,7 @@ mod tests {
         m.b.levels[l].human_lanes.clear();
         assert_eq!(count(&m, "E0805"), 1);
         // Robots only: no one walks.
-        m.b.crowd_sim.as_mut().unwrap().agent_groups[0].profile_selector =
-            "external_agent".into();
+        m.b.crowd_sim.as_mut().unwrap().agent_groups[0].profile_selector = "external_agent".into();
         assert_eq!(count(&m, "E0805"), 0);
     }
 }

@@ -49,7 +49,10 @@ pub(crate) mod tests {
     pub fn crowd_map() -> TestMap {
         let mut m = TestMap::new();
         let a = m.vertex("a", 0.0, 0.0);
-        let goal = params(vec![param("human_goal_set_name", ParamValue::String("g".into()))]);
+        let goal = params(vec![param(
+            "human_goal_set_name",
+            ParamValue::String("g".into()),
+        )]);
         let b = m.vertex_with("b", 10.0, 0.0, goal);
         m.human_lane(a, b, 2.0);
         m.b.crowd_sim = Some(CrowdSim {
@@ -106,7 +109,10 @@ pub(crate) mod tests {
     }
 
     pub fn count(m: &TestMap, code: &str) -> usize {
-        crate::validate(&m.b).iter().filter(|d| d.code == code).count()
+        crate::validate(&m.b)
+            .iter()
+            .filter(|d| d.code == code)
+            .count()
     }
 
     #[test]

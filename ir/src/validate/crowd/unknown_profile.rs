@@ -31,7 +31,11 @@ pub(crate) static RULE: Rule = Rule {
 fn check(ctx: &Context, out: &mut Vec<Diagnostic>) {
     let Some(c) = crowd(ctx) else { return };
     for g in &c.agent_groups {
-        if !c.agent_profiles.iter().any(|p| p.name == g.profile_selector) {
+        if !c
+            .agent_profiles
+            .iter()
+            .any(|p| p.name == g.profile_selector)
+        {
             let names: Vec<&str> = c.agent_profiles.iter().map(|p| p.name.as_str()).collect();
             out.push(
                 Diagnostic::error(

@@ -62,7 +62,11 @@ fn check(ctx: &Context, out: &mut Vec<Diagnostic>) {
         }
     }
     for g in &c.agent_groups {
-        report(&g.state_selector, "an agent group's `state_selector`", g.span);
+        report(
+            &g.state_selector,
+            "an agent group's `state_selector`",
+            g.span,
+        );
     }
 }
 
