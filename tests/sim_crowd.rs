@@ -105,6 +105,31 @@ fn airport_people_walk_among_robots() {
         assert!((100.0..200.0).contains(&x), "{o}");
     }
 
+    // Everyone stays on the navmesh of the human lanes (the polygons of L1_navmesh.nav),
+    // within 5 cm, at every published moment.
+    let parsed = mapc_frontend::parse_str("m", &std::fs::read_to_string(&map).unwrap());
+    let b = parsed.building.unwrap();
+    let (level, _) = b.levels.iter().next().unwrap();
+    let mesh = mapc_ir::human_navmesh(&b, level, mapc_ir::Vec2::default()).unwrap();
+    let on_mesh = |x: f64, y: f64| {
+        mesh.nodes.iter().any(|ring| {
+            (0..ring.len()).all(|k| {
+                let (a, c) = (mesh.verts[ring[k]], mesh.verts[ring[(k + 1) % ring.len()]]);
+                let (ex, ey) = (c.x - a.x, c.y - a.y);
+                let len = (ex * ex + ey * ey).sqrt().max(1e-9);
+                // Signed distance to the side's left (inside): at least -5 cm.
+                (ex * (y - a.y) - ey * (x - a.x)) / len >= -0.05
+            })
+        })
+    };
+    for m in &msgs {
+        for o in m["msg"]["obstacles"].as_array().unwrap() {
+            let p = &o["bbox"]["center"]["position"];
+            let (x, y) = (p["x"].as_f64().unwrap(), p["y"].as_f64().unwrap());
+            assert!(on_mesh(x, y), "off the navmesh at t = {}: {o}", m["t"]);
+        }
+    }
+
     // Off: no one is published and the report has no crowd.
     let off = scenario(dir.path(), &map, "crowd: {enabled: false}");
     let t3 = dir.path().join("c.jsonl");

@@ -104,6 +104,14 @@ fn min_gap(c: &Crowd) -> f64 {
     m
 }
 
+/// How far the person farthest off the navmesh is outside it (0 when all are on it).
+fn off_mesh(c: &Crowd) -> f64 {
+    c.people
+        .iter()
+        .map(|p| c.mesh.snap(p.pos).map_or(f64::INFINITY, |(_, q)| q.minus(p.pos).norm()))
+        .fold(0.0, f64::max)
+}
+
 /// RiMEA test 1 (free walking): one person, a 40 m corridor 2 m wide, 1.33 m/s; the time
 /// is distance over preferred speed, plus the acceleration from rest (v/2a).
 #[test]
@@ -210,6 +218,8 @@ fn ring_speed(people: usize) -> (f64, f64, f64) {
             }
             if k % 20 == 0 {
                 gap = gap.min(min_gap(&c));
+                let off = off_mesh(&c);
+                assert!(off < 0.05, "{off} m off the navmesh");
             }
         }
     }
