@@ -110,6 +110,20 @@ impl Mesh {
         })
     }
 
+    /// The node holding `p`, looking at `hint` and its neighbours first (a person moves
+    /// at most a few centimetres per step), then everywhere.
+    pub fn relocate(&self, hint: usize, p: Vec2) -> Option<usize> {
+        if hint < self.nodes.len() {
+            if self.node_contains(hint, p) {
+                return Some(hint);
+            }
+            if let Some(&(n, _, _)) = self.adj[hint].iter().find(|a| self.node_contains(a.0, p)) {
+                return Some(n);
+            }
+        }
+        self.locate(p)
+    }
+
     /// The node holding `p`, if any (lowest index).
     pub fn locate(&self, p: Vec2) -> Option<usize> {
         (0..self.nodes.len()).find(|&n| self.node_contains(n, p))

@@ -96,6 +96,8 @@ pub(crate) struct Person {
     wp: usize,
     pref: Vec2,
     pub walked: f64,
+    /// The navmesh node the person stands in.
+    node: usize,
 }
 
 pub(crate) struct Crowd {
@@ -252,6 +254,7 @@ impl Crowd {
                     wp: 0,
                     pref: Vec2::default(),
                     walked: 0.0,
+                    node: crowd.mesh.locate(p).unwrap_or(0),
                 });
                 let i = crowd.people.len() - 1;
                 crowd.enter(i, state, 0.0);
@@ -527,8 +530,21 @@ impl Crowd {
                 v_new
             };
             let step = p.vel.scale(dt);
-            p.pos = p.pos.plus(step);
-            p.walked += step.norm();
+            let mut next = p.pos.plus(step);
+            // ORCA keeps people off the walls only within its obstacle horizon; braking
+            // under the acceleration limit can carry them further. Never off the mesh: a
+            // step that would leave it ends just inside, at the nearest point.
+            match self.mesh.relocate(p.node, next) {
+                Some(n) => p.node = n,
+                None => {
+                    if let Some((n, q)) = self.mesh.snap(next) {
+                        next = q;
+                        p.node = n;
+                    }
+                }
+            }
+            p.walked += next.minus(p.pos).norm();
+            p.pos = next;
             let speed = p.vel.norm();
             if speed > 1e-3 {
                 p.yaw = p.vel.y.atan2(p.vel.x);
