@@ -44,6 +44,8 @@ pub const PERSON_HEIGHT: f64 = 1.8;
 pub const SOURCE: &str = "mapc_crowd";
 /// Clearance (m, between the outlines) under which a robot and a person near-miss.
 pub const NEAR_MISS: f64 = 0.5;
+/// First radius (m) of the neighbour search.
+const NEAR_RADIUS: f64 = 2.0;
 /// Extra clearance (m) people keep from a robot's footprint.
 pub const ROBOT_BERTH: f64 = 0.15;
 /// Most people a run may have (`crowd.scale` times the map's groups).
@@ -458,17 +460,32 @@ impl Crowd {
         for i in 0..self.people.len() {
             let p = &self.people[i];
             let pr = self.profiles[p.profile];
-            near.clear();
-            self.grid.visit(p.pos, pr.neighbor_dist, |k| {
-                if k != i {
-                    let d = self.people[k].pos.minus(p.pos).norm();
-                    if d < pr.neighbor_dist {
-                        near.push((d, k));
+            // The max_neighbors nearest within neighbor_dist: first within a small radius
+            // (enough in a crowd, and every one within it is seen), the full radius only
+            // when that finds too few. Squared distances; ties by index (deterministic).
+            let k_max = pr.max_neighbors;
+            for radius in [NEAR_RADIUS.min(pr.neighbor_dist), pr.neighbor_dist] {
+                near.clear();
+                let r2 = radius * radius;
+                self.grid.visit(p.pos, radius, |k| {
+                    if k != i {
+                        let d = self.people[k].pos.minus(p.pos);
+                        let d2 = d.x * d.x + d.y * d.y;
+                        if d2 < r2 {
+                            near.push((d2, k));
+                        }
                     }
+                });
+                if near.len() >= k_max || radius >= pr.neighbor_dist {
+                    break;
                 }
-            });
-            near.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
-            near.truncate(pr.max_neighbors);
+            }
+            let by = |a: &(f64, usize), b: &(f64, usize)| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1));
+            if near.len() > k_max {
+                near.select_nth_unstable_by(k_max, by);
+                near.truncate(k_max);
+            }
+            near.sort_unstable_by(by);
             neighbours.clear();
             for &(_, k) in &near {
                 let q = &self.people[k];
