@@ -471,7 +471,10 @@ impl Crowd {
                     if k != i {
                         let d = self.people[k].pos.minus(p.pos);
                         let d2 = d.x * d.x + d.y * d.y;
-                        if d2 < r2 {
+                        // Coincident agents have no direction to avoid along (the crate
+                        // would divide by zero); placement and the mesh clamp keep people
+                        // apart, so this is only a guard.
+                        if d2 < r2 && d2 > 1e-8 {
                             near.push((d2, k));
                         }
                     }
@@ -498,7 +501,7 @@ impl Crowd {
             }
             for a in &on_level {
                 let d = (a.position - f32v(p.pos)).length() as f64;
-                if d < pr.neighbor_dist {
+                if d < pr.neighbor_dist && d > 1e-4 {
                     neighbours.push(Cow::Borrowed(a));
                 }
             }
@@ -516,18 +519,25 @@ impl Crowd {
                 radius: pr.r as f32,
                 avoidance_responsibility: 1.0,
             };
-            let v = me.compute_avoiding_velocity(
-                &neighbours,
-                &walls,
-                f32v(p.pref),
-                pr.max_speed as f32,
-                dt as f32,
-                &AvoidanceOptions {
-                    obstacle_margin: pr.r as f32,
-                    time_horizon: pr.tau as f32,
-                    obstacle_time_horizon: pr.tau_obst as f32,
-                },
-            );
+            let opts = AvoidanceOptions {
+                obstacle_margin: pr.r as f32,
+                time_horizon: pr.tau as f32,
+                obstacle_time_horizon: pr.tau_obst as f32,
+            };
+            // The crate asserts on degenerate input (NaN in its linear program); the guards
+            // above keep that out, and should one slip through the person stands still for
+            // a step rather than the run aborting.
+            let v = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
+                me.compute_avoiding_velocity(
+                    &neighbours,
+                    &walls,
+                    f32v(p.pref),
+                    pr.max_speed as f32,
+                    dt as f32,
+                    &opts,
+                )
+            }))
+            .unwrap_or(dodgy_2d::Vec2::ZERO);
             let v = Vec2::new(v.x as f64, v.y as f64);
             new_vel.push(if v.x.is_finite() && v.y.is_finite() {
                 v
@@ -550,14 +560,13 @@ impl Crowd {
             let mut next = p.pos.plus(step);
             // ORCA keeps people off the walls only within its obstacle horizon; braking
             // under the acceleration limit can carry them further. Never off the mesh: a
-            // step that would leave it ends just inside, at the nearest point.
+            // step that would leave it is not taken (the person stops at the edge; snapping
+            // to the nearest mesh point instead could put two people on one corner).
             match self.mesh.relocate(p.node, next) {
                 Some(n) => p.node = n,
                 None => {
-                    if let Some((n, q)) = self.mesh.snap(next) {
-                        next = q;
-                        p.node = n;
-                    }
+                    next = p.pos;
+                    p.vel = Vec2::default();
                 }
             }
             p.walked += next.minus(p.pos).norm();
