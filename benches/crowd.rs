@@ -26,9 +26,11 @@ fn map(people: usize) -> String {
     let mut y = String::from(
         "name: grid\ncoordinate_system: cartesian_meters\nlevels:\n  L1:\n    elevation: 0\n    vertices:\n",
     );
-    let corner = |i: usize, j: usize| [(0, 0), (N - 1, 0), (N - 1, N - 1), (0, N - 1)]
-        .iter()
-        .position(|&c| c == (i, j));
+    let corner = |i: usize, j: usize| {
+        [(0, 0), (N - 1, 0), (N - 1, N - 1), (0, N - 1)]
+            .iter()
+            .position(|&c| c == (i, j))
+    };
     for j in 0..N {
         for i in 0..N {
             let goal = corner(i, j).map_or(String::new(), |k| {
@@ -56,7 +58,10 @@ fn map(people: usize) -> String {
     }
     y.push_str("    lanes:\n");
     for (a, b) in &edges {
-        let _ = writeln!(y, "      - [{a}, {b}, {{bidirectional: [4, true], graph_idx: [2, 0]}}]");
+        let _ = writeln!(
+            y,
+            "      - [{a}, {b}, {{bidirectional: [4, true], graph_idx: [2, 0]}}]"
+        );
     }
     y.push_str("    human_lanes:\n");
     for (a, b) in &edges {
@@ -70,7 +75,10 @@ fn map(people: usize) -> String {
     y.push_str("  agent_profiles:\n    - {name: human, r: 0.25, pref_speed: 1.34, max_speed: 2, max_accel: 5, neighbor_dist: 5, max_neighbors: 10, ORCA_tau: 1, ORCA_tauObst: 0.4}\n");
     y.push_str("  goal_sets:\n");
     for k in 0..4 {
-        let _ = writeln!(y, "    - {{set_id: {k}, capacity: 100000, set_area: [c{k}]}}");
+        let _ = writeln!(
+            y,
+            "    - {{set_id: {k}, capacity: 100000, set_area: [c{k}]}}"
+        );
     }
     y.push_str("  states:\n");
     for k in 0..4 {

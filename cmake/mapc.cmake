@@ -84,7 +84,7 @@ function(mapc_generate_maps)
     get_filename_component(map "${map}" ABSOLUTE)
     get_filename_component(file_name "${map}" NAME)
     # The map's name as mapc derives it: less `.building.yaml` (or the last extension).
-    if(file_name MATCHES "^(.+)\\.(building|project)\\.yaml$")
+    if(file_name MATCHES "^(.+)\\.((building|project)\\.yaml|site\\.json)$")
       set(name "${CMAKE_MATCH_1}")
     else()
       get_filename_component(name "${map}" NAME_WLE)

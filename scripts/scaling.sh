@@ -18,7 +18,7 @@ for n in 4 8 16 32 64; do
   scaled=(); sum=0
   for c in "${counts[@]}"; do s=$(( c * n / total )); [[ $s -lt 1 ]] && s=1; scaled+=("$s"); sum=$((sum + s)); done
   i=0; while [[ $sum -lt $n ]]; do scaled[$i]=$(( scaled[i] + 1 )); sum=$((sum + 1)); i=$(( (i + 1) % ${#scaled[@]} )); done
-  out="$dir/.scaling_$n.scenario.yaml"
+  out="$dir/.scaling_$(basename "$scenario" .scenario.yaml)_$n.scenario.yaml"
   awk -v list="${scaled[*]}" 'BEGIN{split(list, s, " "); k=0} /count: [0-9]+/{k++; sub(/count: [0-9]+/, "count: " s[k])} {print}' "$scenario" > "$out"
   start=$(date +%s.%N)
   "$mapc" sim "$out" --report "$tmp/r.json" "$@" > /dev/null 2>&1 || true

@@ -235,7 +235,7 @@ pub(crate) fn map_name(input: &Path) -> String {
         .file_name()
         .map(|n| n.to_string_lossy().into_owned())
         .unwrap_or_default();
-    let stem = [".building.yaml", ".project.yaml"]
+    let stem = [".building.yaml", ".project.yaml", ".site.json"]
         .iter()
         .find_map(|suffix| name.strip_suffix(suffix))
         .map(str::to_owned)

@@ -67,19 +67,14 @@ pub(crate) fn run(args: &CrowdsimArgs) -> ExitCode {
             contents: f.contents,
         })
         .collect();
-    let written = match output::single_write(
-        &args.output_dir,
-        "CONFIG_DIR",
-        &files,
-        "crowdsim",
-        &label,
-    ) {
-        Ok(w) => w,
-        Err(e) => {
-            eprintln!("error: {e}");
-            return ExitCode::from(2);
-        }
-    };
+    let written =
+        match output::single_write(&args.output_dir, "CONFIG_DIR", &files, "crowdsim", &label) {
+            Ok(w) => w,
+            Err(e) => {
+                eprintln!("error: {e}");
+                return ExitCode::from(2);
+            }
+        };
     if let Ok(world) = std::fs::read_to_string(&args.world_file) {
         let block = plugin.to_document(false);
         if let Some(new) = with_plugin(&world, &block) {

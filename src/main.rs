@@ -2,11 +2,14 @@
 //! 2 usage or I/O error.
 
 mod build;
+mod convert;
 mod crowdsim_cmd;
+mod diff;
 mod escape;
 mod info;
 mod limit;
 mod lints;
+mod lsp;
 mod output;
 mod render_cmd;
 mod replay;
@@ -73,7 +76,7 @@ struct DiagOpts {
 
 /// Lint levels, on every command that reads a map.
 #[derive(clap::Args, Clone)]
-struct LintOpts {
+pub(crate) struct LintOpts {
     /// Treat warnings as errors (the same as `--deny warnings`).
     #[arg(long)]
     deny_warnings: bool,
@@ -170,6 +173,16 @@ enum Command {
     /// walls, doors, lifts, the lanes of each graph, waypoints and their roles, models, a
     /// legend and a scale bar; `--diagnostics` draws the problems at their places.
     Render(render_cmd::RenderArgs),
+    /// Convert a map between traffic_editor's .building.yaml and rmf_site's .site.json
+    /// (formats from the file names); what the target cannot say is a warning (docs/sites.md).
+    Convert(convert::ConvertArgs),
+    /// Serve maps to editors: a language server on stdin/stdout (diagnostics as you type,
+    /// hover, go to definition, references, symbols, fixes). Set-up: docs/editors.md.
+    Lsp(lsp::LspArgs),
+    /// What changed by meaning between two versions of a map: levels, waypoints, lanes,
+    /// doors, lifts, walls, floors, connectivity, diagnostics. Exit 0 when nothing
+    /// changed, 1 when something did, 2 on errors (like diff).
+    Diff(diff::DiffArgs),
     /// Check maps and report every problem found, without writing anything.
     Check {
         /// The .building.yaml (or legacy .project.yaml) files to read.
@@ -212,7 +225,10 @@ fn main() -> ExitCode {
         Command::Sim(args) => sim_cmd::run(&args),
         Command::Info(args) => info::run(&args),
         Command::Render(args) => render_cmd::run(&args),
+        Command::Lsp(args) => lsp::run(&args),
+        Command::Diff(args) => diff::run(&args),
         Command::Check { inputs, diag } => check(&inputs, &diag),
+        Command::Convert(args) => convert::run(&args),
     }
 }
 
@@ -221,6 +237,7 @@ fn main() -> ExitCode {
 pub(crate) fn code_name(code: &str) -> &'static str {
     mapc_frontend::CODES
         .iter()
+        .chain(mapc_frontend::site::codes::CODES)
         .find(|c| c.code == code)
         .map(|c| c.name)
         .or_else(|| mapc_ir::rule(code).map(|r| r.name))
@@ -276,7 +293,7 @@ impl Checked {
 
 /// The lint levels for `input`: the command line's over those of `--config` or of the
 /// mapc.toml found for the map. `Err` is a usage error (exit 2).
-fn lints_for(input: &Path, opts: &LintOpts) -> Result<lints::Lints, String> {
+pub(crate) fn lints_for(input: &Path, opts: &LintOpts) -> Result<lints::Lints, String> {
     let cli = lints::from_flags(&opts.allow, &opts.warn, &opts.deny, opts.deny_warnings)?;
     let file = match &opts.config {
         Some(path) => Some(lints::from_file(path)?),
@@ -299,6 +316,23 @@ const METRIC_RULES: &[&str] = &[
 /// system, an unknown reference level, a wgs84 map without a CRS, a zero-length measurement.
 const UNITS_UNKNOWN: &[&str] = &["E0106", "E0107", "E0108", "E0109"];
 
+/// The frontend's diagnostics plus those of every validation pass (before lint levels).
+pub(crate) fn all_diagnostics(parsed: &mapc_frontend::Parsed) -> Vec<Diagnostic> {
+    let mut diagnostics = parsed.diagnostics.clone();
+    // Passes run even after frontend errors so one run reports everything it can, except
+    // those whose inputs the errors left unknown: they would only report consequences
+    // (a 224 m wide door in a map whose pixels were taken for metres).
+    let units_unknown = diagnostics.iter().any(|d| UNITS_UNKNOWN.contains(&d.code));
+    if let Some(b) = &parsed.building {
+        diagnostics.extend(
+            mapc_ir::validate(b)
+                .into_iter()
+                .filter(|d| !(units_unknown && METRIC_RULES.contains(&d.code))),
+        );
+    }
+    diagnostics
+}
+
 /// Reads a map and runs every validation pass, at the user's lint levels. `Err` is an I/O
 /// or usage problem (exit 2).
 fn load_and_check(input: &Path, opts: &LintOpts) -> Result<Checked, String> {
@@ -312,18 +346,7 @@ fn load_and_check(input: &Path, opts: &LintOpts) -> Result<Checked, String> {
     for s in &mut parsed.sources {
         s.name = output::shown(Path::new(&s.name));
     }
-    let mut diagnostics = parsed.diagnostics.clone();
-    // Passes run even after frontend errors so one run reports everything it can, except
-    // those whose inputs the errors left unknown: they would only report consequences
-    // (a 224 m wide door in a map whose pixels were taken for metres).
-    let units_unknown = diagnostics.iter().any(|d| UNITS_UNKNOWN.contains(&d.code));
-    if let Some(b) = &parsed.building {
-        diagnostics.extend(
-            mapc_ir::validate(b)
-                .into_iter()
-                .filter(|d| !(units_unknown && METRIC_RULES.contains(&d.code))),
-        );
-    }
+    let mut diagnostics = all_diagnostics(&parsed);
     lints.apply(&mut diagnostics);
     Ok(Checked {
         parsed,

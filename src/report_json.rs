@@ -112,7 +112,7 @@ pub fn write_json_lines(
 /// Where a code's documentation is, as an absolute URI (SARIF viewers do not resolve
 /// relative ones): the repository's page when the package names one, else the docs of the
 /// source tree mapc was built from.
-fn help_uri(code: &str) -> String {
+pub(crate) fn help_uri(code: &str) -> String {
     // The heading's anchor: `## W0213 demo-mock-lift-without-floor`.
     let anchor = match crate::code_name(code) {
         "" => code.to_ascii_lowercase(),
@@ -142,7 +142,7 @@ fn encode(path: &str) -> String {
 }
 
 /// `file:///abs/path`, with `\` as `/` (Windows).
-fn file_uri(p: &std::path::Path) -> String {
+pub(crate) fn file_uri(p: &std::path::Path) -> String {
     let s = p.to_string_lossy().replace('\\', "/");
     let s = if s.starts_with('/') {
         s

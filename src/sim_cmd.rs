@@ -113,6 +113,7 @@ fn looks_like_map(path: &Path, text: &str) -> bool {
     let name = path.to_string_lossy();
     name.ends_with(".building.yaml")
         || name.ends_with(".project.yaml")
+        || name.ends_with(".site.json")
         || text.lines().any(|l| l.starts_with("levels:"))
 }
 

@@ -96,10 +96,9 @@ fn map_package_builds_and_installs_with_mapc_behind_ros2_run() {
     let w = share.join("cartesian_warehouse");
     let world = std::fs::read_to_string(w.join("cartesian_warehouse.world")).unwrap();
     assert_eq!(world.matches("name=\"crowd_simulation\"").count(), 1);
-    let ign = std::fs::read_to_string(
-        share.join("cartesian_warehouse_ign/cartesian_warehouse.world"),
-    )
-    .unwrap();
+    let ign =
+        std::fs::read_to_string(share.join("cartesian_warehouse_ign/cartesian_warehouse.world"))
+            .unwrap();
     assert_eq!(ign.matches("name=\"crowd_simulation\"").count(), 1);
     assert!(w.join("nav_graphs/0.yaml").is_file());
     // The map without a crowd: world and graphs, no crowd plugin, no Menge files.
@@ -117,7 +116,11 @@ fn map_package_builds_and_installs_with_mapc_behind_ros2_run() {
             .arg(direct.join("models"))
             .output()
             .unwrap();
-        (o.status.code(), (), String::from_utf8_lossy(&o.stderr).into_owned())
+        (
+            o.status.code(),
+            (),
+            String::from_utf8_lossy(&o.stderr).into_owned(),
+        )
     };
     assert_eq!(code, Some(0), "{err}");
     for f in ["behavior_file.xml", "scene_file.xml", "L1_navmesh.nav"] {

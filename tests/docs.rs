@@ -37,8 +37,9 @@ fn parse_block(lines: &[String], source: &str) -> Entry {
 }
 
 /// Files that list `pub const` codes with `///` docs.
-const CODE_LISTS: [&str; 3] = [
+const CODE_LISTS: [&str; 4] = [
     "frontend/src/codes.rs",
+    "frontend/src/site/codes.rs",
     "backends/src/codes.rs",
     "sim/src/codes.rs",
 ];

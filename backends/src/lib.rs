@@ -2,6 +2,7 @@
 //! memory. Writing them to disk (atomically, inside the output directory) is the caller's
 //! job, so backends do no I/O and never see a path outside the output tree.
 
+mod building_yaml;
 pub mod codes;
 mod fmt;
 pub mod geometry;
@@ -11,9 +12,11 @@ mod nav;
 mod obj;
 pub mod render;
 pub mod sdf;
+mod site;
 mod texture;
 mod yaml;
 
+pub use building_yaml::building_yaml;
 pub use codes::CODES;
 pub use fmt::py_float;
 pub use geometry::{level_meshes, LevelMeshes};
@@ -22,11 +25,12 @@ pub use gltf::{
     CABIN_HEIGHT, DOOR_HEIGHT, DOOR_THICKNESS, GLTF_PBR_MAPS,
 };
 pub use mesh::{Material, Mesh, MeshKind};
-pub use nav::{nav_graph, nav_graphs};
+pub use nav::{graph_file_stem, nav_graph, nav_graphs};
 pub use obj::{
     level_obj_files, level_obj_files_from, level_texture_files, mesh_mtl, mesh_obj, model_material,
     wall_origin,
 };
+pub use site::site_json;
 pub use texture::{
     is_png, is_url, placeholder_png, resolve_textures, strip_png, texture_file_name, texture_names,
     TextureImage, Textures,

@@ -7,14 +7,56 @@ use std::collections::BTreeMap;
 
 /// One `<graph>.yaml` per graph index that has at least one lane (any index >= 0, not
 /// only 0..8 as in the reference generator).
+/// A site's graphs have names, and the file takes the graph's name (made safe as one file
+/// name) instead of the index.
 pub fn nav_graphs(b: &Building) -> Vec<OutputFile> {
     b.graph_indices()
         .into_iter()
         .map(|g| OutputFile {
-            path: format!("{g}.yaml").into(),
+            path: format!("{}.yaml", graph_file_stem(b, g)).into(),
             contents: to_string(&nav_graph(b, g)).into_bytes(),
         })
         .collect()
+}
+
+/// The file name (less `.yaml`) of graph `g`: its index, or for a site its name with path
+/// separators, control characters and leading dots made `_` (never empty, never `..`);
+/// the index when two graphs would share a name.
+pub fn graph_file_stem(b: &Building, g: i64) -> String {
+    if b.format != SourceFormat::Site {
+        return g.to_string();
+    }
+    let safe = |name: &str| -> String {
+        let s: String = name
+            .chars()
+            .enumerate()
+            .map(|(i, c)| {
+                if c == '/' || c == '\\' || c == ':' || c.is_control() || (i == 0 && c == '.') {
+                    '_'
+                } else {
+                    c
+                }
+            })
+            .collect();
+        if s.is_empty() {
+            g.to_string()
+        } else {
+            s
+        }
+    };
+    let Some(info) = b.graphs.iter().find(|i| i.index == g) else {
+        return g.to_string();
+    };
+    let stem = safe(&info.name);
+    let clash = b
+        .graphs
+        .iter()
+        .any(|o| o.index != g && safe(&o.name) == stem);
+    if clash {
+        g.to_string()
+    } else {
+        stem
+    }
 }
 
 /// The YAML document of graph `graph`.

@@ -7,11 +7,13 @@
 mod codes;
 pub mod crs;
 mod lower;
+pub mod site;
 pub mod spelling;
 mod transform;
 mod yaml;
 
 pub use codes::{Code, CODES};
+pub use site::is_site_file;
 
 /// The located YAML tree the frontend reads maps with, for other YAML inputs of mapc
 /// (simulation scenarios) that want the same limits, spans and YAML 1.2 scalars.
@@ -74,6 +76,21 @@ pub fn parse_str(name: &str, text: &str) -> Parsed {
     let mut diagnostics = Vec::new();
     let building = parse_into(FileId(0), text, &mut diagnostics);
     sources.truncate(1);
+    Parsed {
+        building,
+        diagnostics,
+        sources,
+    }
+}
+
+/// Parses an rmf_site `.site.json` document held in memory. `name` is used in diagnostics.
+pub fn parse_site_str(name: &str, text: &str) -> Parsed {
+    let sources = vec![SourceFile {
+        name: name.to_string(),
+        text: text.to_string(),
+    }];
+    let mut diagnostics = Vec::new();
+    let building = site::parse_into(FileId(0), text, &mut diagnostics);
     Parsed {
         building,
         diagnostics,
@@ -202,8 +219,12 @@ fn load_into(
     };
     if !is_project_file(path) {
         // Parsed from the kept source: no second copy of a large file.
+        let is_site = is_site_file(&name);
         sources.push(SourceFile { name, text });
         let text = &sources[sources.len() - 1].text;
+        if is_site {
+            return Ok(site::parse_into(file, text, diags));
+        }
         return Ok(parse_into(file, text, diags));
     }
     sources.push(SourceFile {

@@ -99,16 +99,28 @@ const VERTEX_PARAMS: &[&str] = &[
 ];
 
 impl Lower<'_> {
-    fn err(&mut self, code: &'static str, span: Span, msg: impl Into<String>, help: &str) {
+    pub(crate) fn err(
+        &mut self,
+        code: &'static str,
+        span: Span,
+        msg: impl Into<String>,
+        help: &str,
+    ) {
         self.diags
             .push(Diagnostic::error(code, span, msg).with_help(help));
     }
-    fn warn(&mut self, code: &'static str, span: Span, msg: impl Into<String>, help: &str) {
+    pub(crate) fn warn(
+        &mut self,
+        code: &'static str,
+        span: Span,
+        msg: impl Into<String>,
+        help: &str,
+    ) {
         self.diags
             .push(Diagnostic::warning(code, span, msg).with_help(help));
     }
 
-    fn wrong_type(&mut self, node: &Node, what: &str, expected: &str) {
+    pub(crate) fn wrong_type(&mut self, node: &Node, what: &str, expected: &str) {
         self.err(
             "E0101",
             node.span,

@@ -116,6 +116,9 @@ pub struct Building {
     pub crowd_sim: Option<CrowdSim>,
     /// Unparsed legacy `map_version`, kept for exports.
     pub map_version: Option<String>,
+    /// The file format the building was read from; a site's graphs are named, so its nav
+    /// files are named after the graphs rather than numbered.
+    pub format: SourceFormat,
     pub spans: BuildingSpans,
 }
 
@@ -472,6 +475,16 @@ impl Lift {
     }
 }
 
+/// Which frontend read a building.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum SourceFormat {
+    /// traffic_editor's `.building.yaml` (or a legacy `.project.yaml`).
+    #[default]
+    BuildingYaml,
+    /// rmf_site's `.site.json`.
+    Site,
+}
+
 #[derive(Debug, Clone, PartialEq)]
 pub struct GraphInfo {
     pub index: i64,
@@ -626,6 +639,7 @@ impl Building {
             graphs: Vec::new(),
             crowd_sim: None,
             map_version: None,
+            format: SourceFormat::BuildingYaml,
             spans: BuildingSpans::default(),
         }
     }

@@ -509,7 +509,10 @@ impl Crowd {
             let range = pr.tau_obst * pr.max_speed + pr.r;
             for &k in self.walls.cell(p.pos) {
                 let (a, b) = self.wall_segments[k as usize];
-                if seg_dist(p.pos, a, b) < range {
+                let d = seg_dist(p.pos, a, b);
+                // A person standing on the mesh edge (the clamp below) is not avoided
+                // from: the crate normalises the vector to the wall, which is zero there.
+                if d < range && d > 1e-4 {
                     walls.push(Cow::Borrowed(&self.wall_obstacles[k as usize]));
                 }
             }

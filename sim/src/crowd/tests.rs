@@ -108,7 +108,11 @@ fn min_gap(c: &Crowd) -> f64 {
 fn off_mesh(c: &Crowd) -> f64 {
     c.people
         .iter()
-        .map(|p| c.mesh.snap(p.pos).map_or(f64::INFINITY, |(_, q)| q.minus(p.pos).norm()))
+        .map(|p| {
+            c.mesh
+                .snap(p.pos)
+                .map_or(f64::INFINITY, |(_, q)| q.minus(p.pos).norm())
+        })
         .fold(0.0, f64::max)
 }
 

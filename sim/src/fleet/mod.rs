@@ -67,6 +67,8 @@ const EXTERNAL_TIMEOUT: f64 = 300.0;
 /// A robot at an empty dispenser asks again this often (s), this long (s).
 const ITEM_RETRY: f64 = 5.0;
 const ITEM_WAIT: f64 = 1200.0;
+/// An ingested item is back in its dispenser within this long (s); the plugin takes 5 s.
+const ITEM_HOME: f64 = 30.0;
 /// A robot waiting for traffic this long is reported stuck.
 const STUCK_AFTER: f64 = 120.0;
 /// A stalled robot looks for a detour this often.
@@ -116,6 +118,8 @@ enum Cur {
         /// Requests made after a FAILED, and when the first one was made.
         tries: u32,
         since: f64,
+        /// The request under `guid` went out (an answer may still come).
+        sent: bool,
     },
     Dwell {
         until: f64,
@@ -276,6 +280,8 @@ pub struct Fleets {
     next_traffic: f64,
     clean_duration: f64,
     released: bool,
+    /// Per dispenser, when its item was last ingested (it then goes home by itself).
+    ingested: BTreeMap<String, f64>,
 }
 
 fn level_handle_eq(a: mapc_ir::Handle<mapc_ir::Level>, b: mapc_ir::Handle<mapc_ir::Level>) -> bool {

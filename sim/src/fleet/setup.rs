@@ -549,6 +549,7 @@ impl Fleets {
             next_traffic: f64::INFINITY,
             clean_duration: scenario.options.clean_duration,
             released: false,
+            ingested: BTreeMap::new(),
         })
     }
 }

@@ -96,6 +96,7 @@ impl Fleets {
                     deadline,
                     tries,
                     since,
+                    ..
                 } => match self.results.get(&guid).copied() {
                     Some(workcell_result::SUCCESS) => {
                         let r = &mut self.robots[i];
@@ -114,14 +115,16 @@ impl Fleets {
                             r.item_from = Some(target.clone());
                         } else {
                             r.carrying = None;
-                            r.item_from = None;
+                            if let Some(d) = r.item_from.take() {
+                                self.ingested.insert(d, t);
+                            }
                         }
                         true
                     }
                     // An empty dispenser: its item is still out with another delivery
                     // (it comes back once ingested). Ask again for a while.
                     Some(_)
-                        if dispenser && (t - since < ITEM_WAIT || self.item_coming(&target)) =>
+                        if dispenser && (t - since < ITEM_WAIT || self.item_coming(&target, t)) =>
                     {
                         let base = guid.split("_retry").next().unwrap_or(&guid).to_string();
                         self.robots[i].cur = Cur::Workcell {
@@ -132,6 +135,7 @@ impl Fleets {
                             deadline: t + ITEM_RETRY + EXTERNAL_TIMEOUT,
                             tries: tries + 1,
                             since,
+                            sent: false,
                         };
                         let r = &mut self.robots[i];
                         r.wake = r.wake.min(t + ITEM_RETRY);
@@ -148,8 +152,12 @@ impl Fleets {
                     None => {
                         if t >= next_send {
                             self.workcell_request(i, &guid, &target, dispenser, t, out);
-                            if let Cur::Workcell { next_send, .. } = &mut self.robots[i].cur {
+                            if let Cur::Workcell {
+                                next_send, sent, ..
+                            } = &mut self.robots[i].cur
+                            {
                                 *next_send = t + 2.0 * RESEND;
+                                *sent = true;
                             }
                         }
                         let r = &mut self.robots[i];
@@ -218,9 +226,21 @@ impl Fleets {
                 deadline: t + EXTERNAL_TIMEOUT,
                 tries: 0,
                 since: t,
+                sent: false,
             };
-            if matches!(step, Step::GoTo(_)) && r.prio_until.is_none() {
-                r.prio = t;
+            if let Step::GoTo(goal) = step {
+                // The priority kept for a goal no step leads to any more (a spot to make
+                // room at, replaced by another) would be kept for ever: drop it.
+                let kept = r.prio_until.is_some_and(|u| {
+                    u == goal
+                        || r.steps
+                            .iter()
+                            .any(|s| matches!(s, Step::GoTo(v) if *v == u))
+                });
+                if !kept {
+                    r.prio_until = None;
+                    r.prio = t;
+                }
             }
             r.cur = match step {
                 Step::GoTo(goal) => Cur::GoTo {
@@ -350,10 +370,16 @@ impl Fleets {
 
     /// Whether a robot still on its way (a delivery or the return trip of a failed one)
     /// carries `dispenser`'s item: it will come back, so waiting for it is not in vain.
-    pub(super) fn item_coming(&self, dispenser: &str) -> bool {
-        self.robots.iter().any(|x| {
-            x.item_from.as_deref() == Some(dispenser)
-                && !(matches!(x.cur, Cur::None) && x.steps.is_empty())
-        })
+    pub(super) fn item_coming(&self, dispenser: &str, t: f64) -> bool {
+        // Ingested lately: on its way home (the ingestor returns it after a few seconds).
+        let home_soon = self
+            .ingested
+            .get(dispenser)
+            .is_some_and(|&at| t - at < ITEM_HOME);
+        home_soon
+            || self.robots.iter().any(|x| {
+                x.item_from.as_deref() == Some(dispenser)
+                    && !(matches!(x.cur, Cur::None) && x.steps.is_empty())
+            })
     }
 }

@@ -1115,14 +1115,18 @@ fn an_empty_dispensers_item_is_coming_while_its_carrier_is_on_its_way() {
     );
     let (_, _, mut f) = run(&b, &s, 2.0);
     assert!(matches!(f.robots[0].cur, Cur::GoTo { .. }));
-    assert!(!f.item_coming("disp"), "nothing carried yet");
+    assert!(!f.item_coming("disp", 2.0), "nothing carried yet");
     f.robots[0].item_from = Some("disp".into());
-    assert!(f.item_coming("disp"));
-    assert!(!f.item_coming("other"));
+    assert!(f.item_coming("disp", 2.0));
+    assert!(!f.item_coming("other", 2.0));
     f.robots[0].cur = Cur::None;
     f.robots[0].steps.clear();
     assert!(
-        !f.item_coming("disp"),
+        !f.item_coming("disp", 2.0),
         "a carrier with nothing to do brings nothing back"
     );
+    // Ingested: the plugin sends it home after a few seconds, so it is still coming then.
+    f.ingested.insert("disp".into(), 2.0);
+    assert!(f.item_coming("disp", 2.0 + ITEM_HOME - 1.0));
+    assert!(!f.item_coming("disp", 2.0 + ITEM_HOME + 1.0));
 }

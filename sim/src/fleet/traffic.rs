@@ -177,17 +177,21 @@ impl Fleets {
             && matches!(r.cur, Cur::GoTo { .. })
     }
 
-    /// Standing still and free to be sent elsewhere: idle, or waiting at rest in a move.
+    /// Standing still and free to be sent elsewhere: idle, waiting at rest in a move, or
+    /// waiting at an empty dispenser for its item to come back.
     fn at_rest(&self, o: usize) -> bool {
         let x = &self.robots[o];
-        x.n_sent == 0 && x.gate == Gate::None && (x.idle() || self.waits_at_rest(o))
+        x.n_sent == 0
+            && x.gate == Gate::None
+            && (x.idle() || self.waits_at_rest(o) || Self::waits_for_item(x))
     }
 
-    /// Can be sent elsewhere now: idle, or waiting at rest in a move (a robot driving,
-    /// at a door or lift, or busy at a task step leaves by itself in bounded time).
-    fn pushable(&self, b: usize) -> bool {
-        let r = &self.robots[b];
-        r.n_sent == 0 && r.gate == Gate::None && (r.idle() || self.waits_at_rest(b))
+    /// Waiting at a dispenser that answered empty: the item comes back only when another
+    /// delivery ends, which may need this very spot, so the wait is not bounded and the
+    /// robot makes room like one at rest (it comes back and asks again). Not while a
+    /// request is out: the item would be handed to nobody.
+    fn waits_for_item(r: &Robot) -> bool {
+        matches!(r.cur, Cur::Workcell { dispenser: true, tries, sent: false, .. } if tries > 0)
     }
 
     /// Once a second while robots wait: stall bookkeeping and stuck reports, idle robots
@@ -239,12 +243,11 @@ impl Fleets {
         let mut order: Vec<usize> = (0..self.robots.len())
             .filter(|&i| self.waits_at_rest(i))
             .collect();
-        order.sort_by(|&a, &b| {
-            let (ra, rb) = (&self.robots[a], &self.robots[b]);
-            ra.prio.total_cmp(&rb.prio).then(a.cmp(&b))
-        });
+        let prio: Vec<f64> = (0..self.robots.len())
+            .map(|i| self.served_prio(i))
+            .collect();
+        order.sort_by(|&a, &b| prio[a].total_cmp(&prio[b]).then(a.cmp(&b)));
         self.claims.clear();
-        let mut claimed: Vec<Res> = Vec::new();
         for c in order {
             if !self.waits_at_rest(c) {
                 continue;
@@ -252,14 +255,43 @@ impl Fleets {
             let Some((_, set)) = self.wanted(c) else {
                 continue;
             };
-            if meets(&set, &claimed) {
+            // A robot making room leaves the way of the robot it makes room for: that
+            // claim does not hold it back (it would never get out), any other does.
+            let for_whom = self.robots[c].escape.map(|e| e.0);
+            let conflict = self
+                .claims
+                .iter()
+                .any(|(o, s)| Some(*o) != for_whom && meets(&set, s));
+            if conflict {
                 continue;
             }
+            // Robots pushed out of its way keep off every claim before it.
+            let higher: Vec<Res> = self
+                .claims
+                .iter()
+                .fold(Vec::new(), |acc, (_, s)| union(&acc, s));
             self.claims.push((c, set.clone()));
-            let before = claimed.clone();
-            claimed = union(&claimed, &set);
-            self.clear_way(c, &set, &before, t);
+            self.clear_way(c, &set, &higher, t);
         }
+    }
+
+    /// The priority robot `i` is served with: a robot making room for another goes just
+    /// before it (priority inheritance, as in PIBT), through chains of such robots, so
+    /// that robots of lower priority cannot step back into its way out.
+    fn served_prio(&self, i: usize) -> f64 {
+        let mut p = self.robots[i].prio;
+        let mut o = i;
+        for depth in 1..=self.robots.len() {
+            let Some((c, _)) = self.robots[o].escape else {
+                break;
+            };
+            if c == i {
+                break;
+            }
+            p = p.min(self.robots[c].prio - 1e-6 * depth as f64);
+            o = c;
+        }
+        p
     }
 
     /// Pushes the robots at rest on claimant `c`'s claimed `set` out of it, never onto
@@ -269,7 +301,9 @@ impl Fleets {
         let far = union(&self.needed(&[c], &[], ESCAPE_HORIZON), &near);
         let mut cannot = Vec::new();
         for b in self.res.blockers(c, set) {
-            if !self.pushable(b) {
+            // Others (driving, at a door or lift, busy at a task step) leave by
+            // themselves in bounded time.
+            if !self.at_rest(b) {
                 continue;
             }
             let rb = &self.robots[b];
@@ -355,6 +389,13 @@ impl Fleets {
                         r.prio_until = Some(goal);
                     }
                 }
+                r.steps.push_front(Step::GoTo(v));
+                r.cur = Cur::None;
+            }
+            Cur::Workcell { target, .. } if Self::waits_for_item(r) => {
+                let here = r.at;
+                r.steps.push_front(Step::Dispense(target));
+                r.steps.push_front(Step::GoTo(here));
                 r.steps.push_front(Step::GoTo(v));
                 r.cur = Cur::None;
             }

@@ -1,0 +1,658 @@
+//! rmf_site `.site.json`: the frontend, `mapc convert` both ways, and rmf_site_format 0.0.2
+//! (rmf_site's own format crate) as the oracle: it reads every site mapc writes, and its
+//! `NavGraph::from_site` agrees with mapc's nav graphs by meaning on maps without lifts.
+
+mod support;
+
+use rmf_site_format::legacy::building_map::BuildingMap;
+use rmf_site_format::legacy::nav_graph::NavGraph;
+use rmf_site_format::Site;
+use serde_json::Value;
+use std::collections::BTreeSet;
+use std::path::{Path, PathBuf};
+use std::process::Command;
+use std::time::Duration;
+
+const ROOT: &str = env!("CARGO_MANIFEST_DIR");
+
+fn mapc(args: &[&str]) -> support::Run {
+    support::run(args, Duration::from_secs(120))
+}
+
+fn ok(args: &[&str]) {
+    let r = mapc(args);
+    assert_eq!(
+        r.code,
+        0,
+        "mapc {args:?}:\n{}",
+        String::from_utf8_lossy(&r.stderr)
+    );
+}
+
+fn demo_maps() -> Option<Vec<(String, PathBuf)>> {
+    let dir = Path::new(ROOT).join("../shared/maps");
+    if !dir.is_dir() {
+        println!("skipped: ../shared not found");
+        return None;
+    }
+    let mut v: Vec<(String, PathBuf)> = std::fs::read_dir(&dir)
+        .unwrap()
+        .map(|e| {
+            let d = e.unwrap().path();
+            let n = d.file_name().unwrap().to_string_lossy().into_owned();
+            (n.clone(), d.join(format!("{n}.building.yaml")))
+        })
+        .collect();
+    v.sort();
+    Some(v)
+}
+
+fn nav_dir(map: &Path, out: &Path) -> Vec<(String, String)> {
+    ok(&["nav", map.to_str().unwrap(), out.to_str().unwrap(), "-q"]);
+    let mut files: Vec<(String, String)> = std::fs::read_dir(out)
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .filter(|p| p.extension().is_some_and(|e| e == "yaml"))
+        .map(|p| {
+            (
+                p.file_name().unwrap().to_string_lossy().into_owned(),
+                std::fs::read_to_string(&p).unwrap(),
+            )
+        })
+        .collect();
+    files.sort();
+    files
+}
+
+type Lane = ((i64, i64), (i64, i64), i64, String, String);
+type Place = ((i64, i64), String, bool, bool, bool);
+
+/// A nav graph document (mapc's YAML or rmf_site's, as JSON values) by meaning, per level:
+/// directed lanes between positions with speed limit, dock and orientation, and the named
+/// places with their roles. Door names are left out: rmf_site's crossing test differs at
+/// the door ends (it skips near-parallel segments) and mapc's is checked on its own.
+/// mapc's documents are in the map frame and publish the `offset` rmf_site's site frame
+/// is less; positions are compared in the site frame.
+fn meaning(doc: &Value) -> Vec<(String, BTreeSet<Lane>, BTreeSet<Place>)> {
+    let off = |i: usize| doc["offset"][i].as_f64().unwrap_or(0.0);
+    let (ox, oy) = (off(0), off(1));
+    let mm = |v: &Value, o: f64| ((v.as_f64().unwrap() - o) * 1000.0).round() as i64;
+    let mut out = Vec::new();
+    for (level, l) in doc["levels"].as_object().unwrap() {
+        let verts = l["vertices"].as_array().unwrap();
+        let pos = |i: &Value| {
+            let v = &verts[i.as_u64().unwrap() as usize];
+            (mm(&v[0], ox), mm(&v[1], oy))
+        };
+        let text = |v: &Value, k: &str| v[k].as_str().unwrap_or("").to_string();
+        let lanes: BTreeSet<Lane> = l["lanes"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|lane| {
+                let p = &lane[2];
+                let speed = p["speed_limit"]
+                    .as_f64()
+                    .map_or(0, |s| (s * 1000.0).round() as i64);
+                (
+                    pos(&lane[0]),
+                    pos(&lane[1]),
+                    speed,
+                    text(p, "dock_name"),
+                    text(p, "orientation_constraint"),
+                )
+            })
+            .collect();
+        let flag = |p: &Value, k: &str| p[k].as_bool().unwrap_or(false);
+        let places: BTreeSet<Place> = verts
+            .iter()
+            .filter(|v| !text(&v[2], "name").is_empty())
+            .map(|v| {
+                let p = &v[2];
+                (
+                    (mm(&v[0], ox), mm(&v[1], oy)),
+                    text(p, "name"),
+                    flag(p, "is_charger"),
+                    flag(p, "is_parking_spot"),
+                    flag(p, "is_holding_point"),
+                )
+            })
+            .collect();
+        if !lanes.is_empty() {
+            out.push((level.clone(), lanes, places));
+        }
+    }
+    out
+}
+
+fn yaml_value(text: &str) -> Value {
+    serde_yaml::from_str(text).unwrap()
+}
+
+/// rmf_site's nav graphs of `site` against mapc's nav files of `map_for_mapc` (named after
+/// the graphs), by meaning.
+fn assert_rmf_site_nav_equal(site: &Site, mapc_nav: &[(String, String)], what: &str) {
+    let theirs = NavGraph::from_site(site);
+    assert_eq!(theirs.len(), mapc_nav.len(), "{what}: number of graphs");
+    for (name, graph) in theirs {
+        let doc = serde_json::to_value(&graph).unwrap();
+        let file = format!("{name}.yaml");
+        let ours = &mapc_nav
+            .iter()
+            .find(|(f, _)| *f == file)
+            .unwrap_or_else(|| panic!("{what}: mapc wrote no {file}"))
+            .1;
+        let (a, b) = (meaning(&doc), meaning(&yaml_value(ours)));
+        assert_eq!(a, b, "{what}: graph {name}");
+        assert!(!a.is_empty(), "{what}: graph {name} has lanes");
+    }
+}
+
+/// Every demo map: `mapc convert` to a site that rmf_site_format reads with the same
+/// levels, lifts and graphs; without lifts its nav graphs equal mapc's of the map; and the
+/// nav files of building -> site -> building are mapc's of the map (a reference_image map
+/// comes back as cartesian_meters, whose nav files add `offset: [0.0, 0.0]`).
+#[test]
+fn demo_maps_convert_both_ways() {
+    let Some(maps) = demo_maps() else { return };
+    assert_eq!(maps.len(), 7);
+    let tmp = tempfile::tempdir().unwrap();
+    let mut compared = 0;
+    for (name, map) in &maps {
+        let site_path = tmp.path().join(format!("{name}.site.json"));
+        let back = tmp.path().join(format!("{name}.building.yaml"));
+        ok(&[
+            "convert",
+            map.to_str().unwrap(),
+            site_path.to_str().unwrap(),
+            "-q",
+        ]);
+        ok(&[
+            "convert",
+            site_path.to_str().unwrap(),
+            back.to_str().unwrap(),
+            "-q",
+        ]);
+
+        let site = Site::from_bytes_json(&std::fs::read(&site_path).unwrap())
+            .unwrap_or_else(|e| panic!("{name}: rmf_site_format cannot read it: {e}"));
+        let parsed = mapc_frontend::load(map).unwrap();
+        let b = parsed.building.unwrap();
+        let levels: BTreeSet<String> = site
+            .levels
+            .values()
+            .map(|l| l.properties.name.0.clone())
+            .collect();
+        let ours: BTreeSet<String> = b.levels.iter().map(|(_, l)| l.name.clone()).collect();
+        assert_eq!(levels, ours, "{name}: levels");
+        let lifts: BTreeSet<String> = site
+            .lifts
+            .values()
+            .map(|l| l.properties.name.0.clone())
+            .collect();
+        let ours: BTreeSet<String> = b.lifts.iter().map(|(_, l)| l.name.clone()).collect();
+        assert_eq!(lifts, ours, "{name}: lifts");
+        let graphs: BTreeSet<String> = site
+            .navigation
+            .guided
+            .graphs
+            .values()
+            .map(|g| g.name.0.clone())
+            .collect();
+        let ours: BTreeSet<String> = b.graph_indices().iter().map(|g| g.to_string()).collect();
+        assert!(
+            ours.is_subset(&graphs),
+            "{name}: graphs {graphs:?} vs {ours:?}"
+        );
+
+        if b.coordinate_system == mapc_ir::CoordinateSystem::Wgs84 {
+            // The geographic offset is the site origin (the map's offset): projected to the
+            // map's CRS again, it lands within 2 m of it.
+            let (lat, lon) = site
+                .properties
+                .geographic_offset
+                .0
+                .expect("geographic offset")
+                .anchor;
+            let code: u32 = b
+                .crs_name
+                .as_deref()
+                .unwrap()
+                .trim_start_matches("EPSG:")
+                .parse()
+                .unwrap();
+            let mapc_frontend::crs::Lookup::Crs(crs) = mapc_frontend::crs::lookup(code) else {
+                panic!("{name}: CRS");
+            };
+            let (e, n) = crs.project(lon as f64, lat as f64).unwrap();
+            let d = (e - b.offset.x).hypot(n - b.offset.y);
+            // rmf_site keeps f32 degrees: 0.85 m steps of longitude near 100°.
+            assert!(
+                d < 2.0,
+                "{name}: geographic offset is {d} m from the map offset"
+            );
+            println!("{name}: geographic offset {d:.3} m from the map offset");
+        }
+        let original = nav_dir(map, &tmp.path().join(format!("{name}_nav_a")));
+        let from_site = nav_dir(&site_path, &tmp.path().join(format!("{name}_nav_b")));
+        let round = nav_dir(&back, &tmp.path().join(format!("{name}_nav_c")));
+        assert_eq!(original, from_site, "{name}: nav of the site");
+        let had_offset = original.iter().any(|(_, t)| t.contains("\noffset:"));
+        let round: Vec<(String, String)> = round
+            .into_iter()
+            .map(|(f, t)| {
+                let t = if had_offset {
+                    t
+                } else {
+                    t.replace("\noffset: [0.0, 0.0]", "")
+                };
+                (f, t)
+            })
+            .collect();
+        assert_eq!(
+            original, round,
+            "{name}: nav after building -> site -> building"
+        );
+
+        if site.lifts.is_empty() {
+            assert_rmf_site_nav_equal(&site, &original, name);
+            compared += 1;
+        }
+    }
+    println!("rmf_site nav graphs compared on {compared} maps without lifts");
+    assert!(compared >= 3);
+}
+
+/// Sites written by rmf_site itself (its legacy import, rmf_site_format's `to_site`, of each
+/// demo map it can import): mapc reads them, its nav graphs equal rmf_site's own by meaning
+/// on maps without lifts, and `mapc gazebo` writes a world.
+#[test]
+fn sites_written_by_rmf_site() {
+    let Some(maps) = demo_maps() else { return };
+    let tmp = tempfile::tempdir().unwrap();
+    let mut read = 0;
+    for (name, map) in &maps {
+        // rmf_site refuses wgs84 maps and telescope lift doors (the reasons mapc converts
+        // itself); those are skipped here.
+        let legacy = BuildingMap::from_bytes(&std::fs::read(map).unwrap());
+        let Ok(site) = legacy
+            .map_err(|e| e.to_string())
+            .and_then(|l| l.to_site().map_err(|e| format!("{e:?}")))
+        else {
+            println!("{name}: rmf_site_format cannot import it, skipped");
+            continue;
+        };
+        let path = tmp.path().join(format!("{name}.site.json"));
+        std::fs::write(&path, site.to_bytes_json().unwrap()).unwrap();
+        let nav = nav_dir(&path, &tmp.path().join(format!("{name}_nav")));
+        if site.lifts.is_empty() {
+            assert_rmf_site_nav_equal(&site, &nav, &format!("{name} (rmf_site import)"));
+        }
+        let world = tmp.path().join(format!("{name}.world"));
+        let models = tmp.path().join(format!("{name}_models"));
+        ok(&[
+            "gazebo",
+            path.to_str().unwrap(),
+            world.to_str().unwrap(),
+            models.to_str().unwrap(),
+            "-q",
+        ]);
+        let text = std::fs::read_to_string(&world).unwrap();
+        let level_model = format!("{}_", site.properties.name.0);
+        assert!(
+            text.contains("<world") && text.contains(&level_model),
+            "{name}"
+        );
+        sdf_check(&path, &world, &models);
+        read += 1;
+    }
+    assert!(read >= 4, "{read} rmf_site sites read");
+}
+
+/// The world and its level models load in libsdformat (`../shared/tools/sdf-check`) with
+/// no error but Fuel models absent here; skipped when the tool cannot run.
+fn sdf_check(map: &Path, world: &Path, models: &Path) {
+    let tool = Path::new(ROOT).join("../shared/tools/sdf-check");
+    let b = mapc_frontend::load(map).unwrap().building.unwrap();
+    let levels: Vec<String> = b
+        .levels
+        .iter()
+        .map(|(h, _)| mapc_backends::sdf::level::level_model_name(&b, h))
+        .collect();
+    let mut files = vec![world.to_path_buf()];
+    files.extend(levels.iter().map(|l| models.join(l).join("model.sdf")));
+    let Ok(out) = Command::new(&tool)
+        .env("SDF_PATH", models)
+        .args(&files)
+        .output()
+    else {
+        println!("skipped: sdf-check not found");
+        return;
+    };
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    if !stdout.contains(" errors (") {
+        println!("skipped: sdf-check could not run");
+        return;
+    }
+    let errors: Vec<&str> = stdout
+        .lines()
+        .filter(|l| l.contains(": error: "))
+        .filter(|l| {
+            l.split_once("Unable to find uri[model://")
+                .is_none_or(|(_, m)| levels.iter().any(|lv| *lv == m.trim_end_matches(']')))
+        })
+        .collect();
+    assert!(
+        errors.is_empty(),
+        "{}:\n{}",
+        map.display(),
+        errors.join("\n")
+    );
+}
+
+fn fixture() -> PathBuf {
+    Path::new(ROOT).join("fixtures/sites/lift_two_levels.site.json")
+}
+
+/// The hand-written fixture: two levels, a lift with a cabin anchor and a door visiting
+/// both, a drawing with fiducials, a dock, a one-way speed-limited lane, locations.
+#[test]
+fn fixture_nav_graph_values() {
+    let tmp = tempfile::tempdir().unwrap();
+    let text = std::fs::read(fixture()).unwrap();
+    Site::from_bytes_json(&text).expect("rmf_site_format reads the fixture");
+    let nav = nav_dir(&fixture(), tmp.path());
+    assert_eq!(nav.len(), 1);
+    assert_eq!(nav[0].0, "fleet_a.yaml", "named after the graph");
+    let doc = yaml_value(&nav[0].1);
+    // Lift: reference anchors (6, ±1) are the cabin front corners; the legacy cabin is
+    // 1 m (site depth) by 2 m (site width), so the centre is 0.5 m behind them.
+    assert_eq!(
+        doc["lifts"]["lift1"]["position"],
+        serde_json::json!([5.5, 0.0, 0.0])
+    );
+    assert_eq!(doc["lifts"]["lift1"]["dims"], serde_json::json!([1.0, 2.0]));
+    let l1 = &doc["levels"]["L1"];
+    let cabin: Vec<&Value> = l1["vertices"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .filter(|v| v[2]["lift"] == "lift1")
+        .collect();
+    assert_eq!(cabin.len(), 1);
+    assert_eq!(
+        (cabin[0][0].as_f64(), cabin[0][1].as_f64()),
+        (Some(5.5), Some(0.0))
+    );
+    let lanes = l1["lanes"].as_array().unwrap();
+    assert_eq!(lanes.len(), 6, "three two-way lanes on L1");
+    assert_eq!(
+        lanes.iter().filter(|l| l[2]["door_name"] == "d1").count(),
+        2
+    );
+    assert_eq!(
+        lanes
+            .iter()
+            .filter(|l| l[2]["dock_name"] == "dock1")
+            .count(),
+        1
+    );
+    let l2 = doc["levels"]["L2"]["lanes"].as_array().unwrap();
+    let one_way: Vec<&Value> = l2
+        .iter()
+        .filter(|l| l[2]["is_bidirectional"] == false)
+        .collect();
+    assert_eq!(one_way.len(), 1);
+    assert_eq!(one_way[0][2]["speed_limit"], 0.5);
+
+    // Fiducials in metres: drawing at (1, 2), 10 px/m: pixel (10, 20) is (2, 4).
+    let parsed = mapc_frontend::load(&fixture()).unwrap();
+    let b = parsed.building.unwrap();
+    let f: Vec<(f64, f64)> = b
+        .fiducials
+        .iter()
+        .map(|(_, f)| (f.pos.x, f.pos.y))
+        .collect();
+    assert_eq!(f, vec![(2.0, 4.0), (4.0, 4.0)]);
+    assert_eq!(
+        b.levels.iter().next().unwrap().1.drawing.as_deref(),
+        Some("L1_plan.png")
+    );
+    let lift = b.lifts.iter().next().unwrap().1;
+    assert_eq!(
+        lift.level_doors.len(),
+        2,
+        "the cabin door visits both levels"
+    );
+    assert_eq!(lift.doors[0].pos.x, -0.5);
+
+    // Converted back and forth, the nav graph stays the same.
+    let bpath = tmp.path().join("x.building.yaml");
+    let spath = tmp.path().join("x.site.json");
+    ok(&[
+        "convert",
+        fixture().to_str().unwrap(),
+        bpath.to_str().unwrap(),
+        "-q",
+    ]);
+    ok(&[
+        "convert",
+        bpath.to_str().unwrap(),
+        spath.to_str().unwrap(),
+        "-q",
+    ]);
+    Site::from_bytes_json(&std::fs::read(&spath).unwrap()).expect("rmf_site_format reads it");
+    let again = nav_dir(&spath, &tmp.path().join("again"));
+    let b_nav = nav_dir(&bpath, &tmp.path().join("b"));
+    assert_eq!(meaning(&yaml_value(&again[0].1)), meaning(&doc));
+    assert_eq!(meaning(&yaml_value(&b_nav[0].1)), meaning(&doc));
+}
+
+/// Problems of a site, located: (code, line, column) of each diagnostic.
+fn diagnostics(text: &str) -> Vec<(String, u64, u64)> {
+    let tmp = tempfile::tempdir().unwrap();
+    let p = tmp.path().join("bad.site.json");
+    std::fs::write(&p, text).unwrap();
+    let r = mapc(&["check", p.to_str().unwrap(), "--format", "json"]);
+    String::from_utf8_lossy(&r.stdout)
+        .lines()
+        .map(|l| {
+            let v: Value = serde_json::from_str(l).unwrap();
+            (
+                v["code"].as_str().unwrap().to_string(),
+                v["location"]["line"].as_u64().unwrap_or(0),
+                v["location"]["column"].as_u64().unwrap_or(0),
+            )
+        })
+        .collect()
+}
+
+fn line_col(text: &str, needle: &str) -> (u64, u64) {
+    let at = text.find(needle).unwrap();
+    let line = text[..at].matches('\n').count() as u64 + 1;
+    let col = (at - text[..at].rfind('\n').map_or(0, |i| i + 1)) as u64 + 1;
+    (line, col)
+}
+
+#[test]
+fn site_errors_are_located() {
+    let good = std::fs::read_to_string(fixture()).unwrap();
+    // A lane pointing at a missing anchor: E0121 on that anchor id of that lane.
+    let bad = good.replace(
+        r#""52": {"anchors": [21, 41]"#,
+        r#""52": {"anchors": [21, 999]"#,
+    );
+    let d = diagnostics(&bad);
+    let (line, col) = line_col(&bad, "999");
+    assert!(d.contains(&("E0121".into(), line, col)), "{d:?}");
+    // A lane between levels.
+    let bad = good.replace(
+        r#""51": {"anchors": [10, 11]"#,
+        r#""51": {"anchors": [10, 21]"#,
+    );
+    let d = diagnostics(&bad);
+    let (line, col) = line_col(&bad, r#""51": {"anchors": [10, 21]"#);
+    assert!(d.contains(&("E0122".into(), line, col)), "{d:?}");
+    // A location on a missing anchor.
+    let bad = good.replace(r#""anchor": 20, "tags""#, r#""anchor": 77, "tags""#);
+    let d = diagnostics(&bad);
+    let (line, col) = line_col(&bad, "77, \"tags\"");
+    assert!(d.contains(&("E0123".into(), line, col)), "{d:?}");
+    // A cabin anchor outside the cabin (1 m x 2 m).
+    let bad = good.replace(
+        r#""41": {"Translate2D": [0.0, 0.0]}"#,
+        r#""41": {"Translate2D": [3.0, 0.0]}"#,
+    );
+    let d = diagnostics(&bad);
+    assert!(d.iter().any(|x| x.0 == "W0120"), "{d:?}");
+    // A newer major format version is refused.
+    let bad = good.replace(r#""format_version": "0.1""#, r#""format_version": "1.0""#);
+    let d = diagnostics(&bad);
+    let (line, col) = line_col(&bad, r#""1.0""#);
+    assert_eq!(d, vec![("E0120".into(), line, col)]);
+    // An unknown field is reported, not dropped silently.
+    let bad = good.replace(
+        r#""name": "L2", "elevation": 4.0"#,
+        r#""name": "L2", "elevaton": 4.0"#,
+    );
+    let d = diagnostics(&bad);
+    let (line, col) = line_col(&bad, "\"elevaton\"");
+    assert!(d.contains(&("W0121".into(), line, col)), "{d:?}");
+}
+
+/// `mapc build` with a `.site.json` from CMake, through cmake/mapc.cmake.
+#[test]
+fn cmake_builds_a_site() {
+    if Command::new("cmake").arg("--version").output().is_err() {
+        println!("skipped: cmake not found");
+        return;
+    }
+    let tmp = tempfile::tempdir().unwrap();
+    let src = tmp.path().join("src");
+    std::fs::create_dir_all(&src).unwrap();
+    std::fs::copy(fixture(), src.join("lift_two_levels.site.json")).unwrap();
+    std::fs::write(
+        src.join("CMakeLists.txt"),
+        format!(
+            "cmake_minimum_required(VERSION 3.16)\nproject(site_demo NONE)\n\
+             list(APPEND CMAKE_MODULE_PATH \"{ROOT}/cmake\")\ninclude(mapc)\n\
+             mapc_generate_maps(TARGET maps MAPS lift_two_levels.site.json TARGETS nav gltf)\n"
+        ),
+    )
+    .unwrap();
+    let build = tmp.path().join("build");
+    let run = |args: &[&str]| {
+        let out = Command::new("cmake").args(args).output().unwrap();
+        let text = format!(
+            "{}{}",
+            String::from_utf8_lossy(&out.stdout),
+            String::from_utf8_lossy(&out.stderr)
+        );
+        assert!(out.status.success(), "cmake {args:?}:\n{text}");
+        text
+    };
+    run(&[
+        "-S",
+        src.to_str().unwrap(),
+        "-B",
+        build.to_str().unwrap(),
+        &format!("-DMAPC_EXECUTABLE={}", env!("CARGO_BIN_EXE_mapc")),
+    ]);
+    let log = run(&["--build", build.to_str().unwrap()]);
+    assert!(
+        log.contains("mapc: generating map lift_two_levels"),
+        "{log}"
+    );
+    let out = std::fs::read_dir(&build)
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .find(|p| p.join("lift_two_levels").is_dir())
+        .map(|p| p.join("lift_two_levels"))
+        .or_else(|| {
+            let p = build.join("maps/lift_two_levels");
+            p.is_dir().then_some(p)
+        });
+    let found = walk(&build);
+    assert!(
+        found
+            .iter()
+            .any(|p| p.ends_with("lift_two_levels/nav_graphs/fleet_a.yaml")),
+        "{out:?} {found:?}"
+    );
+    assert!(found
+        .iter()
+        .any(|p| p.ends_with("lift_two_levels/lift_two_levels.glb")));
+    // The depfile names the site, so a second build regenerates nothing.
+    let log = run(&["--build", build.to_str().unwrap()]);
+    assert!(!log.contains("mapc: generating map"), "{log}");
+}
+
+fn walk(dir: &Path) -> Vec<PathBuf> {
+    let mut out = Vec::new();
+    for e in std::fs::read_dir(dir).unwrap() {
+        let p = e.unwrap().path();
+        if p.is_dir() {
+            out.extend(walk(&p));
+        } else {
+            out.push(p);
+        }
+    }
+    out
+}
+
+/// A site as the simulation's map: the clinic fixture converted to a site runs the same
+/// scenario to the same outcome as the `.building.yaml`.
+#[test]
+fn sim_on_a_site() {
+    let tmp = tempfile::tempdir().unwrap();
+    let site = tmp.path().join("two_level_clinic.site.json");
+    let map = format!("{ROOT}/fixtures/two_level_clinic.building.yaml");
+    let scenario = format!("{ROOT}/fixtures/two_level_clinic.scenario.yaml");
+    ok(&["convert", &map, site.to_str().unwrap(), "-q"]);
+    let outcome = |map: &str| -> Vec<String> {
+        let r = mapc(&["sim", &scenario, "--map", map, "--until", "30min"]);
+        assert_eq!(r.code, 0, "{}", String::from_utf8_lossy(&r.stderr));
+        let text =
+            String::from_utf8_lossy(&r.stdout).into_owned() + &String::from_utf8_lossy(&r.stderr);
+        text.lines()
+            .filter(|l| {
+                l.contains("simulated") || l.contains("bottleneck") || l.starts_with("tasks")
+            })
+            .map(str::to_string)
+            .collect()
+    };
+    let a = outcome(&map);
+    assert!(a.iter().any(|l| l.contains("simulated")), "{a:?}");
+    assert_eq!(a, outcome(site.to_str().unwrap()));
+}
+
+/// Bad input never panics: every truncation of the fixture (every 7th byte) and the
+/// fixture with each number or id replaced by an out-of-range, negative or non-finite
+/// value goes through the frontend, the rules and every writer a site feeds.
+#[test]
+fn mangled_sites_never_panic() {
+    let good = std::fs::read_to_string(fixture()).unwrap();
+    let mut inputs: Vec<String> = (0..good.len())
+        .step_by(7)
+        .filter(|&i| good.is_char_boundary(i))
+        .map(|i| good[..i].to_string())
+        .collect();
+    for (i, _) in good.match_indices(|c: char| c.is_ascii_digit()) {
+        for r in ["999999", "-1", "1e400", "\"x\"", "null", "[]"] {
+            let end = good[i..]
+                .find(|c: char| !c.is_ascii_digit() && c != '.')
+                .map_or(good.len(), |e| i + e);
+            inputs.push(format!("{}{r}{}", &good[..i], &good[end..]));
+        }
+    }
+    for text in &inputs {
+        let parsed = mapc_frontend::parse_site_str("x.site.json", text);
+        if let Some(b) = parsed.valid_building() {
+            let _ = mapc_ir::validate(b);
+            let _ = mapc_backends::nav_graphs(b);
+            let _ = mapc_backends::site_json(b);
+            let _ = mapc_backends::building_yaml(b);
+        }
+    }
+    assert!(inputs.len() > 1000);
+}
