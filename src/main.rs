@@ -15,6 +15,7 @@ mod render_cmd;
 mod replay;
 mod report;
 mod report_json;
+mod ros2_cmd;
 mod sanity;
 mod signals;
 mod sim_cmd;

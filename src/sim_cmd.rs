@@ -53,6 +53,8 @@ pub(crate) struct SimArgs {
     #[arg(long, value_enum, default_value = "human")]
     format: SimFormat,
     #[command(flatten)]
+    ros2: crate::ros2_cmd::Ros2Args,
+    #[command(flatten)]
     lints: crate::LintOpts,
     /// Do not print the success line (what was written) on stderr.
     #[arg(short, long)]
@@ -216,6 +218,7 @@ pub(crate) fn run(args: &SimArgs) -> ExitCode {
         (&args.report, "--report"),
         (&args.trace, "--trace"),
         (&args.html, "--html"),
+        (&args.ros2.mcap, "--mcap"),
     ] {
         if let Some(p) = path {
             if let Err(e) = check_writable(p, what) {
@@ -311,11 +314,20 @@ pub(crate) fn run(args: &SimArgs) -> ExitCode {
         .html
         .as_ref()
         .map(|_| crate::replay::Recorder::new(building, &scenario));
+    let ros2 = match crate::ros2_cmd::Ros2Run::start(&args.ros2, building) {
+        Ok(r) => r,
+        Err(e) => return failed(e),
+    };
+    let observing = args.html.is_some() || ros2.active();
+    let injecting = ros2.injects();
+    let ros2 = std::cell::RefCell::new(ros2);
     let mut observe = |p: &mapc_sim::msgs::Published| {
         if let Some(r) = recorder.as_mut() {
             r.observe(p);
         }
+        ros2.borrow_mut().observe(p);
     };
+    let mut inject = |t: f64, out: &mut Vec<_>| ros2.borrow_mut().inject(t, out);
     let opts = mapc_sim::RunOptions {
         until: args.until,
         trace: trace.as_mut().map(|t| t.writer()),
@@ -326,11 +338,9 @@ pub(crate) fn run(args: &SimArgs) -> ExitCode {
         },
         stop: Some(&signals::INTERRUPTED),
         trace_filter: mapc_sim::TraceFilter::new(topics, args.trace_state_period.unwrap_or(0.0)),
-        observer: if args.html.is_some() {
-            Some(&mut observe)
-        } else {
-            None
-        },
+        observer: if observing { Some(&mut observe) } else { None },
+        inject: if injecting { Some(&mut inject) } else { None },
+        plugins_only: args.ros2.plugins_only,
     };
     let result = mapc_sim::simulate(building, &scenario, opts);
     bar.clear();
@@ -368,6 +378,9 @@ pub(crate) fn run(args: &SimArgs) -> ExitCode {
             return failed(e);
         }
     }
+    if let Err(e) = ros2.into_inner().finish() {
+        return failed(e);
+    }
     if let (Some(path), Some(r)) = (&args.html, recorder) {
         if let Err(e) = output::write_atomic(path, r.page().as_bytes()) {
             return failed(format!("{}: {e}", path.display()));
@@ -401,6 +414,9 @@ pub(crate) fn run(args: &SimArgs) -> ExitCode {
         }
         if let Some(p) = &args.trace {
             written.push(format!("trace {}", output::shown(p)));
+        }
+        if let Some(p) = &args.ros2.mcap {
+            written.push(format!("mcap {}", output::shown(p)));
         }
         let written = if written.is_empty() {
             "nothing written (no --report or --trace)".to_string()

@@ -58,7 +58,16 @@ pub struct RunOptions<'a> {
     /// Sees every message the trace records, in the same order (e.g. to build a replay);
     /// it cannot change the run.
     pub observer: Option<&'a mut dyn FnMut(&Published)>,
+    /// Called before every step with the sim time: appends the requests other nodes sent
+    /// (a DDS bridge), which are recorded and delivered like the fleet layer's.
+    pub inject: Option<&'a mut Inject<'a>>,
+    /// Only the plugins run (slotcars, doors, lifts, workcells, as Gazebo would): the fleet
+    /// layer sends nothing and the run lasts its whole duration; requests come from `inject`.
+    pub plugins_only: bool,
 }
+
+/// Appends, at sim time `t`, the requests other nodes sent (see `RunOptions::inject`).
+pub type Inject<'a> = dyn FnMut(f64, &mut Vec<(Topic, Msg)>) + 'a;
 
 /// Why a run could not start or finish.
 #[derive(Debug)]
@@ -101,6 +110,7 @@ pub fn simulate(
         }
     }
     world.set_charging(o.charging, o.instant_charging, o.battery_drain);
+    world.set_supervisors(!opts.plugins_only);
     let mut report = report::ReportBuilder::new(building, scenario, &placement);
     let end = opts.until.unwrap_or(scenario.duration);
     // Whole steps: comparing accumulated float time with `end` would depend on rounding.
@@ -119,7 +129,12 @@ pub fn simulate(
         }
         let t = world.time();
         requests.clear();
-        fleets.update(t, &inbox, &mut requests);
+        if !opts.plugins_only {
+            fleets.update(t, &inbox, &mut requests);
+        }
+        if let Some(inject) = opts.inject.as_mut() {
+            inject(t, &mut requests);
+        }
         inbox.clear();
         for (topic, msg) in requests.drain(..) {
             let p = Published { t, topic, msg };
@@ -153,7 +168,7 @@ pub fn simulate(
                 next_progress += 60.0;
             }
         }
-        if fleets.all_done(world.time()) && scenario.options.stop_when_done {
+        if !opts.plugins_only && fleets.all_done(world.time()) && scenario.options.stop_when_done {
             break;
         }
     }

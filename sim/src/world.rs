@@ -94,6 +94,8 @@ pub struct World {
     fleets: BTreeMap<String, Vec<usize>>,
     door_supervisor: DoorSupervisor,
     lift_supervisor: LiftSupervisor,
+    /// Off when RMF's own supervisors drive the plugins (`plugins_only`).
+    supervisors: bool,
     /// Messages for the supervisors and workcells, handled at the start of the next step.
     inbox: Vec<(Topic, Msg)>,
     /// Supervisor requests for the plugins, applied at the start of the next step.
@@ -292,6 +294,7 @@ impl World {
             fleets: BTreeMap::new(),
             door_supervisor: DoorSupervisor::default(),
             lift_supervisor: LiftSupervisor::default(),
+            supervisors: true,
             inbox: Vec::new(),
             to_doors: Vec::new(),
             to_lifts: Vec::new(),
@@ -354,6 +357,11 @@ impl World {
             ) => self.inbox.push((t, m)),
             _ => {}
         }
+    }
+
+    /// Whether mapc's door and lift supervisors run (off: only the plugins answer requests).
+    pub fn set_supervisors(&mut self, on: bool) {
+        self.supervisors = on;
     }
 
     /// Sets the world-wide `/charge_state` toggles (§1.9, §8).
@@ -470,7 +478,8 @@ impl World {
         }
 
         // Supervisors react to this step's states; their requests apply next step.
-        for k in start..out.len() {
+        let end = if self.supervisors { out.len() } else { start };
+        for k in start..end {
             match &out[k].msg {
                 Msg::DoorState(s) => {
                     let s = s.clone();

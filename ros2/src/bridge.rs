@@ -1,0 +1,266 @@
+//! The DDS side of `mapc sim --ros2`, on RustDDS (pure Rust, no ROS install): one writer per
+//! topic mapc publishes, one reader per topic it answers, `/clock` and the latched `/map`.
+//! Topic and type names follow ROS 2's DDS mapping (`rt/door_states`,
+//! `rmf_door_msgs::msg::dds_::DoorState_`); payloads are the CDR of `topics::encode`.
+//!
+//! The bridge never blocks the run: writes are keep-last, reads take what has arrived.
+
+use crate::building_map::building_map;
+use crate::cdr;
+use crate::msgs::{self, rmf_building_map_msgs::BuildingMap, rosgraph_msgs::Clock, RosMsg};
+use crate::topics::{self, Qos};
+use mapc_sim::msgs::{Msg, Published, Topic};
+use rustdds::no_key::{DataReader, DataWriter, DeserializerAdapter, SerializerAdapter};
+use rustdds::policy::{Durability, History, Reliability};
+use rustdds::{
+    DomainParticipant, QosPolicies, QosPolicyBuilder, RepresentationIdentifier, TopicKind,
+};
+use std::collections::BTreeMap;
+
+/// A serialised message: the CDR body, after the 4-byte encapsulation header.
+#[derive(Debug, Clone)]
+pub struct Raw(Vec<u8>);
+
+/// Passes CDR bodies through unchanged: messages are encoded by `topics`, once.
+pub struct RawAdapter;
+
+#[derive(Debug)]
+pub struct Never;
+impl std::fmt::Display for Never {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str("never")
+    }
+}
+impl std::error::Error for Never {}
+
+impl SerializerAdapter<Raw> for RawAdapter {
+    type Error = Never;
+    fn output_encoding() -> RepresentationIdentifier {
+        RepresentationIdentifier::CDR_LE
+    }
+    fn to_bytes(value: &Raw) -> Result<bytes::Bytes, Never> {
+        Ok(bytes::Bytes::copy_from_slice(&value.0))
+    }
+}
+
+/// Decodes to header + body, so that `cdr::decode` sees the byte order.
+#[derive(Clone)]
+pub struct RawDecoder;
+
+impl rustdds::no_key::Decode<Raw> for RawDecoder {
+    type Error = Never;
+    fn decode_bytes(self, input: &[u8], enc: RepresentationIdentifier) -> Result<Raw, Never> {
+        let mut v = Vec::with_capacity(input.len() + 4);
+        v.extend(enc.to_bytes());
+        v.extend([0, 0]);
+        v.extend(input);
+        Ok(Raw(v))
+    }
+}
+
+impl DeserializerAdapter<Raw> for RawAdapter {
+    type Error = Never;
+    type Decoded = Raw;
+    fn supported_encodings() -> &'static [RepresentationIdentifier] {
+        &[
+            RepresentationIdentifier::CDR_LE,
+            RepresentationIdentifier::CDR_BE,
+        ]
+    }
+    fn transform_decoded(decoded: Raw) -> Raw {
+        decoded
+    }
+}
+
+impl rustdds::no_key::DefaultDecoder<Raw> for RawAdapter {
+    type Decoder = RawDecoder;
+    const DECODER: RawDecoder = RawDecoder;
+}
+
+/// Topics mapc publishes when it plays only the Gazebo plugins (what rmf_demos' simulation
+/// side publishes).
+pub const PLUGIN_OUTPUTS: [Topic; 7] = [
+    Topic::RobotState,
+    Topic::DoorStates,
+    Topic::LiftStates,
+    Topic::DispenserResults,
+    Topic::DispenserStates,
+    Topic::IngestorResults,
+    Topic::IngestorStates,
+];
+
+/// Topics the plugins answer: the slotcars', door and lift plugins', workcells' requests,
+/// and the fleet states the workcells read to find the robot of a fleet.
+pub const PLUGIN_INPUTS: [Topic; 8] = [
+    Topic::RobotPathRequests,
+    Topic::RobotModeRequests,
+    Topic::RobotPauseRequests,
+    Topic::DoorRequests,
+    Topic::LiftRequests,
+    Topic::DispenserRequests,
+    Topic::IngestorRequests,
+    Topic::FleetStates,
+];
+
+fn dds_qos(q: Qos) -> QosPolicies {
+    QosPolicyBuilder::new()
+        .reliability(if q.reliable {
+            Reliability::Reliable {
+                max_blocking_time: rustdds::Duration::from_millis(100),
+            }
+        } else {
+            Reliability::BestEffort
+        })
+        .durability(if q.transient_local {
+            Durability::TransientLocal
+        } else {
+            Durability::Volatile
+        })
+        .history(History::KeepLast { depth: q.depth })
+        .build()
+}
+
+/// History kept by every writer for repairs.
+const WRITER_DEPTH: i32 = 1000;
+
+pub struct Bridge {
+    // Writers and readers hold the participant alive; it is kept for clarity.
+    _participant: DomainParticipant,
+    writers: BTreeMap<Topic, DataWriter<Raw, RawAdapter>>,
+    readers: Vec<(Topic, DataReader<Raw, RawAdapter>)>,
+    clock: DataWriter<Raw, RawAdapter>,
+    _map: DataWriter<Raw, RawAdapter>,
+    /// Requests that could not be decoded (wrong type on a topic).
+    pub rejected: u64,
+}
+
+impl Bridge {
+    /// Joins DDS domain `domain_id`. With `plugins_only`, mapc publishes only what the
+    /// Gazebo plugins publish and answers their requests; otherwise it publishes every
+    /// message of the run (its own fleet layer and supervisors included) and reads nothing.
+    pub fn new(
+        domain_id: u16,
+        plugins_only: bool,
+        building: &mapc_ir::Building,
+    ) -> Result<Bridge, String> {
+        let err = |e: &dyn std::fmt::Display| format!("DDS: {e}");
+        let participant = DomainParticipant::new(domain_id).map_err(|e| err(&e))?;
+        let default = dds_qos(topics::DEFAULT_QOS);
+        let publisher = participant
+            .create_publisher(&default)
+            .map_err(|e| err(&e))?;
+        let subscriber = participant
+            .create_subscriber(&default)
+            .map_err(|e| err(&e))?;
+        let writer = |name: &str, ros_type: &str, q: Qos| {
+            // Writers keep a deep history so that a reliable reader that missed a sample
+            // gets it repaired instead of waiting for a gap (history does not affect
+            // matching; readers keep their own depth).
+            let qos = dds_qos(Qos {
+                depth: q.depth.max(WRITER_DEPTH),
+                ..q
+            });
+            let topic = participant
+                .create_topic(
+                    format!("rt{name}"),
+                    msgs::dds_type_name(ros_type),
+                    &qos,
+                    TopicKind::NoKey,
+                )
+                .map_err(|e| err(&e))?;
+            let w = publisher
+                .create_datawriter_no_key::<Raw, RawAdapter>(&topic, Some(qos))
+                .map_err(|e| err(&e));
+            // RustDDS hands new writers to its event loop through a channel of 10; creating
+            // more in one burst can block for good (seen with 21), so let it take each one.
+            std::thread::sleep(std::time::Duration::from_millis(5));
+            w
+        };
+        let outputs: Vec<Topic> = if plugins_only {
+            PLUGIN_OUTPUTS.to_vec()
+        } else {
+            Topic::ALL.to_vec()
+        };
+        let mut writers = BTreeMap::new();
+        for t in outputs {
+            writers.insert(t, writer(t.name(), topics::ros_type(t), topics::qos(t))?);
+        }
+        let clock = writer(
+            "/clock",
+            Clock::NAME,
+            Qos {
+                reliable: true,
+                transient_local: false,
+                depth: 1,
+            },
+        )?;
+        let map = writer(
+            crate::mcap::MAP_TOPIC,
+            BuildingMap::NAME,
+            crate::mcap::MAP_QOS,
+        )?;
+        map.write(Raw(cdr::body(&building_map(building))), None)
+            .map_err(|e| err(&e))?;
+        let mut readers = Vec::new();
+        if plugins_only {
+            for t in PLUGIN_INPUTS {
+                let qos = dds_qos(topics::qos(t));
+                let topic = participant
+                    .create_topic(
+                        format!("rt{}", t.name()),
+                        msgs::dds_type_name(topics::ros_type(t)),
+                        &qos,
+                        TopicKind::NoKey,
+                    )
+                    .map_err(|e| err(&e))?;
+                let r = subscriber
+                    .create_datareader_no_key::<Raw, RawAdapter>(&topic, Some(qos))
+                    .map_err(|e| err(&e))?;
+                readers.push((t, r));
+            }
+        }
+        Ok(Bridge {
+            _participant: participant,
+            writers,
+            readers,
+            clock,
+            _map: map,
+            rejected: 0,
+        })
+    }
+
+    /// Publishes a message of the run, if mapc publishes its topic.
+    pub fn publish(&mut self, p: &Published) {
+        let Some(w) = self.writers.get(&p.topic) else {
+            return;
+        };
+        if let Some(bytes) = topics::encode(p.topic, &p.msg) {
+            // A full history or no reader is not an error for a publisher.
+            let _ = w.write(Raw(bytes[cdr::HEADER.len()..].to_vec()), None);
+        }
+    }
+
+    /// Publishes `/clock`.
+    pub fn clock(&mut self, t: f64) {
+        let sec = t.floor();
+        let clock = Clock {
+            clock: msgs::builtin_interfaces::Time {
+                sec: sec as i32,
+                nanosec: (((t - sec) * 1e9).round() as u32).min(999_999_999),
+            },
+        };
+        let _ = self.clock.write(Raw(cdr::body(&clock)), None);
+    }
+
+    /// Appends the requests that arrived since the last call, topic by topic.
+    pub fn take_requests(&mut self, out: &mut Vec<(Topic, Msg)>) {
+        for (topic, reader) in &mut self.readers {
+            while let Ok(Some(sample)) = reader.take_next_sample() {
+                match topics::decode(*topic, &sample.value().0) {
+                    Ok(m) => out.push((*topic, m)),
+                    Err(_) => self.rejected += 1,
+                }
+            }
+        }
+    }
+}

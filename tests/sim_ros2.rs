@@ -1,0 +1,291 @@
+//! `mapc sim --ros2 --plugins-only` driven by an independent DDS implementation: Eclipse
+//! Cyclone DDS (its Python package, in the venv .ci/run makes) plays RMF's supervisors, a
+//! fleet adapter and a workcell client (ros2/tests/python/rmf_peer.py) on the two-level
+//! clinic fixture.
+//!
+//! Everything runs in a private network namespace made here (`unshare -rn`): no DDS packet
+//! can reach the machine's interfaces. Inside it, RustDDS needs a multicast-capable
+//! non-loopback interface (it skips `lo`), so the namespace gets a veth pair of its own
+//! with a TEST-NET-1 address (RFC 5737); both ends stay in the namespace and the 224.0.0.0/4
+//! route points at it. Prints `skipped: ...` without unshare, ip or the venv.
+
+use std::path::{Path, PathBuf};
+use std::process::Command;
+
+fn python() -> Option<PathBuf> {
+    if let Some(p) = std::env::var_os("MAPC_ROS2_PYTHON") {
+        return Some(p.into());
+    }
+    let p = Path::new(env!("CARGO_MANIFEST_DIR")).join("target/ros2-venv/bin/python");
+    let ok = Command::new(&p)
+        .args(["-c", "import cyclonedds.domain"])
+        .output()
+        .is_ok_and(|o| o.status.success());
+    ok.then_some(p)
+}
+
+fn namespace_works() -> bool {
+    Command::new("unshare")
+        .args([
+            "-rn",
+            "sh",
+            "-c",
+            "ip link set lo up && ip link add t0 type veth peer name t1",
+        ])
+        .output()
+        .is_ok_and(|o| o.status.success())
+}
+
+const RATE: f64 = 10.0;
+
+/// A temporary directory; with MAPC_KEEP_TEST_DIR set, one that stays (its path is printed)
+/// for a look at the trace and the logs after a failure.
+fn test_dir() -> tempfile::TempDir {
+    let mut dir = tempfile::tempdir().expect("tempdir");
+    if std::env::var_os("MAPC_KEEP_TEST_DIR").is_some() {
+        dir.disable_cleanup(true);
+        eprintln!("files in {}", dir.path().display());
+    }
+    dir
+}
+
+/// The namespace: `lo` up, the veth pair with multicast, the multicast route, Cyclone told
+/// to use that interface; then mapc and the peer, mapc stopped with SIGINT when the peer is
+/// done.
+const SCRIPT: &str = r#"set -e
+ip link set lo up
+ip link add dds0 type veth peer name dds1
+ip addr add 192.0.2.1/24 dev dds0
+ip link set dds1 up
+ip link set dds0 up multicast on
+ip route add 224.0.0.0/4 dev dds0
+export CYCLONEDDS_URI='<CycloneDDS><Domain><General><Interfaces><NetworkInterface name="dds0" multicast="true"/></Interfaces></General></Domain></CycloneDDS>'
+"$MAPC" sim "$SCENARIO" --ros2 --plugins-only --rate "$RATE" --domain-id 7 --until 900 \
+  --trace "$DIR/trace.jsonl" -q > "$DIR/mapc.out" 2> "$DIR/mapc.err" &
+pid=$!
+"$PY" "$PEER" "$DIR/config.json" > "$DIR/peer.json" 2> "$DIR/peer.err" || echo "peer failed: $?" >&2
+kill -INT $pid
+rc=0; wait $pid || rc=$?
+echo "mapc exit $rc" >&2
+"#;
+
+#[test]
+fn rmf_side_drives_mapc_over_cyclone_dds() {
+    let Some(py) = python() else {
+        println!("skipped: cyclonedds (Python) not found; .ci/run makes target/ros2-venv");
+        return;
+    };
+    if !namespace_works() {
+        println!("skipped: no private network namespace (unshare -rn, ip, veth) here");
+        return;
+    }
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let dir = test_dir();
+    let defs: serde_json::Map<String, serde_json::Value> = mapc_ros2::msgs::definitions()
+        .iter()
+        .map(|(n, d)| (n.to_string(), serde_json::json!(d)))
+        .collect();
+    let config = serde_json::json!({
+        "definitions": defs,
+        "domain_id": 7,
+        // The map's doors that have a door plugin (L2_ward_b_door has `plugin: none`).
+        "doors": ["L1_lobby_door", "L1_pharmacy_door", "L2_ward_a_door"],
+        "lift": "lift_1",
+        "lift_floor": "L2",
+        "robot": "tinyRobot1",
+        "fleet": "tinyRobot",
+        "path": ["tinyRobot1_charger", "lobby", "corridor", "pharmacy"],
+        "dispenser": "pharmacy_dispenser",
+    });
+    std::fs::write(dir.path().join("config.json"), config.to_string()).expect("config");
+    let started = std::time::Instant::now();
+    let out = Command::new("unshare")
+        .args(["-rn", "sh", "-c", SCRIPT])
+        .env("MAPC", env!("CARGO_BIN_EXE_mapc"))
+        .env(
+            "SCENARIO",
+            root.join("fixtures/two_level_clinic.scenario.yaml"),
+        )
+        .env("RATE", RATE.to_string())
+        .env("DIR", dir.path())
+        .env("PY", &py)
+        .env("PEER", root.join("ros2/tests/python/rmf_peer.py"))
+        .output()
+        .expect("unshare runs");
+    let read = |n: &str| std::fs::read_to_string(dir.path().join(n)).unwrap_or_default();
+    let context = format!(
+        "script: {}\npeer: {}\nmapc: {}",
+        String::from_utf8_lossy(&out.stderr),
+        read("peer.err"),
+        read("mapc.err")
+    );
+    assert!(out.status.success(), "{context}");
+    assert!(
+        context.contains("mapc exit 130"),
+        "mapc stops on SIGINT\n{context}"
+    );
+    let r: serde_json::Value = serde_json::from_str(&read("peer.json"))
+        .unwrap_or_else(|e| panic!("peer output: {e}\n{context}"));
+    println!("{r:#}\nwall {:?}", started.elapsed());
+    assert_eq!(r["errors"], serde_json::json!([]), "{context}");
+
+    // Every door's state; the latched map with both levels and the lift.
+    assert_eq!(r["doors_seen"], config["doors"]);
+    assert_eq!(r["map"]["levels"], serde_json::json!(["L1", "L2"]));
+    assert_eq!(r["map"]["lifts"], serde_json::json!(["lift_1"]));
+
+    // /clock advances at the requested rate (within 5 %) and never backwards.
+    let rate = r["clock_rate"].as_f64().expect("clock rate");
+    assert!(
+        (rate / RATE - 1.0).abs() < 0.05,
+        "clock rate {rate}, asked {RATE}"
+    );
+    assert_eq!(r["clock_monotonic"], true);
+
+    // The door opened and closed again; the lift arrived with its doors open.
+    assert!(r["door_open_after"].as_f64().is_some_and(|t| t > 0.0));
+    assert!(r["door_closed_after"].as_f64().is_some_and(|t| t > 0.0));
+    assert_eq!(r["lift"]["floor"], "L2");
+    assert_eq!(r["lift"]["door_state"], 2);
+
+    // The robot drove the path to its end, reporting the task id and moving on the way.
+    assert_eq!(r["path"]["task_id"], "mapc-test-7");
+    assert!(r["path"]["distinct_positions"]
+        .as_u64()
+        .is_some_and(|n| n > 5));
+
+    // The dispenser served the robot's fleet.
+    assert_eq!(r["dispenser"]["status"], 1, "SUCCESS");
+    assert_eq!(r["dispenser"]["source"], "pharmacy_dispenser");
+
+    // mapc traced what came over DDS like any request.
+    let trace = read("trace.jsonl");
+    assert!(trace.contains(r#""requester_id":"door_supervisor""#));
+    assert!(trace.contains(r#""task_id":"mapc-test-7""#));
+}
+
+/// Without `--plugins-only` mapc's own fleet layer and supervisors run and everything is
+/// published: a listener (as rmf-web's dashboard) sees the fleet states, task events,
+/// supervisor heartbeats and the fleet layer's requests, each equal to a message of the trace.
+const WATCH_SCRIPT: &str = r#"set -e
+ip link set lo up
+ip link add dds0 type veth peer name dds1
+ip addr add 192.0.2.1/24 dev dds0
+ip link set dds1 up
+ip link set dds0 up multicast on
+ip route add 224.0.0.0/4 dev dds0
+export CYCLONEDDS_URI='<CycloneDDS><Domain><General><Interfaces><NetworkInterface name="dds0" multicast="true"/></Interfaces></General></Domain></CycloneDDS>'
+"$PY" "$WATCH" "$DIR/config.json" 14 > "$DIR/watch.json" 2> "$DIR/watch.err" &
+pid=$!
+sleep 2
+"$MAPC" sim "$SCENARIO" --ros2 --rate 40 --domain-id 8 --until 300 \
+  --trace "$DIR/trace.jsonl" -q > "$DIR/mapc.out" 2> "$DIR/mapc.err"
+wait $pid
+"#;
+
+#[test]
+fn full_run_publishes_what_the_trace_holds() {
+    let Some(py) = python() else {
+        println!("skipped: cyclonedds (Python) not found; .ci/run makes target/ros2-venv");
+        return;
+    };
+    if !namespace_works() {
+        println!("skipped: no private network namespace (unshare -rn, ip, veth) here");
+        return;
+    }
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let dir = test_dir();
+    let defs: serde_json::Map<String, serde_json::Value> = mapc_ros2::msgs::definitions()
+        .iter()
+        .map(|(n, d)| (n.to_string(), serde_json::json!(d)))
+        .collect();
+    let config = serde_json::json!({"definitions": defs, "domain_id": 8});
+    std::fs::write(dir.path().join("config.json"), config.to_string()).expect("config");
+    let out = Command::new("unshare")
+        .args(["-rn", "sh", "-c", WATCH_SCRIPT])
+        .env("MAPC", env!("CARGO_BIN_EXE_mapc"))
+        .env(
+            "SCENARIO",
+            root.join("fixtures/two_level_clinic.scenario.yaml"),
+        )
+        .env("DIR", dir.path())
+        .env("PY", &py)
+        .env("WATCH", root.join("ros2/tests/python/rmf_watch.py"))
+        .output()
+        .expect("unshare runs");
+    let read = |n: &str| std::fs::read_to_string(dir.path().join(n)).unwrap_or_default();
+    let context = format!(
+        "script: {}\nwatch: {}\nmapc: {}",
+        String::from_utf8_lossy(&out.stderr),
+        read("watch.err"),
+        read("mapc.err")
+    );
+    assert!(out.status.success(), "{context}");
+    let seen: serde_json::Value = serde_json::from_str(&read("watch.json"))
+        .unwrap_or_else(|e| panic!("watch output: {e}\n{context}"));
+    let trace: Vec<serde_json::Value> = read("trace.jsonl")
+        .lines()
+        .map(|l| serde_json::from_str(l).expect("trace line"))
+        .collect();
+    for topic in [
+        "/fleet_states",
+        "/task_events",
+        "/door_supervisor_heartbeat",
+        "/adapter_door_requests",
+        "/robot_path_requests",
+    ] {
+        let got = seen[topic].as_array().expect("topic listened to");
+        let traced: Vec<&serde_json::Value> = trace
+            .iter()
+            .filter(|l| l["topic"] == topic)
+            .map(|l| &l["msg"])
+            .collect();
+        // Not all: what is published before discovery ends is missed, and event streams
+        // (heartbeats, requests, task events) stall after a few samples or are not seen at
+        // all (a known problem, docs/ros2.md); periodic states arrive throughout.
+        assert!(got.len() <= traced.len(), "{topic}");
+        for m in got {
+            let m = if topic == "/task_events" {
+                serde_json::from_str(m["data"].as_str().expect("json text")).expect("json")
+            } else {
+                m.clone()
+            };
+            let same = |t: &&serde_json::Value| approx_eq(&m, t);
+            assert!(traced.iter().any(same), "{topic}: {m} is not in the trace");
+        }
+        println!(
+            "{topic}: {} of {} traced messages received",
+            got.len(),
+            traced.len()
+        );
+    }
+    let states = seen["/fleet_states"].as_array().map_or(0, |v| v.len());
+    // 2 Hz for 300 s; discovery takes a few simulated seconds at 40x, more on a busy machine.
+    assert!(
+        states >= 150,
+        "fleet states at 2 Hz for 300 s: {states} received\n{context}"
+    );
+}
+
+/// JSON equality with float32 tolerance for numbers.
+fn approx_eq(a: &serde_json::Value, b: &serde_json::Value) -> bool {
+    use serde_json::Value as V;
+    match (a, b) {
+        (V::Number(x), V::Number(y)) => {
+            let (x, y) = (
+                x.as_f64().unwrap_or(f64::NAN),
+                y.as_f64().unwrap_or(f64::NAN),
+            );
+            (x - y).abs() <= 1e-6 * x.abs().max(y.abs()).max(1.0)
+        }
+        (V::Array(x), V::Array(y)) => {
+            x.len() == y.len() && x.iter().zip(y).all(|(a, b)| approx_eq(a, b))
+        }
+        (V::Object(x), V::Object(y)) => {
+            y.iter()
+                .all(|(k, v)| x.get(k).is_some_and(|w| approx_eq(w, v)))
+                && x.len() == y.len()
+        }
+        _ => a == b,
+    }
+}
