@@ -3,6 +3,7 @@
 
 mod build;
 mod convert;
+mod crowdsim_cmd;
 mod diff;
 mod escape;
 mod info;
@@ -160,6 +161,9 @@ enum Command {
     /// Write a Gazebo classic world and its level models, like `building_map_generator
     /// gazebo` before 2024-05.
     Classic(world_cmd::WorldArgs),
+    /// Write the crowd simulator's Menge files into CONFIG_DIR and make WORLD hold the
+    /// crowd_simulation plugin (a drop-in for `building_crowdsim MAP CONFIG_DIR WORLD`).
+    Crowdsim(crowdsim_cmd::CrowdsimArgs),
     /// Run a scenario (robots, tasks, doors, lifts) on a map with the headless RMF runtime and
     /// report what happened: task times, throughput, door and lift waits, near misses.
     /// Scenario format, trace and report: docs/sim.md.
@@ -223,6 +227,7 @@ fn main() -> ExitCode {
         Command::Gazebo(args) => world_cmd::run(mapc_backends::sdf::Flavour::Gz, &args),
         Command::Ignition(args) => world_cmd::run(mapc_backends::sdf::Flavour::Ignition, &args),
         Command::Classic(args) => world_cmd::run(mapc_backends::sdf::Flavour::Classic, &args),
+        Command::Crowdsim(args) => crowdsim_cmd::run(&args),
         Command::Sim(args) => sim_cmd::run(&args),
         Command::Sweep(args) => sweep::run(&args),
         Command::Info(args) => info::run(&args),

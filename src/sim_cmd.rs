@@ -59,6 +59,10 @@ pub(crate) struct SimArgs {
     /// Do not print the success line (what was written) on stderr.
     #[arg(short, long)]
     quiet: bool,
+    /// When the map's crowd walks, run the scenario a second time without people and put
+    /// each fleet's task times of both runs in the report's `crowd.compare`.
+    #[arg(long)]
+    compare_crowd: bool,
 }
 
 fn parse_topic(s: &str) -> Result<mapc_sim::msgs::Topic, String> {
@@ -340,7 +344,7 @@ pub(crate) fn run(args: &SimArgs) -> ExitCode {
     };
     let result = mapc_sim::simulate(building, &scenario, opts);
     bar.clear();
-    let run_report = match result {
+    let mut run_report = match result {
         Ok(r) => r,
         Err(mapc_sim::SimError::Invalid(diags)) => {
             emit(&sources, &diags, args.format);
@@ -355,6 +359,19 @@ pub(crate) fn run(args: &SimArgs) -> ExitCode {
             return failed(format!("{}: {e}", path.display()));
         }
     };
+    if args.compare_crowd && run_report.crowd.is_some() && !run_report.interrupted {
+        let mut alone = scenario.clone();
+        alone.options.crowd.enabled = false;
+        let opts = mapc_sim::RunOptions {
+            until: args.until,
+            stop: Some(&signals::INTERRUPTED),
+            ..Default::default()
+        };
+        match mapc_sim::simulate(building, &alone, opts) {
+            Ok(without) => mapc_sim::compare_crowd(&mut run_report, &without),
+            Err(_) => return failed("the run without people failed".into()),
+        }
+    }
     // Also after an interruption: the trace up to the stop is kept under its final name.
     if let Some(t) = trace {
         if let Err(e) = t.finish() {

@@ -173,6 +173,17 @@ fn replay_pages_of_every_fixture_scenario() {
         let console: Vec<&str> = log.lines().filter(|l| l.contains("CONSOLE")).collect();
         assert!(console.is_empty(), "{name}: console output {console:#?}");
         assert!(dom.contains("data-ready=\"1\""), "{name}: page not ready");
+        // People (the warehouse's crowd): one circle each, on the map.
+        assert_eq!(
+            d.get("people").is_some(),
+            name.contains("warehouse"),
+            "{name}: people in the page"
+        );
+        if let Some(p) = d.get("people") {
+            let n = p["first"].as_array().unwrap().len();
+            assert!(n > 0, "{name}: an empty crowd");
+            assert_eq!(dom.matches("<circle class=\"person\"").count(), n, "{name}");
+        }
         assert!(
             dom.contains("<pre id=\"errors\"></pre>"),
             "{name}: errors in the page: {}",

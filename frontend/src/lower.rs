@@ -1439,6 +1439,7 @@ impl Lower<'_> {
         let mut cs = CrowdSim {
             enable: self.opt_bool(n, "enable", w, false),
             update_time_step: self.opt_f64(n, "update_time_step", w, 0.1),
+            span: n.span,
             ..CrowdSim::default()
         };
         for s in list(self, "states") {
@@ -1447,6 +1448,7 @@ impl Lower<'_> {
                 goal_set: self.opt_i64(&s, "goal_set", "a state", -1),
                 navmesh_file_name: self.opt_string(&s, "navmesh_file_name", "a state"),
                 is_final: self.opt_bool(&s, "final", "a state", false),
+                span: s.span,
             });
         }
         for g in list(self, "goal_sets") {
@@ -1454,6 +1456,7 @@ impl Lower<'_> {
                 set_id: self.opt_i64(&g, "set_id", "a goal set", 0),
                 capacity: self.opt_i64(&g, "capacity", "a goal set", 0),
                 set_area: strings(self, &g, "set_area"),
+                span: g.span,
             });
         }
         for p in list(self, "agent_profiles") {
@@ -1471,6 +1474,7 @@ impl Lower<'_> {
                 r: f(self, "r"),
                 orca_tau: f(self, "ORCA_tau"),
                 orca_tau_obst: f(self, "ORCA_tauObst"),
+                span: p.span,
             });
         }
         for t in list(self, "transitions") {
@@ -1480,6 +1484,7 @@ impl Lower<'_> {
                     targets.push((
                         self.opt_string(x, "name", "a target"),
                         self.opt_f64(x, "weight", "a target", 1.0),
+                        x.span,
                     ));
                 }
             }
@@ -1488,6 +1493,7 @@ impl Lower<'_> {
                 to: self.opt_string(&t, "to", "a transition"),
                 targets,
                 condition: t.get("Condition").map(|c| self.condition(c, 0)),
+                span: t.span,
             });
         }
         if let Some(o) = n.get("obstacle_set") {
@@ -1508,6 +1514,7 @@ impl Lower<'_> {
                     self.opt_f64(&g, "x", "an agent group", 0.0),
                     self.opt_f64(&g, "y", "an agent group", 0.0),
                 ),
+                span: g.span,
             });
         }
         for m in list(self, "model_types") {
@@ -1542,9 +1549,24 @@ impl Lower<'_> {
             "goal_reached" => Condition::GoalReached {
                 distance: self.opt_f64(c, "distance", "a condition", 0.1),
             },
-            "timer" => Condition::Timer {
-                value: self.opt_f64(c, "value", "a condition", 0.0),
-            },
+            "timer" => {
+                // Menge's distributions: `c` constant (`value`), `u` uniform (`min`, `max`);
+                // the editor writes `dist: c` and `per_agent: true`.
+                let dist = self.opt_string(c, "dist", "a timer");
+                let duration = if dist == "u" {
+                    TimerDuration::Uniform {
+                        min: self.opt_f64(c, "min", "a timer", 0.0),
+                        max: self.opt_f64(c, "max", "a timer", 0.0),
+                    }
+                } else {
+                    TimerDuration::Const(self.opt_f64(c, "value", "a condition", 0.0))
+                };
+                Condition::Timer(Timer {
+                    duration,
+                    per_agent: self.opt_bool(c, "per_agent", "a timer", true),
+                })
+            }
+            "auto" => Condition::Auto,
             "and" => Condition::And(sub(self, "condition1"), sub(self, "condition2")),
             "or" => Condition::Or(sub(self, "condition1"), sub(self, "condition2")),
             "not" => Condition::Not(sub(self, "condition1")),

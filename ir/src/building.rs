@@ -539,6 +539,8 @@ pub struct CrowdSim {
     pub obstacle_set: Option<ObstacleSet>,
     pub agent_groups: Vec<AgentGroup>,
     pub model_types: Vec<ModelType>,
+    /// The `crowd_sim` mapping.
+    pub span: Span,
 }
 
 #[derive(Debug, Clone, PartialEq, Default)]
@@ -547,6 +549,7 @@ pub struct CrowdState {
     pub goal_set: i64,
     pub navmesh_file_name: String,
     pub is_final: bool,
+    pub span: Span,
 }
 
 #[derive(Debug, Clone, PartialEq, Default)]
@@ -554,6 +557,7 @@ pub struct GoalSet {
     pub set_id: i64,
     pub capacity: i64,
     pub set_area: Vec<String>,
+    pub span: Span,
 }
 
 #[derive(Debug, Clone, PartialEq, Default)]
@@ -570,24 +574,52 @@ pub struct AgentProfile {
     pub r: f64,
     pub orca_tau: f64,
     pub orca_tau_obst: f64,
+    pub span: Span,
 }
 
 #[derive(Debug, Clone, PartialEq, Default)]
 pub struct Transition {
     pub from: String,
     pub to: String,
-    pub targets: Vec<(String, f64)>,
+    /// Weighted targets (`Target`), each with the span of its entry; when present they
+    /// replace `to` (Menge's `prob` target).
+    pub targets: Vec<(String, f64, Span)>,
     pub condition: Option<Condition>,
+    pub span: Span,
 }
 
+/// A transition condition (Menge's `Condition` types the editor writes).
 #[derive(Debug, Clone, PartialEq)]
 pub enum Condition {
-    GoalReached { distance: f64 },
-    Timer { value: f64 },
+    /// The agent is within `distance` of its goal.
+    GoalReached {
+        distance: f64,
+    },
+    /// A time after entering the state.
+    Timer(Timer),
+    /// Always true.
+    Auto,
     And(Box<Condition>, Box<Condition>),
     Or(Box<Condition>, Box<Condition>),
     Not(Box<Condition>),
+    /// A type mapc does not know (or an empty one); never true.
     Other(String),
+}
+
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Timer {
+    pub duration: TimerDuration,
+    /// Each agent draws its own duration on entry; otherwise one duration is drawn once
+    /// and shared by every agent.
+    pub per_agent: bool,
+}
+
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum TimerDuration {
+    /// `dist: c`, `value`.
+    Const(f64),
+    /// `dist: u`, uniform in `[min, max]`.
+    Uniform { min: f64, max: f64 },
 }
 
 #[derive(Debug, Clone, PartialEq, Default)]
@@ -605,6 +637,7 @@ pub struct AgentGroup {
     pub agents_number: i64,
     pub agents_name: Vec<String>,
     pub pos: Vec2,
+    pub span: Span,
 }
 
 #[derive(Debug, Clone, PartialEq, Default)]

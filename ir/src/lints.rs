@@ -118,6 +118,8 @@ pub fn policy(code: &str) -> Policy {
         c if c.starts_with("E06") || c.starts_with("W06") => allow(GEOMETRY),
         // Textures.
         c if c.starts_with("W07") => allow(GEOMETRY),
+        // The crowd: the worlds' crowd plugin and Menge files (and `mapc sim`'s people).
+        c if c.starts_with("E08") || c.starts_with("W08") => allow(Outputs::WORLDS),
         _ => allow(Outputs::ALL),
     }
 }

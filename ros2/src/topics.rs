@@ -43,6 +43,9 @@ pub fn ros_type(topic: Topic) -> &'static str {
         Topic::IngestorResults => ing::IngestorResult::NAME,
         Topic::IngestorStates => ing::IngestorState::NAME,
         Topic::TaskEvents => std_msgs::String::NAME,
+        // People (issue 19). Not encoded yet: `encode` returns `None`, so bags and the
+        // DDS bridge leave the topic out.
+        Topic::RmfObstacles => "rmf_obstacle_msgs/msg/Obstacles",
     }
 }
 

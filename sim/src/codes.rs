@@ -629,6 +629,29 @@ pub const TASK_AFTER_END: Code = Code {
     summary: "a task or generator starts after the end of the run",
 };
 
+/// # S0208 crowd-cannot-walk
+///
+/// **What:** the map's crowd (its `crowd_sim` is enabled) cannot be placed: no level has
+/// human lanes, a group's spawn point is so far from the navmesh or so crowded that not
+/// all of its people (times the scenario's `crowd.scale`) fit, or the scale asks for more
+/// than 100,000 people.
+///
+/// **Why it matters:** `mapc sim` walks every person of the map; a crowd that cannot
+/// stand on the navmesh would walk through walls or not at all.
+///
+/// **Fix:** move the group's `x`/`y` onto a human lane, widen the lanes, lower
+/// `crowd.scale`, or turn the crowd off for this run with `crowd: {enabled: false}`.
+///
+/// **Example:**
+/// ```yaml
+/// crowd: {scale: 1000}   # S0208 on a map whose lanes hold a few hundred people
+/// ```
+pub const CROWD: Code = Code {
+    code: "S0208",
+    name: "crowd-cannot-walk",
+    summary: "the map's crowd cannot be placed on its navmesh",
+};
+
 /// Every scenario code.
 pub static CODES: &[Code] = &[
     INVALID_YAML,
@@ -660,4 +683,5 @@ pub static CODES: &[Code] = &[
     DUPLICATE_WORKCELL,
     SPAWN_COUNT,
     TASK_AFTER_END,
+    CROWD,
 ];

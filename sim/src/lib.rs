@@ -6,6 +6,7 @@
 //! The only I/O is the trace writer handed to [`simulate`].
 
 pub mod codes;
+mod crowd;
 mod door;
 mod fleet;
 mod graph;
@@ -22,14 +23,16 @@ mod traffic;
 mod workcell;
 mod world;
 
+pub use crowd::{compare_crowd, CrowdReport, FleetCompare, SpeedStats, Spread};
 pub use params::RobotParams;
 pub use report::{
     DoorReport, Encounter, FleetReport, LiftReport, Report, RobotReport, StuckReport, TaskReport,
     Waits,
 };
 pub use scenario::{
-    parse as parse_scenario, parse_duration, FleetSpec, GeneratorSpec, Scenario, SimOptions,
-    SpawnSpec, TaskCategory, TaskKind, TaskSpec, WorkcellKind, WorkcellSpec, MAX_DURATION,
+    parse as parse_scenario, parse_duration, CrowdOptions, FleetSpec, GeneratorSpec, Scenario,
+    SimOptions, SpawnSpec, TaskCategory, TaskKind, TaskSpec, WorkcellKind, WorkcellSpec,
+    MAX_DURATION,
 };
 pub use trace::TraceFilter;
 
@@ -93,6 +96,19 @@ pub fn simulate(
     };
     let mut world = world::World::new(building, &setup);
     let o = &scenario.options;
+    if o.crowd.enabled {
+        let crowd = crowd::Crowd::new(building, o.crowd.scale, scenario.seed, scenario.step)
+            .map_err(|e| {
+                SimError::Invalid(vec![Diagnostic::error(
+                    codes::CROWD.code,
+                    mapc_ir::Span::UNKNOWN,
+                    format!("the crowd cannot walk: {e}"),
+                )])
+            })?;
+        if let Some(c) = crowd {
+            world.set_crowd(c);
+        }
+    }
     world.set_charging(o.charging, o.instant_charging, o.battery_drain);
     world.set_supervisors(!opts.plugins_only);
     let mut report = report::ReportBuilder::new(building, scenario, &placement);
@@ -161,6 +177,7 @@ pub fn simulate(
     }
     let mut report = report.finish(world.time(), &world.robots());
     report.interrupted = interrupted;
+    report.crowd = world.crowd().map(|c| c.report(world.time()));
     Ok(report)
 }
 

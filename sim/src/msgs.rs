@@ -342,6 +342,68 @@ pub enum Msg {
     WorkcellResult(WorkcellResult),
     WorkcellState(WorkcellState),
     TaskEvent(TaskEvent),
+    Obstacles(Obstacles),
+}
+
+/// rmf_obstacle_msgs/Obstacles: what rmf_human_detector publishes on `/rmf_obstacles` and
+/// RMF's lane blocker reads; the crowd publishes one `Obstacle` per person.
+#[derive(Debug, Clone, PartialEq, Default, Serialize)]
+pub struct Obstacles {
+    pub obstacles: Vec<Obstacle>,
+}
+
+/// rmf_obstacle_msgs/Obstacle (the fields the crowd fills; `data` is empty).
+#[derive(Debug, Clone, PartialEq, Default, Serialize)]
+pub struct Obstacle {
+    pub header: Header,
+    pub id: i32,
+    pub source: String,
+    pub level_name: String,
+    pub classification: String,
+    pub bbox: BoundingBox3D,
+    pub data_resolution: f64,
+    pub data: Vec<u8>,
+    pub lifetime: Time,
+    /// ACTION_ADD = 0.
+    pub action: u8,
+}
+
+/// std_msgs/Header.
+#[derive(Debug, Clone, PartialEq, Default, Serialize)]
+pub struct Header {
+    pub stamp: Time,
+    pub frame_id: String,
+}
+
+/// vision_msgs/BoundingBox3D: centre pose and size (m).
+#[derive(Debug, Clone, PartialEq, Default, Serialize)]
+pub struct BoundingBox3D {
+    pub center: Pose,
+    pub size: Vector3,
+}
+
+/// geometry_msgs/Pose.
+#[derive(Debug, Clone, PartialEq, Default, Serialize)]
+pub struct Pose {
+    pub position: Vector3,
+    pub orientation: Quaternion,
+}
+
+/// geometry_msgs/Point and Vector3 (same fields).
+#[derive(Debug, Clone, Copy, PartialEq, Default, Serialize)]
+pub struct Vector3 {
+    pub x: f64,
+    pub y: f64,
+    pub z: f64,
+}
+
+/// geometry_msgs/Quaternion.
+#[derive(Debug, Clone, Copy, PartialEq, Default, Serialize)]
+pub struct Quaternion {
+    pub x: f64,
+    pub y: f64,
+    pub z: f64,
+    pub w: f64,
 }
 
 /// Topic names as RMF sees them (§0.1 of the runtime spec), plus `/task_events`.
@@ -366,10 +428,11 @@ pub enum Topic {
     IngestorResults,
     IngestorStates,
     TaskEvents,
+    RmfObstacles,
 }
 
 impl Topic {
-    pub const ALL: [Topic; 19] = [
+    pub const ALL: [Topic; 20] = [
         Topic::RobotState,
         Topic::FleetStates,
         Topic::RobotPathRequests,
@@ -389,6 +452,7 @@ impl Topic {
         Topic::IngestorResults,
         Topic::IngestorStates,
         Topic::TaskEvents,
+        Topic::RmfObstacles,
     ];
 
     /// The topic of a name, with or without the leading `/`.
@@ -408,6 +472,7 @@ impl Topic {
                 | Topic::LiftStates
                 | Topic::DispenserStates
                 | Topic::IngestorStates
+                | Topic::RmfObstacles
         )
     }
 
@@ -432,6 +497,7 @@ impl Topic {
             Topic::IngestorResults => "/ingestor_results",
             Topic::IngestorStates => "/ingestor_states",
             Topic::TaskEvents => "/task_events",
+            Topic::RmfObstacles => "/rmf_obstacles",
         }
     }
 }

@@ -50,6 +50,9 @@ pub struct Report {
     /// The run was stopped (Ctrl-C) before its end: everything above covers what ran.
     #[serde(skip_serializing_if = "std::ops::Not::not")]
     pub interrupted: bool,
+    /// People (`crowd/`), when the map's crowd walked.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub crowd: Option<crate::crowd::CrowdReport>,
 }
 
 #[derive(Debug, Clone, Default, PartialEq, Serialize)]
@@ -719,6 +722,7 @@ impl ReportBuilder {
             waits,
             bottleneck,
             interrupted: false,
+            crowd: None,
         }
     }
 }
@@ -798,6 +802,24 @@ impl Report {
                 100.0 * f.utilisation,
                 f.distance_m
             );
+        }
+        if let Some(c) = &self.crowd {
+            let _ = writeln!(
+                s,
+                "crowd: {} people, {:.0} m walked on average at {:.2} m/s, {} near miss(es) and {} contact(s) with robots",
+                c.humans, c.walked_m.mean, c.speed_m_s.mean, c.near_misses, c.contacts
+            );
+            for f in &c.compare {
+                let _ = writeln!(
+                    s,
+                    "  fleet {}: {} task(s) completed ({} without people), mean task {} s ({} s without people)",
+                    f.fleet,
+                    f.completed,
+                    f.completed_without_crowd,
+                    f.mean_task_s.map_or("-".into(), |x| format!("{x:.1}")),
+                    f.mean_task_s_without_crowd.map_or("-".into(), |x| format!("{x:.1}"))
+                );
+            }
         }
         let busy_doors: Vec<&DoorReport> =
             self.doors.iter().filter(|d| d.open_requests > 0).collect();

@@ -159,7 +159,29 @@ pub struct SimOptions {
     pub charging: bool,
     pub instant_charging: bool,
     pub battery_drain: bool,
+    /// The scenario's top-level `crowd` (read there, kept here with the other switches).
+    pub crowd: CrowdOptions,
 }
+
+/// The scenario's `crowd: {enabled, scale}`: whether the map's crowd (when its crowd_sim is
+/// enabled) walks, and a factor on the size of every human group.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct CrowdOptions {
+    pub enabled: bool,
+    pub scale: f64,
+}
+
+impl Default for CrowdOptions {
+    fn default() -> Self {
+        CrowdOptions {
+            enabled: true,
+            scale: 1.0,
+        }
+    }
+}
+
+/// Largest `crowd.scale`.
+pub const MAX_CROWD_SCALE: f64 = 1000.0;
 
 impl Default for SimOptions {
     fn default() -> Self {
@@ -170,6 +192,7 @@ impl Default for SimOptions {
             charging: true,
             instant_charging: false,
             battery_drain: true,
+            crowd: CrowdOptions::default(),
         }
     }
 }
@@ -193,8 +216,10 @@ const TOP_KEYS: &[&str] = &[
     "tasks",
     "generators",
     "options",
+    "crowd",
     "description",
 ];
+const CROWD_KEYS: &[&str] = &["enabled", "scale"];
 const FLEET_KEYS: &[&str] = &[
     "name",
     "graph",
@@ -670,10 +695,17 @@ impl P<'_> {
             Some(v) if !v.is_null() => self.seq(v, "`generators`", |p, n| p.generator(n, duration)),
             _ => Some(Vec::new()),
         };
-        let options = match top.get("options") {
+        let mut options = match top.get("options") {
             Some(v) if !v.is_null() => self.options(v),
             _ => Some(SimOptions::default()),
         };
+        if let Some(v) = top.get("crowd").filter(|v| !v.is_null()) {
+            match (self.crowd(v), options.as_mut()) {
+                (Some(c), Some(o)) => o.crowd = c,
+                (None, _) => ok = false,
+                _ => {}
+            }
+        }
 
         if let (Some(fleets), Some(tasks), Some(gens)) = (&fleets, &tasks, &generators) {
             self.cross_check(fleets, tasks, gens);
@@ -1330,6 +1362,33 @@ impl P<'_> {
             }
         }
         ok.then_some(o)
+    }
+
+    fn crowd(&mut self, v: &Node) -> Option<CrowdOptions> {
+        let e = self.entries(v, "`crowd`", Some((CROWD_KEYS, codes::UNKNOWN_KEY)))?;
+        let mut c = CrowdOptions::default();
+        let mut ok = true;
+        if let Some(n) = e.get("enabled") {
+            match self.bool(n, "`crowd.enabled`") {
+                Some(b) => c.enabled = b,
+                None => ok = false,
+            }
+        }
+        if let Some(n) = e.get("scale") {
+            match self.number(n, "`crowd.scale`") {
+                Some(x) if (0.0..=MAX_CROWD_SCALE).contains(&x) => c.scale = x,
+                Some(x) => {
+                    self.error(
+                        codes::OUT_OF_RANGE,
+                        n.span,
+                        format!("`crowd.scale` of {x} is not between 0 and {MAX_CROWD_SCALE}"),
+                    );
+                    ok = false;
+                }
+                None => ok = false,
+            }
+        }
+        ok.then_some(c)
     }
 
     /// Fleets named by tasks exist and accept the task's category. Lookups are by map, so
@@ -2060,6 +2119,7 @@ tasks:
         assert_eq!(keys(&defs["fleet"]), want(FLEET_KEYS, &[]));
         assert_eq!(keys(&defs["workcell"]), want(WORKCELL_KEYS, &[]));
         assert_eq!(keys(&defs["options"]), want(OPTION_KEYS, &[]));
+        assert_eq!(keys(&defs["crowd"]), want(CROWD_KEYS, &[]));
         assert_eq!(keys(&defs["task"]), want(TASK_KEYS, KINDS));
         assert_eq!(keys(&defs["generator"]), want(GENERATOR_KEYS, KINDS));
         let robot: Vec<&str> = ROBOT_NUMBERS.iter().map(|r| r.0).collect();

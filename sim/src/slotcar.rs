@@ -215,6 +215,8 @@ pub(crate) struct Ctx<'a> {
     pub chargers: &'a [[f64; 3]],
     pub obstacles: &'a Obstacles,
     pub flags: ChargeFlags,
+    /// People are obstacles too (upstream's crowd actors are not, runtime.md §1.8).
+    pub people: Option<&'a crate::crowd::Crowd>,
 }
 
 #[derive(Debug)]
@@ -575,7 +577,11 @@ impl Slotcar {
         if v_now > 0.0 {
             let k = self.p.stop_distance * dir;
             let zone = [self.x + k * self.cos, self.y + k * self.sin, self.z];
-            if ctx.obstacles.any_within(me, zone, self.p.stop_radius) {
+            if ctx.obstacles.any_within(me, zone, self.p.stop_radius)
+                || ctx
+                    .people
+                    .is_some_and(|c| c.any_within(zone, self.p.stop_radius))
+            {
                 s_lin = 0.0;
                 self.mode.mode = if immediate {
                     robot_mode::PAUSED

@@ -15,7 +15,7 @@
 //! `TeleportDispenser`/`TeleportIngestor` map models plus the scenario's workcells, one
 //! item `<dispenser>_item` per dispenser, the map's non-static models as items (carts),
 //! and chargers at the nav-graph vertices with `is_charger` true (any graph). Obstacles
-//! for the slotcars' stop test are the other robots only.
+//! for the slotcars' stop test are the other robots and the people of `crowd/`.
 
 use crate::door::{self, DoorSim};
 use crate::lift::{Floor, LiftSim};
@@ -102,6 +102,8 @@ pub struct World {
     to_doors: Vec<DoorRequest>,
     to_lifts: Vec<LiftRequest>,
     first_step: bool,
+    /// The people (`crowd/`), when the map's crowd walks.
+    crowd: Option<crate::crowd::Crowd>,
 }
 
 /// `(lower, upper)` of the right joint, of the left joint if any, and the door family.
@@ -297,7 +299,17 @@ impl World {
             to_doors: Vec::new(),
             to_lifts: Vec::new(),
             first_step: true,
+            crowd: None,
         }
+    }
+
+    /// Adds the map's people.
+    pub fn set_crowd(&mut self, crowd: crate::crowd::Crowd) {
+        self.crowd = Some(crowd);
+    }
+
+    pub fn crowd(&self) -> Option<&crate::crowd::Crowd> {
+        self.crowd.as_ref()
     }
 
     /// Current sim time (s).
@@ -425,6 +437,7 @@ impl World {
             chargers: &self.chargers,
             obstacles: &self.obstacles,
             flags: self.flags,
+            people: self.crowd.as_ref(),
         };
         for (i, r) in self.robots.iter_mut().enumerate() {
             r.update(&ctx, i, &mut self.items, out);
@@ -455,6 +468,13 @@ impl World {
         }
         for it in &mut self.items {
             it.follow(&self.robots);
+        }
+        // The crowd plugin runs after the slotcars and sees their new poses.
+        if self.crowd.is_some() {
+            let robots = self.robots();
+            if let Some(c) = self.crowd.as_mut() {
+                c.tick(self.steps + 1, t, &robots, out);
+            }
         }
 
         // Supervisors react to this step's states; their requests apply next step.

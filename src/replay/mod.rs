@@ -125,6 +125,18 @@ struct Lift {
     served: Vec<String>,
 }
 
+/// People from `/rmf_obstacles` (one message per tick while the crowd walks): the first
+/// position of each in centimetres, then per tick `[dx, dy]` deltas.
+#[derive(Default)]
+struct People {
+    start: Option<i64>,
+    level: i64,
+    r: Vec<f64>,
+    first: Vec<[i64; 2]>,
+    last: Vec<[i64; 2]>,
+    track: Vec<Vec<i64>>,
+}
+
 /// Collects a run's messages for the replay page.
 pub struct Recorder<'a> {
     building: &'a Building,
@@ -136,6 +148,7 @@ pub struct Recorder<'a> {
     task_index: BTreeMap<String, usize>,
     doors: BTreeMap<String, Door>,
     lifts: BTreeMap<String, Lift>,
+    people: People,
     end: f64,
 }
 
@@ -151,6 +164,7 @@ impl<'a> Recorder<'a> {
             task_index: BTreeMap::new(),
             doors: BTreeMap::new(),
             lifts: BTreeMap::new(),
+            people: People::default(),
             end: 0.0,
         }
     }
@@ -204,6 +218,37 @@ impl<'a> Recorder<'a> {
         self.end = self.end.max(t);
         let tk = tick(t);
         match (&p.topic, &p.msg) {
+            (Topic::RmfObstacles, Msg::Obstacles(o)) => {
+                let start = *self.people.start.get_or_insert(tk);
+                if let Some(first) = o.obstacles.first() {
+                    self.people.level = self.level_index(&first.level_name);
+                }
+                let k = (tk - start).max(0) as usize;
+                for (i, ob) in o.obstacles.iter().enumerate() {
+                    let c = &ob.bbox.center.position;
+                    let xy = [(c.x * 100.0).round() as i64, (c.y * 100.0).round() as i64];
+                    let pp = &mut self.people;
+                    if i >= pp.first.len() {
+                        pp.r.push(ob.bbox.size.x / 2.0);
+                        pp.first.push(xy);
+                        pp.last.push(xy);
+                        pp.track.push(Vec::new());
+                    }
+                    // One sample per tick after the first message (a person seen late
+                    // stands at its first position until then).
+                    if k == 0 {
+                        continue;
+                    }
+                    while pp.track[i].len() / 2 < k - 1 {
+                        pp.track[i].extend([0, 0]);
+                    }
+                    if pp.track[i].len() / 2 == k - 1 {
+                        let l = pp.last[i];
+                        pp.track[i].extend([xy[0] - l[0], xy[1] - l[1]]);
+                        pp.last[i] = xy;
+                    }
+                }
+            }
             (Topic::FleetStates, Msg::FleetState(f)) => {
                 for r in &f.robots {
                     if !self.fleet_of.contains_key(&r.name) {
@@ -419,7 +464,7 @@ impl<'a> Recorder<'a> {
                 })
             })
             .collect();
-        json!({
+        let mut data = json!({
             "building": b.name,
             "tick": TICK,
             "end": round(self.end),
@@ -429,7 +474,22 @@ impl<'a> Recorder<'a> {
             "tasks": tasks,
             "doors": doors,
             "lifts": lifts,
-        })
+        });
+        // Only when people walked, so pages of runs without them are unchanged.
+        if let (Some(start), Some(obj)) = (self.people.start, data.as_object_mut()) {
+            let p = &self.people;
+            obj.insert(
+                "people".into(),
+                json!({
+                    "start": start,
+                    "level": p.level,
+                    "r": p.r,
+                    "first": p.first,
+                    "track": p.track,
+                }),
+            );
+        }
+        data
     }
 
     /// The complete HTML page.

@@ -95,6 +95,40 @@
     }
   });
 
+  // People (from /rmf_obstacles, one sample per tick): positions in metres per sample.
+  const P = D.people;
+  if (P) {
+    P.X = []; P.Y = []; P.g = [];
+    const L = D.levels[P.level] || D.levels[0];
+    const layer = el("g", { class: "people" });
+    if (L) L.svg.querySelector("g.map").insertBefore(layer, L.layer);
+    P.first.forEach(([x0, y0], i) => {
+      const n = P.track[i].length / 2 + 1;
+      const X = new Float64Array(n), Y = new Float64Array(n);
+      let x = x0, y = y0;
+      X[0] = x / 100; Y[0] = y / 100;
+      for (let j = 1; j < n; j++) { x += P.track[i][2 * j - 2]; y += P.track[i][2 * j - 1]; X[j] = x / 100; Y[j] = y / 100; }
+      P.X.push(X); P.Y.push(Y);
+      const c = el("circle", { class: "person", r: 3, fill: "#8e24aa", "fill-opacity": 0.8, stroke: "#fff", "stroke-width": 1 });
+      layer.appendChild(c);
+      P.g.push(c);
+    });
+    P.L = L;
+  }
+  function drawPeople(t) {
+    if (!P || !P.L) return;
+    const s = t / TICK - P.start;
+    P.g.forEach((c, i) => {
+      const X = P.X[i], Y = P.Y[i], n = X.length;
+      const a = Math.max(0, Math.min(n - 1, Math.floor(s))), b = Math.min(n - 1, a + 1);
+      const f = Math.max(0, Math.min(1, s - a));
+      const [px, py] = P.L.px(X[a] + f * (X[b] - X[a]), Y[a] + f * (Y[b] - Y[a]));
+      c.setAttribute("cx", px.toFixed(1));
+      c.setAttribute("cy", py.toFixed(1));
+      c.setAttribute("r", Math.max(3, P.r[i] * P.L.k).toFixed(1));
+    });
+  }
+
   let selected = -1;
   for (const [i, r] of D.robots.entries()) {
     const g = el("g", { class: "robot" });
@@ -157,6 +191,7 @@
     slider.value = t;
     $("clock").textContent = hms(t);
     const counts = D.levels.map(() => 0);
+    drawPeople(t);
     for (const r of D.robots) {
       const lv = at(r.level, t, -1);
       if (lv < 0 || lv >= D.levels.length) { r.g.remove(); r.levelShown = -1; continue; }

@@ -18,7 +18,7 @@
 
 use super::xml::Element;
 use crate::py_float;
-use mapc_ir::{Building, Condition, CrowdSim};
+use mapc_ir::{Building, Condition, CrowdSim, TimerDuration};
 use std::path::PathBuf;
 
 /// The directory, relative to the world's directory, holding the Menge files.
@@ -157,12 +157,18 @@ fn condition(c: &Condition) -> Element {
         Condition::GoalReached { distance } => e
             .attr("type", "goal_reached")
             .attr("distance", py_float(*distance)),
-        // The editor's timers are per agent with a constant duration.
-        Condition::Timer { value } => e
-            .attr("type", "timer")
-            .attr("value", py_float(*value))
-            .attr("dist", "c")
-            .attr("per_agent", "true"),
+        Condition::Timer(t) => {
+            let e = e.attr("type", "timer");
+            let e = match t.duration {
+                TimerDuration::Const(v) => e.attr("value", py_float(v)).attr("dist", "c"),
+                TimerDuration::Uniform { min, max } => e
+                    .attr("min", py_float(min))
+                    .attr("max", py_float(max))
+                    .attr("dist", "u"),
+            };
+            e.attr("per_agent", if t.per_agent { "true" } else { "false" })
+        }
+        Condition::Auto => e.attr("type", "auto"),
         Condition::And(a, b) => e
             .attr("type", "and")
             .child(condition(a))
@@ -240,7 +246,7 @@ pub fn behavior_file(b: &Building, c: &CrowdSim) -> Element {
         }
         if !t.targets.is_empty() {
             let mut target = Element::new("Target").attr("type", "prob");
-            for (name, w) in &t.targets {
+            for (name, w, _) in &t.targets {
                 target.push(
                     Element::new("State")
                         .attr("name", name.clone())
@@ -353,7 +359,10 @@ mod tests {
     #[test]
     fn nested_conditions() {
         let c = Condition::Not(Box::new(Condition::And(
-            Box::new(Condition::Timer { value: 2.5 }),
+            Box::new(Condition::Timer(mapc_ir::Timer {
+                duration: TimerDuration::Const(2.5),
+                per_agent: true,
+            })),
             Box::new(Condition::Other("auto".into())),
         )));
         let e = condition(&c);

@@ -7,6 +7,7 @@
 //! exactly what they look for).
 
 mod context;
+mod crowd;
 mod doors;
 mod geometry;
 mod grid;
@@ -42,7 +43,7 @@ impl Rule {
 }
 
 /// Every rule, grouped: lanes (E02xx), doors (E03xx), lifts (E04xx), names and roles
-/// (E05xx), geometry and coordinates (E06xx).
+/// (E05xx), geometry and coordinates (E06xx), crowd simulation (E08xx).
 pub fn rules() -> impl Iterator<Item = &'static Rule> {
     lanes::RULES
         .iter()
@@ -50,6 +51,7 @@ pub fn rules() -> impl Iterator<Item = &'static Rule> {
         .chain(lifts::RULES)
         .chain(names::RULES)
         .chain(geometry::RULES)
+        .chain(crowd::RULES)
         .copied()
 }
 

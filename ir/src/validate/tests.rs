@@ -101,6 +101,22 @@ impl TestMap {
         h
     }
 
+    /// A human lane of `width` metres.
+    pub fn human_lane(&mut self, s: Handle<Vertex>, e: Handle<Vertex>, width: f64) {
+        let line = 2500 + self.b.human_lanes.len() as u32;
+        let level = self.b.vertices[s].level;
+        let h = self.b.human_lanes.append(
+            HumanLane {
+                level,
+                start: s,
+                end: e,
+                params: params(vec![param("width", ParamValue::Double(width))]),
+            },
+            span(line),
+        );
+        self.b.levels[level].human_lanes.push(h);
+    }
+
     pub fn wall(&mut self, s: Handle<Vertex>, e: Handle<Vertex>) -> Handle<Wall> {
         let line = 3000 + self.b.walls.len() as u32;
         let level = self.b.vertices[s].level;
