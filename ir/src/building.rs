@@ -236,6 +236,36 @@ impl WaypointRoles {
             human_goal_set_name: s("human_goal_set_name"),
         }
     }
+
+    /// The roles in words, for people (hover text, map diffs): flags, then named roles
+    /// with their names in backticks.
+    pub fn describe(&self) -> Vec<String> {
+        let mut v: Vec<String> = Vec::new();
+        for (on, what) in [
+            (self.is_charger, "charger"),
+            (self.is_parking_spot, "parking spot"),
+            (self.is_holding_point, "holding point"),
+            (self.is_passthrough_point, "passthrough point"),
+            (self.is_cleaning_zone, "cleaning zone"),
+        ] {
+            if on {
+                v.push(what.into());
+            }
+        }
+        for (val, what) in [
+            (&self.dock_name, "dock"),
+            (&self.pickup_dispenser, "pickup dispenser"),
+            (&self.dropoff_ingestor, "dropoff ingestor"),
+            (&self.spawn_robot_name, "spawns robot"),
+            (&self.lift_cabin, "in lift cabin"),
+            (&self.mutex, "mutex"),
+        ] {
+            if let Some(s) = val {
+                v.push(format!("{what} `{s}`"));
+            }
+        }
+        v
+    }
 }
 
 #[derive(Debug, Clone)]

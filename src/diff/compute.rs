@@ -353,30 +353,7 @@ impl Ids {
 }
 
 fn roles_text(r: &WaypointRoles) -> String {
-    let mut v: Vec<String> = Vec::new();
-    for (on, what) in [
-        (r.is_charger, "charger"),
-        (r.is_parking_spot, "parking spot"),
-        (r.is_holding_point, "holding point"),
-        (r.is_passthrough_point, "passthrough point"),
-        (r.is_cleaning_zone, "cleaning zone"),
-    ] {
-        if on {
-            v.push(what.into());
-        }
-    }
-    for (val, what) in [
-        (&r.dock_name, "dock"),
-        (&r.pickup_dispenser, "pickup dispenser"),
-        (&r.dropoff_ingestor, "dropoff ingestor"),
-        (&r.spawn_robot_name, "spawns"),
-        (&r.lift_cabin, "lift cabin"),
-        (&r.mutex, "mutex"),
-    ] {
-        if let Some(s) = val {
-            v.push(format!("{what} `{s}`"));
-        }
-    }
+    let v = r.describe();
     if v.is_empty() {
         "none".into()
     } else {

@@ -119,30 +119,7 @@ fn vertex_text(b: Option<&Building>, level: &LevelOutline, v: usize) -> Option<S
         format!(" `{}`", vx.name)
     };
     let r = &vx.roles;
-    let mut roles: Vec<String> = Vec::new();
-    for (on, what) in [
-        (r.is_charger, "charger"),
-        (r.is_parking_spot, "parking spot"),
-        (r.is_holding_point, "holding point"),
-        (r.is_passthrough_point, "passthrough point"),
-        (r.is_cleaning_zone, "cleaning zone"),
-    ] {
-        if on {
-            roles.push(what.into());
-        }
-    }
-    for (val, what) in [
-        (&r.dock_name, "dock"),
-        (&r.pickup_dispenser, "pickup dispenser"),
-        (&r.dropoff_ingestor, "dropoff ingestor"),
-        (&r.spawn_robot_name, "spawns robot"),
-        (&r.lift_cabin, "in lift cabin"),
-        (&r.mutex, "mutex"),
-    ] {
-        if let Some(s) = val {
-            roles.push(format!("{what} `{s}`"));
-        }
-    }
+    let roles = r.describe();
     let roles = if roles.is_empty() {
         "no roles".to_string()
     } else {
