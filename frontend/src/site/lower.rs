@@ -528,18 +528,7 @@ impl<'d, 'n, 's> SiteLower<'d, 'n, 's> {
             let Some((s, e)) = self.edge(w, wspan, lh, "a wall") else {
                 continue;
             };
-            let mut params = Params::default();
-            if let Some(t) = w
-                .get("texture")
-                .and_then(ref_of)
-                .and_then(|t| self.textures.get(&t))
-            {
-                params.insert(Param {
-                    name: "texture_name".into(),
-                    value: ParamValue::String(t.clone()),
-                    span: wspan,
-                });
-            }
+            let params = self.texture_params(w, wspan);
             let h = b.walls.append(
                 Wall {
                     level: lh,
@@ -613,18 +602,7 @@ impl<'d, 'n, 's> SiteLower<'d, 'n, 's> {
             if !ok {
                 continue;
             }
-            let mut params = Params::default();
-            if let Some(t) = f
-                .get("texture")
-                .and_then(ref_of)
-                .and_then(|t| self.textures.get(&t))
-            {
-                params.insert(Param {
-                    name: "texture_name".into(),
-                    value: ParamValue::String(t.clone()),
-                    span: fspan,
-                });
-            }
+            let params = self.texture_params(f, fspan);
             let h = b.floors.append(
                 Polygon {
                     level: lh,
@@ -638,6 +616,24 @@ impl<'d, 'n, 's> SiteLower<'d, 'n, 's> {
     }
 
     /// Translation and yaw of a `Pose` (`rot` as yaw, or a quaternion's yaw).
+    /// A wall's or floor's `texture` reference as the `texture_name` param the backends
+    /// read (empty when it has none or it dangles).
+    fn texture_params(&self, n: &Node, span: Span) -> Params {
+        let mut params = Params::default();
+        if let Some(t) = n
+            .get("texture")
+            .and_then(ref_of)
+            .and_then(|t| self.textures.get(&t))
+        {
+            params.insert(Param {
+                name: "texture_name".into(),
+                value: ParamValue::String(t.clone()),
+                span,
+            });
+        }
+        params
+    }
+
     fn pose(&mut self, pose: Option<&Node>) -> (Vec2, f64) {
         let Some(p) = pose else {
             return (Vec2::default(), 0.0);
