@@ -616,6 +616,28 @@ impl<'d, 'n, 's> SiteLower<'d, 'n, 's> {
     }
 
     /// Translation and yaw of a `Pose` (`rot` as yaw, or a quaternion's yaw).
+    /// The two anchor ids of an edge (`anchors: [start, end]`), or E0102 on `span`.
+    fn anchor_pair<'a, 't>(
+        &mut self,
+        n: &'a Node<'t>,
+        span: Span,
+        what: &str,
+    ) -> Option<&'a [Node<'t>]> {
+        let a = n
+            .get("anchors")
+            .and_then(|a| a.as_seq())
+            .filter(|s| s.len() == 2);
+        if a.is_none() {
+            self.l.err(
+                "E0102",
+                span,
+                format!("{what} needs `anchors: [start, end]`"),
+                "give the two anchor ids",
+            );
+        }
+        a
+    }
+
     /// A wall's or floor's `texture` reference as the `texture_name` param the backends
     /// read (empty when it has none or it dangles).
     fn texture_params(&self, n: &Node, span: Span) -> Params {
@@ -670,19 +692,7 @@ impl<'d, 'n, 's> SiteLower<'d, 'n, 's> {
         lh: Handle<Level>,
         what: &str,
     ) -> Option<(Handle<Vertex>, Handle<Vertex>)> {
-        let a = n
-            .get("anchors")
-            .and_then(|a| a.as_seq())
-            .filter(|s| s.len() == 2);
-        let Some(a) = a else {
-            self.l.err(
-                "E0102",
-                span,
-                format!("{what} needs `anchors: [start, end]`"),
-                "give the two anchor ids",
-            );
-            return None;
-        };
+        let a = self.anchor_pair(n, span, what)?;
         let mut out = [None, None];
         for (i, node) in a.iter().enumerate() {
             let Some(id) = ref_of(node) else {
@@ -1145,17 +1155,7 @@ impl<'d, 'n, 's> SiteLower<'d, 'n, 's> {
             return;
         }
         self.unknown(n, LANE_KEYS, "a lane");
-        let a = n
-            .get("anchors")
-            .and_then(|a| a.as_seq())
-            .filter(|s| s.len() == 2);
-        let Some(a) = a else {
-            self.l.err(
-                "E0102",
-                span,
-                "a lane needs `anchors: [start, end]`",
-                "give the two anchor ids",
-            );
+        let Some(a) = self.anchor_pair(n, span, "a lane") else {
             return;
         };
         let mut ends = [None, None];
