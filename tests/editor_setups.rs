@@ -3,7 +3,7 @@
 //! Code with the extension packaged from editors/vscode), with `mapc` on `PATH` (VS Code:
 //! in the `mapc.path` setting) as a user has it, opens a map with problems, and checks the
 //! diagnostics the editor shows (line, column, code, severity), before and after an edit
-//! that the editor sends to the server. The driving scripts are in `tests/<editor>/`.
+//! that the editor sends to the server, and where its go-to-definition lands. The driving scripts are in `tests/<editor>/`.
 //! Neovim's built-in client is tried by tests/nvim_lsp.rs.
 
 use std::path::{Path, PathBuf};
@@ -11,14 +11,17 @@ use std::process::{Command, Stdio};
 use std::time::{Duration, Instant};
 
 /// What every editor shows for fixtures/lsp/lsp_test.building.yaml (1-based lines and
-/// columns), on opening it and after deleting its self-loop lane `[3, 3, ...]` (line 14):
-/// the self-loop's E0201 goes, and the diagnostics below it move up a line.
+/// columns): the diagnostics on opening it; where going to the definition of the `4` of
+/// lane `[1, 4, ...]` lands (vertex 4, the second `pantry`); the diagnostics after deleting
+/// its self-loop lane `[3, 3, ...]` (line 14): the self-loop's E0201 goes, and the
+/// diagnostics below it move up a line.
 const WANT: &str = "\
 open 13:9 W0208 warning
 open 14:9 E0201 error
 open 15:9 W0203 warning
 open 19:9 W0207 warning
 open 21:9 E0501 error
+definition 21:9
 edited 13:9 W0208 warning
 edited 14:9 W0203 warning
 edited 18:9 W0207 warning

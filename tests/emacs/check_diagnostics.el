@@ -2,7 +2,8 @@
 ;; `emacs --batch -Q -l editors/emacs/mapc.el -l check_diagnostics.el' with MAP (the map)
 ;; and OUT (the result file) in the environment and mapc on PATH. Visits the map as a user
 ;; would (the set-up's hook starts eglot), waits for flymake to show mapc's diagnostics,
-;; deletes the self-loop lane (an incremental change) and waits for them to update.
+;; goes to a vertex's definition (M-.), deletes the self-loop lane (an incremental change)
+;; and waits for the diagnostics to update.
 
 (require 'flymake)
 
@@ -53,6 +54,12 @@
   (if (not (check--wait (lambda () (check--has "E0201"))))
       (push "timeout waiting for diagnostics" result)
     (setq result (append (reverse (check--record "open")) result))
+    ;; Go to the definition of the `4' of `[1, 4,' (M-.): the second `pantry' vertex.
+    (goto-char (point-min))
+    (search-forward "[1, 4,")
+    (backward-char 2)
+    (call-interactively #'xref-find-definitions)
+    (push (format "definition %d:%d" (line-number-at-pos) (1+ (current-column))) result)
     (goto-char (point-min))
     (search-forward "[3, 3,")
     (delete-region (line-beginning-position) (1+ (line-end-position)))

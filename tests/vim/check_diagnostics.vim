@@ -1,7 +1,8 @@
 " Run by tests/vim_lsp.rs: Vim with editors/vim/mapc.vim sourced, the map opened, then
 " `-S check_diagnostics.vim`, with OUT (the result file) in the environment and mapc on
-" PATH. Waits for ALE to show mapc's diagnostics, deletes the self-loop lane (ALE sends the
-" change) and waits for them to update.
+" PATH. Waits for ALE to show mapc's diagnostics, goes to a vertex's definition
+" (:ALEGoToDefinition), deletes the self-loop lane (ALE sends the change) and waits for the
+" diagnostics to update.
 let s:result = ['filetype ' . &filetype]
 
 " mapc's items only (ALE may run other YAML linters too).
@@ -35,6 +36,16 @@ augroup END
 " ALE lints the buffer it entered on its own (a timer after BufEnter).
 if s:wait('s:has("E0201")')
   call s:record('open')
+  " Go to the definition of the `4' of `[1, 4,': the second `pantry' vertex.
+  call search('\V[1, 4,')
+  normal! 4l
+  let s:from = line('.')
+  ALEGoToDefinition
+  if s:wait('line(".") != s:from')
+    call add(s:result, printf('definition %d:%d', line('.'), col('.')))
+  else
+    call add(s:result, 'timeout waiting for the definition')
+  endif
   " Delete the self-loop lane, as a user would. Ex mode fires no TextChanged (Normal mode
   " does after each change), so fire it here; ALE sends the text after it, on a timer.
   call search('\V[3, 3,')

@@ -1,7 +1,8 @@
 // Run by tests/editor_setups.rs inside a real VS Code (code-server) next to the mapc
 // extension of editors/vscode: opens m.building.yaml of the workspace as a user would,
-// waits for the diagnostics that mapc's extension publishes, deletes the self-loop lane
-// (VS Code sends the change to the server) and waits for them to update. Writes what it
+// waits for the diagnostics that mapc's extension publishes, asks for a vertex's definition
+// (as F12 does), deletes the self-loop lane (VS Code sends the change to the server) and
+// waits for the diagnostics to update. Writes what it
 // saw to diagnostics.txt in the workspace, then done.txt.
 const vscode = require('vscode');
 const fs = require('fs');
@@ -47,6 +48,15 @@ async function activate() {
     const has = (code) => lines('', uri).some((l) => l.split(' ')[2] === code);
     if (await waitFor(uri, () => has('E0201'))) {
       out.push(...lines('open', uri));
+      // Go to the definition of the `4' of `[1, 4,' (what F12 asks): the second `pantry'.
+      const text = doc.getText().split('\n');
+      const at = text.findIndex((l) => l.includes('[1, 4,'));
+      const pos = new vscode.Position(at, text[at].indexOf('[1, 4,') + 4);
+      const defs = await vscode.commands.executeCommand('vscode.executeDefinitionProvider', uri, pos);
+      for (const d of defs || []) {
+        const r = d.targetSelectionRange || d.targetRange || d.range;
+        out.push(`definition ${r.start.line + 1}:${r.start.character + 1}`);
+      }
       const line = doc.getText().split('\n').findIndex((l) => l.includes('[3, 3,'));
       const edit = new vscode.WorkspaceEdit();
       edit.delete(uri, new vscode.Range(line, 0, line + 1, 0));
