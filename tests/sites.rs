@@ -148,10 +148,30 @@ fn assert_rmf_site_nav_equal(site: &Site, mapc_nav: &[(String, String)], what: &
     }
 }
 
+/// `mapc gazebo` of `map` into `dir`: the world text and every level model file.
+fn world(map: &Path, dir: &Path) -> (String, Vec<(PathBuf, Vec<u8>)>) {
+    let w = dir.join("world.sdf");
+    let m = dir.join("models");
+    ok(&[
+        "gazebo",
+        map.to_str().unwrap(),
+        w.to_str().unwrap(),
+        m.to_str().unwrap(),
+        "-q",
+    ]);
+    let mut files: Vec<(PathBuf, Vec<u8>)> = walk(&m)
+        .into_iter()
+        .filter(|p| !p.file_name().unwrap().to_string_lossy().starts_with(".mapc"))
+        .map(|p| (p.strip_prefix(&m).unwrap().to_path_buf(), std::fs::read(&p).unwrap()))
+        .collect();
+    files.sort();
+    (std::fs::read_to_string(&w).unwrap(), files)
+}
+
 /// Every demo map: `mapc convert` to a site that rmf_site_format reads with the same
-/// levels, lifts and graphs; without lifts its nav graphs equal mapc's of the map; and the
-/// nav files of building -> site -> building are mapc's of the map (a reference_image map
-/// comes back as cartesian_meters, whose nav files add `offset: [0.0, 0.0]`).
+/// levels, lifts and graphs; without lifts its nav graphs equal mapc's of the map; and
+/// building -> site -> building gives the same nav files, world and level models, byte
+/// for byte (a reference_image map comes back in its pixels, with its measurements).
 #[test]
 fn demo_maps_convert_both_ways() {
     let Some(maps) = demo_maps() else { return };
@@ -237,22 +257,25 @@ fn demo_maps_convert_both_ways() {
         let from_site = nav_dir(&site_path, &tmp.path().join(format!("{name}_nav_b")));
         let round = nav_dir(&back, &tmp.path().join(format!("{name}_nav_c")));
         assert_eq!(original, from_site, "{name}: nav of the site");
-        let had_offset = original.iter().any(|(_, t)| t.contains("\noffset:"));
-        let round: Vec<(String, String)> = round
-            .into_iter()
-            .map(|(f, t)| {
-                let t = if had_offset {
-                    t
-                } else {
-                    t.replace("\noffset: [0.0, 0.0]", "")
-                };
-                (f, t)
-            })
-            .collect();
         assert_eq!(
             original, round,
             "{name}: nav after building -> site -> building"
         );
+        // The world and every level model file too (a reference_image map comes back in
+        // its pixels); crowd_sim is the one thing a site leaves out (W0122).
+        let (world_a, models_a) = world(map, &tmp.path().join(format!("{name}_world_a")));
+        let (world_c, models_c) = world(&back, &tmp.path().join(format!("{name}_world_c")));
+        assert_eq!(models_a, models_c, "{name}: level models after the round trip");
+        if b.crowd_sim.as_ref().is_some_and(|c| c.enable) {
+            assert!(world_a.contains("crowd_simulation") && !world_c.contains("crowd_simulation"));
+        } else {
+            assert!(world_a == world_c, "{name}: world after the round trip");
+        }
+        if b.coordinate_system == mapc_ir::CoordinateSystem::ReferenceImage {
+            let text = std::fs::read_to_string(&back).unwrap();
+            assert!(text.contains("coordinate_system: reference_image"), "{name}");
+            assert!(text.contains("measurements:"), "{name}");
+        }
 
         if site.lifts.is_empty() {
             assert_rmf_site_nav_equal(&site, &original, name);
@@ -365,12 +388,13 @@ fn fixture_nav_graph_values() {
     assert_eq!(nav.len(), 1);
     assert_eq!(nav[0].0, "fleet_a.yaml", "named after the graph");
     let doc = yaml_value(&nav[0].1);
-    // Lift: reference anchors (6, ±1) are the cabin front corners; the legacy cabin is
-    // 1 m (site depth) by 2 m (site width), so the centre is 0.5 m behind them.
-    assert_eq!(
-        doc["lifts"]["lift1"]["position"],
-        serde_json::json!([5.5, 0.0, 0.0])
-    );
+    // Lift: reference anchors (6, ±1); the legacy cabin is 1 m (site depth) by 2 m (site
+    // width), and rmf_site's editor puts its centre half the depth, the 0.1 m wall, the
+    // 0.01 m gap and half the 0.05 m front door behind the anchors: x = 6 - 0.635.
+    let centre = 6.0 - (0.5 + 0.1 + 0.01 + 0.025);
+    let p = doc["lifts"]["lift1"]["position"].as_array().unwrap();
+    assert!((p[0].as_f64().unwrap() - centre).abs() < 1e-12, "{p:?}");
+    assert_eq!((p[1].as_f64(), p[2].as_f64()), (Some(0.0), Some(0.0)));
     assert_eq!(doc["lifts"]["lift1"]["dims"], serde_json::json!([1.0, 2.0]));
     let l1 = &doc["levels"]["L1"];
     let cabin: Vec<&Value> = l1["vertices"]
@@ -380,10 +404,8 @@ fn fixture_nav_graph_values() {
         .filter(|v| v[2]["lift"] == "lift1")
         .collect();
     assert_eq!(cabin.len(), 1);
-    assert_eq!(
-        (cabin[0][0].as_f64(), cabin[0][1].as_f64()),
-        (Some(5.5), Some(0.0))
-    );
+    assert!((cabin[0][0].as_f64().unwrap() - centre).abs() < 1e-12);
+    assert_eq!(cabin[0][1].as_f64(), Some(0.0));
     let lanes = l1["lanes"].as_array().unwrap();
     assert_eq!(lanes.len(), 6, "three two-way lanes on L1");
     assert_eq!(
@@ -424,7 +446,10 @@ fn fixture_nav_graph_values() {
         2,
         "the cabin door visits both levels"
     );
-    assert_eq!(lift.doors[0].pos.x, -0.5);
+    // The back door (custom gap 0) is past the 0.1 m wall and half the 0.05 m door.
+    assert!((lift.doors[0].pos.x + (0.5 + 0.1 + 0.025)).abs() < 1e-12);
+    // Fiducials keep their group's name.
+    assert_eq!(b.fiducials.iter().next().unwrap().1.name, "corner");
 
     // Converted back and forth, the nav graph stays the same.
     let bpath = tmp.path().join("x.building.yaml");

@@ -1,9 +1,12 @@
 //! The IR as a traffic_editor `.building.yaml` (`mapc convert SITE BUILDING`).
 //!
-//! Written as `cartesian_meters` at map-frame positions: a site is in metres, and pixels
-//! cannot be recovered from metres. A map with an offset or a CRS (converted from wgs84)
-//! keeps them as `offset_x`/`offset_y` and `generate_crs`, so its nav graphs carry the same
-//! coordinates, CRS and offset. What the format cannot say is a W0122 warning.
+//! A `reference_image` building (a map converted to a site and back) is written in its
+//! pixels: every element at its file coordinates, with the measurements and fiducials that
+//! give each level its transform, so that reading it again gives the same map frame and
+//! the same nav graphs and worlds. Anything else is written as `cartesian_meters` at
+//! map-frame positions; a map with an offset or a CRS (converted from wgs84) keeps them as
+//! `offset_x`/`offset_y` and `generate_crs`, so its nav graphs carry the same coordinates,
+//! CRS and offset. What the format cannot say is a W0122 warning.
 
 use crate::yaml::{to_string, Yaml};
 use mapc_ir::*;
@@ -35,12 +38,53 @@ fn p_str(s: &str) -> Yaml {
     param(&ParamValue::String(s.to_string()))
 }
 
+/// The file yaw `r` that a level turned by `theta` reads as `yaw` (`r + theta`), exactly
+/// when a float nearby does: a yaw written back reads as the same number.
+fn unrotate(yaw: f64, theta: f64) -> f64 {
+    let r = yaw - theta;
+    if theta == 0.0 || !r.is_finite() {
+        return r;
+    }
+    let step = |x: f64, up: bool| {
+        let bits = x.to_bits() as i64;
+        let towards = (x >= 0.0) == up;
+        f64::from_bits((bits + if towards { 1 } else { -1 }) as u64)
+    };
+    let (mut lo, mut hi) = (r, r);
+    for _ in 0..8 {
+        for c in [lo, hi] {
+            if c + theta == yaw {
+                return c;
+            }
+        }
+        lo = step(lo, false);
+        hi = step(hi, true);
+    }
+    r
+}
+
 /// The `.building.yaml` text of `b` and the warnings about what it leaves out.
 pub fn building_yaml(b: &Building) -> (String, Vec<Diagnostic>) {
     let diags = Vec::new();
     let mut root = Vec::new();
+    let pixels = b.coordinate_system == CoordinateSystem::ReferenceImage;
     root.push(("name".to_string(), Yaml::str(&b.name)));
-    root.push(("coordinate_system".into(), Yaml::str("cartesian_meters")));
+    root.push((
+        "coordinate_system".into(),
+        Yaml::str(if pixels {
+            "reference_image"
+        } else {
+            "cartesian_meters"
+        }),
+    ));
+    if b.levels.iter().next().map(|(h, _)| h) != Some(b.reference_level) {
+        root.push((
+            "reference_level_name".into(),
+            Yaml::str(&b.levels[b.reference_level].name),
+        ));
+    }
+    // Where an element is written: its file coordinates in pixels, or the map frame.
+    let at = |raw: Vec2, pos: Vec2| if pixels { raw } else { pos };
 
     // Building parameters, with the offset and CRS of the map frame.
     let mut bp: Vec<(String, Yaml)> = b
@@ -106,9 +150,10 @@ pub fn building_yaml(b: &Building) -> (String, Vec<Diagnostic>) {
             .iter()
             .map(|&vh| {
                 let v = &b.vertices[vh];
+                let p = at(v.raw, v.pos);
                 flow(vec![
-                    Yaml::Float(v.pos.x),
-                    Yaml::Float(v.pos.y),
+                    Yaml::Float(p.x),
+                    Yaml::Float(p.y),
                     Yaml::Float(0.0),
                     Yaml::str(&v.name),
                     params(&v.params),
@@ -168,6 +213,22 @@ pub fn building_yaml(b: &Building) -> (String, Vec<Diagnostic>) {
             })
             .collect();
         l.push(("walls".into(), Yaml::Seq(walls)));
+        if !level.measurements.is_empty() {
+            let ms = level
+                .measurements
+                .iter()
+                .map(|&h| {
+                    let m = &b.measurements[h];
+                    let p = m
+                        .params
+                        .iter()
+                        .map(|p| (p.name.clone(), param(&p.value)))
+                        .collect();
+                    edge(m.start, m.end, p)
+                })
+                .collect();
+            l.push(("measurements".into(), Yaml::Seq(ms)));
+        }
         let doors = level
             .doors
             .iter()
@@ -247,14 +308,20 @@ pub fn building_yaml(b: &Building) -> (String, Vec<Diagnostic>) {
             .iter()
             .map(|&h| {
                 let m = &b.models[h];
+                let p = at(m.raw, m.pos);
+                let yaw = if pixels {
+                    unrotate(m.yaw, level.transform.rotation)
+                } else {
+                    m.yaw
+                };
                 Yaml::Flow(Box::new(Yaml::Map(vec![
                     ("dispensable".into(), Yaml::Bool(m.dispensable)),
                     ("model_name".into(), Yaml::str(&m.model_name)),
                     ("name".into(), Yaml::str(&m.name)),
                     ("static".into(), Yaml::Bool(m.is_static)),
-                    ("x".into(), Yaml::Float(m.pos.x)),
-                    ("y".into(), Yaml::Float(m.pos.y)),
-                    ("yaw".into(), Yaml::Float(m.yaw)),
+                    ("x".into(), Yaml::Float(p.x)),
+                    ("y".into(), Yaml::Float(p.y)),
+                    ("yaw".into(), Yaml::Float(yaw)),
                     ("z".into(), Yaml::Float(m.z)),
                 ])))
             })
@@ -266,9 +333,10 @@ pub fn building_yaml(b: &Building) -> (String, Vec<Diagnostic>) {
                 .iter()
                 .map(|&h| {
                     let f = &b.fiducials[h];
+                    let p = at(f.raw, f.pos);
                     flow(vec![
-                        Yaml::Float(f.pos.x),
-                        Yaml::Float(f.pos.y),
+                        Yaml::Float(p.x),
+                        Yaml::Float(p.y),
                         Yaml::str(&f.name),
                     ])
                 })
@@ -282,10 +350,16 @@ pub fn building_yaml(b: &Building) -> (String, Vec<Diagnostic>) {
     let mut lifts = Vec::new();
     for (_, lift) in b.lifts.iter() {
         let name = |h: Handle<Level>| Yaml::str(&b.levels[h].name);
+        let p = at(lift.raw, lift.pos);
+        let yaw = if pixels {
+            unrotate(lift.yaw, b.levels[lift.reference_level].transform.rotation)
+        } else {
+            lift.yaw
+        };
         let mut l = vec![
-            ("x".to_string(), Yaml::Float(lift.pos.x)),
-            ("y".into(), Yaml::Float(lift.pos.y)),
-            ("yaw".into(), Yaml::Float(lift.yaw)),
+            ("x".to_string(), Yaml::Float(p.x)),
+            ("y".into(), Yaml::Float(p.y)),
+            ("yaw".into(), Yaml::Float(yaw)),
             ("width".into(), Yaml::Float(lift.width)),
             ("depth".into(), Yaml::Float(lift.depth)),
             ("reference_floor_name".into(), name(lift.reference_level)),
