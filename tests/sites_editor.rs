@@ -583,10 +583,9 @@ fn editor_site_converts_and_builds_a_world() {
     ]);
     assert_eq!(r.code, 0, "{}", String::from_utf8_lossy(&r.stderr));
     // The building's nav files are numbered; the site's graph `patrol` is graph 0.
-    let b: Value = serde_yaml::from_str(
-        &std::fs::read_to_string(tmp.path().join("b/0.yaml")).unwrap(),
-    )
-    .unwrap();
+    let b: Value =
+        serde_yaml::from_str(&std::fs::read_to_string(tmp.path().join("b/0.yaml")).unwrap())
+            .unwrap();
     assert_eq!(a["levels"], b["levels"]);
     assert_eq!(a["lifts"], b["lifts"]);
 

@@ -38,29 +38,10 @@ fn p_str(s: &str) -> Yaml {
     param(&ParamValue::String(s.to_string()))
 }
 
-/// The file yaw `r` that a level turned by `theta` reads as `yaw` (`r + theta`), exactly
-/// when a float nearby does: a yaw written back reads as the same number.
+/// The file yaw of a yaw the frontend turned by a level's rotation (`file + theta`):
+/// `yaw - theta` reads back as the same `yaw` (tests below).
 fn unrotate(yaw: f64, theta: f64) -> f64 {
-    let r = yaw - theta;
-    if theta == 0.0 || !r.is_finite() {
-        return r;
-    }
-    let step = |x: f64, up: bool| {
-        let bits = x.to_bits() as i64;
-        let towards = (x >= 0.0) == up;
-        f64::from_bits((bits + if towards { 1 } else { -1 }) as u64)
-    };
-    let (mut lo, mut hi) = (r, r);
-    for _ in 0..8 {
-        for c in [lo, hi] {
-            if c + theta == yaw {
-                return c;
-            }
-        }
-        lo = step(lo, false);
-        hi = step(hi, true);
-    }
-    r
+    yaw - theta
 }
 
 /// The `.building.yaml` text of `b` and the warnings about what it leaves out.
@@ -111,6 +92,10 @@ pub fn building_yaml(b: &Building) -> (String, Vec<Diagnostic>) {
     }
     if !bp.is_empty() {
         root.push(("parameters".into(), Yaml::Map(bp)));
+    }
+
+    if let Some(c) = &b.crowd_sim {
+        root.push(("crowd_sim".into(), crate::crowd_doc::crowd_sim(c)));
     }
 
     let mut graphs = Vec::new();
@@ -213,6 +198,22 @@ pub fn building_yaml(b: &Building) -> (String, Vec<Diagnostic>) {
             })
             .collect();
         l.push(("walls".into(), Yaml::Seq(walls)));
+        if !level.human_lanes.is_empty() {
+            let hs = level
+                .human_lanes
+                .iter()
+                .map(|&h| {
+                    let l = &b.human_lanes[h];
+                    let p = l
+                        .params
+                        .iter()
+                        .map(|p| (p.name.clone(), param(&p.value)))
+                        .collect();
+                    edge(l.start, l.end, p)
+                })
+                .collect();
+            l.push(("human_lanes".into(), Yaml::Seq(hs)));
+        }
         if !level.measurements.is_empty() {
             let ms = level
                 .measurements
@@ -334,11 +335,7 @@ pub fn building_yaml(b: &Building) -> (String, Vec<Diagnostic>) {
                 .map(|&h| {
                     let f = &b.fiducials[h];
                     let p = at(f.raw, f.pos);
-                    flow(vec![
-                        Yaml::Float(p.x),
-                        Yaml::Float(p.y),
-                        Yaml::str(&f.name),
-                    ])
+                    flow(vec![Yaml::Float(p.x), Yaml::Float(p.y), Yaml::str(&f.name)])
                 })
                 .collect();
             l.push(("fiducials".into(), Yaml::Seq(f)));
@@ -411,4 +408,24 @@ pub fn building_yaml(b: &Building) -> (String, Vec<Diagnostic>) {
         root.push(("lifts".into(), Yaml::Map(lifts)));
     }
     (to_string(&Yaml::Map(root)), diags)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::unrotate;
+
+    /// A yaw the frontend turned by a level's rotation (`raw + theta`), written back less
+    /// the rotation, reads as the same number: over magnitudes from 1e-6 to 10 rad.
+    #[test]
+    fn unrotated_yaws_read_back_exactly() {
+        for i in 0..400 {
+            for j in 0..200 {
+                let raw = 10.0 * (i as f64 * 1.3).sin() * 10f64.powi(-(i % 7));
+                let theta = 3.0 * (j as f64 * 0.77).cos() * 10f64.powi(-(j % 7));
+                let yaw = raw + theta;
+                let r = unrotate(yaw, theta);
+                assert_eq!(r + theta, yaw, "raw {raw} theta {theta}");
+            }
+        }
+    }
 }

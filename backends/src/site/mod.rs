@@ -111,14 +111,20 @@ pub fn site_json(b: &Building) -> (String, Vec<Diagnostic>) {
     let mut ext_raw = Map::new();
     let mut ext_measurements = Map::new();
     let mut ext_surfaces = Map::new();
+    let mut ext_holes = Map::new();
+    let mut ext_human_lanes = Map::new();
     if !b.params.is_empty() {
         ext.insert("parameters".into(), params_json(&b.params));
     }
-    if b.crowd_sim.is_some() {
+    if let Some(c) = &b.crowd_sim {
         warn(
             &mut diags,
-            b.spans.root,
-            "crowd_sim has no place in a site; it is left out".into(),
+            c.span,
+            "rmf_site has no crowd simulation: only mapc's extension data keeps crowd_sim".into(),
+        );
+        ext.insert(
+            "crowd_sim".into(),
+            crate::crowd_doc::to_json(&crate::crowd_doc::crowd_sim(c)),
         );
     }
     for g in &b.graphs {
@@ -265,11 +271,43 @@ pub fn site_json(b: &Building) -> (String, Vec<Diagnostic>) {
             .iter()
             .map(|&mh| {
                 let m = &b.measurements[mh];
-                json!([anchor_of[&m.start], anchor_of[&m.end], params_json(&m.params)])
+                json!([
+                    anchor_of[&m.start],
+                    anchor_of[&m.end],
+                    params_json(&m.params)
+                ])
             })
             .collect();
         if !ms.is_empty() {
             ext_measurements.insert(key(lid), Value::Array(ms));
+        }
+        // Holes and human lanes: rmf_site has neither; the extension keeps them.
+        let holes: Vec<Value> = level
+            .holes
+            .iter()
+            .map(|&h| {
+                let p = &b.holes[h];
+                let a: Vec<u32> = p.vertices.iter().map(|v| anchor_of[v]).collect();
+                json!([a, params_json(&p.params)])
+            })
+            .collect();
+        if !holes.is_empty() {
+            ext_holes.insert(key(lid), Value::Array(holes));
+        }
+        let humans: Vec<Value> = level
+            .human_lanes
+            .iter()
+            .map(|&h| {
+                let l = &b.human_lanes[h];
+                json!([
+                    anchor_of[&l.start],
+                    anchor_of[&l.end],
+                    params_json(&l.params)
+                ])
+            })
+            .collect();
+        if !humans.is_empty() {
+            ext_human_lanes.insert(key(lid), Value::Array(humans));
         }
         let mut floors = Map::new();
         let mut floor_rank = Vec::new();
@@ -291,7 +329,7 @@ pub fn site_json(b: &Building) -> (String, Vec<Diagnostic>) {
                 &mut diags,
                 b.levels.span(lh),
                 format!(
-                    "level `{}` has {} floor hole(s); rmf_site has no holes, they are left out",
+                    "level `{}` has {} floor hole(s); rmf_site has no holes: only mapc's extension data keeps them",
                     level.name,
                     level.holes.len()
                 ),
@@ -302,7 +340,7 @@ pub fn site_json(b: &Building) -> (String, Vec<Diagnostic>) {
                 &mut diags,
                 b.levels.span(lh),
                 format!(
-                    "level `{}` has {} human lane(s); rmf_site has none, they are left out",
+                    "level `{}` has {} human lane(s); rmf_site has none: only mapc's extension data keeps them",
                     level.name,
                     level.human_lanes.len()
                 ),
@@ -763,6 +801,8 @@ pub fn site_json(b: &Building) -> (String, Vec<Diagnostic>) {
         ("raw_vertices", ext_raw),
         ("measurements", ext_measurements),
         ("surfaces", ext_surfaces),
+        ("holes", ext_holes),
+        ("human_lanes", ext_human_lanes),
         ("models", ext_models),
     ] {
         if !m.is_empty() {

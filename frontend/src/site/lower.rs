@@ -266,7 +266,12 @@ impl<'d, 'n, 's> SiteLower<'d, 'n, 's> {
     /// What mapc's extension keeps under `key` for element `id` of level `lh`.
     fn ext_level_point(&self, key: &str, lh: Handle<Level>, id: u32) -> Option<Vec2> {
         let level = self.level_ids.get(&lh)?;
-        ext_point(self.ext?.get(key)?.get(&level.to_string())?.get(&id.to_string()))
+        ext_point(
+            self.ext?
+                .get(key)?
+                .get(&level.to_string())?
+                .get(&id.to_string()),
+        )
     }
 
     fn dangling(&mut self, span: Span, what: &str, id: u32) {
@@ -405,6 +410,11 @@ impl<'d, 'n, 's> SiteLower<'d, 'n, 's> {
             }
         }
         self.models(root, &mut b, shift);
+        // rmf_site has no crowd simulation; mapc's extension keeps a map's crowd_sim in
+        // the building format's own shape, read by the same code.
+        if let Some(c) = ext.and_then(|e| e.get("crowd_sim")) {
+            b.crowd_sim = self.l.crowd_sim(c);
+        }
         // Roles follow the final parameters (locations and extension data both set them).
         for (_, v) in b.vertices.iter_mut() {
             v.roles = WaypointRoles::from_params(&v.params).into();
@@ -600,6 +610,7 @@ impl<'d, 'n, 's> SiteLower<'d, 'n, 's> {
             }
         }
         self.measurements(b, lh, id);
+        self.holes_and_human_lanes(b, lh, id);
 
         for (wid, w, wspan) in self.entries(node, "walls", "a level") {
             self.unknown(w, &["anchors", "texture"], "a wall");
@@ -707,10 +718,11 @@ impl<'d, 'n, 's> SiteLower<'d, 'n, 's> {
         };
         for m in list {
             let s = m.as_seq().unwrap_or(&[]);
-            let vertex = |n: Option<&Node>| match n.and_then(ref_of).and_then(|a| self.anchors.get(&a)) {
-                Some(Anchor::Level(l, v)) if *l == lh => Some(*v),
-                _ => None,
-            };
+            let vertex =
+                |n: Option<&Node>| match n.and_then(ref_of).and_then(|a| self.anchors.get(&a)) {
+                    Some(Anchor::Level(l, v)) if *l == lh => Some(*v),
+                    _ => None,
+                };
             let (Some(start), Some(end), Some(p)) = (vertex(s.first()), vertex(s.get(1)), s.get(2))
             else {
                 self.l.warn(
@@ -734,6 +746,75 @@ impl<'d, 'n, 's> SiteLower<'d, 'n, 's> {
                 m.span,
             );
             b.levels[lh].measurements.push(h);
+        }
+    }
+
+    /// The floor holes and human lanes mapc's extension keeps for level `id` (rmf_site has
+    /// neither): `[[anchors...], params]` and `[start, end, params]`.
+    fn holes_and_human_lanes(&mut self, b: &mut Building, lh: Handle<Level>, id: u32) {
+        let list = |key: &str| {
+            self.ext
+                .and_then(|e| e.get(key))
+                .and_then(|m| m.get(&id.to_string()))
+                .and_then(|m| m.as_seq())
+                .unwrap_or(&[])
+        };
+        let vertex =
+            |s: &Self, n: Option<&Node>| match n.and_then(ref_of).and_then(|a| s.anchors.get(&a)) {
+                Some(Anchor::Level(l, v)) if *l == lh => Some(*v),
+                _ => None,
+            };
+        for h in list("holes") {
+            let s = h.as_seq().unwrap_or(&[]);
+            let vs: Option<Vec<Handle<Vertex>>> = s
+                .first()
+                .and_then(|a| a.as_seq())
+                .map(|a| a.iter().map(|n| vertex(self, Some(n))).collect())
+                .unwrap_or(None);
+            let (Some(vs), Some(p)) = (vs, s.get(1)) else {
+                self.l.warn(
+                    "W0121",
+                    h.span,
+                    "mapc's extension data has a hole that is not [[anchors of this level], parameters]; it is ignored",
+                    "re-convert the site from its .building.yaml",
+                );
+                continue;
+            };
+            let params = self.l.params(p, "a hole");
+            let hh = b.holes.append(
+                Polygon {
+                    level: lh,
+                    vertices: vs,
+                    params,
+                },
+                h.span,
+            );
+            b.levels[lh].holes.push(hh);
+        }
+        for h in list("human_lanes") {
+            let s = h.as_seq().unwrap_or(&[]);
+            let (Some(start), Some(end), Some(p)) =
+                (vertex(self, s.first()), vertex(self, s.get(1)), s.get(2))
+            else {
+                self.l.warn(
+                    "W0121",
+                    h.span,
+                    "mapc's extension data has a human lane that is not [start anchor, end anchor, parameters] of this level; it is ignored",
+                    "re-convert the site from its .building.yaml",
+                );
+                continue;
+            };
+            let params = self.l.params(p, "a human lane");
+            let hh = b.human_lanes.append(
+                HumanLane {
+                    level: lh,
+                    start,
+                    end,
+                    params,
+                },
+                h.span,
+            );
+            b.levels[lh].human_lanes.push(hh);
         }
     }
 
@@ -1026,7 +1107,8 @@ impl<'d, 'n, 's> SiteLower<'d, 'n, 's> {
             // Site cabin width is the legacy depth and vice versa (rmf_site turned the
             // cabin axes); the reference anchors are the cabin's front corners
             // (rmf_site_format's legacy import).
-            let num = |n: Option<&Node>, default: f64| n.and_then(|v| v.as_f64()).unwrap_or(default);
+            let num =
+                |n: Option<&Node>, default: f64| n.and_then(|v| v.as_f64()).unwrap_or(default);
             let site_w = num(cabin.get("width"), 1.5);
             let site_d = num(cabin.get("depth"), 1.65);
             let (width, depth) = (site_d, site_w);
@@ -1557,7 +1639,10 @@ impl<'d, 'n, 's> SiteLower<'d, 'n, 's> {
         let mut flags = Vec::new();
         for t in n.get("tags").and_then(|t| t.as_seq()).unwrap_or(&[]) {
             // Warnings point at the variant's name.
-            let at = t.as_map().and_then(|m| m.first()).map_or(t.span, |(k, _)| k.span);
+            let at = t
+                .as_map()
+                .and_then(|m| m.first())
+                .map_or(t.span, |(k, _)| k.span);
             match variant(t) {
                 Some(("Charger", _)) => flags.push(("is_charger", t.span)),
                 Some(("ParkingSpot", _)) => flags.push(("is_parking_spot", t.span)),
