@@ -304,6 +304,33 @@ fn demo_maps_convert_both_ways() {
                 .any(|(p, _)| p.starts_with("config_resource")));
         }
         if b.coordinate_system == mapc_ir::CoordinateSystem::ReferenceImage {
+            // The reference level's drawing has the map's scale (the legacy generator's,
+            // which the nav graphs use). rmf_site's own import fits its alignment to the
+            // measurements and fiducials of all levels at once: on a map of one level it
+            // gives the same scale (f32 there), on others it may not (hotel: 18.11 px/m
+            // against the generator's 17.96).
+            let ppm = |s: &Site| -> Vec<(String, f32)> {
+                s.levels
+                    .values()
+                    .filter(|l| l.properties.name.0 == b.levels[b.reference_level].name)
+                    .flat_map(|l| l.drawings.values())
+                    .map(|d| (d.properties.name.0.clone(), d.properties.pixels_per_meter.0))
+                    .collect()
+            };
+            let theirs = BuildingMap::from_bytes(&std::fs::read(map).unwrap())
+                .ok()
+                .and_then(|l| l.to_site().ok());
+            if let Some(theirs) = theirs.filter(|t| !ppm(t).is_empty()) {
+                let (a, t) = (ppm(&site), ppm(&theirs));
+                assert_eq!(a.len(), 1, "{name}: one drawing on the reference level");
+                println!("{name}: {} px/m, rmf_site's import {}", a[0].1, t[0].1);
+                if b.levels.len() == 1 {
+                    assert!(
+                        (a[0].1 / t[0].1 - 1.0).abs() < 1e-6,
+                        "{name}: pixels per metre {a:?} vs rmf_site's {t:?}"
+                    );
+                }
+            }
             let text = std::fs::read_to_string(&back).unwrap();
             assert!(
                 text.contains("coordinate_system: reference_image"),

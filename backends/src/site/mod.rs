@@ -597,7 +597,7 @@ pub fn site_json(b: &Building) -> (String, Vec<Diagnostic>) {
             );
             ext_doors.insert(
                 key(did),
-                json!({"name": door.name, "door_type": door.door_type, "motion_axis_orientation": door.motion_axis_orientation}),
+                json!({"name": door.name, "door_type": door.door_type, "motion_axis_orientation": door.motion_axis_orientation, "x": door.pos.x, "y": door.pos.y}),
             );
         }
         let mut props = json!({

@@ -1105,8 +1105,7 @@ impl<'d, 'n, 's> SiteLower<'d, 'n, 's> {
                 continue;
             };
             // Site cabin width is the legacy depth and vice versa (rmf_site turned the
-            // cabin axes); the reference anchors are the cabin's front corners
-            // (rmf_site_format's legacy import).
+            // cabin axes).
             let num =
                 |n: Option<&Node>, default: f64| n.and_then(|v| v.as_f64()).unwrap_or(default);
             let site_w = num(cabin.get("width"), 1.5);
@@ -1224,6 +1223,15 @@ impl<'d, 'n, 's> SiteLower<'d, 'n, 's> {
                     .and_then(|e| e.get("motion_axis_orientation"))
                     .and_then(|t| t.as_f64())
                     .unwrap_or(mao);
+                // mapc's exact door position, free of the gap's rounding, while the door
+                // has not been moved in rmf_site.
+                let exact = |k: &str| dext.and_then(|e| e.get(k)).and_then(|v| v.as_f64());
+                let dpos = match (exact("x"), exact("y")) {
+                    (Some(x), Some(y)) if Vec2::new(x, y).minus(dpos).norm() < 1e-3 => {
+                        Vec2::new(x, y)
+                    }
+                    _ => dpos,
+                };
                 for lv in d.get("visits").and_then(|v| v.as_seq()).unwrap_or(&[]) {
                     match ref_of(lv).and_then(|l| self.levels.get(&l).copied()) {
                         Some(lh) => level_doors
