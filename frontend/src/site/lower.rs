@@ -26,8 +26,9 @@ const ROOT_KEYS: &[&str] = &[
     "tasks",
     "extensions",
 ];
-/// Site elements mapc reads without using: reported once each when not empty.
-const UNUSED_ROOT: &[&str] = &["robots", "tasks"];
+/// Site elements mapc reads without using: reported once each when not empty. Site-wide
+/// fiducials only align drawings in rmf_site's editor.
+const UNUSED_ROOT: &[&str] = &["robots", "tasks", "fiducials"];
 const LEVEL_KEYS: &[&str] = &[
     "properties",
     "anchors",
@@ -287,6 +288,12 @@ impl<'d, 'n, 's> SiteLower<'d, 'n, 's> {
         self.l.map(root, "the site")?;
         self.unknown(root, ROOT_KEYS, "the site");
         self.unused(root, UNUSED_ROOT, "the site");
+        // A scenario that moves or hides model instances, or holds tasks, says something
+        // the outputs do not (mapc places every instance where the instance says).
+        for (_, sc, _) in self.entries(root, "scenarios", "the site") {
+            let name = self.name(sc, "a scenario");
+            self.unused(sc, &["instances", "tasks"], &format!("scenario `{name}`"));
+        }
         if !self.format_version(root) {
             return None;
         }
