@@ -113,16 +113,11 @@ fn editor_lift(
     centre
 }
 
-struct Built {
-    site: Site,
-    levels: [u32; 3],
-}
-
 /// Three levels; `lift1` (yaw 0) serves all three, L1 and L2 through its front door and
 /// L3 through its back door; `lift2` is turned a quarter turn, its cabin shifted 0.2 m
 /// and its wall 0.15 m, and serves L1 and L2. On each level a lane joins a level anchor
 /// to each lift's cabin anchor; L1 has a charger, a workcell and a lane on to it.
-fn build() -> Built {
+fn build() -> Site {
     let mut ids = Ids(0);
     let mut site = Site::default();
     site.properties.name = NameOfSite("editor_lifts".into());
@@ -228,7 +223,7 @@ fn build() -> Built {
     for l in lanes {
         site.navigation.guided.lanes.insert(ids.next(), l);
     }
-    Built { site, levels }
+    site
 }
 
 fn write(dir: &Path, site: &Site) -> std::path::PathBuf {
@@ -251,7 +246,7 @@ fn editor_centre(mid: (f64, f64), yaw: f64, back: f64, shift: f64) -> (f64, f64)
 
 #[test]
 fn editor_lifts_are_read_as_drawn() {
-    let Built { site, .. } = build();
+    let site = build();
     let tmp = tempfile::tempdir().unwrap();
     let path = write(tmp.path(), &site);
     let parsed = mapc_frontend::load(&path).unwrap();
@@ -364,7 +359,7 @@ fn nav(site: &Path, out: &Path) -> Value {
 /// lift2's differing by rmf_site's unturned cabin offset only.
 #[test]
 fn editor_lift_nav_against_rmf_site() {
-    let Built { site, .. } = build();
+    let site = build();
     let tmp = tempfile::tempdir().unwrap();
     let path = write(tmp.path(), &site);
     let ours = nav(&path, &tmp.path().join("nav"));
@@ -477,7 +472,7 @@ fn editor_lift_nav_against_rmf_site() {
 /// mapc does not know is a W0121 too; mangling the lifts' numbers never panics.
 #[test]
 fn editor_site_tags_and_mangled_lifts() {
-    let Built { site, levels } = build();
+    let site = build();
     let tmp = tempfile::tempdir().unwrap();
     let path = write(tmp.path(), &site);
     let text = std::fs::read_to_string(&path).unwrap();
@@ -562,7 +557,6 @@ fn editor_site_tags_and_mangled_lifts() {
         }
     }
     assert!(n > 100, "{n}");
-    let _ = levels;
 }
 
 /// The editor's site converted to a `.building.yaml` and back: lifts, their doors and
@@ -570,7 +564,7 @@ fn editor_site_tags_and_mangled_lifts() {
 /// world with both lifts that libsdformat loads when it is here.
 #[test]
 fn editor_site_converts_and_builds_a_world() {
-    let Built { site, .. } = build();
+    let site = build();
     let tmp = tempfile::tempdir().unwrap();
     let path = write(tmp.path(), &site);
     let yaml = tmp.path().join("editor_lifts.building.yaml");
