@@ -557,6 +557,19 @@ fn editor_site_tags_and_mangled_lifts() {
         }
     }
     assert!(n > 100, "{n}");
+    // Numbers each finite whose sums are not: the cabin is refused, never infinite.
+    let huge = text
+        .replacen("\"depth\": 1.2", "\"depth\": 1.7e308", 1)
+        .replace("\"wall_thickness\": 0.15", "\"wall_thickness\": 1.7e308");
+    assert_ne!(huge, text);
+    let parsed = mapc_frontend::parse_site_str("huge.site.json", &huge);
+    assert!(parsed.diagnostics.iter().any(|d| d.code == "E0102"));
+    if let Some(b) = &parsed.building {
+        assert!(b
+            .lifts
+            .iter()
+            .all(|(_, l)| l.pos.is_finite() && l.doors.iter().all(|d| d.pos.is_finite())));
+    }
 }
 
 /// The editor's site converted to a `.building.yaml` and back: lifts, their doors and

@@ -1134,6 +1134,16 @@ impl<'d, 'n, 's> SiteLower<'d, 'n, 's> {
             let behind = width / 2.0 + wall + cabin_gap + front_door / 2.0;
             let shift_y = num(cabin.get("shift"), 0.0);
             let mut pos = mid.plus(Vec2::new(-behind, shift_y).rotate(yaw));
+            if !(pos.is_finite() && width.is_finite() && depth.is_finite()) {
+                // Each number may be finite and their sum not (1e308 twice).
+                self.l.err(
+                    "E0102",
+                    span,
+                    format!("{what}'s cabin does not fit in numbers: its size, wall, gap or shift is too large"),
+                    "give the cabin a size in metres",
+                );
+                continue;
+            }
             let mut yaw = yaw;
             let lx = ext
                 .and_then(|e| e.get("lifts"))
@@ -1206,6 +1216,15 @@ impl<'d, 'n, 's> SiteLower<'d, 'n, 's> {
                         "left_door" => (-sh, gap + hy, 0.0),
                         _ => (sh, -(gap + hy), 0.0),
                     };
+                    if !(dx.is_finite() && dy.is_finite() && w.is_finite()) {
+                        self.l.err(
+                            "E0102",
+                            dspan,
+                            format!("cabin door {did} of {what} does not fit in numbers: its width, gap or shift is too large"),
+                            "give the door a width and gap in metres",
+                        );
+                        continue;
+                    }
                     placed = Some((Vec2::new(dx, dy), w, mao));
                 }
                 let Some((dpos, dw, mao)) = placed else {
