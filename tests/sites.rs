@@ -370,6 +370,16 @@ fn sites_written_by_rmf_site() {
         };
         let path = tmp.path().join(format!("{name}.site.json"));
         std::fs::write(&path, site.to_bytes_json().unwrap()).unwrap();
+        // Everything rmf_site wrote is a field mapc knows and uses (its import's default
+        // scenario repeats each instance's pose; its robots are placed as models).
+        let unknown: Vec<String> = mapc_frontend::load(&path)
+            .unwrap()
+            .diagnostics
+            .iter()
+            .filter(|d| d.code == "W0121")
+            .map(|d| format!("{}:{}: {}", d.span.line, d.span.col, d.message))
+            .collect();
+        assert!(unknown.is_empty(), "{name}: {unknown:#?}");
         let nav = nav_dir(&path, &tmp.path().join(format!("{name}_nav")));
         // With lifts, lift waypoints and the lanes to them aside.
         assert_rmf_site_nav_equal(&site, &nav, &format!("{name} (rmf_site import)"));
@@ -597,6 +607,26 @@ fn site_errors_are_located() {
     let d = diagnostics(&bad);
     let (line, col) = line_col(&bad, r#""1.0""#);
     assert_eq!(d, vec![("E0120".into(), line, col)]);
+    // A scenario hiding or moving a model instance is reported on that instance's entry;
+    // one repeating the instance's own pose (as rmf_site's import writes) is not.
+    let scenario = |modifier: &str| {
+        good.replacen(
+            r#""model_descriptions""#,
+            &format!(r#""scenarios": {{"7": {{"name": "s", "parent_scenario": null, "instances": {{"101": {modifier}}}}}}},
+  "model_descriptions""#),
+            1,
+        )
+    };
+    let bad = scenario(r#"{"inclusion": "Hidden"}"#);
+    let d = diagnostics(&bad);
+    let (line, col) = line_col(&bad, r#""101": {"inclusion""#);
+    assert!(d.contains(&("W0121".into(), line, col)), "{d:?}");
+    let same = scenario(
+        r#"{"pose": {"trans": [1.0, 2.0, 0.0], "rot": {"yaw": {"deg": 90.0}}}, "inclusion": "Included"}"#,
+    );
+    assert!(!diagnostics(&same).iter().any(|x| x.0 == "W0121"));
+    let moved = scenario(r#"{"pose": {"trans": [3.0, 2.0, 0.0], "rot": {"yaw": {"deg": 90.0}}}}"#);
+    assert!(diagnostics(&moved).iter().any(|x| x.0 == "W0121"));
     // An unknown field is reported, not dropped silently.
     let bad = good.replace(
         r#""name": "L2", "elevation": 4.0"#,

@@ -512,29 +512,6 @@ fn editor_site_tags_and_mangled_lifts() {
     let b = parsed.building.unwrap();
     assert!(b.vertices.iter().any(|(_, v)| v.name == "charger_1"));
 
-    // Site-wide fiducials (rmf_site aligns drawings with them) are reported, not dropped
-    // silently.
-    let fid = text.replacen(
-        "\"format_version\"",
-        "\"fiducials\": {\"990\": {\"anchor\": 1, \"affiliation\": null}},\n  \"format_version\"",
-        1,
-    );
-    let p3 = tmp.path().join("fiducials.site.json");
-    std::fs::write(&p3, &fid).unwrap();
-    let parsed = mapc_frontend::load(&p3).unwrap();
-    let line = fid[..fid.find("\"fiducials\"").unwrap()]
-        .matches('\n')
-        .count()
-        + 1;
-    assert!(
-        parsed
-            .diagnostics
-            .iter()
-            .any(|d| d.code == "W0121" && d.span.line as usize == line),
-        "{:?}",
-        parsed.diagnostics
-    );
-
     // Every number of the lifts replaced by hostile values: no panic anywhere.
     let start = text.find("\"lifts\"").unwrap();
     let end = start + text[start..].find("\"navigation\"").unwrap();

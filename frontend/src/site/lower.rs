@@ -26,9 +26,11 @@ const ROOT_KEYS: &[&str] = &[
     "tasks",
     "extensions",
 ];
-/// Site elements mapc reads without using: reported once each when not empty. Site-wide
-/// fiducials only align drawings in rmf_site's editor.
-const UNUSED_ROOT: &[&str] = &["robots", "tasks", "fiducials"];
+/// Site elements mapc reads without using: reported once each when not empty. (`robots`
+/// holds the fleet properties of model descriptions, whose instances are placed as
+/// models; site-wide `fiducials` only align drawings in rmf_site's editor, whose poses
+/// mapc reads as they are.)
+const UNUSED_ROOT: &[&str] = &["tasks"];
 const LEVEL_KEYS: &[&str] = &[
     "properties",
     "anchors",
@@ -288,11 +290,11 @@ impl<'d, 'n, 's> SiteLower<'d, 'n, 's> {
         self.l.map(root, "the site")?;
         self.unknown(root, ROOT_KEYS, "the site");
         self.unused(root, UNUSED_ROOT, "the site");
-        // A scenario that moves or hides model instances, or holds tasks, says something
-        // the outputs do not (mapc places every instance where the instance says).
+        // Scenarios holding tasks say something the outputs do not; those that move or
+        // hide instances are checked with the models.
         for (_, sc, _) in self.entries(root, "scenarios", "the site") {
             let name = self.name(sc, "a scenario");
-            self.unused(sc, &["instances", "tasks"], &format!("scenario `{name}`"));
+            self.unused(sc, &["tasks"], &format!("scenario `{name}`"));
         }
         if !self.format_version(root) {
             return None;
@@ -1752,6 +1754,7 @@ impl<'d, 'n, 's> SiteLower<'d, 'n, 's> {
                 .unwrap_or(false);
             descs.insert(id, (src.unwrap_or_default(), is_static));
         }
+        let mut poses: HashMap<u32, (Vec2, f64)> = HashMap::new();
         for (id, m, span) in self.entries(root, "model_instances", "the site") {
             self.unknown(
                 m,
@@ -1774,6 +1777,7 @@ impl<'d, 'n, 's> SiteLower<'d, 'n, 's> {
             };
             let name = self.name(m, "a model");
             let (t, yaw) = self.pose(m.get("pose"));
+            poses.insert(id, (t, yaw));
             let z = m
                 .get("pose")
                 .and_then(|p| p.get("trans"))
@@ -1813,6 +1817,35 @@ impl<'d, 'n, 's> SiteLower<'d, 'n, 's> {
                 span,
             );
             b.levels[lh].models.push(h);
+        }
+        // rmf_site's scenarios may move or hide instances (its import repeats every
+        // instance's own pose there); mapc places each where the instance says.
+        for (_, sc, _) in self.entries(root, "scenarios", "the site") {
+            let sname = self.name(sc, "a scenario");
+            for (iid, modifier, mspan) in self.entries(sc, "instances", "a scenario") {
+                let hidden = modifier
+                    .get("inclusion")
+                    .and_then(|i| i.key_text())
+                    .is_some_and(|i| i == "Hidden");
+                let moved = match (modifier.get("pose"), poses.get(&iid)) {
+                    (Some(p), Some(&(t, yaw))) => {
+                        let (t2, yaw2) = self.pose(Some(p));
+                        t2.minus(t).norm() > 1e-3 || (yaw2 - yaw).sin().abs() > 1e-4
+                    }
+                    _ => false,
+                };
+                if hidden || moved {
+                    self.l.warn(
+                        "W0121",
+                        mspan,
+                        format!(
+                            "scenario `{sname}` {} model instance {iid}; mapc places it where the instance says",
+                            if hidden { "hides" } else { "moves" }
+                        ),
+                        "nothing to do unless the world should follow the scenario",
+                    );
+                }
+            }
         }
     }
 }
