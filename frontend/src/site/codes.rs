@@ -99,8 +99,8 @@ pub const CABIN_ANCHOR_OUTSIDE: Code = Code {
 /// # W0121 site-unknown-field
 ///
 /// **What:** a field or location tag that rmf_site_format 0.0.2 does not define, or a
-/// site element mapc reads but does not use (lights, cameras, scenarios, tasks, robots,
-/// model instances not on a level, ...), or a `Workcell` location tag that does not say
+/// site element mapc reads but does not use (lights, cameras, tasks, scenarios that hide
+/// or move a model instance, model instances not on a level, ...), or a `Workcell` location tag that does not say
 /// whether the place is a dispenser or an ingestor (kept as a named place).
 ///
 /// **Why it matters:** mapc ignores it; if it came from a newer rmf_site it may carry
