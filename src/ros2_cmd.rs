@@ -148,6 +148,7 @@ impl Ros2Run {
         #[cfg(feature = "dds")]
         let bridge = if args.ros2 {
             let b = mapc_ros2::bridge::Bridge::new(args.domain_id, args.plugins_only, building)?;
+            b.settle();
             let pace = Pace {
                 rate: args.rate.unwrap_or(1.0),
                 start: None,
@@ -211,6 +212,10 @@ impl Ros2Run {
     }
 
     pub(crate) fn finish(self) -> Result<(), String> {
+        #[cfg(feature = "dds")]
+        if let Some((b, _, _)) = self.bridge {
+            b.finish();
+        }
         match self.mcap {
             Some(m) => m.finish(),
             None => Ok(()),
