@@ -200,15 +200,7 @@ impl Bridge {
         for t in outputs {
             writers.insert(t, writer(t.name(), topics::ros_type(t), topics::qos(t))?);
         }
-        let clock = writer(
-            "/clock",
-            Clock::NAME,
-            Qos {
-                reliable: true,
-                transient_local: false,
-                depth: 1,
-            },
-        )?;
+        let clock = writer("/clock", Clock::NAME, crate::mcap::CLOCK_QOS)?;
         let map = writer(
             crate::mcap::MAP_TOPIC,
             BuildingMap::NAME,
@@ -310,13 +302,7 @@ impl Bridge {
 
     /// Publishes `/clock`.
     pub fn clock(&mut self, t: f64) {
-        let sec = t.floor();
-        let clock = Clock {
-            clock: msgs::builtin_interfaces::Time {
-                sec: sec as i32,
-                nanosec: (((t - sec) * 1e9).round() as u32).min(999_999_999),
-            },
-        };
+        let clock = crate::mcap::clock_msg(t);
         let _ = self.clock.write(Raw(cdr::body(&clock)), None);
     }
 
