@@ -181,7 +181,7 @@ pid=$!
 # The listener's readers exist before mapc starts.
 for i in $(seq 100); do grep -q listening "$DIR/watch.err" 2>/dev/null && break; sleep 0.1; done
 "$MAPC" sim "$SCENARIO" --ros2 --rate 40 --domain-id "$DOMAIN" --until 300 \
-  --trace "$DIR/trace.jsonl" -q > "$DIR/mapc.out" 2> "$DIR/mapc.err"
+  --trace "$DIR/trace.jsonl" --report "$DIR/report.json" -q > "$DIR/mapc.out" 2> "$DIR/mapc.err"
 touch "$DIR/done"
 wait $pid
 "#;
@@ -231,6 +231,20 @@ fn watch_full_run(
     assert!(out.status.success(), "{context}");
     let seen: serde_json::Value = serde_json::from_str(&read("watch.json"))
         .unwrap_or_else(|e| panic!("watch output: {e}\n{context}"));
+    // Publishing changed nothing: the same run without --ros2 writes the same trace and
+    // report, byte for byte.
+    let alone = Command::new(env!("CARGO_BIN_EXE_mapc"))
+        .arg("sim")
+        .arg(root.join("fixtures").join(fixture))
+        .args(["--until", "300", "-q", "--trace"])
+        .arg(dir.path().join("alone.jsonl"))
+        .arg("--report")
+        .arg(dir.path().join("alone.json"))
+        .output()
+        .expect("mapc runs");
+    assert!(alone.status.success());
+    assert!(read("trace.jsonl") == read("alone.jsonl"), "--ros2 changed the trace");
+    assert!(read("report.json") == read("alone.json"), "--ros2 changed the report");
     let trace: Vec<serde_json::Value> = read("trace.jsonl")
         .lines()
         .map(|l| serde_json::from_str(l).expect("trace line"))
