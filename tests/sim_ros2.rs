@@ -243,8 +243,14 @@ fn watch_full_run(
         .output()
         .expect("mapc runs");
     assert!(alone.status.success());
-    assert!(read("trace.jsonl") == read("alone.jsonl"), "--ros2 changed the trace");
-    assert!(read("report.json") == read("alone.json"), "--ros2 changed the report");
+    assert!(
+        read("trace.jsonl") == read("alone.jsonl"),
+        "--ros2 changed the trace"
+    );
+    assert!(
+        read("report.json") == read("alone.json"),
+        "--ros2 changed the report"
+    );
     let trace: Vec<serde_json::Value> = read("trace.jsonl")
         .lines()
         .map(|l| serde_json::from_str(l).expect("trace line"))

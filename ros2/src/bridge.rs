@@ -211,7 +211,12 @@ impl Bridge {
         let mut readers = Vec::new();
         if plugins_only {
             for t in PLUGIN_INPUTS {
-                let qos = dds_qos(topics::qos(t));
+                // Volatile readers: they match writers of any durability (a transient-local
+                // reader would refuse a volatile writer).
+                let qos = dds_qos(Qos {
+                    transient_local: false,
+                    ..topics::qos(t)
+                });
                 let topic = participant
                     .create_topic(
                         format!("rt{}", t.name()),

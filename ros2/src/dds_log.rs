@@ -2,7 +2,7 @@
 //! or `trace`): what discovery matched, what a writer repaired. For diagnosing a peer that
 //! does not hear mapc; silent otherwise.
 
-use log::{Level, LevelFilter, Log, Metadata, Record};
+use log::{Level, Log, Metadata, Record};
 use std::io::Write;
 use std::time::Instant;
 
@@ -43,6 +43,6 @@ pub fn init() {
         start: Instant::now(),
     }));
     if log::set_logger(logger).is_ok() {
-        log::set_max_level(LevelFilter::from(level.to_level_filter()));
+        log::set_max_level(level.to_level_filter());
     }
 }

@@ -56,8 +56,10 @@ pub fn qos(topic: Topic) -> Qos {
         depth,
     };
     match topic {
-        Topic::DoorStates | Topic::LiftRequests | Topic::LiftStates => reliable(100),
-        Topic::AdapterLiftRequests => Qos {
+        Topic::DoorStates | Topic::LiftStates => reliable(100),
+        // The lift supervisor publishes /lift_requests transient local (§0.1), like the
+        // adapters' requests.
+        Topic::AdapterLiftRequests | Topic::LiftRequests => Qos {
             reliable: true,
             transient_local: true,
             depth: 100,
