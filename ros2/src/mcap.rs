@@ -160,3 +160,38 @@ impl<W: Write + Seek> Recorder<W> {
         Ok(self.writer.into_inner())
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Messages written for steps `0, dt, 2 dt, ...` up to `end` (exclusive).
+    fn clocks(dt: f64, end: f64) -> u32 {
+        let mut r = Recorder::new(std::io::Cursor::new(Vec::new())).unwrap();
+        let steps = (end / dt).round() as u32;
+        for i in 0..steps {
+            r.clock(f64::from(i) * dt).unwrap();
+        }
+        r.sequence
+    }
+
+    #[test]
+    fn clock_every_20_ms_of_sim_time() {
+        // 10 ms steps: every other one; 50 ms steps: every one; 1 ms steps: every 20th.
+        assert_eq!(clocks(0.01, 10.0), 500);
+        assert_eq!(clocks(0.05, 10.0), 200);
+        assert_eq!(clocks(0.001, 1.0), 50);
+    }
+
+    #[test]
+    fn clock_stamp_is_the_log_time() {
+        for t in [0.0, 0.02, 1.5, 299.98, 1e6 + 0.123] {
+            let c = clock_msg(t).clock;
+            assert_eq!(
+                u64::from(c.sec as u32) * 1_000_000_000 + u64::from(c.nanosec),
+                ns(t)
+            );
+        }
+        assert_eq!(clock_msg(2.5).clock.nanosec, 500_000_000);
+    }
+}
