@@ -10,15 +10,24 @@ pub struct Run {
     pub stdout: Vec<u8>,
     pub stderr: Vec<u8>,
     pub elapsed: Duration,
-    /// Peak resident memory in bytes, when /proc tells it.
+    /// Peak resident memory in bytes (`ru_maxrss` of the child, Linux only).
     pub peak_rss: Option<u64>,
 }
 
-fn vm_hwm(pid: u32) -> Option<u64> {
-    let status = std::fs::read_to_string(format!("/proc/{pid}/status")).ok()?;
-    let line = status.lines().find(|l| l.starts_with("VmHWM:"))?;
-    let kb: u64 = line.split_whitespace().nth(1)?.parse().ok()?;
-    Some(kb * 1024)
+/// Reaps the child if it has exited: its exit status (as `wait` gives it) and its peak
+/// resident memory in bytes. `wait4` gives the peak exactly, where sampling /proc misses
+/// whatever the process reaches after the last sample.
+#[cfg(target_os = "linux")]
+fn try_reap(pid: u32) -> Option<(i32, Option<u64>)> {
+    let mut status = 0;
+    // SAFETY: `rusage` is plain data that wait4 fills; the pid is our own child's.
+    let mut usage: libc::rusage = unsafe { std::mem::zeroed() };
+    let r = unsafe { libc::wait4(pid as i32, &mut status, libc::WNOHANG, &mut usage) };
+    if r <= 0 {
+        return None;
+    }
+    // Linux gives ru_maxrss in kilobytes.
+    Some((status, Some(usage.ru_maxrss as u64 * 1024)))
 }
 
 /// Runs mapc with `args`, killing it (and failing) after `limit`.
@@ -30,7 +39,6 @@ pub fn run(args: &[&str], limit: Duration) -> Run {
         .stderr(Stdio::piped())
         .spawn()
         .expect("mapc starts");
-    let pid = child.id();
     // Drain the pipes on threads so a full pipe never blocks the child.
     let mut out = child.stdout.take().expect("stdout");
     let mut err = child.stderr.take().expect("stderr");
@@ -44,13 +52,20 @@ pub fn run(args: &[&str], limit: Duration) -> Run {
         let _ = std::io::Read::read_to_end(&mut err, &mut v);
         v
     });
-    let mut peak = None;
-    let status = loop {
-        if let Some(m) = vm_hwm(pid) {
-            peak = Some(peak.map_or(m, |p: u64| p.max(m)));
+    let (code, peak) = loop {
+        #[cfg(target_os = "linux")]
+        if let Some((status, peak)) = try_reap(child.id()) {
+            // Killed by a signal (an abort, say): -1, which no bound accepts.
+            let code = if libc::WIFEXITED(status) {
+                libc::WEXITSTATUS(status)
+            } else {
+                -1
+            };
+            break (code, peak);
         }
+        #[cfg(not(target_os = "linux"))]
         if let Some(s) = child.try_wait().expect("wait") {
-            break s;
+            break (s.code().unwrap_or(-1), None);
         }
         if start.elapsed() > limit {
             let _ = child.kill();
@@ -59,8 +74,7 @@ pub fn run(args: &[&str], limit: Duration) -> Run {
         std::thread::sleep(Duration::from_millis(5));
     };
     Run {
-        // Killed by a signal (an abort, say): -1, which no bound accepts.
-        code: status.code().unwrap_or(-1),
+        code,
         stdout: t_out.join().expect("stdout thread"),
         stderr: t_err.join().expect("stderr thread"),
         elapsed: start.elapsed(),

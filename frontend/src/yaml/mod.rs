@@ -353,6 +353,93 @@ pub fn parse(text: &str, file: FileId) -> Result<Node<'_>, Diagnostic> {
     }
 }
 
+/// The tree of a map to lower, with its level lists left out when the fast reader read
+/// it (see [`Lists`]): the whole tree of a large map is then never in memory, only one
+/// list item at a time.
+pub(crate) fn parse_map(text: &str, file: FileId) -> Result<(Node<'_>, Lists<'_>), Diagnostic> {
+    match fast::parse_lists(text, file, true) {
+        Some((root, lists)) => Ok((root, Lists { text, file, lists })),
+        None => parse_general(text, file).map(|root| {
+            (
+                root,
+                Lists {
+                    text,
+                    file,
+                    lists: Vec::new(),
+                },
+            )
+        }),
+    }
+}
+
+/// The level lists (vertices, lanes, walls, measurements, doors, human_lanes) that
+/// [`parse_map`] left out of the tree: such a list is an empty sequence in the tree, with
+/// the list's span, and [`Lists::items`] reads its items again from the text.
+///
+/// Why: a map's tree took 56 bytes a node, a lane of 70 bytes 12 nodes; whole at the end
+/// of parsing, the tree of a large map was 10 times the file (issue 18 bounds the whole
+/// process by that). Read again one item at a time, each item's tree lives only while it
+/// is lowered. The lists are read twice (the first time to check the document and count
+/// its nodes), which costs less than building and freeing the tree did.
+pub(crate) struct Lists<'a> {
+    text: &'a str,
+    file: FileId,
+    lists: Vec<fast::List>,
+}
+
+/// The items of a sequence, by value: from the tree, or read again from the text.
+pub(crate) enum Items<'a> {
+    Tree(std::vec::IntoIter<Node<'a>>),
+    Text(fast::Items<'a>),
+}
+
+impl<'a> Iterator for Items<'a> {
+    type Item = Node<'a>;
+    fn next(&mut self) -> Option<Node<'a>> {
+        match self {
+            Items::Tree(i) => i.next(),
+            Items::Text(i) => i.next(),
+        }
+    }
+}
+
+impl<'a> Lists<'a> {
+    /// No list left out: every sequence is read from the tree.
+    #[cfg(test)]
+    pub(crate) fn whole(text: &'a str, file: FileId) -> Self {
+        Lists {
+            text,
+            file,
+            lists: Vec::new(),
+        }
+    }
+    fn find(&self, node: &Node) -> Option<&fast::List> {
+        match &node.kind {
+            Kind::Seq(items) if items.is_empty() => {}
+            _ => return None,
+        }
+        let i = self
+            .lists
+            .binary_search_by_key(&node.span.start, |l| l.key)
+            .ok()?;
+        Some(&self.lists[i])
+    }
+    /// Number of items of a sequence (0 for any other node).
+    pub(crate) fn len(&self, node: &Node) -> usize {
+        match self.find(node) {
+            Some(l) => l.len,
+            None => node.as_seq().map_or(0, <[Node]>::len),
+        }
+    }
+    /// The items of a sequence by value (none for any other node).
+    pub(crate) fn items(&self, node: Node<'a>) -> Items<'a> {
+        match self.find(&node) {
+            Some(l) => Items::Text(fast::Items::new(self.text, self.file, l)),
+            None => Items::Tree(node.into_seq().into_iter()),
+        }
+    }
+}
+
 /// The general reader (saphyr-parser events). Span conventions, shared with `fast`:
 /// scalars cover their text (quotes included), flow collections run through their closing
 /// bracket, block collections end where their last child ends.
