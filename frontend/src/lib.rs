@@ -293,7 +293,14 @@ mod deferred_lists {
         Some(b)
     }
 
+    /// Both readers: `text` as written (the fast reader takes most maps), and with CRLF
+    /// line ends (which only the general reader takes).
     fn same(name: &str, text: &str) {
+        same_read(name, text);
+        same_read(&format!("{name} (CRLF)"), &text.replace('\n', "\r\n"));
+    }
+
+    fn same_read(name: &str, text: &str) {
         let (mut d1, mut d2) = (Vec::new(), Vec::new());
         let a = parse_into(FileId(0), text, &mut d1);
         let b = whole(text, &mut d2);
@@ -364,6 +371,13 @@ mod deferred_lists {
             "name: t\ncoordinate_system: cartesian_meters\nlevels:\n  L1:\n    vertices:\n    - [0, 0, 0, a]\n    # c\n    - [1, 0, 0, b, {is_charger: [4, true]}]\n    - [x, 0, 0, c]\n    lanes:\n    - [0, 1, {graph_idx: [2, 0]}]\n    - [0, 9, {graph_idx: [2, 0]}]\n",
             // Items written as block mappings and sequences, a second level, flow lists.
             "name: t\ncoordinate_system: cartesian_meters\nlevels:\n  L1:\n    lanes:\n      -\n        - 0\n        - 1\n        - graph_idx: [2, 0]\n    vertices:\n      - [0, 0, 0, a]\n      - [1, 1, 0, 'b c']\n    walls: [[0, 1]]\n  L2:\n    vertices:\n      - [0, 0, 0, x]\n    doors:\n      - [0, 0, {name: [1, d], type: [1, hinged]}]\nlifts:\n  lift1:\n    levels: [L1]\n",
+            // Flow lists, one after its key and one on its own lines; a tab (general
+            // reader); a list item spanning lines; quoted names with escapes.
+            "name: t\ncoordinate_system: cartesian_meters\nlevels:\n  L1:\n    vertices: [[0, 0, 0, a],\n      [1, 0, 0, \"b\\tc\"], [2, 0, 0, 'd''e']]\n    lanes:\n      [[0, 1, {graph_idx: [2, 0]}],\n       [1, 2, {graph_idx: [2, 0],\n               bidirectional: [4, true]}]]\n    walls:\n    - [0,\t1]\n",
+            // JSON, as a converter would write it.
+            "{\"name\": \"t\", \"coordinate_system\": \"cartesian_meters\", \"levels\": {\"L1\": {\"vertices\": [[0, 0, 0, \"a\"], [3, 4, 0, \"b\"]], \"lanes\": [[0, 1, {\"graph_idx\": [2, 0]}]]}}}\n",
+            // An anchor: the general reader keeps every list.
+            "name: t\ncoordinate_system: cartesian_meters\nlevels:\n  L1:\n    vertices:\n    - &v [0, 0, 0, a]\n    - *v\n    lanes:\n    - [0, 1, {graph_idx: [2, 0]}]\n",
             // `levels` not at the root, lists under other keys: never deferred.
             "name: t\ncoordinate_system: cartesian_meters\nx:\n  levels:\n    L:\n      vertices:\n        - [0, 0, 0, a]\nlevels:\n  L1:\n    vertices: null\n    lanes:\n      - [0, 0]\n",
         ] {

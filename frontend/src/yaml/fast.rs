@@ -10,7 +10,7 @@
 //! differential test and a fuzz target check that whenever this reader accepts an input,
 //! it builds exactly the tree (kinds, texts, spans) that the saphyr path builds.
 
-use super::{max_nodes, Kind, Node, MAX_DEPTH};
+use super::{max_nodes, Kind, Node, LIST_KEYS, MAX_DEPTH};
 use mapc_ir::{FileId, Span};
 use std::borrow::Cow;
 
@@ -57,16 +57,6 @@ enum Ctx {
     List,
 }
 
-/// Keys of a level whose lists grow with the map (one entry per line) and are lowered one
-/// entry at a time.
-const LIST_KEYS: &[&str] = &[
-    "vertices",
-    "lanes",
-    "walls",
-    "measurements",
-    "doors",
-    "human_lanes",
-];
 
 /// A level list that was read (so the document is known to be in the subset, within the
 /// node limit) but whose items were dropped: [`Items`] reads them again, one at a time,
