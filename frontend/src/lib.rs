@@ -376,6 +376,9 @@ mod deferred_lists {
             "name: t\ncoordinate_system: cartesian_meters\nlevels:\n  L1:\n    vertices: [[0, 0, 0, a],\n      [1, 0, 0, \"b\\tc\"], [2, 0, 0, 'd''e']]\n    lanes:\n      [[0, 1, {graph_idx: [2, 0]}],\n       [1, 2, {graph_idx: [2, 0],\n               bidirectional: [4, true]}]]\n    walls:\n    - [0,\t1]\n",
             // JSON, as a converter would write it.
             "{\"name\": \"t\", \"coordinate_system\": \"cartesian_meters\", \"levels\": {\"L1\": {\"vertices\": [[0, 0, 0, \"a\"], [3, 4, 0, \"b\"]], \"lanes\": [[0, 1, {\"graph_idx\": [2, 0]}]]}}}\n",
+            // Pretty-printed JSON; then a list whose brackets are indented less than its
+            // key, which is not a document of its own: read from the whole tree instead.
+            "{\n  \"name\": \"t\",\n  \"coordinate_system\": \"cartesian_meters\",\n  \"levels\": {\n    \"L1\": {\n      \"vertices\": [\n        [0, 0, 0, \"a\"],\n        [3, 4, 0, \"b\"]\n      ],\n      \"lanes\": [\n[0, 1, {\"graph_idx\": [2, 0]}],\n[1, 0, {\"graph_idx\": [2, 0]}]\n]\n    }\n  }\n}\n",
             // An anchor: the general reader keeps every list.
             "name: t\ncoordinate_system: cartesian_meters\nlevels:\n  L1:\n    vertices:\n    - &v [0, 0, 0, a]\n    - *v\n    lanes:\n    - [0, 1, {graph_idx: [2, 0]}]\n",
             // `levels` not at the root, lists under other keys: never deferred.

@@ -184,7 +184,7 @@ impl<'a> Iterator for Items<'a> {
         match self.p.seq_item(self.indent, self.depth) {
             Ok((item, _)) => Some(item),
             Err(Bail) => {
-                debug_assert!(false, "a deferred list failed to read again");
+                // Never seen: the caller then reads the whole tree (`yaml::Items`).
                 self.left = 0;
                 None
             }

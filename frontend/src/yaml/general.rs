@@ -16,8 +16,8 @@ use std::borrow::Cow;
 use std::collections::HashMap;
 
 /// Maps saphyr's character positions in the text it reads to byte offsets, lines and
-/// columns of the file, which that text starts at `base` of (line `line_base` + 1, after
-/// `col_base` characters of its first line).
+/// columns of the file, which that text starts at byte `base` of, a line start (line
+/// `line_base` + 1).
 struct Positions<'a> {
     text: &'a str,
     line_starts: Vec<usize>,
@@ -25,11 +25,10 @@ struct Positions<'a> {
     line_ascii: Vec<bool>,
     base: usize,
     line_base: usize,
-    col_base: usize,
 }
 
 impl<'a> Positions<'a> {
-    fn new(text: &'a str, base: usize, line_base: usize, col_base: usize) -> Self {
+    fn new(text: &'a str, base: usize, line_base: usize) -> Self {
         let mut line_starts = vec![0];
         line_starts.extend(text.match_indices('\n').map(|(i, _)| i + 1));
         let line_ascii = line_starts
@@ -46,7 +45,6 @@ impl<'a> Positions<'a> {
             line_ascii,
             base,
             line_base,
-            col_base,
         }
     }
     /// Byte offset in the file of (1-based line, 0-based char column) of the text read.
@@ -63,7 +61,6 @@ impl<'a> Positions<'a> {
     }
     /// 1-based line and column in the file of (1-based line, 0-based char column).
     fn line_col(&self, line: usize, col: usize) -> (u32, u32) {
-        let col = if line <= 1 { col + self.col_base } else { col };
         ((line + self.line_base) as u32, col as u32 + 1)
     }
     fn span(&self, file: FileId, s: saphyr_parser::Span) -> Span {
@@ -99,12 +96,13 @@ pub(crate) struct List {
     pub(crate) key: u32,
     /// Number of items.
     pub(crate) len: usize,
-    /// The list's text: `start..end` of the file, starting on line `line_base` + 1
-    /// after `col_base` characters.
+    /// The list's text as a document of its own: `start..end` of the file, from the start
+    /// of its key's line (line `line_base` + 1); the list's items are those of the
+    /// sequence open at stack height `height` there (2: the value of the key).
     start: usize,
     end: usize,
     line_base: usize,
-    col_base: usize,
+    height: usize,
 }
 
 /// The level list being read whose items are dropped: stack height of its frame, and the
@@ -113,7 +111,7 @@ struct Dropping {
     height: usize,
     first: Option<Span>,
     last: Option<Span>,
-    len: usize,
+    list: List,
 }
 
 /// The reader's state between events.
@@ -132,14 +130,15 @@ struct General<'a> {
     defer: bool,
     dropping: Option<Dropping>,
     lists: Vec<List>,
-    /// Reading a list again: the items of the root sequence are handed out, not kept.
-    items: bool,
+    /// Reading a list again: the items of the sequence open at this stack height are
+    /// handed out, not kept.
+    items: Option<usize>,
 }
 
 /// What an event completed.
 enum Step<'a> {
     None,
-    /// An item of the root sequence, when reading a list again.
+    /// An item of the list, when reading a list again.
     Item(Node<'a>),
 }
 
@@ -157,18 +156,45 @@ impl<'a> General<'a> {
         Diagnostic::error("E0001", span, message).with_help("fix the YAML syntax at this position")
     }
 
-    /// Is the sequence starting now a level list to leave out of the tree?
-    fn is_level_list(&self) -> bool {
-        let pending = |f: &Frame<'a>| match f {
-            Frame::Map(_, Some(k), ..) => k.key_text().map(str::to_string),
-            _ => None,
-        };
-        self.defer
+    /// If the sequence starting now at `start` is a level list to leave out of the tree,
+    /// where its text is as a document of its own (see [`List`]).
+    fn level_list(&self, start: Span) -> Option<List> {
+        fn pending<'f, 'a>(f: &'f Frame<'a>) -> Option<&'f Node<'a>> {
+            match f {
+                Frame::Map(_, Some(k), ..) => Some(k),
+                _ => None,
+            }
+        }
+        let is_list = self.defer
             && self.dropping.is_none()
             && self.stack.len() == 3
-            && pending(&self.stack[0]).as_deref() == Some("levels")
-            && matches!(self.stack[1], Frame::Map(_, Some(_), ..))
-            && pending(&self.stack[2]).is_some_and(|k| LIST_KEYS.contains(&k.as_str()))
+            && pending(&self.stack[0]).and_then(|k| k.key_text()) == Some("levels")
+            && pending(&self.stack[1]).is_some();
+        if !is_list {
+            return None;
+        }
+        let key = pending(&self.stack[2])?;
+        if !key.key_text().is_some_and(|k| LIST_KEYS.contains(&k)) {
+            return None;
+        }
+        // The list's text, from the start of its key's line: a document of its own where
+        // the list is the value of its key, as in the file. (Cut at the list itself, a flow
+        // list would be a possible key of a mapping, which the parser can only tell at its
+        // end: it would hold the whole list's tokens.)
+        let at = key.span.start as usize;
+        let from = self.source[..at].rfind('\n').map_or(0, |i| i + 1);
+        if !self.source.as_bytes()[from..at].iter().all(|&c| c == b' ') {
+            return None; // a key inside a flow mapping
+        }
+        let (line, height) = (key.span.line, 2);
+        Some(List {
+            key: start.start,
+            len: 0,
+            start: from,
+            end: 0,
+            line_base: line as usize - 1,
+            height,
+        })
     }
 
     fn event(
@@ -237,12 +263,12 @@ impl<'a> General<'a> {
                 if self.stack.len() >= MAX_DEPTH {
                     return Err(limit_error(span, "nesting depth", MAX_DEPTH));
                 }
-                if self.is_level_list() {
+                if let Some(list) = self.level_list(span) {
                     self.dropping = Some(Dropping {
                         height: self.stack.len() + 1,
                         first: None,
                         last: None,
-                        len: 0,
+                        list,
                     });
                 }
                 self.stack.push(Frame::Seq(Vec::new(), span, anchor, 1));
@@ -271,7 +297,11 @@ impl<'a> General<'a> {
                             kind: Kind::Seq(items),
                         };
                         if let Some(d) = dropped {
-                            self.lists.push(self.list_at(node.span, d.len));
+                            self.lists.push(List {
+                                key: node.span.start,
+                                end: node.span.end as usize,
+                                ..d.list
+                            });
                         }
                         Some((node, anchor, size))
                     }
@@ -305,7 +335,7 @@ impl<'a> General<'a> {
         if anchor > 0 {
             self.anchors.insert(anchor, (node.clone(), size));
         }
-        if self.items && self.stack.len() == 1 {
+        if self.items == Some(self.stack.len()) {
             if let Some(Frame::Seq(_, _, _, total)) = self.stack.last_mut() {
                 *total += size;
                 return Ok(Step::Item(node));
@@ -321,7 +351,7 @@ impl<'a> General<'a> {
                     Some(d) if d.height == height => {
                         d.first.get_or_insert(node.span);
                         d.last = Some(node.span);
-                        d.len += 1;
+                        d.list.len += 1;
                     }
                     _ => items.push(node),
                 }
@@ -335,28 +365,6 @@ impl<'a> General<'a> {
             }
         }
         Ok(Step::None)
-    }
-
-    /// Where the text of the level list with this span is, as a document of its own: from
-    /// its line's start when only indentation and `- ` come before it there, else (a flow
-    /// list after its key) from its bracket.
-    fn list_at(&self, span: Span, len: usize) -> List {
-        let start = span.start as usize;
-        let line_start = self.source[..start].rfind('\n').map_or(0, |i| i + 1);
-        let prefix = &self.source[line_start..start];
-        let (from, col_base) = if prefix.bytes().all(|c| c == b' ' || c == b'-') {
-            (line_start, 0)
-        } else {
-            (start, prefix.chars().count())
-        };
-        List {
-            key: span.start,
-            len,
-            start: from,
-            end: span.end as usize,
-            line_base: span.line as usize - 1,
-            col_base,
-        }
     }
 }
 
@@ -375,7 +383,7 @@ pub(super) fn parse_lists(
     let mut g = General {
         source: text,
         file,
-        pos: Positions::new(text, 0, 0, 0),
+        pos: Positions::new(text, 0, 0),
         stack: Vec::new(),
         anchors: HashMap::new(),
         total_nodes: 0,
@@ -385,7 +393,7 @@ pub(super) fn parse_lists(
         defer,
         dropping: None,
         lists: Vec::new(),
-        items: false,
+        items: None,
     };
     let mut root = None;
     for item in Parser::new_from_str(text) {
@@ -431,7 +439,7 @@ impl<'a> Items<'a> {
             g: General {
                 source: text,
                 file,
-                pos: Positions::new(own, list.start, list.line_base, list.col_base),
+                pos: Positions::new(own, list.start, list.line_base),
                 stack: Vec::new(),
                 anchors: HashMap::new(),
                 total_nodes: 0,
@@ -442,7 +450,7 @@ impl<'a> Items<'a> {
                 defer: false,
                 dropping: None,
                 lists: Vec::new(),
-                items: true,
+                items: Some(list.height),
             },
             left: list.len,
         }
@@ -469,7 +477,7 @@ impl<'a> Iterator for Items<'a> {
                 Err(()) => break,
             }
         }
-        debug_assert!(false, "a deferred list failed to read again");
+        // Never seen: the caller then reads the whole tree (`yaml::Items`).
         self.left = 0;
         None
     }

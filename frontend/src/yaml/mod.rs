@@ -319,7 +319,18 @@ pub(crate) struct Lists<'a> {
 }
 
 /// The items of a sequence, by value: from the tree, or read again from the text.
-pub(crate) enum Items<'a> {
+pub(crate) struct Items<'a> {
+    from: From<'a>,
+    /// Items handed out so far, and how many the list has (when read again).
+    yielded: usize,
+    len: usize,
+    /// To read the whole tree if a list ever failed to read again.
+    text: &'a str,
+    file: FileId,
+    key: u32,
+}
+
+enum From<'a> {
     Tree(std::vec::IntoIter<Node<'a>>),
     Fast(fast::Items<'a>),
     General(general::Items<'a>),
@@ -328,12 +339,55 @@ pub(crate) enum Items<'a> {
 impl<'a> Iterator for Items<'a> {
     type Item = Node<'a>;
     fn next(&mut self) -> Option<Node<'a>> {
-        match self {
-            Items::Tree(i) => i.next(),
-            Items::Fast(i) => i.next(),
-            Items::General(i) => i.next(),
+        let next = match &mut self.from {
+            From::Tree(i) => return i.next(),
+            From::Fast(i) => i.next(),
+            From::General(i) => i.next(),
+        };
+        if next.is_some() {
+            self.yielded += 1;
+            return next;
         }
+        if self.yielded < self.len {
+            // The same reader accepted this text before, so this does not happen; if it
+            // ever did, the list is taken from the whole tree rather than cut short.
+            let rest = parse(self.text, self.file)
+                .ok()
+                .and_then(|root| whole_list(root, self.key))
+                .unwrap_or_default();
+            let mut rest = rest.into_iter();
+            if self.yielded > 0 {
+                rest.nth(self.yielded - 1);
+            }
+            self.from = From::Tree(rest);
+            self.yielded = self.len;
+            return self.next();
+        }
+        None
     }
+}
+
+/// The level list starting at `key` in a whole tree.
+fn whole_list(root: Node<'_>, key: u32) -> Option<Vec<Node<'_>>> {
+    let Kind::Map(entries) = root.kind else {
+        return None;
+    };
+    let (_, levels) = entries
+        .into_iter()
+        .rev()
+        .find(|(k, _)| k.key_text() == Some("levels"))?;
+    let Kind::Map(levels) = levels.kind else {
+        return None;
+    };
+    levels
+        .into_iter()
+        .filter_map(|(_, level)| match level.kind {
+            Kind::Map(lists) => Some(lists),
+            _ => None,
+        })
+        .flatten()
+        .find(|(_, v)| v.span.start == key && matches!(v.kind, Kind::Seq(_)))
+        .map(|(_, v)| v.into_seq())
 }
 
 impl<'a> Lists<'a> {
@@ -370,10 +424,22 @@ impl<'a> Lists<'a> {
     }
     /// The items of a sequence by value (none for any other node).
     pub(crate) fn items(&self, node: Node<'a>) -> Items<'a> {
-        match self.find(&node) {
-            Some(Ok(l)) => Items::Fast(fast::Items::new(self.text, self.file, l)),
-            Some(Err(l)) => Items::General(general::Items::new(self.text, self.file, l)),
-            None => Items::Tree(node.into_seq().into_iter()),
+        let key = node.span.start;
+        let (from, len) = match self.find(&node) {
+            Some(Ok(l)) => (From::Fast(fast::Items::new(self.text, self.file, l)), l.len),
+            Some(Err(l)) => (
+                From::General(general::Items::new(self.text, self.file, l)),
+                l.len,
+            ),
+            None => (From::Tree(node.into_seq().into_iter()), 0),
+        };
+        Items {
+            from,
+            yielded: 0,
+            len,
+            text: self.text,
+            file: self.file,
+            key,
         }
     }
 }
@@ -453,7 +519,7 @@ mod tests {
     fn level_lists_are_left_out_and_read_again() {
         let lf = "levels:\n  L1:\n    vertices:\n    - [0, 0, 0, a]\n    - [1, 2, 0, \"\u{e9}\"]\n    lanes:\n      - [0, 1]\n    models:\n      - {name: m}\n";
         let crlf = lf.replace('\n', "\r\n");
-        let json = "{\"levels\": {\"L1\": {\"vertices\": [[0, 0, 0, \"a\"],\n  [1, 2, 0, \"b\"]],\n \"lanes\": [[0, 1]]}}}";
+        let json = "{\n  \"levels\": {\n    \"L1\": {\n      \"vertices\": [[0, 0, 0, \"a\"],\n        [1, 2, 0, \"b\"]],\n      \"lanes\": [[0, 1]]\n    }\n  }\n}\n";
         for (text, fast) in [(lf, true), (crlf.as_str(), false), (json, false)] {
             let (mut root, lists) = parse_map(text, FileId(0)).unwrap();
             assert_eq!(lists.fast.len(), if fast { 2 } else { 0 }, "{text:?}");
