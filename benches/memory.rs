@@ -1,5 +1,6 @@
 //! Peak memory of `mapc check` and `mapc nav` (the release binary, as users run it) on
-//! issue 18's adversarial shapes at the acceptance sizes and on issue 12's huge buildings
+//! issue 18's adversarial shapes at the acceptance sizes (the line also with CRLF line ends
+//! and with flow-style lists, which the general YAML reader reads) and on issue 12's huge buildings
 //! (40,000 and 100,000 waypoints), against issue 18's bound max(10 × file, 64 MB). Fails
 //! when any run is over the bound, so a regression shows; prints a table for
 //! BENCHMARKS.md. The debug test `tests/bounded_shapes.rs` checks the same bound on the
@@ -23,6 +24,9 @@ fn main() {
         .filter(|a| !a.starts_with("--"))
         .collect();
     let mut maps = shapes::acceptance();
+    // The line through the general YAML reader: CRLF line ends, flow-style lists.
+    maps.push(("line_crlf", shapes::crlf(&shapes::line(100_000))));
+    maps.push(("line_flow", shapes::line_flow(100_000)));
     maps.push(("huge_40k", shapes::huge(40_000)));
     maps.push(("huge_100k", shapes::huge(100_000)));
     let dir = tempfile::tempdir().expect("temp dir");

@@ -106,6 +106,20 @@ fn waypoints_on_one_vertical_line() {
     assert!(!err.contains("W0207"), "{}", tail(&err));
 }
 
+/// The line read by the general YAML reader (CRLF line ends; lists in flow style over many
+/// lines), which leaves level lists out of the tree as the fast reader does. 70,000
+/// waypoints (7 MB): the bound is the ratio, not the 64 MB floor.
+#[test]
+fn waypoints_on_one_line_through_the_general_reader() {
+    for (name, text) in [
+        ("line_crlf", shapes::crlf(&shapes::line(70_000))),
+        ("line_flow", shapes::line_flow(70_000)),
+    ] {
+        let err = bounded(name, &text, FACTOR);
+        assert!(!err.contains("W0207"), "{}", tail(&err));
+    }
+}
+
 #[test]
 fn many_separate_lanes() {
     let err = bounded("pairs", &shapes::pairs(30_000), FACTOR);

@@ -304,16 +304,38 @@ mod deferred_lists {
         let (mut d1, mut d2) = (Vec::new(), Vec::new());
         let a = parse_into(FileId(0), text, &mut d1);
         let b = whole(text, &mut d2);
-        assert_eq!(format!("{a:?}"), format!("{b:?}"), "{name}: buildings differ");
-        assert_eq!(format!("{d1:?}"), format!("{d2:?}"), "{name}: diagnostics differ");
+        assert_eq!(
+            format!("{a:?}"),
+            format!("{b:?}"),
+            "{name}: buildings differ"
+        );
+        assert_eq!(
+            format!("{d1:?}"),
+            format!("{d2:?}"),
+            "{name}: diagnostics differ"
+        );
     }
 
     /// Single edits near structure (as the fast reader's differential test makes): the
     /// deferred and whole-tree paths must agree on each.
     fn mutations(name: &str, text: &str) {
         const EDITS: &[&str] = &[
-            "", " ", "\n", "- ", ": ", ",", "[", "]", "{", "}", "#", "'", "  ", "x: y",
-            "\n    - [0, 0, 0, v]\n", "\n  L9:\n    lanes:\n    - [0, 1]\n",
+            "",
+            " ",
+            "\n",
+            "- ",
+            ": ",
+            ",",
+            "[",
+            "]",
+            "{",
+            "}",
+            "#",
+            "'",
+            "  ",
+            "x: y",
+            "\n    - [0, 0, 0, v]\n",
+            "\n  L9:\n    lanes:\n    - [0, 1]\n",
         ];
         let mut seed = 0x9E3779B97F4A7C15u64 ^ text.len() as u64;
         for _ in 0..12 {

@@ -67,7 +67,9 @@ impl<'s> EdgeList<'_, 's> {
         let Some(list) = node.get_mut(key).map(Node::take) else {
             return;
         };
-        if l.seq(&list, &format!("the {key} of {}", self.what)).is_none() {
+        if l.seq(&list, &format!("the {key} of {}", self.what))
+            .is_none()
+        {
             return;
         }
         let mut later = Vec::new();

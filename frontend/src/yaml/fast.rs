@@ -57,7 +57,6 @@ enum Ctx {
     List,
 }
 
-
 /// A level list that was read (so the document is known to be in the subset, within the
 /// node limit) but whose items were dropped: [`Items`] reads them again, one at a time,
 /// when lowering asks for them. The tree holds an empty sequence with the list's span.
@@ -82,11 +81,7 @@ pub(super) fn parse(text: &str, file: FileId) -> Option<Node<'_>> {
 /// [`parse`]; with `defer`, the large lists of each level (vertices, lanes, walls, ...)
 /// are read and checked but left out of the tree, and returned to be read again one item
 /// at a time ([`Items`]): the whole tree of a large map is then never in memory.
-pub(super) fn parse_lists(
-    text: &str,
-    file: FileId,
-    defer: bool,
-) -> Option<(Node<'_>, Vec<List>)> {
+pub(super) fn parse_lists(text: &str, file: FileId, defer: bool) -> Option<(Node<'_>, Vec<List>)> {
     if text.starts_with('\u{feff}') || has_unprintable(text.as_bytes()) {
         return None;
     }

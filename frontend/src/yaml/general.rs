@@ -279,7 +279,8 @@ impl<'a> General<'a> {
                 if self.stack.len() >= MAX_DEPTH {
                     return Err(limit_error(span, "nesting depth", MAX_DEPTH));
                 }
-                self.stack.push(Frame::Map(Vec::new(), None, span, anchor, 1));
+                self.stack
+                    .push(Frame::Map(Vec::new(), None, span, anchor, 1));
                 self.total_nodes += 1;
                 None
             }
