@@ -330,10 +330,11 @@ pub(crate) struct Items<'a> {
     key: u32,
 }
 
+/// Readers are boxed: a saphyr parser's state is a few hundred bytes.
 enum From<'a> {
     Tree(std::vec::IntoIter<Node<'a>>),
-    Fast(fast::Items<'a>),
-    General(general::Items<'a>),
+    Fast(Box<fast::Items<'a>>),
+    General(Box<general::Items<'a>>),
 }
 
 impl<'a> Iterator for Items<'a> {
@@ -426,9 +427,12 @@ impl<'a> Lists<'a> {
     pub(crate) fn items(&self, node: Node<'a>) -> Items<'a> {
         let key = node.span.start;
         let (from, len) = match self.find(&node) {
-            Some(Ok(l)) => (From::Fast(fast::Items::new(self.text, self.file, l)), l.len),
+            Some(Ok(l)) => (
+                From::Fast(Box::new(fast::Items::new(self.text, self.file, l))),
+                l.len,
+            ),
             Some(Err(l)) => (
-                From::General(general::Items::new(self.text, self.file, l)),
+                From::General(Box::new(general::Items::new(self.text, self.file, l))),
                 l.len,
             ),
             None => (From::Tree(node.into_seq().into_iter()), 0),
