@@ -6,9 +6,9 @@
 //! BENCHMARKS.md. The debug test `tests/bounded_shapes.rs` checks the same bound on the
 //! shapes in CI, `tests/huge_map.rs` on a 40,000-waypoint building.
 //!
-//! Run with `cargo bench --bench memory`. Peak RSS is the child's `ru_maxrss` (`wait4`),
-//! exact and independent of the machine's load; the times printed are wall times and are
-//! not (see BENCHMARKS.md).
+//! Run with `cargo bench --bench memory`. Peak RSS is the child's `VmHWM`, sampled every
+//! 2 ms (`tests/support/`), independent of the machine's load; the times printed are wall
+//! times and are not (see BENCHMARKS.md).
 
 #[path = "../tests/shapes/mod.rs"]
 mod shapes;

@@ -4,7 +4,8 @@
 //!
 //! The test profile is a debug build, several times slower than release; the time bound
 //! asserted here is `DEBUG_SECONDS` (release figures, measured with `--release`, are in
-//! BENCHMARKS.md). Peak memory is the child's `ru_maxrss` (`wait4`: exact, not sampled).
+//! BENCHMARKS.md). Peak memory is the child's `VmHWM` from /proc, sampled every 2 ms
+//! (`tests/support/`: why not `wait4`).
 //!
 //! Memory: issue 18 asks for max(10 × file, 64 MB), and every shape is held to it. The
 //! line shape (10.4 MB, 100,000 waypoints) is the one whose bound is the ratio rather than

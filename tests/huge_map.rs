@@ -4,7 +4,7 @@
 //! file rather than issue 18's 64 MB floor; the 100,000-waypoint map (17 MB) is timed by
 //! `benches/bounded.rs` (`huge`) and its peak memory measured by `benches/memory.rs`.
 //!
-//! Memory: peak RSS is the child's `ru_maxrss` (`wait4`). Issues 12 and 18 ask for at most
+//! Memory: peak RSS is the child's `VmHWM`, sampled. Issues 12 and 18 ask for at most
 //! 10 × the file; the release binary takes 6.7 × (check) and 6.9 × (nav) on this map.
 
 mod shapes;

@@ -10,29 +10,26 @@ pub struct Run {
     pub stdout: Vec<u8>,
     pub stderr: Vec<u8>,
     pub elapsed: Duration,
-    /// Peak resident memory in bytes (`ru_maxrss` of the child, Linux only).
+    /// Peak resident memory in bytes (the child's `VmHWM`, sampled; Linux only).
     pub peak_rss: Option<u64>,
 }
 
-/// Reaps the child if it has exited: its exit status (as `wait` gives it) and its peak
-/// resident memory in bytes. `wait4` gives the peak exactly, where sampling /proc misses
-/// whatever the process reaches after the last sample.
-#[cfg(target_os = "linux")]
-fn try_reap(pid: u32) -> Option<(i32, Option<u64>)> {
-    let mut status = 0;
-    // SAFETY: `rusage` is plain data that wait4 fills; the pid is our own child's.
-    let mut usage: libc::rusage = unsafe { std::mem::zeroed() };
-    let r = unsafe { libc::wait4(pid as i32, &mut status, libc::WNOHANG, &mut usage) };
-    if r <= 0 {
-        return None;
-    }
-    // Linux gives ru_maxrss in kilobytes.
-    Some((status, Some(usage.ru_maxrss as u64 * 1024)))
+/// Peak resident memory of process `pid` so far (`VmHWM`), in bytes.
+///
+/// Why sampled and not `wait4`'s `ru_maxrss`: Linux folds the high-water mark of the
+/// memory a process had before `exec` into `ru_maxrss`, and a spawned child starts with
+/// its parent's (the test process, holding the generated maps), so `ru_maxrss` reports at
+/// least the parent's peak. `VmHWM` is that of mapc's own memory and only grows, so a
+/// sample taken after the peak sees it; only growth in the last few milliseconds before
+/// exit can be missed.
+fn vm_hwm(pid: u32) -> Option<u64> {
+    let status = std::fs::read_to_string(format!("/proc/{pid}/status")).ok()?;
+    let line = status.lines().find(|l| l.starts_with("VmHWM:"))?;
+    let kb: u64 = line.split_whitespace().nth(1)?.parse().ok()?;
+    Some(kb * 1024)
 }
 
 /// Runs mapc with `args`, killing it (and failing) after `limit`.
-// The child is reaped by `wait4` (for its peak memory), which clippy cannot see.
-#[allow(clippy::zombie_processes)]
 pub fn run(args: &[&str], limit: Duration) -> Run {
     let start = Instant::now();
     let mut child = Command::new(env!("CARGO_BIN_EXE_mapc"))
@@ -41,6 +38,7 @@ pub fn run(args: &[&str], limit: Duration) -> Run {
         .stderr(Stdio::piped())
         .spawn()
         .expect("mapc starts");
+    let pid = child.id();
     // Drain the pipes on threads so a full pipe never blocks the child.
     let mut out = child.stdout.take().expect("stdout");
     let mut err = child.stderr.take().expect("stderr");
@@ -54,29 +52,23 @@ pub fn run(args: &[&str], limit: Duration) -> Run {
         let _ = std::io::Read::read_to_end(&mut err, &mut v);
         v
     });
-    let (code, peak) = loop {
-        #[cfg(target_os = "linux")]
-        if let Some((status, peak)) = try_reap(child.id()) {
-            // Killed by a signal (an abort, say): -1, which no bound accepts.
-            let code = if libc::WIFEXITED(status) {
-                libc::WEXITSTATUS(status)
-            } else {
-                -1
-            };
-            break (code, peak);
+    let mut peak = None;
+    let status = loop {
+        if let Some(m) = vm_hwm(pid) {
+            peak = Some(peak.map_or(m, |p: u64| p.max(m)));
         }
-        #[cfg(not(target_os = "linux"))]
         if let Some(s) = child.try_wait().expect("wait") {
-            break (s.code().unwrap_or(-1), None);
+            break s;
         }
         if start.elapsed() > limit {
             let _ = child.kill();
             panic!("mapc {args:?} still running after {:?}", start.elapsed());
         }
-        std::thread::sleep(Duration::from_millis(5));
+        std::thread::sleep(Duration::from_millis(2));
     };
     Run {
-        code,
+        // Killed by a signal (an abort, say): -1, which no bound accepts.
+        code: status.code().unwrap_or(-1),
         stdout: t_out.join().expect("stdout thread"),
         stderr: t_err.join().expect("stderr thread"),
         elapsed: start.elapsed(),
