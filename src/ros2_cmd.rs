@@ -82,6 +82,17 @@ impl McapFile {
         }
     }
 
+    fn clock(&mut self, t: f64) {
+        if self.error.is_some() {
+            return;
+        }
+        if let Some(r) = self.recorder.as_mut() {
+            if let Err(e) = r.clock(t) {
+                self.error = Some(e);
+            }
+        }
+    }
+
     fn finish(mut self) -> Result<(), String> {
         let err = |e: String| format!("{}: {e}", output::shown(&self.path));
         if let Some(e) = self.error.take() {
@@ -148,6 +159,7 @@ impl Ros2Run {
         #[cfg(feature = "dds")]
         let bridge = if args.ros2 {
             let b = mapc_ros2::bridge::Bridge::new(args.domain_id, args.plugins_only, building)?;
+            b.settle();
             let pace = Pace {
                 rate: args.rate.unwrap_or(1.0),
                 start: None,
@@ -176,13 +188,11 @@ impl Ros2Run {
         self.mcap.is_some()
     }
 
-    /// Whether other nodes' requests are injected (the bridge is on).
+    /// Whether the run calls `inject` before each step: the bridge paces the run, publishes
+    /// `/clock` and injects other nodes' requests; the recorder records `/clock` (it
+    /// injects nothing).
     pub(crate) fn injects(&self) -> bool {
-        #[cfg(feature = "dds")]
-        if self.bridge.is_some() {
-            return true;
-        }
-        false
+        self.active()
     }
 
     pub(crate) fn observe(&mut self, p: &Published) {
@@ -195,9 +205,13 @@ impl Ros2Run {
         }
     }
 
-    /// Before each step: keep pace, publish `/clock`, take what other nodes sent.
+    /// Before each step: record `/clock`, keep pace, publish `/clock`, take what other
+    /// nodes sent.
     #[cfg_attr(not(feature = "dds"), allow(unused_variables, clippy::ptr_arg))]
     pub(crate) fn inject(&mut self, t: f64, out: &mut Vec<(Topic, Msg)>) {
+        if let Some(m) = self.mcap.as_mut() {
+            m.clock(t);
+        }
         #[cfg(feature = "dds")]
         if let Some((b, pace, last_clock)) = self.bridge.as_mut() {
             pace.wait(t);
@@ -211,6 +225,10 @@ impl Ros2Run {
     }
 
     pub(crate) fn finish(self) -> Result<(), String> {
+        #[cfg(feature = "dds")]
+        if let Some((b, _, _)) = self.bridge {
+            b.finish();
+        }
         match self.mcap {
             Some(m) => m.finish(),
             None => Ok(()),

@@ -1,7 +1,9 @@
 //! `mapc sim --mcap`: the rosbag2 MCAP of a fixture run, read back by the independent Python
 //! readers (`mcap`, `mcap-ros2-support`, in the venv .ci/run makes): every schema is found,
-//! every message decodes to the values of the JSON trace, and `/map` holds the building.
-//! Also: recording changes nothing in the trace and the report, byte for byte.
+//! every message decodes to the values of the JSON trace, `/map` holds the building and
+//! `/clock` ticks every 20 ms of simulated time; people on `/rmf_obstacles` decode to the
+//! trace's values. Also: recording changes nothing in the trace and the report, byte for
+//! byte.
 
 use std::path::{Path, PathBuf};
 use std::process::Command;
@@ -102,9 +104,27 @@ fn mcap_decodes_to_the_trace() {
     for (topic, n) in &counts {
         assert_eq!(r["topics"][topic].as_u64(), Some(*n), "{topic}");
     }
+    // /clock: one per 20 ms of the 5 minutes, stamped with its log time (read_mcap.py checks
+    // each), evenly spaced from 0.
+    let clock = &r["clock"];
+    let ticks = (300.0 / mapc_ros2::mcap::CLOCK_PERIOD).round() as u64;
+    assert_eq!(clock["count"].as_u64(), Some(ticks), "{clock}");
+    assert_eq!(clock["first_ns"].as_u64(), Some(0));
+    let period_ns = (mapc_ros2::mcap::CLOCK_PERIOD * 1e9) as i64;
+    assert_eq!(
+        clock["last_ns"]
+            .as_i64()
+            .map(|l| (l - (ticks as i64 - 1) * period_ns).abs() < 1000),
+        Some(true),
+        "{clock}"
+    );
+    for gap in ["min_gap_ns", "max_gap_ns"] {
+        let g = clock[gap].as_i64().expect("gap");
+        assert!((g - period_ns).abs() < 1000, "{gap} {g}");
+    }
     assert_eq!(
         r["messages"].as_u64(),
-        Some(trace.lines().count() as u64 + 1)
+        Some(trace.lines().count() as u64 + 1 + ticks)
     );
     for schema in [
         "rmf_fleet_msgs/msg/RobotState",
@@ -123,6 +143,7 @@ fn mcap_decodes_to_the_trace() {
         "rmf_ingestor_msgs/msg/IngestorState",
         "rmf_building_map_msgs/msg/BuildingMap",
         "std_msgs/msg/String",
+        "rosgraph_msgs/msg/Clock",
     ] {
         assert_eq!(r["schemas"][schema], "ros2msg", "{schema}");
     }
@@ -132,6 +153,7 @@ fn mcap_decodes_to_the_trace() {
         .unwrap()
         .contains("depth: 100"));
     assert!(r["qos"]["/map"].as_str().unwrap().contains("durability: 1"));
+    assert!(r["qos"]["/clock"].as_str().unwrap().contains("depth: 1"));
 
     // /map: both levels with their doors and one nav graph of the fixture's lanes, the lift.
     assert_eq!(
@@ -142,4 +164,61 @@ fn mcap_decodes_to_the_trace() {
         ])
     );
     assert_eq!(r["map_lifts"], serde_json::json!(["lift_1"]));
+}
+
+/// The warehouse fixture's two people on `/rmf_obstacles` (rmf_obstacle_msgs/Obstacles), read
+/// back by the Python readers: every message equals the trace's.
+#[test]
+fn mcap_people_decode_to_the_trace() {
+    let Some(py) = python() else {
+        println!("skipped: mcap-ros2-support (Python) not found; .ci/run makes target/ros2-venv");
+        return;
+    };
+    let dir = tempfile::tempdir().expect("tempdir");
+    let p = |n: &str| dir.path().join(n).to_string_lossy().into_owned();
+    run(&[
+        "sim",
+        "fixtures/cartesian_warehouse.scenario.yaml",
+        "--until",
+        "1min",
+        "-q",
+        "--trace",
+        &p("a.jsonl"),
+        "--mcap",
+        &p("run.mcap"),
+    ]);
+    let script = Path::new(env!("CARGO_MANIFEST_DIR")).join("ros2/tests/python/read_mcap.py");
+    let out = Command::new(py)
+        .arg(script)
+        .arg(p("run.mcap"))
+        .arg(p("a.jsonl"))
+        .output()
+        .expect("python runs");
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let r: serde_json::Value = serde_json::from_slice(&out.stdout).expect("json");
+    assert_eq!(r["mismatches"], serde_json::json!([]), "{r:#}");
+    assert_eq!(
+        r["schemas"]["rmf_obstacle_msgs/msg/Obstacles"], "ros2msg",
+        "{r:#}"
+    );
+    let trace = std::fs::read_to_string(p("a.jsonl")).expect("trace");
+    let people: Vec<serde_json::Value> = trace
+        .lines()
+        .filter(|l| l.contains("\"/rmf_obstacles\""))
+        .map(|l| serde_json::from_str(l).expect("json"))
+        .collect();
+    // 2 Hz for a minute, two people each.
+    assert!(people.len() >= 100, "{}", people.len());
+    assert_eq!(
+        people[10]["msg"]["obstacles"].as_array().map(Vec::len),
+        Some(2)
+    );
+    assert_eq!(
+        r["topics"]["/rmf_obstacles"].as_u64(),
+        Some(people.len() as u64)
+    );
 }

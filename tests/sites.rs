@@ -74,6 +74,15 @@ type Place = ((i64, i64), String, bool, bool, bool);
 /// mapc's documents are in the map frame and publish the `offset` rmf_site's site frame
 /// is less; positions are compared in the site frame.
 fn meaning(doc: &Value) -> Vec<(String, BTreeSet<Lane>, BTreeSet<Place>)> {
+    meaning_off_lifts(doc, false)
+}
+
+/// `meaning`, leaving out (when `skip_lifts`) the lift waypoints and the lanes to them,
+/// which rmf_site places differently (docs/sites.md).
+fn meaning_off_lifts(
+    doc: &Value,
+    skip_lifts: bool,
+) -> Vec<(String, BTreeSet<Lane>, BTreeSet<Place>)> {
     let off = |i: usize| doc["offset"][i].as_f64().unwrap_or(0.0);
     let (ox, oy) = (off(0), off(1));
     let mm = |v: &Value, o: f64| ((v.as_f64().unwrap() - o) * 1000.0).round() as i64;
@@ -85,10 +94,12 @@ fn meaning(doc: &Value) -> Vec<(String, BTreeSet<Lane>, BTreeSet<Place>)> {
             (mm(&v[0], ox), mm(&v[1], oy))
         };
         let text = |v: &Value, k: &str| v[k].as_str().unwrap_or("").to_string();
+        let on_lift = |i: &Value| verts[i.as_u64().unwrap() as usize][2]["lift"].is_string();
         let lanes: BTreeSet<Lane> = l["lanes"]
             .as_array()
             .unwrap()
             .iter()
+            .filter(|lane| !skip_lifts || !(on_lift(&lane[0]) || on_lift(&lane[1])))
             .map(|lane| {
                 let p = &lane[2];
                 let speed = p["speed_limit"]
@@ -107,6 +118,7 @@ fn meaning(doc: &Value) -> Vec<(String, BTreeSet<Lane>, BTreeSet<Place>)> {
         let places: BTreeSet<Place> = verts
             .iter()
             .filter(|v| !text(&v[2], "name").is_empty())
+            .filter(|v| !skip_lifts || !v[2]["lift"].is_string())
             .map(|v| {
                 let p = &v[2];
                 (
@@ -132,6 +144,7 @@ fn yaml_value(text: &str) -> Value {
 /// rmf_site's nav graphs of `site` against mapc's nav files of `map_for_mapc` (named after
 /// the graphs), by meaning.
 fn assert_rmf_site_nav_equal(site: &Site, mapc_nav: &[(String, String)], what: &str) {
+    let skip_lifts = !site.lifts.is_empty();
     let theirs = NavGraph::from_site(site);
     assert_eq!(theirs.len(), mapc_nav.len(), "{what}: number of graphs");
     for (name, graph) in theirs {
@@ -142,16 +155,51 @@ fn assert_rmf_site_nav_equal(site: &Site, mapc_nav: &[(String, String)], what: &
             .find(|(f, _)| *f == file)
             .unwrap_or_else(|| panic!("{what}: mapc wrote no {file}"))
             .1;
-        let (a, b) = (meaning(&doc), meaning(&yaml_value(ours)));
+        let (a, b) = (
+            meaning_off_lifts(&doc, skip_lifts),
+            meaning_off_lifts(&yaml_value(ours), skip_lifts),
+        );
         assert_eq!(a, b, "{what}: graph {name}");
         assert!(!a.is_empty(), "{what}: graph {name} has lanes");
     }
 }
 
+/// `mapc gazebo` of `map` into `dir`: every file written (the world, the level models,
+/// the crowd files), by path.
+fn world(map: &Path, dir: &Path) -> Vec<(PathBuf, Vec<u8>)> {
+    let w = dir.join("world.sdf");
+    let m = dir.join("models");
+    ok(&[
+        "gazebo",
+        map.to_str().unwrap(),
+        w.to_str().unwrap(),
+        m.to_str().unwrap(),
+        "-q",
+    ]);
+    let mut files: Vec<(PathBuf, Vec<u8>)> = walk(dir)
+        .into_iter()
+        .filter(|p| {
+            !p.file_name()
+                .unwrap()
+                .to_string_lossy()
+                .starts_with(".mapc")
+        })
+        .map(|p| {
+            (
+                p.strip_prefix(dir).unwrap().to_path_buf(),
+                std::fs::read(&p).unwrap(),
+            )
+        })
+        .collect();
+    files.sort();
+    assert!(files.iter().any(|(p, _)| p.ends_with("world.sdf")));
+    files
+}
+
 /// Every demo map: `mapc convert` to a site that rmf_site_format reads with the same
-/// levels, lifts and graphs; without lifts its nav graphs equal mapc's of the map; and the
-/// nav files of building -> site -> building are mapc's of the map (a reference_image map
-/// comes back as cartesian_meters, whose nav files add `offset: [0.0, 0.0]`).
+/// levels, lifts and graphs; without lifts its nav graphs equal mapc's of the map; and
+/// building -> site -> building gives the same nav files, world and level models, byte
+/// for byte (a reference_image map comes back in its pixels, with its measurements).
 #[test]
 fn demo_maps_convert_both_ways() {
     let Some(maps) = demo_maps() else { return };
@@ -237,22 +285,59 @@ fn demo_maps_convert_both_ways() {
         let from_site = nav_dir(&site_path, &tmp.path().join(format!("{name}_nav_b")));
         let round = nav_dir(&back, &tmp.path().join(format!("{name}_nav_c")));
         assert_eq!(original, from_site, "{name}: nav of the site");
-        let had_offset = original.iter().any(|(_, t)| t.contains("\noffset:"));
-        let round: Vec<(String, String)> = round
-            .into_iter()
-            .map(|(f, t)| {
-                let t = if had_offset {
-                    t
-                } else {
-                    t.replace("\noffset: [0.0, 0.0]", "")
-                };
-                (f, t)
-            })
-            .collect();
         assert_eq!(
             original, round,
             "{name}: nav after building -> site -> building"
         );
+        // The world, every level model file and the crowd files too (a reference_image
+        // map comes back in its pixels; crowd_sim, human lanes and holes travel in mapc's
+        // extension data).
+        let world_a = world(map, &tmp.path().join(format!("{name}_world_a")));
+        let world_c = world(&back, &tmp.path().join(format!("{name}_world_c")));
+        assert!(
+            world_a == world_c,
+            "{name}: world files after the round trip differ"
+        );
+        if b.crowd_sim.as_ref().is_some_and(|c| c.enable) {
+            assert!(world_a
+                .iter()
+                .any(|(p, _)| p.starts_with("config_resource")));
+        }
+        if b.coordinate_system == mapc_ir::CoordinateSystem::ReferenceImage {
+            // The reference level's drawing has the map's scale (the legacy generator's,
+            // which the nav graphs use). rmf_site's own import fits its alignment to the
+            // measurements and fiducials of all levels at once: on a map of one level it
+            // gives the same scale (f32 there), on others it may not (hotel: 18.11 px/m
+            // against the generator's 17.96).
+            let ppm = |s: &Site| -> Vec<(String, f32)> {
+                s.levels
+                    .values()
+                    .filter(|l| l.properties.name.0 == b.levels[b.reference_level].name)
+                    .flat_map(|l| l.drawings.values())
+                    .map(|d| (d.properties.name.0.clone(), d.properties.pixels_per_meter.0))
+                    .collect()
+            };
+            let theirs = BuildingMap::from_bytes(&std::fs::read(map).unwrap())
+                .ok()
+                .and_then(|l| l.to_site().ok());
+            if let Some(theirs) = theirs.filter(|t| !ppm(t).is_empty()) {
+                let (a, t) = (ppm(&site), ppm(&theirs));
+                assert_eq!(a.len(), 1, "{name}: one drawing on the reference level");
+                println!("{name}: {} px/m, rmf_site's import {}", a[0].1, t[0].1);
+                if b.levels.len() == 1 {
+                    assert!(
+                        (a[0].1 / t[0].1 - 1.0).abs() < 1e-6,
+                        "{name}: pixels per metre {a:?} vs rmf_site's {t:?}"
+                    );
+                }
+            }
+            let text = std::fs::read_to_string(&back).unwrap();
+            assert!(
+                text.contains("coordinate_system: reference_image"),
+                "{name}"
+            );
+            assert!(text.contains("measurements:"), "{name}");
+        }
 
         if site.lifts.is_empty() {
             assert_rmf_site_nav_equal(&site, &original, name);
@@ -265,7 +350,8 @@ fn demo_maps_convert_both_ways() {
 
 /// Sites written by rmf_site itself (its legacy import, rmf_site_format's `to_site`, of each
 /// demo map it can import): mapc reads them, its nav graphs equal rmf_site's own by meaning
-/// on maps without lifts, and `mapc gazebo` writes a world.
+/// (lift waypoints and the lanes to them aside), and `mapc gazebo` writes a world that
+/// libsdformat loads. tests/sites_editor.rs checks lifts of sites built as the editor does.
 #[test]
 fn sites_written_by_rmf_site() {
     let Some(maps) = demo_maps() else { return };
@@ -284,10 +370,19 @@ fn sites_written_by_rmf_site() {
         };
         let path = tmp.path().join(format!("{name}.site.json"));
         std::fs::write(&path, site.to_bytes_json().unwrap()).unwrap();
+        // Everything rmf_site wrote is a field mapc knows and uses (its import's default
+        // scenario repeats each instance's pose; its robots are placed as models).
+        let unknown: Vec<String> = mapc_frontend::load(&path)
+            .unwrap()
+            .diagnostics
+            .iter()
+            .filter(|d| d.code == "W0121")
+            .map(|d| format!("{}:{}: {}", d.span.line, d.span.col, d.message))
+            .collect();
+        assert!(unknown.is_empty(), "{name}: {unknown:#?}");
         let nav = nav_dir(&path, &tmp.path().join(format!("{name}_nav")));
-        if site.lifts.is_empty() {
-            assert_rmf_site_nav_equal(&site, &nav, &format!("{name} (rmf_site import)"));
-        }
+        // With lifts, lift waypoints and the lanes to them aside.
+        assert_rmf_site_nav_equal(&site, &nav, &format!("{name} (rmf_site import)"));
         let world = tmp.path().join(format!("{name}.world"));
         let models = tmp.path().join(format!("{name}_models"));
         ok(&[
@@ -365,12 +460,13 @@ fn fixture_nav_graph_values() {
     assert_eq!(nav.len(), 1);
     assert_eq!(nav[0].0, "fleet_a.yaml", "named after the graph");
     let doc = yaml_value(&nav[0].1);
-    // Lift: reference anchors (6, ±1) are the cabin front corners; the legacy cabin is
-    // 1 m (site depth) by 2 m (site width), so the centre is 0.5 m behind them.
-    assert_eq!(
-        doc["lifts"]["lift1"]["position"],
-        serde_json::json!([5.5, 0.0, 0.0])
-    );
+    // Lift: reference anchors (6, ±1); the legacy cabin is 1 m (site depth) by 2 m (site
+    // width), and rmf_site's editor puts its centre half the depth, the 0.1 m wall, the
+    // 0.01 m gap and half the 0.05 m front door behind the anchors: x = 6 - 0.635.
+    let centre = 6.0 - (0.5 + 0.1 + 0.01 + 0.025);
+    let p = doc["lifts"]["lift1"]["position"].as_array().unwrap();
+    assert!((p[0].as_f64().unwrap() - centre).abs() < 1e-12, "{p:?}");
+    assert_eq!((p[1].as_f64(), p[2].as_f64()), (Some(0.0), Some(0.0)));
     assert_eq!(doc["lifts"]["lift1"]["dims"], serde_json::json!([1.0, 2.0]));
     let l1 = &doc["levels"]["L1"];
     let cabin: Vec<&Value> = l1["vertices"]
@@ -380,10 +476,8 @@ fn fixture_nav_graph_values() {
         .filter(|v| v[2]["lift"] == "lift1")
         .collect();
     assert_eq!(cabin.len(), 1);
-    assert_eq!(
-        (cabin[0][0].as_f64(), cabin[0][1].as_f64()),
-        (Some(5.5), Some(0.0))
-    );
+    assert!((cabin[0][0].as_f64().unwrap() - centre).abs() < 1e-12);
+    assert_eq!(cabin[0][1].as_f64(), Some(0.0));
     let lanes = l1["lanes"].as_array().unwrap();
     assert_eq!(lanes.len(), 6, "three two-way lanes on L1");
     assert_eq!(
@@ -424,7 +518,10 @@ fn fixture_nav_graph_values() {
         2,
         "the cabin door visits both levels"
     );
-    assert_eq!(lift.doors[0].pos.x, -0.5);
+    // The back door (custom gap 0) is past the 0.1 m wall and half the 0.05 m door.
+    assert!((lift.doors[0].pos.x + (0.5 + 0.1 + 0.025)).abs() < 1e-12);
+    // Fiducials keep their group's name.
+    assert_eq!(b.fiducials.iter().next().unwrap().1.name, "corner");
 
     // Converted back and forth, the nav graph stays the same.
     let bpath = tmp.path().join("x.building.yaml");
@@ -510,6 +607,26 @@ fn site_errors_are_located() {
     let d = diagnostics(&bad);
     let (line, col) = line_col(&bad, r#""1.0""#);
     assert_eq!(d, vec![("E0120".into(), line, col)]);
+    // A scenario hiding or moving a model instance is reported on that instance's entry;
+    // one repeating the instance's own pose (as rmf_site's import writes) is not.
+    let scenario = |modifier: &str| {
+        good.replacen(
+            r#""model_descriptions""#,
+            &format!(r#""scenarios": {{"7": {{"name": "s", "parent_scenario": null, "instances": {{"101": {modifier}}}}}}},
+  "model_descriptions""#),
+            1,
+        )
+    };
+    let bad = scenario(r#"{"inclusion": "Hidden"}"#);
+    let d = diagnostics(&bad);
+    let (line, col) = line_col(&bad, r#""101": {"inclusion""#);
+    assert!(d.contains(&("W0121".into(), line, col)), "{d:?}");
+    let same = scenario(
+        r#"{"pose": {"trans": [1.0, 2.0, 0.0], "rot": {"yaw": {"deg": 90.0}}}, "inclusion": "Included"}"#,
+    );
+    assert!(!diagnostics(&same).iter().any(|x| x.0 == "W0121"));
+    let moved = scenario(r#"{"pose": {"trans": [3.0, 2.0, 0.0], "rot": {"yaw": {"deg": 90.0}}}}"#);
+    assert!(diagnostics(&moved).iter().any(|x| x.0 == "W0121"));
     // An unknown field is reported, not dropped silently.
     let bad = good.replace(
         r#""name": "L2", "elevation": 4.0"#,

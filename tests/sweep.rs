@@ -108,10 +108,14 @@ fn rows_equal_plain_sim_runs_and_reruns_redo_only_what_changed() {
         let sum = |k: &str| fleets.iter().map(|f| f[k].as_f64().unwrap()).sum::<f64>();
         let num = |k: &str| row[col(&header, k)].parse::<f64>().unwrap();
         assert_eq!(num("robots"), row[1].parse::<f64>().unwrap());
+        // The fleets' sizes: robots on the floor and those auto spawn kept in reserve.
         assert_eq!(
             num("robots"),
-            report["robots"].as_array().unwrap().len() as f64
+            report["robots"].as_array().unwrap().len() as f64 + num("reserve")
         );
+        // Absent from a fleet's report when none.
+        let reserve: f64 = fleets.iter().filter_map(|f| f["reserve"].as_f64()).sum();
+        assert_eq!(num("reserve"), reserve);
         assert_eq!(num("tasks_completed"), sum("tasks_completed"));
         assert_eq!(num("throughput_per_hour"), sum("throughput_per_hour"));
         assert_eq!(

@@ -1,9 +1,12 @@
 //! The IR as a traffic_editor `.building.yaml` (`mapc convert SITE BUILDING`).
 //!
-//! Written as `cartesian_meters` at map-frame positions: a site is in metres, and pixels
-//! cannot be recovered from metres. A map with an offset or a CRS (converted from wgs84)
-//! keeps them as `offset_x`/`offset_y` and `generate_crs`, so its nav graphs carry the same
-//! coordinates, CRS and offset. What the format cannot say is a W0122 warning.
+//! A `reference_image` building (a map converted to a site and back) is written in its
+//! pixels: every element at its file coordinates, with the measurements and fiducials that
+//! give each level its transform, so that reading it again gives the same map frame and
+//! the same nav graphs and worlds. Anything else is written as `cartesian_meters` at
+//! map-frame positions; a map with an offset or a CRS (converted from wgs84) keeps them as
+//! `offset_x`/`offset_y` and `generate_crs`, so its nav graphs carry the same coordinates,
+//! CRS and offset. What the format cannot say is a W0122 warning.
 
 use crate::yaml::{to_string, Yaml};
 use mapc_ir::*;
@@ -35,12 +38,34 @@ fn p_str(s: &str) -> Yaml {
     param(&ParamValue::String(s.to_string()))
 }
 
+/// The file yaw of a yaw the frontend turned by a level's rotation (`file + theta`):
+/// `yaw - theta` reads back as the same `yaw` (tests below).
+fn unrotate(yaw: f64, theta: f64) -> f64 {
+    yaw - theta
+}
+
 /// The `.building.yaml` text of `b` and the warnings about what it leaves out.
 pub fn building_yaml(b: &Building) -> (String, Vec<Diagnostic>) {
     let diags = Vec::new();
     let mut root = Vec::new();
+    let pixels = b.coordinate_system == CoordinateSystem::ReferenceImage;
     root.push(("name".to_string(), Yaml::str(&b.name)));
-    root.push(("coordinate_system".into(), Yaml::str("cartesian_meters")));
+    root.push((
+        "coordinate_system".into(),
+        Yaml::str(if pixels {
+            "reference_image"
+        } else {
+            "cartesian_meters"
+        }),
+    ));
+    if b.levels.iter().next().map(|(h, _)| h) != Some(b.reference_level) {
+        root.push((
+            "reference_level_name".into(),
+            Yaml::str(&b.levels[b.reference_level].name),
+        ));
+    }
+    // Where an element is written: its file coordinates in pixels, or the map frame.
+    let at = |raw: Vec2, pos: Vec2| if pixels { raw } else { pos };
 
     // Building parameters, with the offset and CRS of the map frame.
     let mut bp: Vec<(String, Yaml)> = b
@@ -67,6 +92,10 @@ pub fn building_yaml(b: &Building) -> (String, Vec<Diagnostic>) {
     }
     if !bp.is_empty() {
         root.push(("parameters".into(), Yaml::Map(bp)));
+    }
+
+    if let Some(c) = &b.crowd_sim {
+        root.push(("crowd_sim".into(), crate::crowd_doc::crowd_sim(c)));
     }
 
     let mut graphs = Vec::new();
@@ -106,9 +135,10 @@ pub fn building_yaml(b: &Building) -> (String, Vec<Diagnostic>) {
             .iter()
             .map(|&vh| {
                 let v = &b.vertices[vh];
+                let p = at(v.raw, v.pos);
                 flow(vec![
-                    Yaml::Float(v.pos.x),
-                    Yaml::Float(v.pos.y),
+                    Yaml::Float(p.x),
+                    Yaml::Float(p.y),
                     Yaml::Float(0.0),
                     Yaml::str(&v.name),
                     params(&v.params),
@@ -168,6 +198,38 @@ pub fn building_yaml(b: &Building) -> (String, Vec<Diagnostic>) {
             })
             .collect();
         l.push(("walls".into(), Yaml::Seq(walls)));
+        if !level.human_lanes.is_empty() {
+            let hs = level
+                .human_lanes
+                .iter()
+                .map(|&h| {
+                    let l = &b.human_lanes[h];
+                    let p = l
+                        .params
+                        .iter()
+                        .map(|p| (p.name.clone(), param(&p.value)))
+                        .collect();
+                    edge(l.start, l.end, p)
+                })
+                .collect();
+            l.push(("human_lanes".into(), Yaml::Seq(hs)));
+        }
+        if !level.measurements.is_empty() {
+            let ms = level
+                .measurements
+                .iter()
+                .map(|&h| {
+                    let m = &b.measurements[h];
+                    let p = m
+                        .params
+                        .iter()
+                        .map(|p| (p.name.clone(), param(&p.value)))
+                        .collect();
+                    edge(m.start, m.end, p)
+                })
+                .collect();
+            l.push(("measurements".into(), Yaml::Seq(ms)));
+        }
         let doors = level
             .doors
             .iter()
@@ -247,14 +309,20 @@ pub fn building_yaml(b: &Building) -> (String, Vec<Diagnostic>) {
             .iter()
             .map(|&h| {
                 let m = &b.models[h];
+                let p = at(m.raw, m.pos);
+                let yaw = if pixels {
+                    unrotate(m.yaw, level.transform.rotation)
+                } else {
+                    m.yaw
+                };
                 Yaml::Flow(Box::new(Yaml::Map(vec![
                     ("dispensable".into(), Yaml::Bool(m.dispensable)),
                     ("model_name".into(), Yaml::str(&m.model_name)),
                     ("name".into(), Yaml::str(&m.name)),
                     ("static".into(), Yaml::Bool(m.is_static)),
-                    ("x".into(), Yaml::Float(m.pos.x)),
-                    ("y".into(), Yaml::Float(m.pos.y)),
-                    ("yaw".into(), Yaml::Float(m.yaw)),
+                    ("x".into(), Yaml::Float(p.x)),
+                    ("y".into(), Yaml::Float(p.y)),
+                    ("yaw".into(), Yaml::Float(yaw)),
                     ("z".into(), Yaml::Float(m.z)),
                 ])))
             })
@@ -266,11 +334,8 @@ pub fn building_yaml(b: &Building) -> (String, Vec<Diagnostic>) {
                 .iter()
                 .map(|&h| {
                     let f = &b.fiducials[h];
-                    flow(vec![
-                        Yaml::Float(f.pos.x),
-                        Yaml::Float(f.pos.y),
-                        Yaml::str(&f.name),
-                    ])
+                    let p = at(f.raw, f.pos);
+                    flow(vec![Yaml::Float(p.x), Yaml::Float(p.y), Yaml::str(&f.name)])
                 })
                 .collect();
             l.push(("fiducials".into(), Yaml::Seq(f)));
@@ -282,10 +347,16 @@ pub fn building_yaml(b: &Building) -> (String, Vec<Diagnostic>) {
     let mut lifts = Vec::new();
     for (_, lift) in b.lifts.iter() {
         let name = |h: Handle<Level>| Yaml::str(&b.levels[h].name);
+        let p = at(lift.raw, lift.pos);
+        let yaw = if pixels {
+            unrotate(lift.yaw, b.levels[lift.reference_level].transform.rotation)
+        } else {
+            lift.yaw
+        };
         let mut l = vec![
-            ("x".to_string(), Yaml::Float(lift.pos.x)),
-            ("y".into(), Yaml::Float(lift.pos.y)),
-            ("yaw".into(), Yaml::Float(lift.yaw)),
+            ("x".to_string(), Yaml::Float(p.x)),
+            ("y".into(), Yaml::Float(p.y)),
+            ("yaw".into(), Yaml::Float(yaw)),
             ("width".into(), Yaml::Float(lift.width)),
             ("depth".into(), Yaml::Float(lift.depth)),
             ("reference_floor_name".into(), name(lift.reference_level)),
@@ -337,4 +408,24 @@ pub fn building_yaml(b: &Building) -> (String, Vec<Diagnostic>) {
         root.push(("lifts".into(), Yaml::Map(lifts)));
     }
     (to_string(&Yaml::Map(root)), diags)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::unrotate;
+
+    /// A yaw the frontend turned by a level's rotation (`raw + theta`), written back less
+    /// the rotation, reads as the same number: over magnitudes from 1e-6 to 10 rad.
+    #[test]
+    fn unrotated_yaws_read_back_exactly() {
+        for i in 0..400 {
+            for j in 0..200 {
+                let raw = 10.0 * (i as f64 * 1.3).sin() * 10f64.powi(-(i % 7));
+                let theta = 3.0 * (j as f64 * 0.77).cos() * 10f64.powi(-(j % 7));
+                let yaw = raw + theta;
+                let r = unrotate(yaw, theta);
+                assert_eq!(r + theta, yaw, "raw {raw} theta {theta}");
+            }
+        }
+    }
 }

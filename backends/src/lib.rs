@@ -4,6 +4,7 @@
 
 mod building_yaml;
 pub mod codes;
+mod crowd_doc;
 mod fmt;
 pub mod geometry;
 mod gltf;

@@ -1443,7 +1443,7 @@ impl Lower<'_> {
 
     /// crowd_sim is read leniently: the generator ignores it and the editor resets it to
     /// defaults when it does not parse, so problems here are warnings.
-    fn crowd_sim(&mut self, node: &Node) -> Option<CrowdSim> {
+    pub(crate) fn crowd_sim(&mut self, node: &Node) -> Option<CrowdSim> {
         node.as_map()?;
         let mut inner = Vec::new();
         let cs = {

@@ -86,6 +86,13 @@ impl LevelTransform {
             .scale(self.scale)
             .plus(self.translation)
     }
+
+    /// The file coordinate (after the y flip) that `apply` takes to `p`, up to rounding.
+    pub fn invert(&self, p: Vec2) -> Vec2 {
+        p.minus(self.translation)
+            .scale(1.0 / self.scale)
+            .rotate(-self.rotation)
+    }
 }
 
 #[derive(Debug, Clone)]

@@ -3,7 +3,11 @@
 //! Topic and type names follow ROS 2's DDS mapping (`rt/door_states`,
 //! `rmf_door_msgs::msg::dds_::DoorState_`); payloads are the CDR of `topics::encode`.
 //!
-//! The bridge never blocks the run: writes are keep-last, reads take what has arrived.
+//! The bridge never blocks the run once it runs: writes are keep-last, reads take what has
+//! arrived. It waits twice, bounded: before the first step, for the peers already on the
+//! bus to discover mapc's endpoints (`settle`), and at the end, for reliable readers to
+//! acknowledge the last messages (`finish`); without these, a peer that is listening from
+//! the start would still miss what mapc publishes in its first and last instants.
 
 use crate::building_map::building_map;
 use crate::cdr;
@@ -16,6 +20,7 @@ use rustdds::{
     DomainParticipant, QosPolicies, QosPolicyBuilder, RepresentationIdentifier, TopicKind,
 };
 use std::collections::BTreeMap;
+use std::time::{Duration, Instant};
 
 /// A serialised message: the CDR body, after the 4-byte encapsulation header.
 #[derive(Debug, Clone)]
@@ -78,8 +83,8 @@ impl rustdds::no_key::DefaultDecoder<Raw> for RawAdapter {
 }
 
 /// Topics mapc publishes when it plays only the Gazebo plugins (what rmf_demos' simulation
-/// side publishes).
-pub const PLUGIN_OUTPUTS: [Topic; 7] = [
+/// side publishes), plus the crowd's people as a human detector would publish them.
+pub const PLUGIN_OUTPUTS: [Topic; 8] = [
     Topic::RobotState,
     Topic::DoorStates,
     Topic::LiftStates,
@@ -87,6 +92,7 @@ pub const PLUGIN_OUTPUTS: [Topic; 7] = [
     Topic::DispenserStates,
     Topic::IngestorResults,
     Topic::IngestorStates,
+    Topic::RmfObstacles,
 ];
 
 /// Topics the plugins answer: the slotcars', door and lift plugins', workcells' requests,
@@ -123,13 +129,21 @@ fn dds_qos(q: Qos) -> QosPolicies {
 /// History kept by every writer for repairs.
 const WRITER_DEPTH: i32 = 1000;
 
+/// How long `settle` waits at most, and how long discovery must stay unchanged.
+const SETTLE_MAX: Duration = Duration::from_secs(3);
+const SETTLE_MIN: Duration = Duration::from_millis(500);
+const SETTLE_QUIET: Duration = Duration::from_millis(500);
+/// How long `finish` waits at most for reliable readers' acknowledgments.
+const FINISH_MAX: Duration = Duration::from_secs(2);
+
 pub struct Bridge {
-    // Writers and readers hold the participant alive; it is kept for clarity.
-    _participant: DomainParticipant,
+    // Fields drop in order: endpoints first, then the participant (dropping the participant
+    // first stops RustDDS's event loop, and the endpoints can no longer be disposed of).
     writers: BTreeMap<Topic, DataWriter<Raw, RawAdapter>>,
     readers: Vec<(Topic, DataReader<Raw, RawAdapter>)>,
     clock: DataWriter<Raw, RawAdapter>,
-    _map: DataWriter<Raw, RawAdapter>,
+    map: DataWriter<Raw, RawAdapter>,
+    _participant: DomainParticipant,
     /// Requests that could not be decoded (wrong type on a topic).
     pub rejected: u64,
 }
@@ -144,6 +158,7 @@ impl Bridge {
         building: &mapc_ir::Building,
     ) -> Result<Bridge, String> {
         let err = |e: &dyn std::fmt::Display| format!("DDS: {e}");
+        crate::dds_log::init();
         let participant = DomainParticipant::new(domain_id).map_err(|e| err(&e))?;
         let default = dds_qos(topics::DEFAULT_QOS);
         let publisher = participant
@@ -185,15 +200,7 @@ impl Bridge {
         for t in outputs {
             writers.insert(t, writer(t.name(), topics::ros_type(t), topics::qos(t))?);
         }
-        let clock = writer(
-            "/clock",
-            Clock::NAME,
-            Qos {
-                reliable: true,
-                transient_local: false,
-                depth: 1,
-            },
-        )?;
+        let clock = writer("/clock", Clock::NAME, crate::mcap::CLOCK_QOS)?;
         let map = writer(
             crate::mcap::MAP_TOPIC,
             BuildingMap::NAME,
@@ -204,7 +211,12 @@ impl Bridge {
         let mut readers = Vec::new();
         if plugins_only {
             for t in PLUGIN_INPUTS {
-                let qos = dds_qos(topics::qos(t));
+                // Volatile readers: they match writers of any durability (a transient-local
+                // reader would refuse a volatile writer).
+                let qos = dds_qos(Qos {
+                    transient_local: false,
+                    ..topics::qos(t)
+                });
                 let topic = participant
                     .create_topic(
                         format!("rt{}", t.name()),
@@ -220,13 +232,66 @@ impl Bridge {
             }
         }
         Ok(Bridge {
-            _participant: participant,
             writers,
             readers,
             clock,
-            _map: map,
+            map,
+            _participant: participant,
             rejected: 0,
         })
+    }
+
+    fn all_writers(&self) -> impl Iterator<Item = &DataWriter<Raw, RawAdapter>> {
+        self.writers.values().chain([&self.clock, &self.map])
+    }
+
+    /// Before the first step: lets the peers already on the bus discover mapc's endpoints,
+    /// so that they hear its first messages (writers are volatile: a sample published
+    /// before a reader matched is not for that reader). Waits until discovery has been
+    /// quiet (no participant status event from RustDDS: participant, reader or writer
+    /// detected, matched, lost) for `SETTLE_QUIET`, at least `SETTLE_MIN`, then until every
+    /// matched reliable reader has acknowledged its writer (a reader does once it has
+    /// matched the writer on its side), `SETTLE_MAX` in all. Returns the remote readers
+    /// matched meanwhile.
+    pub fn settle(&self) -> usize {
+        use rustdds::{DomainParticipantStatusEvent as E, StatusEvented};
+        let start = Instant::now();
+        let status = self._participant.status_listener();
+        let mut last_event = start;
+        let mut matched = 0;
+        loop {
+            std::thread::sleep(Duration::from_millis(20));
+            let now = Instant::now();
+            while let Some(e) = status.try_recv_status() {
+                last_event = now;
+                if matches!(e, E::RemoteReaderMatched { .. }) {
+                    matched += 1;
+                }
+            }
+            let waited = now - start;
+            if waited >= SETTLE_MAX || (waited >= SETTLE_MIN && now - last_event >= SETTLE_QUIET) {
+                break;
+            }
+        }
+        self.wait_acknowledged(start + SETTLE_MAX);
+        matched
+    }
+
+    /// Waits until every reliable reader has acknowledged everything written, or `until`.
+    fn wait_acknowledged(&self, until: Instant) {
+        for w in self.all_writers() {
+            let left = until.saturating_duration_since(Instant::now());
+            if left.is_zero() {
+                return;
+            }
+            let _ = w.wait_for_acknowledgments(left);
+        }
+    }
+
+    /// At the end of the run: gives reliable readers up to `FINISH_MAX` to acknowledge the
+    /// last messages (a repair needs the writer alive), then leaves the domain.
+    pub fn finish(self) {
+        self.wait_acknowledged(Instant::now() + FINISH_MAX);
     }
 
     /// Publishes a message of the run, if mapc publishes its topic.
@@ -242,13 +307,7 @@ impl Bridge {
 
     /// Publishes `/clock`.
     pub fn clock(&mut self, t: f64) {
-        let sec = t.floor();
-        let clock = Clock {
-            clock: msgs::builtin_interfaces::Time {
-                sec: sec as i32,
-                nanosec: (((t - sec) * 1e9).round() as u32).min(999_999_999),
-            },
-        };
+        let clock = crate::mcap::clock_msg(t);
         let _ = self.clock.write(Raw(cdr::body(&clock)), None);
     }
 

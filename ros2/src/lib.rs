@@ -9,6 +9,8 @@
 pub mod bridge;
 pub mod building_map;
 pub mod cdr;
+#[cfg(feature = "dds")]
+mod dds_log;
 pub mod mcap;
 pub mod msgs;
 pub mod topics;

@@ -4,7 +4,7 @@
 
 use crate::building_map::building_map;
 use crate::cdr;
-use crate::msgs::{self, rmf_building_map_msgs::BuildingMap, RosMsg};
+use crate::msgs::{self, rmf_building_map_msgs::BuildingMap, rosgraph_msgs::Clock, RosMsg};
 use crate::topics::{self, Qos};
 use mapc_sim::msgs::Published;
 use std::collections::BTreeMap;
@@ -19,11 +19,36 @@ pub const MAP_QOS: Qos = Qos {
     depth: 1,
 };
 
+/// `/clock`: reliable, volatile, depth 1, as Gazebo's clock bridge publishes it.
+pub const CLOCK_QOS: Qos = Qos {
+    reliable: true,
+    transient_local: false,
+    depth: 1,
+};
+
+/// `/clock` in a recording: every 20 ms of simulated time (50 Hz; every second step at the
+/// default 10 ms), so that nodes with `use_sim_time` follow a `ros2 bag play` without
+/// `--clock`, and the file stays deterministic (a wall-clock rate would not be).
+pub const CLOCK_PERIOD: f64 = 0.02;
+
+/// The `/clock` message of simulated time `t` (its stamp is the log time MCAP gives it).
+pub fn clock_msg(t: f64) -> Clock {
+    let n = ns(t);
+    Clock {
+        clock: msgs::builtin_interfaces::Time {
+            sec: (n / 1_000_000_000).min(i32::MAX as u64) as i32,
+            nanosec: (n % 1_000_000_000) as u32,
+        },
+    }
+}
+
 pub struct Recorder<W: Write + Seek> {
     writer: mcap::Writer<W>,
     /// Channel id per topic name, created on first use.
     channels: BTreeMap<String, u16>,
     sequence: u32,
+    /// The `CLOCK_PERIOD` tick of the last `/clock` written.
+    clock_tick: Option<u64>,
 }
 
 fn ns(t: f64) -> u64 {
@@ -57,6 +82,7 @@ impl<W: Write + Seek> Recorder<W> {
             writer,
             channels: BTreeMap::new(),
             sequence: 0,
+            clock_tick: None,
         })
     }
 
@@ -103,6 +129,18 @@ impl<W: Write + Seek> Recorder<W> {
         self.map(&building_map(b))
     }
 
+    /// `/clock` at step time `t`, if `t` starts a new `CLOCK_PERIOD` (the first step does).
+    pub fn clock(&mut self, t: f64) -> Result<(), String> {
+        // The tolerance keeps 0.06 (= 0.02 * 2.9999999) in tick 3.
+        let tick = (t / CLOCK_PERIOD + 1e-6).floor().max(0.0) as u64;
+        if self.clock_tick.is_some_and(|k| k >= tick) {
+            return Ok(());
+        }
+        self.clock_tick = Some(tick);
+        let c = self.channel("/clock", Clock::NAME, CLOCK_QOS)?;
+        self.write(c, t, &cdr::encode(&clock_msg(t)))
+    }
+
     /// One message of the run.
     pub fn record(&mut self, p: &Published) -> Result<(), String> {
         let Some(bytes) = topics::encode(p.topic, &p.msg) else {
@@ -120,5 +158,40 @@ impl<W: Write + Seek> Recorder<W> {
     pub fn finish(mut self) -> Result<W, String> {
         self.writer.finish().map_err(|e| e.to_string())?;
         Ok(self.writer.into_inner())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Messages written for steps `0, dt, 2 dt, ...` up to `end` (exclusive).
+    fn clocks(dt: f64, end: f64) -> u32 {
+        let mut r = Recorder::new(std::io::Cursor::new(Vec::new())).unwrap();
+        let steps = (end / dt).round() as u32;
+        for i in 0..steps {
+            r.clock(f64::from(i) * dt).unwrap();
+        }
+        r.sequence
+    }
+
+    #[test]
+    fn clock_every_20_ms_of_sim_time() {
+        // 10 ms steps: every other one; 50 ms steps: every one; 1 ms steps: every 20th.
+        assert_eq!(clocks(0.01, 10.0), 500);
+        assert_eq!(clocks(0.05, 10.0), 200);
+        assert_eq!(clocks(0.001, 1.0), 50);
+    }
+
+    #[test]
+    fn clock_stamp_is_the_log_time() {
+        for t in [0.0, 0.02, 1.5, 299.98, 1e6 + 0.123] {
+            let c = clock_msg(t).clock;
+            assert_eq!(
+                u64::from(c.sec as u32) * 1_000_000_000 + u64::from(c.nanosec),
+                ns(t)
+            );
+        }
+        assert_eq!(clock_msg(2.5).clock.nanosec, 500_000_000);
     }
 }

@@ -3,8 +3,9 @@
 
 use crate::cdr;
 use crate::msgs::{
-    builtin_interfaces, rmf_dispenser_msgs as disp, rmf_door_msgs as door, rmf_fleet_msgs as fleet,
-    rmf_ingestor_msgs as ing, rmf_lift_msgs as lift, std_msgs, RosMsg,
+    builtin_interfaces, geometry_msgs as geo, rmf_dispenser_msgs as disp, rmf_door_msgs as door,
+    rmf_fleet_msgs as fleet, rmf_ingestor_msgs as ing, rmf_lift_msgs as lift,
+    rmf_obstacle_msgs as obst, std_msgs, RosMsg,
 };
 use mapc_sim::msgs::{self as sim, Msg, Topic};
 
@@ -43,9 +44,7 @@ pub fn ros_type(topic: Topic) -> &'static str {
         Topic::IngestorResults => ing::IngestorResult::NAME,
         Topic::IngestorStates => ing::IngestorState::NAME,
         Topic::TaskEvents => std_msgs::String::NAME,
-        // People (issue 19). Not encoded yet: `encode` returns `None`, so bags and the
-        // DDS bridge leave the topic out.
-        Topic::RmfObstacles => "rmf_obstacle_msgs/msg/Obstacles",
+        Topic::RmfObstacles => obst::Obstacles::NAME,
     }
 }
 
@@ -57,8 +56,10 @@ pub fn qos(topic: Topic) -> Qos {
         depth,
     };
     match topic {
-        Topic::DoorStates | Topic::LiftRequests | Topic::LiftStates => reliable(100),
-        Topic::AdapterLiftRequests => Qos {
+        Topic::DoorStates | Topic::LiftStates => reliable(100),
+        // The lift supervisor publishes /lift_requests transient local (§0.1), like the
+        // adapters' requests.
+        Topic::AdapterLiftRequests | Topic::LiftRequests => Qos {
             reliable: true,
             transient_local: true,
             depth: 100,
@@ -147,6 +148,63 @@ fn lift_request(m: &sim::LiftRequest) -> lift::LiftRequest {
         request_type: m.request_type,
         destination_floor: m.destination_floor.clone(),
         door_state: m.door_state,
+    }
+}
+
+fn header(h: &sim::Header) -> std_msgs::Header {
+    std_msgs::Header {
+        stamp: time(h.stamp),
+        frame_id: h.frame_id.clone(),
+    }
+}
+
+fn obstacles(m: &sim::Obstacles) -> obst::Obstacles {
+    let v = |v: &sim::Vector3| (v.x, v.y, v.z);
+    obst::Obstacles {
+        header: header(&m.header),
+        obstacles: m
+            .obstacles
+            .iter()
+            .map(|o| {
+                let (px, py, pz) = v(&o.bbox.center.position);
+                let (sx, sy, sz) = v(&o.bbox.size);
+                let q = &o.bbox.center.orientation;
+                obst::Obstacle {
+                    header: header(&o.header),
+                    id: o.id,
+                    source: o.source.clone(),
+                    level_name: o.level_name.clone(),
+                    classification: o.classification.clone(),
+                    bbox: obst::BoundingBox3D {
+                        center: geo::Pose {
+                            position: geo::Point {
+                                x: px,
+                                y: py,
+                                z: pz,
+                            },
+                            orientation: geo::Quaternion {
+                                x: q.x,
+                                y: q.y,
+                                z: q.z,
+                                w: q.w,
+                            },
+                        },
+                        size: geo::Vector3 {
+                            x: sx,
+                            y: sy,
+                            z: sz,
+                        },
+                    },
+                    data_resolution: o.data_resolution,
+                    data: o.data.clone(),
+                    lifetime: builtin_interfaces::Duration {
+                        sec: o.lifetime.sec,
+                        nanosec: o.lifetime.nanosec,
+                    },
+                    action: o.action,
+                }
+            })
+            .collect(),
     }
 }
 
@@ -288,6 +346,7 @@ pub fn encode(topic: Topic, msg: &Msg) -> Option<Vec<u8>> {
             request_guid_queue: m.request_guid_queue.clone(),
             seconds_remaining: m.seconds_remaining as f32,
         }),
+        (Topic::RmfObstacles, Msg::Obstacles(m)) => cdr::encode(&obstacles(m)),
         (Topic::TaskEvents, Msg::TaskEvent(e)) => cdr::encode(&std_msgs::String {
             data: serde_json::to_string(e).ok()?,
         }),

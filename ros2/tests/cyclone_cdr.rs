@@ -37,11 +37,13 @@ impl Gen {
         match ty {
             "bool" => json!(n % 2 == 1),
             "uint8" => json!(n % 256),
+            "int8" => json!((n % 256) as i64 - 128),
             "int32" => json!(n as i64 - 40_000),
             "uint32" => json!(n * 7),
             "uint64" => json!(u64::from(n) << 33 | 5),
             // Exactly representable in f32, so both sides start from the same number.
             "float32" => json!((n as f64 - 30_000.0) / 64.0),
+            "float64" => json!((n as f64 - 30_000.0) / 1024.0 + f64::from(n) * 1e-9),
             "string" => {
                 let words = [
                     "",
@@ -118,7 +120,16 @@ fn cases() -> Vec<Case> {
     let g = &mut g;
     vec![
         case::<builtin_interfaces::Time>(g),
+        case::<builtin_interfaces::Duration>(g),
         case::<std_msgs::String>(g),
+        case::<std_msgs::Header>(g),
+        case::<geometry_msgs::Point>(g),
+        case::<geometry_msgs::Vector3>(g),
+        case::<geometry_msgs::Quaternion>(g),
+        case::<geometry_msgs::Pose>(g),
+        case::<rmf_obstacle_msgs::BoundingBox3D>(g),
+        case::<rmf_obstacle_msgs::Obstacle>(g),
+        case::<rmf_obstacle_msgs::Obstacles>(g),
         case::<rosgraph_msgs::Clock>(g),
         case::<rmf_fleet_msgs::Location>(g),
         case::<rmf_fleet_msgs::RobotMode>(g),

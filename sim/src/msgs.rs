@@ -345,10 +345,12 @@ pub enum Msg {
     Obstacles(Obstacles),
 }
 
-/// rmf_obstacle_msgs/Obstacles: what rmf_human_detector publishes on `/rmf_obstacles` and
-/// RMF's lane blocker reads; the crowd publishes one `Obstacle` per person.
+/// rmf_obstacle_msgs/Obstacles (rmf_internal_msgs 4.1.0): what rmf_human_detector
+/// publishes on `/rmf_obstacles` and RMF's lane blocker reads; the crowd publishes one
+/// `Obstacle` per person.
 #[derive(Debug, Clone, PartialEq, Default, Serialize)]
 pub struct Obstacles {
+    pub header: Header,
     pub obstacles: Vec<Obstacle>,
 }
 
@@ -362,11 +364,16 @@ pub struct Obstacle {
     pub classification: String,
     pub bbox: BoundingBox3D,
     pub data_resolution: f64,
-    pub data: Vec<u8>,
+    /// An octree's serialisation (`int8[]`); empty: a person is its bounding box.
+    pub data: Vec<i8>,
+    /// A `builtin_interfaces/Duration` (same fields as a time).
     pub lifetime: Time,
-    /// ACTION_ADD = 0.
-    pub action: u8,
+    /// ACTION_ADD = 1 (add or modify), ACTION_DELETE = 2, ACTION_DELETEALL = 3.
+    pub action: i32,
 }
+
+/// rmf_obstacle_msgs/Obstacle's `action` for an obstacle added or updated.
+pub const OBSTACLE_ACTION_ADD: i32 = 1;
 
 /// std_msgs/Header.
 #[derive(Debug, Clone, PartialEq, Default, Serialize)]
@@ -375,7 +382,7 @@ pub struct Header {
     pub frame_id: String,
 }
 
-/// vision_msgs/BoundingBox3D: centre pose and size (m).
+/// rmf_obstacle_msgs/BoundingBox3D: centre pose and size (m).
 #[derive(Debug, Clone, PartialEq, Default, Serialize)]
 pub struct BoundingBox3D {
     pub center: Pose,

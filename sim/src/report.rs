@@ -74,10 +74,18 @@ pub struct TaskReport {
     pub waits: Option<TaskWaits>,
 }
 
+fn is_zero(n: &usize) -> bool {
+    *n == 0
+}
+
 #[derive(Debug, Clone, Default, PartialEq, Serialize)]
 pub struct FleetReport {
     pub name: String,
     pub robots: usize,
+    /// Robots of the fleet that auto spawn found no home for (a place off every task
+    /// route): they stayed in the depot and are not in `robots`.
+    #[serde(skip_serializing_if = "is_zero")]
+    pub reserve: usize,
     pub tasks_completed: usize,
     pub tasks_failed: usize,
     pub tasks_unfinished: usize,
@@ -242,6 +250,7 @@ struct Approach {
 
 pub struct ReportBuilder {
     fleets: Vec<String>,
+    reserve: BTreeMap<String, usize>,
     robots: Vec<RobotAcc>,
     robot_index: BTreeMap<String, usize>,
     tasks: Vec<TaskReport>,
@@ -283,6 +292,7 @@ impl ReportBuilder {
     ) -> Self {
         let mut b = ReportBuilder {
             fleets: scenario.fleets.iter().map(|f| f.name.clone()).collect(),
+            reserve: placement.reserve.iter().cloned().collect(),
             robots: Vec::new(),
             robot_index: BTreeMap::new(),
             tasks: Vec::new(),
@@ -672,6 +682,7 @@ impl ReportBuilder {
                 FleetReport {
                     name: name.clone(),
                     robots: mine.len(),
+                    reserve: self.reserve.get(name).copied().unwrap_or(0),
                     tasks_completed: completed,
                     tasks_failed: count("failed"),
                     tasks_unfinished: count("unfinished"),
@@ -791,9 +802,14 @@ impl Report {
             count("unfinished")
         );
         for f in &self.fleets {
+            let reserve = if f.reserve > 0 {
+                format!(" (+{} in reserve: no home on the floor)", f.reserve)
+            } else {
+                String::new()
+            };
             let _ = writeln!(
                 s,
-                "  fleet {}: {} robot(s), {} completed, {} failed, {:.2} tasks/h, utilisation {:.1} %, {:.1} m driven",
+                "  fleet {}: {} robot(s){reserve}, {} completed, {} failed, {:.2} tasks/h, utilisation {:.1} %, {:.1} m driven",
                 f.name,
                 f.robots,
                 f.tasks_completed,
@@ -978,6 +994,7 @@ mod tests {
                 spawn("b0", "b", 0.5),
             ],
             workcells: Vec::new(),
+            reserve: Vec::new(),
         };
         ReportBuilder::new(&building, &scenario, &placement)
     }
@@ -1398,6 +1415,7 @@ mod sweep_tests {
                 })
                 .collect(),
             workcells: Vec::new(),
+            reserve: Vec::new(),
         };
         let mut b = ReportBuilder::new(&building, &scenario.unwrap(), &placement);
         let mut rng = fastrand::Rng::with_seed(11);

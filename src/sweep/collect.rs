@@ -41,6 +41,7 @@ pub(crate) struct AxisValue {
 /// The headline numbers of a report, in column order.
 pub(crate) const COLUMNS: &[&str] = &[
     "robots",
+    "reserve",
     "tasks_completed",
     "tasks_failed",
     "tasks_unfinished",
@@ -102,8 +103,11 @@ fn headline(report: &Value) -> Vec<Value> {
     };
     let waits = &report["waits"];
     let b = &report["bottleneck"];
+    // The fleets' sizes as asked; `reserve` of them stayed in the depot (no home).
+    let reserve = sum("reserve") as u64;
     vec![
-        Value::from(list("robots").len()),
+        Value::from(list("robots").len() as u64 + reserve),
+        Value::from(reserve),
         Value::from(sum("tasks_completed") as u64),
         Value::from(sum("tasks_failed") as u64),
         Value::from(sum("tasks_unfinished") as u64),

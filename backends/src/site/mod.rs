@@ -14,6 +14,14 @@ use std::collections::{BTreeMap, HashMap};
 /// Written `format_version`.
 pub const FORMAT_VERSION: &str = "0.1";
 
+/// rmf_site_format's defaults for a cabin with no `wall_thickness`, `gap` or door
+/// `thickness`: its wall, the gap to the shaft and a door's thickness, metres.
+const CABIN_WALL: f64 = 0.1;
+const CABIN_GAP: f64 = 0.01;
+const CABIN_DOOR: f64 = 0.05;
+/// How far the reference anchors' line is in front of the cabin's front face.
+const CABIN_FRONT: f64 = CABIN_WALL + CABIN_GAP + CABIN_DOOR / 2.0;
+
 /// Graph colours, as rmf_site's `DEFAULT_NAV_GRAPH_COLORS`.
 const COLORS: [[f64; 3]; 8] = [
     [1.0, 0.5, 0.3],
@@ -66,6 +74,14 @@ fn warn(diags: &mut Vec<Diagnostic>, span: Span, msg: String) {
     );
 }
 
+/// A wall's or floor's parameters besides its texture (alpha, texture scale, heights...):
+/// rmf_site has a texture only, the level meshes need the rest.
+fn surface_params(ext: &mut Map<String, Value>, id: u32, p: &Params) {
+    if p.iter().any(|p| p.name != "texture_name") {
+        ext.insert(key(id), params_json(p));
+    }
+}
+
 /// The site document and the warnings about what it cannot hold.
 pub fn site_json(b: &Building) -> (String, Vec<Diagnostic>) {
     let mut diags = Vec::new();
@@ -82,14 +98,33 @@ pub fn site_json(b: &Building) -> (String, Vec<Diagnostic>) {
         ext.insert("crs_name".into(), json!(c));
     }
     ext.insert("offset".into(), pt(off));
+    ext.insert(
+        "reference_level".into(),
+        json!(b.levels[b.reference_level].name),
+    );
+    // A reference_image map keeps its pixels: each level's drawing carries the level's
+    // scale, rotation and translation (rmf_site's own reading of a reference image), and
+    // the file coordinates of what was drawn on it go to the extension, so that the
+    // `.building.yaml` written back is the original one, not a metre-for-pixel copy.
+    let pixels = b.coordinate_system == CoordinateSystem::ReferenceImage;
+    let flip = |p: Vec2| Vec2::new(p.x, -p.y);
+    let mut ext_raw = Map::new();
+    let mut ext_measurements = Map::new();
+    let mut ext_surfaces = Map::new();
+    let mut ext_holes = Map::new();
+    let mut ext_human_lanes = Map::new();
     if !b.params.is_empty() {
         ext.insert("parameters".into(), params_json(&b.params));
     }
-    if b.crowd_sim.is_some() {
+    if let Some(c) = &b.crowd_sim {
         warn(
             &mut diags,
-            b.spans.root,
-            "crowd_sim has no place in a site; it is left out".into(),
+            c.span,
+            "rmf_site has no crowd simulation: only mapc's extension data keeps crowd_sim".into(),
+        );
+        ext.insert(
+            "crowd_sim".into(),
+            crate::crowd_doc::to_json(&crate::crowd_doc::crowd_sim(c)),
         );
     }
     for g in &b.graphs {
@@ -198,6 +233,14 @@ pub fn site_json(b: &Building) -> (String, Vec<Diagnostic>) {
                 }
             };
             anchor_of.insert(vh, id);
+            if pixels {
+                let e = ext_raw
+                    .entry(key(lid))
+                    .or_insert_with(|| Value::Object(Map::new()));
+                if let Value::Object(m) = e {
+                    m.insert(key(id), pt(v.raw));
+                }
+            }
             let mut p = params_json(&v.params);
             if !v.name.is_empty() {
                 if let Value::Object(m) = &mut p {
@@ -217,7 +260,54 @@ pub fn site_json(b: &Building) -> (String, Vec<Diagnostic>) {
             if !t.is_null() {
                 o["texture"] = t;
             }
-            walls.insert(key(ids.next()), o);
+            let id = ids.next();
+            surface_params(&mut ext_surfaces, id, &w.params);
+            walls.insert(key(id), o);
+        }
+        // Measurements: rmf_site keeps them on drawing anchors in f32; the extension keeps
+        // the vertices they join and their exact parameters.
+        let ms: Vec<Value> = level
+            .measurements
+            .iter()
+            .map(|&mh| {
+                let m = &b.measurements[mh];
+                json!([
+                    anchor_of[&m.start],
+                    anchor_of[&m.end],
+                    params_json(&m.params)
+                ])
+            })
+            .collect();
+        if !ms.is_empty() {
+            ext_measurements.insert(key(lid), Value::Array(ms));
+        }
+        // Holes and human lanes: rmf_site has neither; the extension keeps them.
+        let holes: Vec<Value> = level
+            .holes
+            .iter()
+            .map(|&h| {
+                let p = &b.holes[h];
+                let a: Vec<u32> = p.vertices.iter().map(|v| anchor_of[v]).collect();
+                json!([a, params_json(&p.params)])
+            })
+            .collect();
+        if !holes.is_empty() {
+            ext_holes.insert(key(lid), Value::Array(holes));
+        }
+        let humans: Vec<Value> = level
+            .human_lanes
+            .iter()
+            .map(|&h| {
+                let l = &b.human_lanes[h];
+                json!([
+                    anchor_of[&l.start],
+                    anchor_of[&l.end],
+                    params_json(&l.params)
+                ])
+            })
+            .collect();
+        if !humans.is_empty() {
+            ext_human_lanes.insert(key(lid), Value::Array(humans));
         }
         let mut floors = Map::new();
         let mut floor_rank = Vec::new();
@@ -230,6 +320,7 @@ pub fn site_json(b: &Building) -> (String, Vec<Diagnostic>) {
                 o["texture"] = t;
             }
             let id = ids.next();
+            surface_params(&mut ext_surfaces, id, &f.params);
             floor_rank.push(id);
             floors.insert(key(id), o);
         }
@@ -238,7 +329,7 @@ pub fn site_json(b: &Building) -> (String, Vec<Diagnostic>) {
                 &mut diags,
                 b.levels.span(lh),
                 format!(
-                    "level `{}` has {} floor hole(s); rmf_site has no holes, they are left out",
+                    "level `{}` has {} floor hole(s); rmf_site has no holes: only mapc's extension data keeps them",
                     level.name,
                     level.holes.len()
                 ),
@@ -249,7 +340,7 @@ pub fn site_json(b: &Building) -> (String, Vec<Diagnostic>) {
                 &mut diags,
                 b.levels.span(lh),
                 format!(
-                    "level `{}` has {} human lane(s); rmf_site has none, they are left out",
+                    "level `{}` has {} human lane(s); rmf_site has none: only mapc's extension data keeps them",
                     level.name,
                     level.human_lanes.len()
                 ),
@@ -327,7 +418,7 @@ pub fn site_json(b: &Building) -> (String, Vec<Diagnostic>) {
 
         let mut drawings = Map::new();
         let mut drawing_rank = Vec::new();
-        if level.drawing.is_some() || !level.fiducials.is_empty() {
+        if pixels || level.drawing.is_some() || !level.fiducials.is_empty() {
             let id = ids.next();
             drawing_rank.push(id);
             let file = level.drawing.clone().unwrap_or_default();
@@ -335,14 +426,22 @@ pub fn site_json(b: &Building) -> (String, Vec<Diagnostic>) {
                 .file_stem()
                 .map(|s| s.to_string_lossy().into_owned())
                 .unwrap_or_else(|| format!("{}_fiducials", level.name));
-            // The drawing sits at the map frame with 1 pixel per metre, so its anchors
-            // are map positions (the picture itself is not rescaled).
+            // A reference image sits where the level's transform puts it, its anchors in
+            // (y up) pixels; any other drawing sits at the map frame with 1 pixel per
+            // metre, so its anchors are map positions.
+            let t = level.transform;
+            let (dpose, dyaw, ppm) = if pixels {
+                (local(t.translation), t.rotation, 1.0 / t.scale)
+            } else {
+                (Vec2::default(), 0.0, 1.0)
+            };
             let mut danchors = Map::new();
             let mut dfids = Map::new();
             for &fh in &level.fiducials {
                 let f = &b.fiducials[fh];
                 let a = ids.next();
-                danchors.insert(key(a), json!({"Translate2D": pt(local(f.pos))}));
+                let at = if pixels { flip(f.raw) } else { local(f.pos) };
+                danchors.insert(key(a), json!({"Translate2D": pt(at)}));
                 let group = if f.name.is_empty() {
                     Value::Null
                 } else {
@@ -358,8 +457,8 @@ pub fn site_json(b: &Building) -> (String, Vec<Diagnostic>) {
                     "properties": {
                         "name": dname,
                         "source": {"Local": file},
-                        "pose": {"trans": [0.0, 0.0, 0.0], "rot": {"yaw": {"rad": 0.0}}},
-                        "pixels_per_meter": 1.0,
+                        "pose": {"trans": [dpose.x, dpose.y, 0.0], "rot": {"yaw": {"rad": dyaw}}},
+                        "pixels_per_meter": ppm,
                     },
                     "anchors": danchors,
                     "fiducials": dfids,
@@ -395,13 +494,19 @@ pub fn site_json(b: &Building) -> (String, Vec<Diagnostic>) {
         let (d, w) = (l.width / 2.0, l.depth / 2.0);
         let left = ids.next();
         let right = ids.next();
+        // rmf_site's editor puts the cabin centre behind the line between the reference
+        // anchors by half the cabin plus its wall, gap and half the front door
+        // (`RectangularLiftCabin::aabb`); the anchors go there so that it shows the cabin
+        // where the map has it (rmf_site_format's import puts them on the cabin corners,
+        // which moves every imported cabin by that much).
+        let front = d + CABIN_FRONT;
         site_anchors.insert(
             key(left),
-            json!({"Translate2D": pt(local(l.pos.plus(Vec2::new(d, w).rotate(l.yaw))))}),
+            json!({"Translate2D": pt(local(l.pos.plus(Vec2::new(front, w).rotate(l.yaw))))}),
         );
         site_anchors.insert(
             key(right),
-            json!({"Translate2D": pt(local(l.pos.plus(Vec2::new(d, -w).rotate(l.yaw))))}),
+            json!({"Translate2D": pt(local(l.pos.plus(Vec2::new(front, -w).rotate(l.yaw))))}),
         );
         let mut cabin = json!({"width": l.depth, "depth": l.width});
         let mut cabin_doors = Map::new();
@@ -431,12 +536,15 @@ pub fn site_json(b: &Building) -> (String, Vec<Diagnostic>) {
             } else {
                 "right_door"
             };
+            // The editor puts a door's centre past the cabin wall and half the door
+            // (`level_door_anchors`); the gap is what is left to the map's position.
             let (shifted, gap) = match face {
                 "front_door" => (dy, dx - d),
                 "back_door" => (-dy, -dx - d),
                 "left_door" => (-dx, dy - w),
                 _ => (dx, -dy - w),
             };
+            let gap = gap - CABIN_WALL - CABIN_DOOR / 2.0;
             if cabin.get(face).is_some() {
                 warn(
                     &mut diags,
@@ -489,7 +597,7 @@ pub fn site_json(b: &Building) -> (String, Vec<Diagnostic>) {
             );
             ext_doors.insert(
                 key(did),
-                json!({"name": door.name, "door_type": door.door_type, "motion_axis_orientation": door.motion_axis_orientation}),
+                json!({"name": door.name, "door_type": door.door_type, "motion_axis_orientation": door.motion_axis_orientation, "x": door.pos.x, "y": door.pos.y}),
             );
         }
         let mut props = json!({
@@ -513,9 +621,13 @@ pub fn site_json(b: &Building) -> (String, Vec<Diagnostic>) {
                 "lowest_floor": name_of(l.lowest_level),
                 "highest_floor": name_of(l.highest_level),
                 "plugins": l.plugins,
+                "reference_floor": b.levels[l.reference_level].name,
                 "doors": ext_doors,
             }),
         );
+        if pixels {
+            ext_lifts[&key(lift_id)]["raw"] = pt(l.raw);
+        }
     }
 
     // Lanes, site-wide; a dock is the dock_name of the vertex a lane drives into.
@@ -635,6 +747,7 @@ pub fn site_json(b: &Building) -> (String, Vec<Diagnostic>) {
     let mut descriptions = Map::new();
     let mut desc_ids: BTreeMap<(String, bool), u32> = BTreeMap::new();
     let mut instances = Map::new();
+    let mut ext_models = Map::new();
     for (_, m) in b.models.iter() {
         let d = *desc_ids
             .entry((m.model_name.clone(), m.is_static))
@@ -648,8 +761,12 @@ pub fn site_json(b: &Building) -> (String, Vec<Diagnostic>) {
                 id
             });
         let p = local(m.pos);
+        let id = ids.next();
+        if pixels {
+            ext_models.insert(key(id), json!({ "raw": pt(m.raw) }));
+        }
         instances.insert(
-            key(ids.next()),
+            key(id),
             json!({
                 "parent": level_id(m.level),
                 "name": m.name,
@@ -679,6 +796,18 @@ pub fn site_json(b: &Building) -> (String, Vec<Diagnostic>) {
     }
     if !ext_lifts.is_empty() {
         ext.insert("lifts".into(), Value::Object(ext_lifts));
+    }
+    for (k, m) in [
+        ("raw_vertices", ext_raw),
+        ("measurements", ext_measurements),
+        ("surfaces", ext_surfaces),
+        ("holes", ext_holes),
+        ("human_lanes", ext_human_lanes),
+        ("models", ext_models),
+    ] {
+        if !m.is_empty() {
+            ext.insert(k.into(), Value::Object(m));
+        }
     }
 
     let mut props = json!({ "name": b.name });

@@ -98,8 +98,10 @@ pub const CABIN_ANCHOR_OUTSIDE: Code = Code {
 
 /// # W0121 site-unknown-field
 ///
-/// **What:** a field that rmf_site_format 0.0.2 does not define, or a site element mapc
-/// reads but does not use (lights, cameras, scenarios, tasks, robots, ...).
+/// **What:** a field or location tag that rmf_site_format 0.0.2 does not define, or a
+/// site element mapc reads but does not use (lights, cameras, tasks, scenarios that hide
+/// or move a model instance, model instances not on a level, ...), or a `Workcell` location tag that does not say
+/// whether the place is a dispenser or an ingestor (kept as a named place).
 ///
 /// **Why it matters:** mapc ignores it; if it came from a newer rmf_site it may carry
 /// meaning the outputs then lack.
@@ -119,10 +121,13 @@ pub const UNKNOWN_FIELD: Code = Code {
 /// # W0122 not-convertible
 ///
 /// **What:** `mapc convert` met something the target format cannot say: a telescope lift
-/// door or a door model in a `.site.json`, `crowd_sim`, a yaw orientation constraint, a
-/// lane that differs by direction in more than its dock. It names the element.
+/// door or a door model in a `.site.json`, a yaw orientation constraint, a lane that
+/// differs by direction in more than its dock, layers and features; or something only
+/// mapc's extension data in the site keeps (`crowd_sim`, human lanes, floor holes), which
+/// rmf_site neither shows nor edits. It names the element.
 ///
-/// **Why it matters:** that part is left out of (or simplified in) the converted file.
+/// **Why it matters:** that part is left out of (or simplified in) the converted file, or
+/// survives only a conversion back by mapc.
 ///
 /// **Fix:** nothing, or edit the converted map by hand; the message says what was dropped.
 ///

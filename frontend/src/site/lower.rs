@@ -26,8 +26,11 @@ const ROOT_KEYS: &[&str] = &[
     "tasks",
     "extensions",
 ];
-/// Site elements mapc reads without using: reported once each when not empty.
-const UNUSED_ROOT: &[&str] = &["robots", "tasks"];
+/// Site elements mapc reads without using: reported once each when not empty. (`robots`
+/// holds the fleet properties of model descriptions, whose instances are placed as
+/// models; site-wide `fiducials` only align drawings in rmf_site's editor, whose poses
+/// mapc reads as they are.)
+const UNUSED_ROOT: &[&str] = &["tasks"];
 const LEVEL_KEYS: &[&str] = &[
     "properties",
     "anchors",
@@ -41,6 +44,11 @@ const LEVEL_KEYS: &[&str] = &[
     "user_camera_poses",
 ];
 const UNUSED_LEVEL: &[&str] = &["lights", "physical_cameras"];
+/// rmf_site_format's defaults for a cabin without `wall_thickness`, `gap` or a door
+/// `thickness` (metres), which place its centre and doors.
+const CABIN_WALL: f64 = 0.1;
+const CABIN_GAP: f64 = 0.01;
+const CABIN_DOOR: f64 = 0.05;
 const LANE_KEYS: &[&str] = &["anchors", "forward", "reverse", "mutex", "graphs"];
 const LOCATION_KEYS: &[&str] = &["anchor", "tags", "name", "mutex", "graphs"];
 const MOTION_KEYS: &[&str] = &["orientation_constraint", "speed_limit", "dock"];
@@ -73,6 +81,19 @@ pub(crate) struct SiteLower<'d, 'n, 's> {
     textures: HashMap<u32, String>,
     /// Lift index → handle, for cabin anchors.
     lift_handles: Vec<Option<Handle<Lift>>>,
+    /// Level handle → site level id (mapc's extension data is keyed by it).
+    level_ids: HashMap<Handle<Level>, u32>,
+    /// Fiducial group id → name.
+    fiducial_groups: HashMap<u32, String>,
+}
+
+fn flip(p: Vec2) -> Vec2 {
+    Vec2::new(p.x, -p.y)
+}
+
+fn ext_point(n: Option<&Node>) -> Option<Vec2> {
+    let s = n?.as_seq()?;
+    Some(Vec2::new(s.first()?.as_f64()?, s.get(1)?.as_f64()?))
 }
 
 fn id_of(k: &Node) -> Option<u32> {
@@ -121,6 +142,8 @@ impl<'d, 'n, 's> SiteLower<'d, 'n, 's> {
             mutexes: HashMap::new(),
             textures: HashMap::new(),
             lift_handles: Vec::new(),
+            level_ids: HashMap::new(),
+            fiducial_groups: HashMap::new(),
         }
     }
 
@@ -232,6 +255,28 @@ impl<'d, 'n, 's> SiteLower<'d, 'n, 's> {
         }
     }
 
+    /// The file coordinates (pixels, y down) of map position `pos` on level `lh` of a
+    /// reference_image map: those mapc's extension kept, while they still land on `pos`
+    /// (an element moved in rmf_site gets them from the level's drawing instead).
+    fn pixel_raw(&self, b: &Building, lh: Handle<Level>, pos: Vec2, kept: Option<Vec2>) -> Vec2 {
+        let t = b.levels[lh].transform;
+        match kept {
+            Some(r) if t.apply(flip(r)).minus(pos).norm() < 1e-6 => r,
+            _ => flip(t.invert(pos)),
+        }
+    }
+
+    /// What mapc's extension keeps under `key` for element `id` of level `lh`.
+    fn ext_level_point(&self, key: &str, lh: Handle<Level>, id: u32) -> Option<Vec2> {
+        let level = self.level_ids.get(&lh)?;
+        ext_point(
+            self.ext?
+                .get(key)?
+                .get(&level.to_string())?
+                .get(&id.to_string()),
+        )
+    }
+
     fn dangling(&mut self, span: Span, what: &str, id: u32) {
         self.l.err(
             "E0121",
@@ -245,6 +290,12 @@ impl<'d, 'n, 's> SiteLower<'d, 'n, 's> {
         self.l.map(root, "the site")?;
         self.unknown(root, ROOT_KEYS, "the site");
         self.unused(root, UNUSED_ROOT, "the site");
+        // Scenarios holding tasks say something the outputs do not; those that move or
+        // hide instances are checked with the models.
+        for (_, sc, _) in self.entries(root, "scenarios", "the site") {
+            let name = self.name(sc, "a scenario");
+            self.unused(sc, &["tasks"], &format!("scenario `{name}`"));
+        }
         if !self.format_version(root) {
             return None;
         }
@@ -317,6 +368,10 @@ impl<'d, 'n, 's> SiteLower<'d, 'n, 's> {
                 self.mutexes.insert(id, n);
             }
         }
+        for (id, v, _) in self.entries(root, "fiducial_groups", "the site") {
+            let n = self.name(v, "a fiducial group");
+            self.fiducial_groups.insert(id, n);
+        }
         for (id, v, span) in self.entries(root, "anchors", "the site") {
             if let Some(p) = self.anchor_pos(v) {
                 let _ = span;
@@ -339,6 +394,13 @@ impl<'d, 'n, 's> SiteLower<'d, 'n, 's> {
             self.level(&mut b, *id, v, *span, shift, ext_vertices);
         }
         b.reference_level = b.levels.iter().next().map(|(h, _)| h)?;
+        if let Some(r) = ext
+            .and_then(|e| e.get("reference_level"))
+            .and_then(|n| n.key_text())
+            .and_then(|n| b.level_by_name(n))
+        {
+            b.reference_level = r;
+        }
 
         self.graphs(root, &mut b);
         self.lifts(root, &mut b, shift, ext);
@@ -357,6 +419,11 @@ impl<'d, 'n, 's> SiteLower<'d, 'n, 's> {
             }
         }
         self.models(root, &mut b, shift);
+        // rmf_site has no crowd simulation; mapc's extension keeps a map's crowd_sim in
+        // the building format's own shape, read by the same code.
+        if let Some(c) = ext.and_then(|e| e.get("crowd_sim")) {
+            b.crowd_sim = self.l.crowd_sim(c);
+        }
         // Roles follow the final parameters (locations and extension data both set them).
         for (_, v) in b.vertices.iter_mut() {
             v.roles = WaypointRoles::from_params(&v.params).into();
@@ -442,7 +509,9 @@ impl<'d, 'n, 's> SiteLower<'d, 'n, 's> {
             span,
         );
         self.levels.insert(id, lh);
+        self.level_ids.insert(lh, id);
 
+        let mut level_anchors = Vec::new();
         for (aid, v, aspan) in self.entries(node, "anchors", "a level") {
             let Some(p) = self.anchor_pos(v) else {
                 continue;
@@ -466,10 +535,12 @@ impl<'d, 'n, 's> SiteLower<'d, 'n, 's> {
             );
             b.levels[lh].vertices.push(vh);
             self.anchors.insert(aid, Anchor::Level(lh, vh));
+            level_anchors.push((aid, vh));
         }
 
         // Drawings: the first names the level's drawing; their fiducials become the
         // level's fiducials, in metres.
+        let mut first_drawing = true;
         for (_, d, _) in self.entries(node, "drawings", "a level") {
             self.unknown(
                 d,
@@ -480,7 +551,8 @@ impl<'d, 'n, 's> SiteLower<'d, 'n, 's> {
             if b.levels[lh].drawing.is_none() {
                 let src = dp.and_then(|p| p.get("source")).and_then(variant);
                 if let Some((_, Some(s))) = src {
-                    b.levels[lh].drawing = s.key_text().map(str::to_string);
+                    b.levels[lh].drawing =
+                        s.key_text().filter(|s| !s.is_empty()).map(str::to_string);
                 }
             }
             let ppm = dp
@@ -490,6 +562,17 @@ impl<'d, 'n, 's> SiteLower<'d, 'n, 's> {
                 .unwrap_or(100.0);
             let pose = dp.and_then(|p| p.get("pose"));
             let (t, yaw) = self.pose(pose);
+            let pixels = b.coordinate_system == CoordinateSystem::ReferenceImage;
+            if pixels && first_drawing {
+                // The level's reference image: its pose and scale are the level's
+                // transform from pixels (y up) to the map frame.
+                b.levels[lh].transform = LevelTransform {
+                    scale: 1.0 / ppm,
+                    rotation: yaw,
+                    translation: t.plus(shift),
+                };
+            }
+            first_drawing = false;
             let mut danchors = HashMap::new();
             for (aid, v, _) in self.entries(d, "anchors", "a drawing") {
                 if let Some(p) = self.anchor_pos(v) {
@@ -507,14 +590,20 @@ impl<'d, 'n, 's> SiteLower<'d, 'n, 's> {
                 let fname = f
                     .get("affiliation")
                     .and_then(ref_of)
-                    .map(|g| format!("group_{g}"))
+                    .map(|g| {
+                        self.fiducial_groups
+                            .get(&g)
+                            .filter(|n| !n.is_empty())
+                            .cloned()
+                            .unwrap_or_else(|| format!("group_{g}"))
+                    })
                     .unwrap_or_default();
                 let pos = px.scale(1.0 / ppm).rotate(yaw).plus(t).plus(shift);
                 let fh = b.fiducials.append(
                     Fiducial {
                         level: lh,
                         name: fname,
-                        raw: *px,
+                        raw: if pixels { flip(*px) } else { *px },
                         pos,
                     },
                     fspan,
@@ -523,12 +612,21 @@ impl<'d, 'n, 's> SiteLower<'d, 'n, 's> {
             }
         }
 
-        for (_, w, wspan) in self.entries(node, "walls", "a level") {
+        if b.coordinate_system == CoordinateSystem::ReferenceImage {
+            for &(aid, vh) in &level_anchors {
+                let kept = self.ext_level_point("raw_vertices", lh, aid);
+                b.vertices[vh].raw = self.pixel_raw(b, lh, b.vertices[vh].pos, kept);
+            }
+        }
+        self.measurements(b, lh, id);
+        self.holes_and_human_lanes(b, lh, id);
+
+        for (wid, w, wspan) in self.entries(node, "walls", "a level") {
             self.unknown(w, &["anchors", "texture"], "a wall");
             let Some((s, e)) = self.edge(w, wspan, lh, "a wall") else {
                 continue;
             };
-            let params = self.texture_params(w, wspan);
+            let params = self.texture_params(w, wspan, wid);
             let h = b.walls.append(
                 Wall {
                     level: lh,
@@ -568,7 +666,7 @@ impl<'d, 'n, 's> SiteLower<'d, 'n, 's> {
             let h = b.doors.append(door, dspan);
             b.levels[lh].doors.push(h);
         }
-        for (_, f, fspan) in self.entries(node, "floors", "a level") {
+        for (fid, f, fspan) in self.entries(node, "floors", "a level") {
             self.unknown(
                 f,
                 &["anchors", "texture", "preferred_semi_transparency"],
@@ -602,7 +700,7 @@ impl<'d, 'n, 's> SiteLower<'d, 'n, 's> {
             if !ok {
                 continue;
             }
-            let params = self.texture_params(f, fspan);
+            let params = self.texture_params(f, fspan, fid);
             let h = b.floors.append(
                 Polygon {
                     level: lh,
@@ -612,6 +710,120 @@ impl<'d, 'n, 's> SiteLower<'d, 'n, 's> {
                 fspan,
             );
             b.levels[lh].floors.push(h);
+        }
+    }
+
+    /// The measurements mapc's extension keeps for level `id`: `[start, end, params]`
+    /// with anchors of that level (rmf_site's own are on drawing anchors, in f32, and
+    /// only define the drawing's scale, which the level's transform already has).
+    fn measurements(&mut self, b: &mut Building, lh: Handle<Level>, id: u32) {
+        let Some(list) = self
+            .ext
+            .and_then(|e| e.get("measurements"))
+            .and_then(|m| m.get(&id.to_string()))
+            .and_then(|m| m.as_seq())
+        else {
+            return;
+        };
+        for m in list {
+            let s = m.as_seq().unwrap_or(&[]);
+            let vertex =
+                |n: Option<&Node>| match n.and_then(ref_of).and_then(|a| self.anchors.get(&a)) {
+                    Some(Anchor::Level(l, v)) if *l == lh => Some(*v),
+                    _ => None,
+                };
+            let (Some(start), Some(end), Some(p)) = (vertex(s.first()), vertex(s.get(1)), s.get(2))
+            else {
+                self.l.warn(
+                    "W0121",
+                    m.span,
+                    "mapc's extension data has a measurement that is not [start anchor, end anchor, parameters] of this level; it is ignored",
+                    "re-convert the site from its .building.yaml",
+                );
+                continue;
+            };
+            let params = self.l.params(p, "a measurement");
+            let distance = params.f64("distance").unwrap_or(0.0);
+            let h = b.measurements.append(
+                Measurement {
+                    level: lh,
+                    start,
+                    end,
+                    distance,
+                    params,
+                },
+                m.span,
+            );
+            b.levels[lh].measurements.push(h);
+        }
+    }
+
+    /// The floor holes and human lanes mapc's extension keeps for level `id` (rmf_site has
+    /// neither): `[[anchors...], params]` and `[start, end, params]`.
+    fn holes_and_human_lanes(&mut self, b: &mut Building, lh: Handle<Level>, id: u32) {
+        let list = |key: &str| {
+            self.ext
+                .and_then(|e| e.get(key))
+                .and_then(|m| m.get(&id.to_string()))
+                .and_then(|m| m.as_seq())
+                .unwrap_or(&[])
+        };
+        let vertex =
+            |s: &Self, n: Option<&Node>| match n.and_then(ref_of).and_then(|a| s.anchors.get(&a)) {
+                Some(Anchor::Level(l, v)) if *l == lh => Some(*v),
+                _ => None,
+            };
+        for h in list("holes") {
+            let s = h.as_seq().unwrap_or(&[]);
+            let vs: Option<Vec<Handle<Vertex>>> = s
+                .first()
+                .and_then(|a| a.as_seq())
+                .map(|a| a.iter().map(|n| vertex(self, Some(n))).collect())
+                .unwrap_or(None);
+            let (Some(vs), Some(p)) = (vs, s.get(1)) else {
+                self.l.warn(
+                    "W0121",
+                    h.span,
+                    "mapc's extension data has a hole that is not [[anchors of this level], parameters]; it is ignored",
+                    "re-convert the site from its .building.yaml",
+                );
+                continue;
+            };
+            let params = self.l.params(p, "a hole");
+            let hh = b.holes.append(
+                Polygon {
+                    level: lh,
+                    vertices: vs,
+                    params,
+                },
+                h.span,
+            );
+            b.levels[lh].holes.push(hh);
+        }
+        for h in list("human_lanes") {
+            let s = h.as_seq().unwrap_or(&[]);
+            let (Some(start), Some(end), Some(p)) =
+                (vertex(self, s.first()), vertex(self, s.get(1)), s.get(2))
+            else {
+                self.l.warn(
+                    "W0121",
+                    h.span,
+                    "mapc's extension data has a human lane that is not [start anchor, end anchor, parameters] of this level; it is ignored",
+                    "re-convert the site from its .building.yaml",
+                );
+                continue;
+            };
+            let params = self.l.params(p, "a human lane");
+            let hh = b.human_lanes.append(
+                HumanLane {
+                    level: lh,
+                    start,
+                    end,
+                    params,
+                },
+                h.span,
+            );
+            b.levels[lh].human_lanes.push(hh);
         }
     }
 
@@ -640,18 +852,28 @@ impl<'d, 'n, 's> SiteLower<'d, 'n, 's> {
 
     /// A wall's or floor's `texture` reference as the `texture_name` param the backends
     /// read (empty when it has none or it dangles).
-    fn texture_params(&self, n: &Node, span: Span) -> Params {
-        let mut params = Params::default();
-        if let Some(t) = n
+    fn texture_params(&mut self, n: &Node, span: Span, id: u32) -> Params {
+        // mapc's extension keeps the rest of the parameters of a surface it wrote; the
+        // texture is the site's (it may have been changed in rmf_site).
+        let mut params = match self
+            .ext
+            .and_then(|e| e.get("surfaces"))
+            .and_then(|e| e.get(&id.to_string()))
+        {
+            Some(p) => self.l.params(p, "a wall or floor"),
+            None => Params::default(),
+        };
+        match n
             .get("texture")
             .and_then(ref_of)
             .and_then(|t| self.textures.get(&t))
         {
-            params.insert(Param {
+            Some(t) => params.insert(Param {
                 name: "texture_name".into(),
                 value: ParamValue::String(t.clone()),
                 span,
-            });
+            }),
+            None => params.0.retain(|p| p.name != "texture_name"),
         }
         params
     }
@@ -892,15 +1114,38 @@ impl<'d, 'n, 's> SiteLower<'d, 'n, 's> {
                 continue;
             };
             // Site cabin width is the legacy depth and vice versa (rmf_site turned the
-            // cabin axes); the reference anchors are the cabin's front corners
-            // (rmf_site_format's legacy import).
-            let site_w = cabin.get("width").and_then(|w| w.as_f64()).unwrap_or(1.5);
-            let site_d = cabin.get("depth").and_then(|w| w.as_f64()).unwrap_or(1.65);
+            // cabin axes).
+            let num =
+                |n: Option<&Node>, default: f64| n.and_then(|v| v.as_f64()).unwrap_or(default);
+            let site_w = num(cabin.get("width"), 1.5);
+            let site_d = num(cabin.get("depth"), 1.65);
             let (width, depth) = (site_d, site_w);
+            let wall = num(cabin.get("wall_thickness"), CABIN_WALL);
+            let cabin_gap = num(cabin.get("gap"), CABIN_GAP);
+            let front_door = num(
+                cabin.get("front_door").and_then(|d| d.get("thickness")),
+                CABIN_DOOR,
+            );
+            // The editor's lift frame: at the middle of the reference anchors, x towards
+            // the front; the cabin centre is behind it by half the cabin, its wall, the
+            // gap and half the front door, and `shift` to the side
+            // (`RectangularLiftCabin::aabb`). Cabin anchors are in the cabin's frame.
             let lr = pl.minus(pr);
             let yaw: f64 = (-lr.x).atan2(lr.y) + 0.0;
             let mid = pl.plus(pr).scale(0.5);
-            let mut pos = mid.minus(Vec2::new(width / 2.0, 0.0).rotate(yaw));
+            let behind = width / 2.0 + wall + cabin_gap + front_door / 2.0;
+            let shift_y = num(cabin.get("shift"), 0.0);
+            let mut pos = mid.plus(Vec2::new(-behind, shift_y).rotate(yaw));
+            if !(pos.is_finite() && width.is_finite() && depth.is_finite()) {
+                // Each number may be finite and their sum not (1e308 twice).
+                self.l.err(
+                    "E0102",
+                    span,
+                    format!("{what}'s cabin does not fit in numbers: its size, wall, gap or shift is too large"),
+                    "give the cabin a size in metres",
+                );
+                continue;
+            }
             let mut yaw = yaw;
             let lx = ext
                 .and_then(|e| e.get("lifts"))
@@ -910,9 +1155,14 @@ impl<'d, 'n, 's> SiteLower<'d, 'n, 's> {
                 lx.and_then(|e| e.get("y")).and_then(|v| v.as_f64()),
                 lx.and_then(|e| e.get("yaw")).and_then(|v| v.as_f64()),
             ) {
-                // Written by mapc: the exact values, free of the corners' rounding.
-                pos = Vec2::new(x, y);
-                yaw = w;
+                // Written by mapc: the exact values, free of the anchors' rounding, unless
+                // the lift has been moved or turned since (in rmf_site, which keeps f32).
+                let exact = Vec2::new(x, y);
+                let turned = (w - yaw).sin().abs() > 1e-4 || (w - yaw).cos() < 0.0;
+                if exact.minus(pos).norm() < 1e-3 && !turned {
+                    pos = exact;
+                    yaw = w;
+                }
             }
             let initial_level = props
                 .and_then(|p| p.get("initial_level"))
@@ -955,15 +1205,28 @@ impl<'d, 'n, 's> SiteLower<'d, 'n, 's> {
                     if p.get("door").and_then(ref_of) != Some(did) {
                         continue;
                     }
-                    let w = p.get("width").and_then(|v| v.as_f64()).unwrap_or(1.0);
-                    let sh = p.get("shifted").and_then(|v| v.as_f64()).unwrap_or(0.0);
-                    let gap = p.get("custom_gap").and_then(|v| v.as_f64()).unwrap_or(0.0);
+                    let w = num(p.get("width"), 1.0);
+                    let sh = num(p.get("shifted"), 0.0);
+                    // The door's centre is past the cabin wall, the gap and half the
+                    // door (`level_door_anchors`).
+                    let gap = num(p.get("custom_gap"), cabin_gap)
+                        + wall
+                        + num(p.get("thickness"), CABIN_DOOR) / 2.0;
                     let (dx, dy, mao) = match face {
                         "front_door" => (gap + hx, sh, std::f64::consts::FRAC_PI_2),
                         "back_door" => (-(gap + hx), -sh, std::f64::consts::FRAC_PI_2),
                         "left_door" => (-sh, gap + hy, 0.0),
                         _ => (sh, -(gap + hy), 0.0),
                     };
+                    if !(dx.is_finite() && dy.is_finite() && w.is_finite()) {
+                        self.l.err(
+                            "E0102",
+                            dspan,
+                            format!("cabin door {did} of {what} does not fit in numbers: its width, gap or shift is too large"),
+                            "give the door a width and gap in metres",
+                        );
+                        continue;
+                    }
                     placed = Some((Vec2::new(dx, dy), w, mao));
                 }
                 let Some((dpos, dw, mao)) = placed else {
@@ -988,6 +1251,15 @@ impl<'d, 'n, 's> SiteLower<'d, 'n, 's> {
                     .and_then(|e| e.get("motion_axis_orientation"))
                     .and_then(|t| t.as_f64())
                     .unwrap_or(mao);
+                // mapc's exact door position, free of the gap's rounding, while the door
+                // has not been moved in rmf_site.
+                let exact = |k: &str| dext.and_then(|e| e.get(k)).and_then(|v| v.as_f64());
+                let dpos = match (exact("x"), exact("y")) {
+                    (Some(x), Some(y)) if Vec2::new(x, y).minus(dpos).norm() < 1e-3 => {
+                        Vec2::new(x, y)
+                    }
+                    _ => dpos,
+                };
                 for lv in d.get("visits").and_then(|v| v.as_seq()).unwrap_or(&[]) {
                     match ref_of(lv).and_then(|l| self.levels.get(&l).copied()) {
                         Some(lh) => level_doors
@@ -1038,13 +1310,20 @@ impl<'d, 'n, 's> SiteLower<'d, 'n, 's> {
                 }
                 self.anchors.insert(aid, Anchor::Cabin(idx, p));
             }
-            let reference_level = initial_level
+            let reference_level = level_opt(self, "reference_floor")
+                .or(initial_level)
                 .or_else(|| level_doors.keys().next().copied())
                 .unwrap_or(b.reference_level);
+            let raw = if b.coordinate_system == CoordinateSystem::ReferenceImage {
+                let kept = ext_point(lext.and_then(|e| e.get("raw")));
+                self.pixel_raw(b, reference_level, pos, kept)
+            } else {
+                pos.minus(shift)
+            };
             let lift = Lift {
                 name,
                 pos,
-                raw: pos.minus(shift),
+                raw,
                 yaw,
                 width,
                 depth,
@@ -1101,12 +1380,18 @@ impl<'d, 'n, 's> SiteLower<'d, 'n, 's> {
             value: ParamValue::String(l.name.clone()),
             span,
         });
+        let raw = if b.coordinate_system == CoordinateSystem::ReferenceImage {
+            let kept = self.ext_level_point("raw_vertices", lh, id);
+            self.pixel_raw(b, lh, pos, kept)
+        } else {
+            p
+        };
         let vh = b.vertices.append(
             Vertex {
                 level: lh,
                 name,
                 pos,
-                raw: p,
+                raw,
                 params,
                 roles: Default::default(),
             },
@@ -1364,21 +1649,15 @@ impl<'d, 'n, 's> SiteLower<'d, 'n, 's> {
         self.unknown(n, LOCATION_KEYS, "a location");
         let name = self.name(n, "a location");
         let aid = n.get("anchor").and_then(ref_of);
-        let v = match aid.and_then(|a| self.anchors.get(&a).copied()) {
-            Some(Anchor::Level(_, v)) => v,
-            Some(Anchor::Cabin(..)) => {
-                // A cabin anchor has one vertex per level; name each one made so far.
-                let vs: Vec<Handle<Vertex>> = self
-                    .cabin_vertices
-                    .iter()
-                    .filter(|((a, _), _)| Some(*a) == aid)
-                    .map(|(_, v)| *v)
-                    .collect();
-                for v in vs {
-                    b.vertices[v].name = name.clone();
-                }
-                return;
-            }
+        let targets: Vec<Handle<Vertex>> = match aid.and_then(|a| self.anchors.get(&a).copied()) {
+            Some(Anchor::Level(_, v)) => vec![v],
+            // A cabin anchor has one vertex per level a lane uses it from.
+            Some(Anchor::Cabin(..)) => self
+                .cabin_vertices
+                .iter()
+                .filter(|((a, _), _)| Some(*a) == aid)
+                .map(|(_, v)| *v)
+                .collect(),
             _ => {
                 let at = n.get("anchor").map_or(span, |a| a.span);
                 self.l.err(
@@ -1393,29 +1672,66 @@ impl<'d, 'n, 's> SiteLower<'d, 'n, 's> {
                 return;
             }
         };
-        let vx = &mut b.vertices[v];
-        vx.name = name;
+        let mut flags = Vec::new();
         for t in n.get("tags").and_then(|t| t.as_seq()).unwrap_or(&[]) {
-            let flag = match variant(t) {
-                Some(("Charger", _)) => "is_charger",
-                Some(("ParkingSpot", _)) => "is_parking_spot",
-                Some(("HoldingPoint", _)) => "is_holding_point",
-                // A workcell stays a named place; mapc's extension says which
-                // dispenser or ingestor it is when the site came from a building.
-                _ => continue,
-            };
-            vx.params.insert(Param {
-                name: flag.into(),
-                value: ParamValue::Bool(true),
-                span: t.span,
-            });
+            // Warnings point at the variant's name.
+            let at = t
+                .as_map()
+                .and_then(|m| m.first())
+                .map_or(t.span, |(k, _)| k.span);
+            match variant(t) {
+                Some(("Charger", _)) => flags.push(("is_charger", t.span)),
+                Some(("ParkingSpot", _)) => flags.push(("is_parking_spot", t.span)),
+                Some(("HoldingPoint", _)) => flags.push(("is_holding_point", t.span)),
+                Some(("Workcell", w)) => {
+                    // mapc's extension says which dispenser or ingestor a workcell it
+                    // wrote is; a workcell drawn in rmf_site says neither.
+                    let role = |v: &Handle<Vertex>| {
+                        let p = &b.vertices[*v].params;
+                        p.param("pickup_dispenser").is_some()
+                            || p.param("dropoff_ingestor").is_some()
+                    };
+                    if !targets.iter().any(role) {
+                        let cell = w
+                            .and_then(|w| w.get("name"))
+                            .and_then(|n| n.key_text())
+                            .unwrap_or("");
+                        self.l.warn(
+                            "W0121",
+                            at,
+                            format!("workcell `{cell}` at location `{name}` is kept as a named place only: rmf_site does not say whether it is a dispenser or an ingestor"),
+                            "give the waypoint `pickup_dispenser` or `dropoff_ingestor` in the converted .building.yaml if tasks use it",
+                        );
+                    }
+                }
+                _ => {
+                    let tag = variant(t).map_or("?", |(v, _)| v);
+                    self.l.warn(
+                        "W0121",
+                        at,
+                        format!("location tag `{tag}` of `{name}` is not one rmf_site_format 0.0.2 defines; it is ignored"),
+                        "use Charger, ParkingSpot, HoldingPoint or Workcell",
+                    );
+                }
+            }
         }
-        if let Some(m) = n
+        let mutex = n
             .get("mutex")
             .and_then(ref_of)
             .and_then(|m| self.mutexes.get(&m))
-        {
-            if !m.is_empty() {
+            .filter(|m| !m.is_empty())
+            .cloned();
+        for v in targets {
+            let vx = &mut b.vertices[v];
+            vx.name = name.clone();
+            for (flag, at) in &flags {
+                vx.params.insert(Param {
+                    name: (*flag).into(),
+                    value: ParamValue::Bool(true),
+                    span: *at,
+                });
+            }
+            if let Some(m) = &mutex {
                 vx.params.insert(Param {
                     name: "mutex".into(),
                     value: ParamValue::String(m.clone()),
@@ -1438,7 +1754,8 @@ impl<'d, 'n, 's> SiteLower<'d, 'n, 's> {
                 .unwrap_or(false);
             descs.insert(id, (src.unwrap_or_default(), is_static));
         }
-        for (_, m, span) in self.entries(root, "model_instances", "the site") {
+        let mut poses: HashMap<u32, (Vec2, f64)> = HashMap::new();
+        for (id, m, span) in self.entries(root, "model_instances", "the site") {
             self.unknown(
                 m,
                 &["parent", "name", "pose", "description"],
@@ -1449,10 +1766,18 @@ impl<'d, 'n, 's> SiteLower<'d, 'n, 's> {
             };
             let Some(&lh) = self.levels.get(&parent) else {
                 // Models on other parents (robots, workcells) are not level furniture.
+                let at = m.get("parent").map_or(span, |p| p.span);
+                self.l.warn(
+                    "W0121",
+                    at,
+                    format!("model instance on parent {parent}, which is not a level; mapc places only the models of levels, it is ignored"),
+                    "nothing to do unless a world should have it: put it on a level",
+                );
                 continue;
             };
             let name = self.name(m, "a model");
             let (t, yaw) = self.pose(m.get("pose"));
+            poses.insert(id, (t, yaw));
             let z = m
                 .get("pose")
                 .and_then(|p| p.get("trans"))
@@ -1465,13 +1790,25 @@ impl<'d, 'n, 's> SiteLower<'d, 'n, 's> {
                 .and_then(ref_of)
                 .and_then(|d| descs.get(&d).cloned())
                 .unwrap_or_else(|| (name.clone(), true));
+            let pos = t.plus(shift);
+            let raw = if b.coordinate_system == CoordinateSystem::ReferenceImage {
+                let kept = ext_point(
+                    self.ext
+                        .and_then(|e| e.get("models"))
+                        .and_then(|e| e.get(&id.to_string()))
+                        .and_then(|e| e.get("raw")),
+                );
+                self.pixel_raw(b, lh, pos, kept)
+            } else {
+                t
+            };
             let h = b.models.append(
                 Model {
                     level: lh,
                     name,
                     model_name,
-                    pos: t.plus(shift),
-                    raw: t,
+                    pos,
+                    raw,
                     z,
                     yaw,
                     is_static,
@@ -1480,6 +1817,35 @@ impl<'d, 'n, 's> SiteLower<'d, 'n, 's> {
                 span,
             );
             b.levels[lh].models.push(h);
+        }
+        // rmf_site's scenarios may move or hide instances (its import repeats every
+        // instance's own pose there); mapc places each where the instance says.
+        for (_, sc, _) in self.entries(root, "scenarios", "the site") {
+            let sname = self.name(sc, "a scenario");
+            for (iid, modifier, mspan) in self.entries(sc, "instances", "a scenario") {
+                let hidden = modifier
+                    .get("inclusion")
+                    .and_then(|i| i.key_text())
+                    .is_some_and(|i| i == "Hidden");
+                let moved = match (modifier.get("pose"), poses.get(&iid)) {
+                    (Some(p), Some(&(t, yaw))) => {
+                        let (t2, yaw2) = self.pose(Some(p));
+                        t2.minus(t).norm() > 1e-3 || (yaw2 - yaw).sin().abs() > 1e-4
+                    }
+                    _ => false,
+                };
+                if hidden || moved {
+                    self.l.warn(
+                        "W0121",
+                        mspan,
+                        format!(
+                            "scenario `{sname}` {} model instance {iid}; mapc places it where the instance says",
+                            if hidden { "hides" } else { "moves" }
+                        ),
+                        "nothing to do unless the world should follow the scenario",
+                    );
+                }
+            }
         }
     }
 }

@@ -4,12 +4,14 @@
 //! is what MCAP files carry as schema and what `tests/ros2_cdr.rs` checks against Cyclone DDS.
 
 pub mod builtin_interfaces;
+pub mod geometry_msgs;
 pub mod rmf_building_map_msgs;
 pub mod rmf_dispenser_msgs;
 pub mod rmf_door_msgs;
 pub mod rmf_fleet_msgs;
 pub mod rmf_ingestor_msgs;
 pub mod rmf_lift_msgs;
+pub mod rmf_obstacle_msgs;
 pub mod rosgraph_msgs;
 pub mod std_msgs;
 
@@ -39,7 +41,13 @@ pub(crate) use ros_msg;
 pub fn definitions() -> &'static [Definition] {
     &[
         builtin_interfaces::TIME,
+        builtin_interfaces::DURATION,
         std_msgs::STRING,
+        std_msgs::HEADER,
+        geometry_msgs::POINT,
+        geometry_msgs::VECTOR3,
+        geometry_msgs::QUATERNION,
+        geometry_msgs::POSE,
         rosgraph_msgs::CLOCK,
         rmf_fleet_msgs::LOCATION,
         rmf_fleet_msgs::ROBOT_MODE,
@@ -65,6 +73,9 @@ pub fn definitions() -> &'static [Definition] {
         rmf_ingestor_msgs::REQUEST,
         rmf_ingestor_msgs::RESULT,
         rmf_ingestor_msgs::STATE,
+        rmf_obstacle_msgs::BOUNDING_BOX_3D,
+        rmf_obstacle_msgs::OBSTACLE,
+        rmf_obstacle_msgs::OBSTACLES,
         rmf_building_map_msgs::PARAM,
         rmf_building_map_msgs::GRAPH_NODE,
         rmf_building_map_msgs::GRAPH_EDGE,

@@ -1,5 +1,6 @@
 //! std_msgs (mapc's task events travel as JSON in a `String`: RMF has no message for them).
 
+use super::builtin_interfaces::Time;
 use super::{ros_msg, Definition};
 use serde::{Deserialize, Serialize};
 
@@ -9,3 +10,14 @@ pub struct String {
 }
 pub(crate) const STRING: Definition = ("std_msgs/msg/String", "string data\n");
 ros_msg!(String, STRING);
+
+#[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
+pub struct Header {
+    pub stamp: Time,
+    pub frame_id: std::string::String,
+}
+pub(crate) const HEADER: Definition = (
+    "std_msgs/msg/Header",
+    "builtin_interfaces/Time stamp\nstring frame_id\n",
+);
+ros_msg!(Header, HEADER);

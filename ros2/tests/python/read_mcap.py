@@ -2,7 +2,8 @@
 and compares every message with the JSON trace of the same run.
 
 usage: read_mcap.py RUN.mcap TRACE.jsonl
-Prints one JSON object: counts per topic, schemas found, and the mismatches (at most 20).
+Prints one JSON object: counts per topic, schemas found, the mismatches (at most 20), and
+`/clock` (not in the trace): its stamps, each checked against the message's log time.
 """
 import json
 import math
@@ -61,6 +62,7 @@ def main():
             qos[c.topic] = c.metadata.get("offered_qos_profiles", "")
         result["qos"] = qos
         i = 0
+        clock = []
         for schema, channel, message, ros in reader.iter_decoded_messages(log_time_order=False):
             topic = channel.topic
             result["topics"][topic] = result["topics"].get(topic, 0) + 1
@@ -71,6 +73,12 @@ def main():
                      "graphs": [(len(g.vertices), len(g.edges)) for g in l.nav_graphs]}
                     for l in ros.levels]
                 result["map_lifts"] = [l.name for l in ros.lifts]
+                continue
+            if topic == "/clock":
+                stamp = ros.clock.sec * 1_000_000_000 + ros.clock.nanosec
+                if stamp != message.log_time and len(result["mismatches"]) < 20:
+                    result["mismatches"].append(f"/clock {stamp} at log time {message.log_time}")
+                clock.append(stamp)
                 continue
             if i >= len(trace):
                 result["mismatches"].append(f"message {result['messages']}: beyond the trace")
@@ -90,6 +98,11 @@ def main():
                 result["mismatches"].append({"line": i, "topic": topic, "diff": out[:5]})
         if i != len(trace):
             result["mismatches"].append(f"{len(trace) - i} trace lines not in the MCAP")
+        gaps = [b - a for a, b in zip(clock, clock[1:])]
+        result["clock"] = {"count": len(clock), "first_ns": clock[0] if clock else None,
+                           "last_ns": clock[-1] if clock else None,
+                           "min_gap_ns": min(gaps) if gaps else None,
+                           "max_gap_ns": max(gaps) if gaps else None}
     json.dump(result, sys.stdout, sort_keys=True)
 
 

@@ -649,11 +649,17 @@ impl Crowd {
                     data: Vec::new(),
                     // Valid until the next message and one more.
                     lifetime: msgs::Time { sec: 1, nanosec: 0 },
-                    action: 0,
+                    action: msgs::OBSTACLE_ACTION_ADD,
                 }
             })
             .collect();
-        msgs::Obstacles { obstacles }
+        msgs::Obstacles {
+            header: msgs::Header {
+                stamp,
+                frame_id: "map".into(),
+            },
+            obstacles,
+        }
     }
 
     /// People positions in the map frame.

@@ -36,6 +36,7 @@ mod assign;
 mod drive;
 mod park;
 mod setup;
+mod spawn;
 mod task;
 mod traffic;
 mod waits;
@@ -71,6 +72,8 @@ const ITEM_WAIT: f64 = 1200.0;
 const ITEM_HOME: f64 = 30.0;
 /// A robot waiting for traffic this long is reported stuck.
 const STUCK_AFTER: f64 = 120.0;
+/// Longest a robot that made room waits for the robot it made room for to get going.
+const HOLD_OFF: f64 = 60.0;
 /// A stalled robot looks for a detour this often.
 const DETOUR_AFTER: f64 = 30.0;
 /// Extra cost (s) of a yield or back-off spot that is not a parking spot, holding point
@@ -90,6 +93,9 @@ const LOOKAHEAD: usize = 3;
 pub struct Placement {
     pub robots: Vec<RobotSpawn>,
     pub workcells: Vec<WorkcellSpawn>,
+    /// Per fleet, robots that auto spawn found no home for on the floor (a free place off
+    /// every task route, or a charger): they stay in the depot and take no part.
+    pub reserve: Vec<(String, usize)>,
 }
 
 #[derive(Debug, Clone)]
@@ -182,6 +188,10 @@ struct Robot {
     prio_until: Option<usize>,
     /// Making room: (for whom, the spot it drives to).
     escape: Option<(usize, usize)>,
+    /// Made room for this robot, arrived at the spot at this time: it stays there while
+    /// that robot still waits at rest (at most `HOLD_OFF` s), rather than drive straight
+    /// back into its way.
+    made_room: Option<(usize, f64)>,
     /// Since when nothing this robot waits for (directly or through others) moved.
     stall_since: f64,
     /// When it last looked for a detour.

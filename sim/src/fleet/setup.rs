@@ -8,11 +8,18 @@ impl Fleets {
     pub fn place(building: &Building, scenario: &Scenario) -> Result<Placement, Vec<Diagnostic>> {
         let graphs: Vec<i64> = scenario.fleets.iter().map(|f| f.graph).collect();
         let nav = Nav::build(building, &graphs);
+        // Homes: where an idle robot stands in nobody's way (off every task route, or a
+        // charger). Robots that auto spawn finds no home for wait in the depot.
+        let park = park_vertices(&nav, &conflicts(&nav, scenario), scenario);
         let mut diags = Vec::new();
         let mut robots: Vec<RobotSpawn> = Vec::new();
+        let mut reserve: Vec<(String, usize)> = Vec::new();
         // (vertex, footprint) of robots placed so far.
         let mut taken: Vec<(usize, f64)> = Vec::new();
-        for f in &scenario.fleets {
+        // Named spawns first, then auto spawn around them; robots are listed in fleet order.
+        let mut explicit: Vec<Option<Vec<Spawn>>> = vec![None; scenario.fleets.len()];
+        let mut auto = Vec::new();
+        for (fi, f) in scenario.fleets.iter().enumerate() {
             let Some(slot) = nav.slot(f.graph).filter(|&s| !nav.members[s].is_empty()) else {
                 diags.push(
                     Diagnostic::error(
@@ -91,81 +98,31 @@ impl Fleets {
                     }
                 }
                 SpawnSpec::Auto => {
-                    let mut cands: Vec<usize> = nav.members[slot]
-                        .iter()
-                        .copied()
-                        .filter(|&v| nav.vertices[v].lift.is_none())
-                        .collect();
-                    // Neighbours (either direction) of each vertex on this graph.
-                    let mut nbrs: Vec<Vec<usize>> = vec![Vec::new(); nav.vertices.len()];
-                    for e in nav.edges.iter().filter(|e| e.graph == slot) {
-                        nbrs[e.from].push(e.to);
-                        nbrs[e.to].push(e.from);
-                    }
-                    for n in &mut nbrs {
-                        n.sort_unstable();
-                        n.dedup();
-                    }
-                    // Chargers, parking spots and holding points first, then dead ends
-                    // (off every through route), then the rest.
-                    let class = |v: usize| {
-                        let r = &nav.vertices[v].roles;
-                        if r.is_charger {
-                            0
-                        } else if r.is_parking_spot {
-                            1
-                        } else if r.is_holding_point {
-                            2
-                        } else if nbrs[v].len() <= 1 {
-                            3
-                        } else {
-                            4
-                        }
-                    };
-                    cands.sort_by_key(|&v| (class(v), v));
-                    // First pass: no robot next to another (each can drive off without the
-                    // other moving); second pass: only far enough apart.
-                    // Spread over the levels the graph reaches: the level with the fewest
-                    // robots so far first, so that a multi-level graph does not crowd one
-                    // floor.
-                    for strict in [true, false] {
-                        while chosen.len() < f.count {
-                            let mine: Vec<(usize, f64)> =
-                                chosen.iter().map(|c| (c.0, f.robot.footprint)).collect();
-                            let ok = |v: usize| {
-                                let p = nav.vertices[v].pos;
-                                let clear = |&(w, fp): &(usize, f64)| {
-                                    let vw = &nav.vertices[w];
-                                    w != v
-                                        && (!level_handle_eq(vw.level, nav.vertices[v].level)
-                                            || vw.pos.minus(p).norm()
-                                                >= fp + f.robot.footprint + 0.5)
-                                        && !(strict && nbrs[v].binary_search(&w).is_ok())
-                                };
-                                taken.iter().all(clear) && mine.iter().all(clear)
-                            };
-                            let on_level = |v: usize| {
-                                taken
-                                    .iter()
-                                    .map(|x| x.0)
-                                    .chain(mine.iter().map(|x| x.0))
-                                    .filter(|&w| nav.vertices[w].level == nav.vertices[v].level)
-                                    .count()
-                            };
-                            let pick = cands
-                                .iter()
-                                .copied()
-                                .filter(|&v| ok(v))
-                                .min_by_key(|&v| (class(v), on_level(v), v));
-                            match pick {
-                                Some(v) => chosen.push((v, None)),
-                                None => break,
-                            }
-                        }
-                    }
+                    auto.push(spawn::AutoFleet {
+                        fleet: fi,
+                        slot,
+                        count: f.count,
+                        footprint: f.robot.footprint,
+                    });
+                    continue;
                 }
             }
-            if chosen.len() < f.count
+            for &(v, _) in &chosen {
+                taken.push((v, f.robot.footprint));
+            }
+            explicit[fi] = Some(chosen);
+        }
+        let auto_chosen = spawn::auto_spawn(&nav, &park, &auto, &taken);
+        for (a, vs) in auto.iter().zip(auto_chosen) {
+            explicit[a.fleet] = Some(vs.into_iter().map(|v| (v, None)).collect());
+        }
+        for (fi, f) in scenario.fleets.iter().enumerate() {
+            let (Some(chosen), Some(slot)) = (explicit[fi].take(), nav.slot(f.graph)) else {
+                continue;
+            };
+            if f.spawn == SpawnSpec::Auto && !chosen.is_empty() && chosen.len() < f.count {
+                reserve.push((f.name.clone(), f.count - chosen.len()));
+            } else if chosen.len() < f.count
                 && !matches!(f.spawn, SpawnSpec::Waypoints(ref n) if n.len() >= f.count && chosen.len() + diags.len() >= f.count)
             {
                 let what = match f.spawn {
@@ -214,7 +171,6 @@ impl Fleets {
                     yaw,
                     level: nv.level,
                 });
-                taken.push((v, f.robot.footprint));
             }
         }
         let mut workcells = Vec::new();
@@ -244,7 +200,11 @@ impl Fleets {
         if diags.iter().any(Diagnostic::is_error) {
             return Err(diags);
         }
-        Ok(Placement { robots, workcells })
+        Ok(Placement {
+            robots,
+            workcells,
+            reserve,
+        })
     }
 
     pub fn new(
@@ -254,22 +214,7 @@ impl Fleets {
     ) -> Result<Fleets, Vec<Diagnostic>> {
         let graphs: Vec<i64> = scenario.fleets.iter().map(|f| f.graph).collect();
         let nav = Nav::build(building, &graphs);
-        let zero = Clearance {
-            footprint: 0.0,
-            stop_distance: 0.0,
-            stop_radius: 0.0,
-        };
-        let mut per_slot = vec![zero; nav.graphs.len()];
-        let mut footprint: f64 = 0.0;
-        for f in &scenario.fleets {
-            footprint = footprint.max(f.robot.footprint);
-            if let Some(c) = nav.slot(f.graph).and_then(|s| per_slot.get_mut(s)) {
-                c.footprint = c.footprint.max(f.robot.footprint);
-                c.stop_distance = c.stop_distance.max(f.robot.stop_distance);
-                c.stop_radius = c.stop_radius.max(f.robot.stop_radius);
-            }
-        }
-        let conf = Conflicts::build_per_slot(&nav, footprint, &per_slot);
+        let conf = conflicts(&nav, scenario);
         let mut diags = Vec::new();
         let mut fleets = Vec::new();
         let mut robots = Vec::new();
@@ -332,6 +277,7 @@ impl Fleets {
                     prio: f64::INFINITY,
                     prio_until: None,
                     escape: None,
+                    made_room: None,
                     stall_since: 0.0,
                     last_detour: f64::NEG_INFINITY,
                     last_pos: (spawn.x, spawn.y),
@@ -552,6 +498,29 @@ impl Fleets {
             ingested: BTreeMap::new(),
         })
     }
+}
+
+/// A robot's start: the vertex, and the name the map gives it (spawn points).
+type Spawn = (usize, Option<String>);
+
+/// Conflict sets of every graph with the clearances of the fleets that drive on it.
+fn conflicts(nav: &Nav, scenario: &Scenario) -> Conflicts {
+    let zero = Clearance {
+        footprint: 0.0,
+        stop_distance: 0.0,
+        stop_radius: 0.0,
+    };
+    let mut per_slot = vec![zero; nav.graphs.len()];
+    let mut footprint: f64 = 0.0;
+    for f in &scenario.fleets {
+        footprint = footprint.max(f.robot.footprint);
+        if let Some(c) = nav.slot(f.graph).and_then(|s| per_slot.get_mut(s)) {
+            c.footprint = c.footprint.max(f.robot.footprint);
+            c.stop_distance = c.stop_distance.max(f.robot.stop_distance);
+            c.stop_radius = c.stop_radius.max(f.robot.stop_radius);
+        }
+    }
+    Conflicts::build_per_slot(nav, footprint, &per_slot)
 }
 
 fn unknown_waypoint(nav: &Nav, slot: usize, name: &str, span: Span, fleet: &str) -> Diagnostic {

@@ -44,6 +44,7 @@ impl Fleets {
         r.cur = Cur::None;
         r.prio_until = None;
         r.escape = None;
+        r.made_room = None;
         if !ok {
             self.abandon_route(i, t, out);
             // A failed delivery still takes the item it carries to the ingestor, so that
@@ -79,7 +80,11 @@ impl Fleets {
                         if r.prio_until == Some(goal) {
                             r.prio_until = None;
                         }
-                        r.escape = None;
+                        if let Some((c, v)) = r.escape.take() {
+                            if v == goal {
+                                r.made_room = Some((c, t));
+                            }
+                        }
                         true
                     }
                     Some(false) => return,

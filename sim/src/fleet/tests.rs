@@ -1189,3 +1189,99 @@ fn a_robot_waiting_at_an_empty_dispenser_makes_room() {
     assert!(asked_again);
     assert_eq!(f.robots[a].at, e);
 }
+
+fn loop_w_e() -> TaskSpec {
+    task(
+        0.5,
+        TaskKind::Loop {
+            start: "w".into(),
+            finish: "e".into(),
+            loops: 1,
+        },
+    )
+}
+
+#[test]
+fn auto_spawn_gives_each_robot_a_home_and_keeps_the_rest_in_reserve() {
+    // Task routes: the lane w-e. Homes: every vertex off it (parking spots, the dead
+    // ends s, n, far_w, far_e). Eight robots: six homes, two in reserve.
+    let b = cross();
+    let s = scenario(vec![fleet("tiny", 8, SpawnSpec::Auto)], vec![loop_w_e()]);
+    let p = Fleets::place(&b, &s).expect("placement");
+    assert_eq!(p.robots.len(), 6, "{:?}", p.robots);
+    assert_eq!(p.reserve, vec![("tiny".to_string(), 2)]);
+    let nav = Nav::build(&b, &[0]);
+    let at = |r: &RobotSpawn| {
+        nav.members[0]
+            .iter()
+            .copied()
+            .find(|&v| (nav.vertices[v].pos.x, nav.vertices[v].pos.y) == (r.x, r.y))
+            .map(|v| nav.vertices[v].name.clone())
+            .expect("on a vertex")
+    };
+    let mut homes: Vec<String> = p.robots.iter().map(at).collect();
+    homes.sort();
+    assert_eq!(homes, ["far_e", "far_w", "n", "park_e", "park_w", "s"]);
+    // The report counts them.
+    let (_, _, f) = run(&b, &s, 1.0);
+    assert_eq!(f.robots.len(), 6);
+    // Two fleets share the homes in proportion to their sizes.
+    let s = scenario(
+        vec![
+            fleet("a", 6, SpawnSpec::Auto),
+            fleet("b", 2, SpawnSpec::Auto),
+        ],
+        vec![loop_w_e()],
+    );
+    let p = Fleets::place(&b, &s).expect("placement");
+    let count = |n: &str| p.robots.iter().filter(|r| r.fleet == n).count();
+    assert_eq!((count("a"), count("b")), (4, 2), "{:?}", p.robots);
+    assert_eq!(p.reserve, vec![("a".to_string(), 2)]);
+}
+
+#[test]
+fn a_robot_that_made_room_waits_until_the_one_it_made_room_for_gets_going() {
+    // a made room for b (at rest, waiting in a move) and wants to drive on: it waits
+    // for b rather than drive straight back into b's way, for at most HOLD_OFF s.
+    let b = cross();
+    let s = scenario(
+        vec![
+            fleet("a", 1, SpawnSpec::Waypoints(vec!["park_w".into()])),
+            fleet("b", 1, SpawnSpec::Waypoints(vec!["s".into()])),
+        ],
+        vec![],
+    );
+    let placement = Fleets::place(&b, &s).expect("placement");
+    let mut f = Fleets::new(&b, &s, &placement).expect("fleets");
+    let (a, c) = (f.by_name["a_0"], f.by_name["b_0"]);
+    let n = vertex(&f.nav, "n");
+    let e = vertex(&f.nav, "e");
+    f.robots[c].cur = Cur::GoTo {
+        goal: n,
+        planned: true,
+    };
+    f.robots[c].wait_since = Some(5.0);
+    let (_, route) = f.nav.plan(0, f.robots[a].at, e, 0.5).expect("park_w to e");
+    f.robots[a].route = route.into();
+    f.robots[a].made_room = Some((c, 10.0));
+    assert!(!f.try_reserve(a, 20.0));
+    assert_eq!(f.robots[a].blockers, vec![c]);
+    // Once b no longer waits, a goes.
+    f.robots[c].wait_since = None;
+    assert!(f.try_reserve(a, 21.0));
+    // Never longer than HOLD_OFF.
+    let mut f = Fleets::new(&b, &s, &placement).expect("fleets");
+    f.robots[c].cur = Cur::GoTo {
+        goal: n,
+        planned: true,
+    };
+    f.robots[c].wait_since = Some(5.0);
+    f.robots[a].route = f
+        .nav
+        .plan(0, f.robots[a].at, e, 0.5)
+        .expect("route")
+        .1
+        .into();
+    f.robots[a].made_room = Some((c, 10.0));
+    assert!(f.try_reserve(a, 10.0 + HOLD_OFF + 0.1));
+}

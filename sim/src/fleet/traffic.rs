@@ -106,7 +106,7 @@ impl Fleets {
         let Some((k, set)) = self.wanted(i) else {
             return false;
         };
-        let claimant = self.claim_blocks(i, k);
+        let claimant = self.claim_blocks(i, k).or_else(|| self.holds_off(i, t));
         // The claimant is served before admission limits: its way is being cleared.
         let claims = self.claims.iter().any(|c| c.0 == i);
         let full = if claims {
@@ -165,6 +165,19 @@ impl Fleets {
                 return Some(*c);
             }
         }
+        None
+    }
+
+    /// The robot that robot `i` made room for, while that one still waits at rest and
+    /// `i` came out of its way less than `HOLD_OFF` s ago: `i` waits where it made room
+    /// instead of driving straight back into the way it cleared (a livelock: pushed out,
+    /// back in, pushed out again, while the robot it made room for never gets going).
+    fn holds_off(&mut self, i: usize, t: f64) -> Option<usize> {
+        let (c, since) = self.robots[i].made_room?;
+        if t - since < HOLD_OFF && c != i && self.waits_at_rest(c) {
+            return Some(c);
+        }
+        self.robots[i].made_room = None;
         None
     }
 
