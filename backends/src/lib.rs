@@ -26,7 +26,7 @@ pub use gltf::{
     CABIN_HEIGHT, DOOR_HEIGHT, DOOR_THICKNESS, GLTF_PBR_MAPS,
 };
 pub use mesh::{Material, Mesh, MeshKind};
-pub use nav::{graph_file_stem, nav_graph, nav_graphs};
+pub use nav::{graph_file_stem, nav_graph_text, nav_graphs};
 pub use obj::{
     level_obj_files, level_obj_files_from, level_texture_files, mesh_mtl, mesh_obj, model_material,
     wall_origin,

@@ -1,6 +1,6 @@
 //! Navigation graphs for RMF fleet adapters (generator.md §4), one document per graph.
 
-use crate::yaml::{to_string, Yaml};
+use crate::yaml::{self, Yaml};
 use crate::OutputFile;
 use mapc_ir::*;
 use std::collections::BTreeMap;
@@ -14,7 +14,7 @@ pub fn nav_graphs(b: &Building) -> Vec<OutputFile> {
         .into_iter()
         .map(|g| OutputFile {
             path: format!("{}.yaml", graph_file_stem(b, g)).into(),
-            contents: to_string(&nav_graph(b, g)).into_bytes(),
+            contents: nav_graph_text(b, g).into_bytes(),
         })
         .collect()
 }
@@ -59,8 +59,10 @@ pub fn graph_file_stem(b: &Building, g: i64) -> String {
     }
 }
 
-/// The YAML document of graph `graph`.
-pub fn nav_graph(b: &Building, graph: i64) -> Yaml {
+/// The YAML document of graph `graph`. Written entry by entry: a waypoint or lane entry is
+/// built, rendered and dropped before the next, so a map of 10^5 waypoints never holds
+/// its graph as a tree (that tree took several times the map file's size).
+pub fn nav_graph_text(b: &Building, graph: i64) -> String {
     let mut root = vec![("building_name".to_string(), Yaml::str(&b.name))];
     if let Some(crs) = &b.crs_name {
         root.push(("crs_name".into(), Yaml::str(crs)));
@@ -82,13 +84,25 @@ pub fn nav_graph(b: &Building, graph: i64) -> Yaml {
         );
     }
     root.push(("doors".into(), Yaml::Map(doors.into_iter().collect())));
+    let mut out = String::new();
+    yaml::write_entries(&mut out, &root, 0);
 
+    // Levels by name; a later level of the same name replaces an earlier one.
     let mut levels = BTreeMap::new();
     for (lh, level) in b.levels.iter() {
-        levels.insert(level.name.clone(), nav_level(b, lh, graph));
+        levels.insert(level.name.as_str(), lh);
     }
-    root.push(("levels".into(), Yaml::Map(levels.into_iter().collect())));
+    if levels.is_empty() {
+        yaml::write_entries(&mut out, &[("levels".into(), Yaml::Map(Vec::new()))], 0);
+    } else {
+        yaml::write_key(&mut out, "levels", 0);
+        for (name, lh) in levels {
+            yaml::write_key(&mut out, name, 2);
+            nav_level(&mut out, b, lh, graph, 4);
+        }
+    }
 
+    let mut root = Vec::new();
     let mut lifts = BTreeMap::new();
     for (_, l) in b.lifts.iter() {
         lifts.insert(
@@ -120,7 +134,8 @@ pub fn nav_graph(b: &Building, graph: i64) -> Yaml {
             Yaml::Seq(vec![Yaml::Float(b.offset.x), Yaml::Float(b.offset.y)]),
         ));
     }
-    Yaml::Map(root)
+    yaml::write_entries(&mut out, &root, 0);
+    out
 }
 
 fn param_yaml(v: &ParamValue) -> Yaml {
@@ -132,66 +147,66 @@ fn param_yaml(v: &ParamValue) -> Yaml {
     }
 }
 
-fn nav_level(b: &Building, lh: Handle<Level>, graph: i64) -> Yaml {
+/// Writes level `lh`'s `lanes` and `vertices` of graph `graph` at indent `ind`.
+fn nav_level(out: &mut String, b: &Building, lh: Handle<Level>, graph: i64, ind: usize) {
     let level = &b.levels[lh];
-    let lanes: Vec<&Lane> = level
-        .lanes
-        .iter()
-        .map(|&h| &b.lanes[h])
-        .filter(|l| l.graph == graph)
-        .collect();
+    let lanes = || {
+        level
+            .lanes
+            .iter()
+            .map(|&h| &b.lanes[h])
+            .filter(|l| l.graph == graph)
+    };
 
-    // Only vertices used by this graph's lanes, numbered by first appearance.
-    let mut index: BTreeMap<Handle<Vertex>, usize> = BTreeMap::new();
+    // Only vertices used by this graph's lanes, numbered by first appearance (by arena
+    // index: a table of the level's size rather than a tree of the graph's).
+    const NONE: u32 = u32::MAX;
+    let mut index = vec![NONE; b.vertices.len()];
     let mut order = Vec::new();
-    for lane in &lanes {
+    for lane in lanes() {
         for v in [lane.start, lane.end] {
-            index.entry(v).or_insert_with(|| {
+            if index[v.index()] == NONE {
+                index[v.index()] = order.len() as u32;
                 order.push(v);
-                order.len() - 1
-            });
+            }
         }
     }
     let lifts_here: Vec<&Lift> = b.lifts_on_level(lh).map(|h| &b.lifts[h]).collect();
 
-    let vertices = order
-        .iter()
-        .map(|&vh| {
-            let v = &b.vertices[vh];
-            let mut p: BTreeMap<String, Yaml> = v
-                .params
-                .iter()
-                .map(|p| (p.name.clone(), param_yaml(&p.value)))
-                .collect();
-            // The vertex's own name wins over a parameter called `name`.
-            p.insert("name".into(), Yaml::str(&v.name));
-            if let Some(lift) = lifts_here.iter().find(|l| l.shaft_contains(v.pos)) {
-                p.insert("lift".into(), Yaml::str(&lift.name));
-            }
-            Yaml::Flow(Box::new(Yaml::Seq(vec![
-                Yaml::Float(v.pos.x),
-                Yaml::Float(v.pos.y),
-                Yaml::Map(p.into_iter().collect()),
-            ])))
-        })
-        .collect();
-
-    let mut out_lanes = Vec::new();
-    for lane in lanes {
-        let (s, e) = (index[&lane.start], index[&lane.end]);
+    let lane_entries = lanes().flat_map(|lane| {
+        let (s, e) = (
+            index[lane.start.index()] as usize,
+            index[lane.end.index()] as usize,
+        );
         let dock = |v: Handle<Vertex>| b.vertices[v].roles.dock_name.clone();
         let (begin_dock, end_dock) = (dock(lane.start), dock(lane.end));
         let forward = lane_params(b, lh, lane, false, end_dock.clone(), begin_dock.clone());
-        out_lanes.push(lane_yaml(s, e, forward));
-        if lane.bidirectional {
-            let backward = lane_params(b, lh, lane, true, begin_dock, end_dock);
-            out_lanes.push(lane_yaml(e, s, backward));
+        let backward = lane
+            .bidirectional
+            .then(|| lane_yaml(e, s, lane_params(b, lh, lane, true, begin_dock, end_dock)));
+        std::iter::once(lane_yaml(s, e, forward)).chain(backward)
+    });
+    yaml::write_key_seq(out, "lanes", ind, lane_entries);
+
+    let vertices = order.iter().map(|&vh| {
+        let v = &b.vertices[vh];
+        let mut p: BTreeMap<String, Yaml> = v
+            .params
+            .iter()
+            .map(|p| (p.name.clone(), param_yaml(&p.value)))
+            .collect();
+        // The vertex's own name wins over a parameter called `name`.
+        p.insert("name".into(), Yaml::str(&v.name));
+        if let Some(lift) = lifts_here.iter().find(|l| l.shaft_contains(v.pos)) {
+            p.insert("lift".into(), Yaml::str(&lift.name));
         }
-    }
-    Yaml::Map(vec![
-        ("lanes".into(), Yaml::Seq(out_lanes)),
-        ("vertices".into(), Yaml::Seq(vertices)),
-    ])
+        Yaml::Flow(Box::new(Yaml::Seq(vec![
+            Yaml::Float(v.pos.x),
+            Yaml::Float(v.pos.y),
+            Yaml::Map(p.into_iter().collect()),
+        ])))
+    });
+    yaml::write_key_seq(out, "vertices", ind, vertices);
 }
 
 fn lane_yaml(s: usize, e: usize, params: BTreeMap<String, Yaml>) -> Yaml {

@@ -55,6 +55,48 @@ pub fn to_string(root: &Yaml) -> String {
     out
 }
 
+/// Writes the entries of a block mapping at indent `ind`, as they would appear inside a
+/// document: for documents written piece by piece.
+pub(crate) fn write_entries(out: &mut String, m: &[(String, Yaml)], ind: usize) {
+    block_map(out, m, ind);
+}
+
+/// Writes `key:` on its own line at indent `ind`: the start of a block mapping or
+/// sequence whose entries the caller writes next.
+pub(crate) fn write_key(out: &mut String, key: &str, ind: usize) {
+    indent(out, ind);
+    write_scalar(out, key);
+    out.push_str(":\n");
+}
+
+/// Writes `key:` and the sequence `items` under it (not indented further, as inside a
+/// mapping), rendering one item at a time: the sequence is never built whole. Items must
+/// be collections (then the sequence is in block style, as [`to_string`] writes it).
+pub(crate) fn write_key_seq(
+    out: &mut String,
+    key: &str,
+    ind: usize,
+    items: impl IntoIterator<Item = Yaml>,
+) {
+    indent(out, ind);
+    write_scalar(out, key);
+    out.push(':');
+    let mut any = false;
+    for v in items {
+        debug_assert!(v.is_collection());
+        if !any {
+            out.push('\n');
+            any = true;
+        }
+        indent(out, ind);
+        out.push('-');
+        block_value(out, &v, ind, false);
+    }
+    if !any {
+        out.push_str(" []\n");
+    }
+}
+
 fn indent(out: &mut String, n: usize) {
     const SPACES: &str = "                                ";
     let mut n = n;

@@ -101,14 +101,14 @@ pub fn parse_site_str(name: &str, text: &str) -> Parsed {
 }
 
 fn parse_into(file: FileId, text: &str, diags: &mut Vec<Diagnostic>) -> Option<Building> {
-    let mut root = match yaml::parse(text, file) {
+    let (mut root, lists) = match yaml::parse_map(text, file) {
         Ok(r) => r,
         Err(d) => {
             diags.push(d);
             return None;
         }
     };
-    let mut b = lower::Lower { diags: &mut *diags }.building(&mut root)?;
+    let mut b = lower::Lower { diags: &mut *diags }.building(&mut root, &lists)?;
     drop(root);
     transform::apply(&mut b, diags);
     Some(b)
@@ -270,4 +270,143 @@ fn load_into(
         return Ok(None);
     }
     load_into(&bpath, sources, diags, depth + 1)
+}
+
+#[cfg(test)]
+mod deferred_lists {
+    use super::*;
+    use std::path::Path;
+
+    /// Lowers `text` from the whole tree (no list deferred): what `parse_into` did before
+    /// level lists were read again from the text.
+    fn whole(text: &str, diags: &mut Vec<Diagnostic>) -> Option<Building> {
+        let mut root = match yaml::parse(text, FileId(0)) {
+            Ok(r) => r,
+            Err(d) => {
+                diags.push(d);
+                return None;
+            }
+        };
+        let lists = yaml::Lists::whole(text, FileId(0));
+        let mut b = lower::Lower { diags: &mut *diags }.building(&mut root, &lists)?;
+        transform::apply(&mut b, diags);
+        Some(b)
+    }
+
+    /// Both readers: `text` as written (the fast reader takes most maps), and with CRLF
+    /// line ends (which only the general reader takes).
+    fn same(name: &str, text: &str) {
+        same_read(name, text);
+        same_read(&format!("{name} (CRLF)"), &text.replace('\n', "\r\n"));
+    }
+
+    fn same_read(name: &str, text: &str) {
+        let (mut d1, mut d2) = (Vec::new(), Vec::new());
+        let a = parse_into(FileId(0), text, &mut d1);
+        let b = whole(text, &mut d2);
+        assert_eq!(
+            format!("{a:?}"),
+            format!("{b:?}"),
+            "{name}: buildings differ"
+        );
+        assert_eq!(
+            format!("{d1:?}"),
+            format!("{d2:?}"),
+            "{name}: diagnostics differ"
+        );
+    }
+
+    /// Single edits near structure (as the fast reader's differential test makes): the
+    /// deferred and whole-tree paths must agree on each.
+    fn mutations(name: &str, text: &str) {
+        const EDITS: &[&str] = &[
+            "",
+            " ",
+            "\n",
+            "- ",
+            ": ",
+            ",",
+            "[",
+            "]",
+            "{",
+            "}",
+            "#",
+            "'",
+            "  ",
+            "x: y",
+            "\n    - [0, 0, 0, v]\n",
+            "\n  L9:\n    lanes:\n    - [0, 1]\n",
+        ];
+        let mut seed = 0x9E3779B97F4A7C15u64 ^ text.len() as u64;
+        for _ in 0..12 {
+            seed ^= seed << 13;
+            seed ^= seed >> 7;
+            seed ^= seed << 17;
+            let mut at = (seed % text.len().max(1) as u64) as usize;
+            while !text.is_char_boundary(at) {
+                at -= 1;
+            }
+            let mut end = (at + ((seed >> 32) % 3) as usize).min(text.len());
+            while !text.is_char_boundary(end) {
+                end += 1;
+            }
+            let edit = EDITS[((seed >> 40) as usize) % EDITS.len()];
+            let m = format!("{}{edit}{}", &text[..at], &text[end..]);
+            same(&format!("{name} with {edit:?} at {at}"), &m);
+        }
+    }
+
+    /// Reading level lists again from the text gives the same building and diagnostics,
+    /// spans included, as lowering the whole tree: on every fixture and demo map, and on
+    /// lists written in each way the reader knows (indentless, maps as items, comments,
+    /// lists of other levels and of lifts beside them).
+    #[test]
+    fn deferred_lists_lower_as_the_whole_tree() {
+        let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("..");
+        let mut n = 0;
+        for dir in ["fixtures", "fixtures/invalid", "tests/fuzz_regressions"] {
+            for e in std::fs::read_dir(root.join(dir)).unwrap() {
+                let p = e.unwrap().path();
+                if p.to_string_lossy().ends_with(".building.yaml") {
+                    let text = String::from_utf8_lossy(&std::fs::read(&p).unwrap()).into_owned();
+                    same(&p.display().to_string(), &text);
+                    mutations(&p.display().to_string(), &text);
+                    n += 1;
+                }
+            }
+        }
+        match std::fs::read_dir(root.join("../shared/maps")) {
+            Ok(maps) => {
+                for m in maps {
+                    let m = m.unwrap().path();
+                    let name = m.file_name().unwrap().to_string_lossy().into_owned();
+                    let p = m.join(format!("{name}.building.yaml"));
+                    same(&name, &std::fs::read_to_string(&p).unwrap());
+                    n += 1;
+                }
+            }
+            Err(_) => println!("skipped demo maps: ../shared not found"),
+        }
+        assert!(n > 20, "{n} maps");
+        for text in [
+            // Indentless lists, a comment between items, a bad vertex and a bad index.
+            "name: t\ncoordinate_system: cartesian_meters\nlevels:\n  L1:\n    vertices:\n    - [0, 0, 0, a]\n    # c\n    - [1, 0, 0, b, {is_charger: [4, true]}]\n    - [x, 0, 0, c]\n    lanes:\n    - [0, 1, {graph_idx: [2, 0]}]\n    - [0, 9, {graph_idx: [2, 0]}]\n",
+            // Items written as block mappings and sequences, a second level, flow lists.
+            "name: t\ncoordinate_system: cartesian_meters\nlevels:\n  L1:\n    lanes:\n      -\n        - 0\n        - 1\n        - graph_idx: [2, 0]\n    vertices:\n      - [0, 0, 0, a]\n      - [1, 1, 0, 'b c']\n    walls: [[0, 1]]\n  L2:\n    vertices:\n      - [0, 0, 0, x]\n    doors:\n      - [0, 0, {name: [1, d], type: [1, hinged]}]\nlifts:\n  lift1:\n    levels: [L1]\n",
+            // Flow lists, one after its key and one on its own lines; a tab (general
+            // reader); a list item spanning lines; quoted names with escapes.
+            "name: t\ncoordinate_system: cartesian_meters\nlevels:\n  L1:\n    vertices: [[0, 0, 0, a],\n      [1, 0, 0, \"b\\tc\"], [2, 0, 0, 'd''e']]\n    lanes:\n      [[0, 1, {graph_idx: [2, 0]}],\n       [1, 2, {graph_idx: [2, 0],\n               bidirectional: [4, true]}]]\n    walls:\n    - [0,\t1]\n",
+            // JSON, as a converter would write it.
+            "{\"name\": \"t\", \"coordinate_system\": \"cartesian_meters\", \"levels\": {\"L1\": {\"vertices\": [[0, 0, 0, \"a\"], [3, 4, 0, \"b\"]], \"lanes\": [[0, 1, {\"graph_idx\": [2, 0]}]]}}}\n",
+            // Pretty-printed JSON; then a list whose brackets are indented less than its
+            // key, which is not a document of its own: read from the whole tree instead.
+            "{\n  \"name\": \"t\",\n  \"coordinate_system\": \"cartesian_meters\",\n  \"levels\": {\n    \"L1\": {\n      \"vertices\": [\n        [0, 0, 0, \"a\"],\n        [3, 4, 0, \"b\"]\n      ],\n      \"lanes\": [\n[0, 1, {\"graph_idx\": [2, 0]}],\n[1, 0, {\"graph_idx\": [2, 0]}]\n]\n    }\n  }\n}\n",
+            // An anchor: the general reader keeps every list.
+            "name: t\ncoordinate_system: cartesian_meters\nlevels:\n  L1:\n    vertices:\n    - &v [0, 0, 0, a]\n    - *v\n    lanes:\n    - [0, 1, {graph_idx: [2, 0]}]\n",
+            // `levels` not at the root, lists under other keys: never deferred.
+            "name: t\ncoordinate_system: cartesian_meters\nx:\n  levels:\n    L:\n      vertices:\n        - [0, 0, 0, a]\nlevels:\n  L1:\n    vertices: null\n    lanes:\n      - [0, 0]\n",
+        ] {
+            same(text, text);
+        }
+    }
 }

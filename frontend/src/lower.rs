@@ -1,7 +1,7 @@
 //! Lowering: located YAML tree -> IR with file coordinates. Positions are filled in by
 //! `transform` afterwards, once every level's alignment is known.
 
-use crate::yaml::{Kind, Node, Scalar};
+use crate::yaml::{Kind, Lists, Node, Scalar};
 use mapc_ir::*;
 use std::collections::HashSet;
 use std::fmt::Display;
@@ -40,6 +40,48 @@ struct Edge {
 impl Edge {
     fn is_invalid(&self, name: &str) -> bool {
         self.invalid.iter().any(|n| n == name)
+    }
+}
+
+/// What reading a level's edge lists (`lanes`, `walls`, ...) needs.
+struct EdgeList<'e, 's> {
+    level: Handle<Level>,
+    slots: &'e VertexSlots,
+    what: &'e str,
+    lists: &'e Lists<'s>,
+}
+
+impl<'s> EdgeList<'_, 's> {
+    /// Reads the level list `key` entry by entry and hands each edge whose indices resolved
+    /// to `element`, so that an entry's tree is freed before the next is read and no list
+    /// of edges is ever whole. Diagnostics of `element` follow those of reading the whole
+    /// list (indices, parameters), in the order of a list read first and lowered after.
+    fn each(
+        &self,
+        l: &mut Lower,
+        b: &mut Building,
+        node: &mut Node<'s>,
+        key: &str,
+        mut element: impl FnMut(&mut Lower, &mut Building, Edge),
+    ) {
+        let Some(list) = node.get_mut(key).map(Node::take) else {
+            return;
+        };
+        if l.seq(&list, &format!("the {key} of {}", self.what))
+            .is_none()
+        {
+            return;
+        }
+        let mut later = Vec::new();
+        for e in self.lists.items(list) {
+            if let Some(x) = l.edge(b, self.level, &e, key, self.slots) {
+                drop(e);
+                let n = l.diags.len();
+                element(l, b, x);
+                later.extend(l.diags.drain(n..));
+            }
+        }
+        l.diags.append(&mut later);
     }
 }
 
@@ -483,7 +525,8 @@ impl Lower<'_> {
     }
 
     /// The whole document.
-    pub fn building(&mut self, root: &mut Node) -> Option<Building> {
+    /// The level lists may have been left out of the tree (`lists` reads them).
+    pub fn building<'s>(&mut self, root: &mut Node<'s>, lists: &Lists<'s>) -> Option<Building> {
         let root_entries = self.map(root, "the document root")?;
         self.unknown_keys(root_entries, ROOT_KEYS, "the building");
 
@@ -581,7 +624,7 @@ impl Lower<'_> {
         // Levels are lowered from the tree mutably: each frees its large lists once read.
         if let Some(entries) = root.get_mut("levels").and_then(Node::as_map_mut) {
             for (i, name, span) in chosen {
-                self.level(&mut b, &name, &mut entries[i].1, span);
+                self.level(&mut b, &name, &mut entries[i].1, span, lists);
             }
         }
         if b.levels.is_empty() {
@@ -652,7 +695,14 @@ impl Lower<'_> {
         h
     }
 
-    fn level(&mut self, b: &mut Building, name: &str, node: &mut Node, span: Span) {
+    fn level<'s>(
+        &mut self,
+        b: &mut Building,
+        name: &str,
+        node: &mut Node<'s>,
+        span: Span,
+        lists: &Lists<'s>,
+    ) {
         let what = format!("level `{name}`");
         let Some(entries) = self.map(node, &what) else {
             return;
@@ -678,13 +728,14 @@ impl Lower<'_> {
         // Vertices first: every other element indexes them, by position in the file.
         let mut slots: Vec<Option<Handle<Vertex>>> = Vec::new();
         if let Some(vs) = node.get_mut("vertices").map(Node::take) {
-            let len = self
-                .seq(&vs, &format!("the vertices of {what}"))
-                .map_or(0, <[Node]>::len);
-            slots.reserve(len);
+            let len = match self.seq(&vs, &format!("the vertices of {what}")) {
+                Some(_) => lists.len(&vs),
+                None => 0,
+            };
+            slots.reserve_exact(len);
             b.vertices.reserve(len);
             // By value: each vertex's subtree is freed once lowered.
-            for v in vs.into_seq() {
+            for v in lists.items(vs) {
                 let h = self.vertex(lh, &v).map(|vx| {
                     let h = b.vertices.append(vx, v.span);
                     b.levels[lh].vertices.push(h);
@@ -695,75 +746,58 @@ impl Lower<'_> {
         }
         let slots = &slots[..];
 
-        let edges = |l: &mut Self, b: &Building, node: &mut Node, key: &str| -> Vec<Edge> {
-            let Some(list) = node.get_mut(key).map(Node::take) else {
-                return Vec::new();
-            };
-            if l.seq(&list, &format!("the {key} of {what}")).is_none() {
-                return Vec::new();
-            }
-            let mut out = Vec::new();
-            for e in list.into_seq() {
-                if let Some(x) = l.edge(b, lh, &e, key, slots) {
-                    out.push(x);
-                }
-            }
-            out
+        let len = |node: &Node<'s>, key: &str| node.get(key).map_or(0, |l| lists.len(l));
+        b.lanes.reserve(len(node, "lanes"));
+        let edges = EdgeList {
+            level: lh,
+            slots,
+            what: &what,
+            lists,
         };
-
-        let lanes = edges(self, b, node, "lanes");
-        b.lanes.reserve(lanes.len());
-        for e in lanes {
+        edges.each(self, b, node, "lanes", |l, b, e| {
             let span = e.span;
-            if let Some(lane) = self.lane(lh, e) {
+            if let Some(lane) = l.lane(lh, e) {
                 let h = b.lanes.append(lane, span);
                 b.levels[lh].lanes.push(h);
             }
-        }
-        for Edge {
-            start,
-            end,
-            params,
-            span,
-            ..
-        } in edges(self, b, node, "walls")
-        {
+        });
+        edges.each(self, b, node, "walls", |_, b, e| {
             let h = b.walls.append(
                 Wall {
                     level: lh,
-                    start,
-                    end,
-                    params,
+                    start: e.start,
+                    end: e.end,
+                    params: e.params,
                 },
-                span,
+                e.span,
             );
             b.levels[lh].walls.push(h);
-        }
-        for e in edges(self, b, node, "measurements") {
+        });
+        edges.each(self, b, node, "measurements", |l, b, e| {
             let (params, span) = (&e.params, e.span);
             let distance = match params.get("distance") {
                 Some(v) => match v.as_f64() {
                     Some(d) => d,
                     None => {
-                        self.err(
+                        l.err(
                             "E0105",
                             params.param("distance").map_or(span, |p| p.span),
                             "measurement `distance` must be a number",
                             "write `distance: [3, <metres>]`",
                         );
-                        continue;
+                        return;
                     }
                 },
                 // Present but malformed: already reported.
-                None if e.is_invalid("distance") => continue,
+                None if e.is_invalid("distance") => return,
                 None => {
-                    self.err(
+                    l.err(
                         "E0102",
                         span,
                         "measurement has no `distance` parameter",
                         "add `distance: [3, <metres>]` to the measurement",
                     );
-                    continue;
+                    return;
                 }
             };
             let h = b.measurements.append(
@@ -777,33 +811,26 @@ impl Lower<'_> {
                 span,
             );
             b.levels[lh].measurements.push(h);
-        }
-        for e in edges(self, b, node, "doors") {
+        });
+        edges.each(self, b, node, "doors", |l, b, e| {
             let span = e.span;
-            if let Some(door) = self.door(lh, e) {
+            if let Some(door) = l.door(lh, e) {
                 let h = b.doors.append(door, span);
                 b.levels[lh].doors.push(h);
             }
-        }
-        for Edge {
-            start,
-            end,
-            params,
-            span,
-            ..
-        } in edges(self, b, node, "human_lanes")
-        {
+        });
+        edges.each(self, b, node, "human_lanes", |_, b, e| {
             let h = b.human_lanes.append(
                 HumanLane {
                     level: lh,
-                    start,
-                    end,
-                    params,
+                    start: e.start,
+                    end: e.end,
+                    params: e.params,
                 },
-                span,
+                e.span,
             );
             b.levels[lh].human_lanes.push(h);
-        }
+        });
 
         for (key, is_floor) in [("floors", true), ("holes", false)] {
             let Some(list) = node.get(key) else { continue };
@@ -1082,6 +1109,18 @@ impl Lower<'_> {
             },
         };
         let s = |k: &str| params.str(k).filter(|s| !s.is_empty()).map(str::to_string);
+        let (mutex, demo_mock_floor_name, demo_mock_lift_name) = (
+            s("mutex"),
+            s("demo_mock_floor_name"),
+            s("demo_mock_lift_name"),
+        );
+        // `graph_idx` and `bidirectional` are whole in their fields; nearly every lane has
+        // both, and as parameters they took more memory than the rest of the lane.
+        let mut params = params;
+        params
+            .0
+            .retain(|p| p.name != "graph_idx" && p.name != "bidirectional");
+        params.0.shrink_to_fit();
         Some(Lane {
             level,
             start,
@@ -1090,9 +1129,9 @@ impl Lower<'_> {
             bidirectional,
             orientation,
             speed_limit,
-            mutex: s("mutex"),
-            demo_mock_floor_name: s("demo_mock_floor_name"),
-            demo_mock_lift_name: s("demo_mock_lift_name"),
+            mutex,
+            demo_mock_floor_name,
+            demo_mock_lift_name,
             params,
         })
     }

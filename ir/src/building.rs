@@ -330,6 +330,8 @@ pub struct Lane {
     pub mutex: Option<String>,
     pub demo_mock_floor_name: Option<String>,
     pub demo_mock_lift_name: Option<String>,
+    /// The lane's parameters other than `graph_idx` and `bidirectional` (which are whole in
+    /// `graph` and `bidirectional`); kept for their spans and for rules on free-form ones.
     pub params: Params,
 }
 

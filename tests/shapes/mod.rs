@@ -111,6 +111,33 @@ pub fn spot(n: usize) -> String {
     map("spot", &v, &l)
 }
 
+/// `text` with CRLF line ends (as saved on Windows): read by the general YAML reader.
+pub fn crlf(text: &str) -> String {
+    text.replace('\n', "\r\n")
+}
+
+/// The `line` shape with its lists in flow style over many lines (`vertices: [` then one
+/// entry a line), which only the general YAML reader takes.
+pub fn line_flow(n: usize) -> String {
+    let mut s = String::with_capacity(100 * n + 200);
+    s.push_str("name: line\ncoordinate_system: cartesian_meters\nlevels:\n  L1:\n");
+    s.push_str("    elevation: 0\n    vertices: [\n");
+    for i in 0..n {
+        let sep = if i + 1 < n { "," } else { "]" };
+        let _ = writeln!(s, "      [0.000, {:.3}, 0, \"\"]{sep}", 0.5 * i as f64);
+    }
+    s.push_str("    lanes: [\n");
+    for i in 1..n {
+        let sep = if i + 1 < n { "," } else { "]" };
+        let _ = writeln!(
+            s,
+            "      [{}, {i}, {{bidirectional: [4, true], graph_idx: [2, 0]}}]{sep}",
+            i - 1
+        );
+    }
+    s
+}
+
 /// The four shapes at the sizes of issue 18's acceptance, by name.
 pub fn acceptance() -> Vec<(&'static str, String)> {
     vec![

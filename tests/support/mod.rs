@@ -10,10 +10,18 @@ pub struct Run {
     pub stdout: Vec<u8>,
     pub stderr: Vec<u8>,
     pub elapsed: Duration,
-    /// Peak resident memory in bytes, when /proc tells it.
+    /// Peak resident memory in bytes (the child's `VmHWM`, sampled; Linux only).
     pub peak_rss: Option<u64>,
 }
 
+/// Peak resident memory of process `pid` so far (`VmHWM`), in bytes.
+///
+/// Why sampled and not `wait4`'s `ru_maxrss`: Linux folds the high-water mark of the
+/// memory a process had before `exec` into `ru_maxrss`, and a spawned child starts with
+/// its parent's (the test process, holding the generated maps), so `ru_maxrss` reports at
+/// least the parent's peak. `VmHWM` is that of mapc's own memory and only grows, so a
+/// sample taken after the peak sees it; only growth in the last few milliseconds before
+/// exit can be missed.
 fn vm_hwm(pid: u32) -> Option<u64> {
     let status = std::fs::read_to_string(format!("/proc/{pid}/status")).ok()?;
     let line = status.lines().find(|l| l.starts_with("VmHWM:"))?;
@@ -56,7 +64,7 @@ pub fn run(args: &[&str], limit: Duration) -> Run {
             let _ = child.kill();
             panic!("mapc {args:?} still running after {:?}", start.elapsed());
         }
-        std::thread::sleep(Duration::from_millis(5));
+        std::thread::sleep(Duration::from_millis(2));
     };
     Run {
         // Killed by a signal (an abort, say): -1, which no bound accepts.

@@ -10,7 +10,7 @@
 //! differential test and a fuzz target check that whenever this reader accepts an input,
 //! it builds exactly the tree (kinds, texts, spans) that the saphyr path builds.
 
-use super::{max_nodes, Kind, Node, MAX_DEPTH};
+use super::{max_nodes, Kind, Node, LIST_KEYS, MAX_DEPTH};
 use mapc_ir::{FileId, Span};
 use std::borrow::Cow;
 
@@ -39,9 +39,49 @@ struct P<'a> {
     /// large map then took about twice its size in resident memory).
     seq_items: Vec<Node<'a>>,
     map_items: Vec<(Node<'a>, Node<'a>)>,
+    /// Where the node being read sits among a map's lists (see [`Ctx`]); `None` when the
+    /// caller wants the whole tree.
+    ctx: Ctx,
+    /// The level lists read but not kept, in document order.
+    lists: Vec<List>,
+}
+
+/// The place of the node about to be read, as far as deferring level lists cares: the
+/// root mapping, the `levels` mapping, a level, a list of a level, anything else.
+#[derive(Clone, Copy, PartialEq, Eq)]
+enum Ctx {
+    None,
+    Root,
+    Levels,
+    Level,
+    List,
+}
+
+/// A level list that was read (so the document is known to be in the subset, within the
+/// node limit) but whose items were dropped: [`Items`] reads them again, one at a time,
+/// when lowering asks for them. The tree holds an empty sequence with the list's span.
+#[derive(Clone, Copy)]
+pub(crate) struct List {
+    /// Start of the list's span in the tree (the key that finds it).
+    pub(crate) key: u32,
+    /// Number of items.
+    pub(crate) len: usize,
+    /// The reader's state at the first `-`.
+    pos: usize,
+    line: u32,
+    line_start: usize,
+    indent: usize,
+    depth: usize,
 }
 
 pub(super) fn parse(text: &str, file: FileId) -> Option<Node<'_>> {
+    parse_lists(text, file, false).map(|(root, _)| root)
+}
+
+/// [`parse`]; with `defer`, the large lists of each level (vertices, lanes, walls, ...)
+/// are read and checked but left out of the tree, and returned to be read again one item
+/// at a time ([`Items`]): the whole tree of a large map is then never in memory.
+pub(super) fn parse_lists(text: &str, file: FileId, defer: bool) -> Option<(Node<'_>, Vec<List>)> {
     if text.starts_with('\u{feff}') || has_unprintable(text.as_bytes()) {
         return None;
     }
@@ -58,6 +98,8 @@ pub(super) fn parse(text: &str, file: FileId) -> Option<Node<'_>> {
         line_ascii: None,
         seq_items: Vec::new(),
         map_items: Vec::new(),
+        ctx: Ctx::None,
+        lists: Vec::new(),
     };
     let root = (|| {
         p.next_content()?;
@@ -69,6 +111,9 @@ pub(super) fn parse(text: &str, file: FileId) -> Option<Node<'_>> {
         } else if c == b'[' || c == b'{' {
             return Err(Bail);
         } else if p.line_has_key()? {
+            if defer {
+                p.ctx = Ctx::Root;
+            }
             p.block_map(indent, 1)?
         } else {
             return Err(Bail);
@@ -82,7 +127,67 @@ pub(super) fn parse(text: &str, file: FileId) -> Option<Node<'_>> {
     if root.is_err() {
         eprintln!("fast reader declined at line {} byte {}", p.line, p.pos);
     }
-    root.ok()
+    let lists = std::mem::take(&mut p.lists);
+    root.ok().map(|r| (r, lists))
+}
+
+/// The items of a deferred level list, read again from the text one at a time. Reading
+/// cannot fail: the same reader accepted the same text before (should it ever, the
+/// iteration ends early).
+pub(crate) struct Items<'a> {
+    p: P<'a>,
+    left: usize,
+    indent: usize,
+    depth: usize,
+}
+
+impl<'a> Items<'a> {
+    pub(crate) fn new(text: &'a str, file: FileId, list: &List) -> Self {
+        let p = P {
+            s: text,
+            b: text.as_bytes(),
+            pos: list.pos,
+            line: list.line,
+            line_start: list.line_start,
+            file,
+            nodes: 0,
+            // Counted when the list was first read.
+            node_limit: usize::MAX,
+            indent: Some(list.indent),
+            line_ascii: None,
+            seq_items: Vec::new(),
+            map_items: Vec::new(),
+            ctx: Ctx::None,
+            lists: Vec::new(),
+        };
+        Items {
+            p,
+            left: list.len,
+            indent: list.indent,
+            depth: list.depth,
+        }
+    }
+}
+
+impl<'a> Iterator for Items<'a> {
+    type Item = Node<'a>;
+    fn next(&mut self) -> Option<Node<'a>> {
+        if self.left == 0 {
+            return None;
+        }
+        self.left -= 1;
+        match self.p.seq_item(self.indent, self.depth) {
+            Ok((item, _)) => Some(item),
+            Err(Bail) => {
+                // Never seen: the caller then reads the whole tree (`yaml::Items`).
+                self.left = 0;
+                None
+            }
+        }
+    }
+    fn size_hint(&self) -> (usize, Option<usize>) {
+        (0, Some(self.left))
+    }
 }
 
 /// Characters YAML does not allow in a stream (controls other than tab, LF and CR; C1
@@ -330,8 +435,16 @@ impl<'a> P<'a> {
         self.count()?;
         let start = self.span(self.pos, self.pos);
         let mark = self.map_items.len();
+        let ctx = std::mem::replace(&mut self.ctx, Ctx::None);
         loop {
             let key = self.key()?;
+            // Only an entry's own value may see the context; whatever it holds resets it.
+            self.ctx = match (ctx, key.key_text()) {
+                (Ctx::Root, Some("levels")) => Ctx::Levels,
+                (Ctx::Levels, _) => Ctx::Level,
+                (Ctx::Level, Some(k)) if LIST_KEYS.contains(&k) => Ctx::List,
+                _ => Ctx::None,
+            };
             self.skip_spaces()?;
             // In block context the `:` of a key must be followed by a space or a line end,
             // after quoted keys too (`'k':v` is not a mapping entry).
@@ -362,15 +475,18 @@ impl<'a> P<'a> {
                         if !first_on_line {
                             return Err(Bail);
                         }
-                        let mut seq = self.block_seq(indent, depth + 1)?;
+                        let (mut seq, first) = self.block_seq_first(indent, depth + 1)?;
                         // saphyr starts such a sequence at its first item.
-                        if let Kind::Seq(items) = &seq.kind {
-                            if let Some(first) = items.first() {
-                                seq.span = Span {
-                                    end: seq.span.end,
-                                    ..first.span
-                                };
+                        if let Some(first) = first {
+                            if let Some(list) =
+                                self.lists.last_mut().filter(|l| l.key == seq.span.start)
+                            {
+                                list.key = first.start;
                             }
+                            seq.span = Span {
+                                end: seq.span.end,
+                                ..first
+                            };
                         }
                         seq
                     }
@@ -384,6 +500,7 @@ impl<'a> P<'a> {
                 }
                 v
             };
+            self.ctx = Ctx::None;
             self.map_items.push((key, value));
             match self.indent {
                 Some(i) if i == indent => {
@@ -406,54 +523,91 @@ impl<'a> P<'a> {
     }
 
     fn block_seq(&mut self, indent: usize, depth: usize) -> R<Node<'a>> {
+        self.block_seq_first(indent, depth).map(|(n, _)| n)
+    }
+
+    /// A block sequence and the span of its first item. A level list (`Ctx::List`) is
+    /// read whole but its items are dropped as soon as they are read: the node is an
+    /// empty sequence with the list's span, and `lists` says where to read the items.
+    fn block_seq_first(&mut self, indent: usize, depth: usize) -> R<(Node<'a>, Option<Span>)> {
         if depth > MAX_DEPTH {
             return Err(Bail);
         }
+        let defer = std::mem::replace(&mut self.ctx, Ctx::None) == Ctx::List;
         self.count()?;
         let start = self.span(self.pos, self.pos);
         let mark = self.seq_items.len();
+        let resume = List {
+            key: start.start,
+            len: 0,
+            pos: self.pos,
+            line: self.line,
+            line_start: self.line_start,
+            indent,
+            depth,
+        };
+        let mut first = None;
+        let mut last_end;
+        let mut len = 0;
         loop {
-            // At `-`.
-            self.pos += 1;
-            self.skip_spaces()?;
-            let item = if self.at_comment_or_eol() {
-                self.finish_line()?;
-                match self.indent {
-                    Some(ind) if ind > indent => self.block_node(ind, depth + 1)?,
-                    _ => return Err(Bail), // an empty item
-                }
-            } else if self.b[self.pos] == b'-' && self.is_sep(self.pos + 1) {
-                return Err(Bail); // `- - x`
-            } else if !matches!(self.b[self.pos], b'[' | b'{') && self.line_has_key()? {
-                let col = self.pos - self.line_start;
-                self.block_map(col, depth + 1)?
-            } else {
-                let v = self.inline_value(depth + 1)?;
-                self.finish_line()?;
-                if self.indent.is_some_and(|i| i > indent) {
-                    return Err(Bail);
-                }
-                v
-            };
-            self.seq_items.push(item);
-            match self.indent {
-                Some(i) if i == indent => {
-                    if !(self.b[self.pos] == b'-' && self.is_sep(self.pos + 1)) {
-                        break; // the next key of a parent mapping at the same indent
-                    }
-                }
-                Some(i) if i > indent => return Err(Bail),
-                _ => break,
+            let (item, more) = self.seq_item(indent, depth)?;
+            len += 1;
+            first.get_or_insert(item.span);
+            last_end = item.span.end.max(item.span.start);
+            if !defer {
+                self.seq_items.push(item);
+            }
+            if !more {
+                break;
             }
         }
         let items: Vec<_> = self.seq_items.drain(mark..).collect();
-        let end = items
-            .last()
-            .map_or(start.start, |v: &Node| v.span.end.max(v.span.start));
-        Ok(Node {
-            kind: Kind::Seq(items),
-            span: Span { end, ..start },
-        })
+        if defer {
+            self.lists.push(List { len, ..resume });
+        }
+        Ok((
+            Node {
+                kind: Kind::Seq(items),
+                span: Span {
+                    end: last_end,
+                    ..start
+                },
+            },
+            first,
+        ))
+    }
+
+    /// One item of a block sequence, from its `-`; and whether another item follows.
+    fn seq_item(&mut self, indent: usize, depth: usize) -> R<(Node<'a>, bool)> {
+        // At `-`.
+        self.pos += 1;
+        self.skip_spaces()?;
+        let item = if self.at_comment_or_eol() {
+            self.finish_line()?;
+            match self.indent {
+                Some(ind) if ind > indent => self.block_node(ind, depth + 1)?,
+                _ => return Err(Bail), // an empty item
+            }
+        } else if self.b[self.pos] == b'-' && self.is_sep(self.pos + 1) {
+            return Err(Bail); // `- - x`
+        } else if !matches!(self.b[self.pos], b'[' | b'{') && self.line_has_key()? {
+            let col = self.pos - self.line_start;
+            self.block_map(col, depth + 1)?
+        } else {
+            let v = self.inline_value(depth + 1)?;
+            self.finish_line()?;
+            if self.indent.is_some_and(|i| i > indent) {
+                return Err(Bail);
+            }
+            v
+        };
+        let more = match self.indent {
+            // Another item, or the next key of a parent mapping at the same indent.
+            Some(i) if i == indent => self.b[self.pos] == b'-' && self.is_sep(self.pos + 1),
+            Some(i) if i > indent => return Err(Bail),
+            _ => false,
+        };
+        Ok((item, more))
     }
 
     /// A node that starts on its own line at `indent`.

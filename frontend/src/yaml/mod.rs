@@ -4,11 +4,10 @@
 //! bounds on depth and alias expansion (alias bombs) that a generic loader does not give.
 
 mod fast;
+mod general;
 
 use mapc_ir::{Diagnostic, FileId, Span};
-use saphyr_parser::{Event, Parser, ScalarStyle};
 use std::borrow::Cow;
-use std::collections::HashMap;
 
 /// Deepest nesting accepted; real maps use 6 levels.
 pub const MAX_DEPTH: usize = 64;
@@ -254,95 +253,6 @@ fn is_float_syntax(b: &[u8]) -> bool {
     i == b.len()
 }
 
-/// Maps saphyr's character positions to byte offsets.
-struct Positions<'a> {
-    text: &'a str,
-    line_starts: Vec<usize>,
-    /// Whether each line is pure ASCII (then char column == byte column).
-    line_ascii: Vec<bool>,
-}
-
-impl<'a> Positions<'a> {
-    fn new(text: &'a str) -> Self {
-        let mut line_starts = vec![0];
-        line_starts.extend(text.match_indices('\n').map(|(i, _)| i + 1));
-        let line_ascii = line_starts
-            .iter()
-            .enumerate()
-            .map(|(i, &s)| {
-                let e = line_starts.get(i + 1).copied().unwrap_or(text.len());
-                text.as_bytes()[s..e].is_ascii()
-            })
-            .collect();
-        Positions {
-            text,
-            line_starts,
-            line_ascii,
-        }
-    }
-    /// Byte offset of (1-based line, 0-based char column).
-    fn byte(&self, line: usize, col: usize) -> usize {
-        let i = line.saturating_sub(1);
-        let Some(&start) = self.line_starts.get(i) else {
-            return self.text.len();
-        };
-        if self.line_ascii[i] {
-            return (start + col).min(self.text.len());
-        }
-        let rest = &self.text[start..];
-        start + rest.char_indices().nth(col).map_or(rest.len(), |(i, _)| i)
-    }
-    fn span(&self, file: FileId, s: saphyr_parser::Span) -> Span {
-        let start = self.byte(s.start.line(), s.start.col());
-        let end = self.byte(s.end.line(), s.end.col()).max(start);
-        Span {
-            file,
-            start: start as u32,
-            end: end as u32,
-            line: s.start.line() as u32,
-            col: s.start.col() as u32 + 1,
-        }
-    }
-}
-
-/// An open collection: its items, start span, anchor id and size in nodes so far.
-enum Frame<'a> {
-    Seq(Vec<Node<'a>>, Span, usize, usize),
-    Map(
-        Vec<(Node<'a>, Node<'a>)>,
-        Option<Node<'a>>,
-        Span,
-        usize,
-        usize,
-    ),
-}
-
-/// Byte just past the closing quote of the quoted scalar starting at `start`.
-fn quoted_end(text: &str, start: usize) -> usize {
-    let b = text.as_bytes();
-    let Some(&q) = b.get(start) else {
-        return start;
-    };
-    if q != b'"' && q != b'\'' {
-        return start;
-    }
-    let mut i = start + 1;
-    while i < b.len() {
-        match b[i] {
-            b'\\' if q == b'"' => i += 2,
-            c if c == q => {
-                if q == b'\'' && b.get(i + 1) == Some(&b'\'') {
-                    i += 2;
-                } else {
-                    return i + 1;
-                }
-            }
-            _ => i += 1,
-        }
-    }
-    b.len()
-}
-
 /// Parses one YAML document. Returns the root or a single error diagnostic (a syntax
 /// error leaves nothing trustworthy to lower). Both readers build the same tree: the fast
 /// one for the subset maps are written in, saphyr for everything else.
@@ -353,224 +263,189 @@ pub fn parse(text: &str, file: FileId) -> Result<Node<'_>, Diagnostic> {
     }
 }
 
-/// The general reader (saphyr-parser events). Span conventions, shared with `fast`:
-/// scalars cover their text (quotes included), flow collections run through their closing
-/// bracket, block collections end where their last child ends.
-pub(crate) fn parse_general(text: &str, file: FileId) -> Result<Node<'_>, Diagnostic> {
-    let source = text;
-    let pos = Positions::new(text);
-    let mut stack: Vec<Frame> = Vec::new();
-    let mut anchors: HashMap<usize, (Node<'_>, usize)> = HashMap::new();
-    let mut root: Option<Node<'_>> = None;
-    let mut total_nodes = 0usize;
-    let node_limit = max_nodes(text.len());
-    let mut alias_nodes = 0usize;
-    let mut documents = 0;
-
-    for item in Parser::new_from_str(text) {
-        let (event, sp) = match item {
-            Ok(x) => x,
-            Err(e) => {
-                let m = e.marker();
-                let start = pos.byte(m.line(), m.col());
-                let span = Span {
-                    file,
-                    start: start as u32,
-                    end: start as u32,
-                    line: m.line() as u32,
-                    col: m.col() as u32 + 1,
-                };
-                return Err(Diagnostic::error(
-                    "E0001",
-                    span,
-                    format!("invalid YAML: {}", e.info()),
-                )
-                .with_help("fix the YAML syntax at this position"));
-            }
-        };
-        let span = pos.span(file, sp);
-        // (node, anchor id) completed by this event, if any.
-        let done: Option<(Node<'_>, usize, usize)> = match event {
-            Event::StreamStart | Event::StreamEnd | Event::Nothing | Event::DocumentEnd => None,
-            Event::DocumentStart(_) => {
-                documents += 1;
-                if documents > 1 {
-                    return Err(Diagnostic::error(
-                        "E0001",
-                        span,
-                        "more than one YAML document in the file",
-                    )
-                    .with_help(
-                        "a .building.yaml holds exactly one document; remove the extra `---`",
-                    ));
-                }
-                None
-            }
-            Event::Alias(id) => match anchors.get(&id) {
-                Some((node, size)) => {
-                    total_nodes += size;
-                    alias_nodes += size;
-                    if alias_nodes > MAX_ALIAS_NODES {
-                        return Err(limit_error(span, "alias expansion", MAX_ALIAS_NODES));
-                    }
-                    let mut n = node.clone();
-                    n.span = span;
-                    Some((n, 0, *size))
-                }
-                None => {
-                    return Err(Diagnostic::error(
-                        "E0001",
-                        span,
-                        "alias to an unknown anchor",
-                    ))
-                }
-            },
-            Event::Scalar(text, style, anchor, tag) => {
-                total_nodes += 1;
-                let is_str_tag = tag.as_ref().is_some_and(|t| t.suffix == "str");
-                let plain = style == ScalarStyle::Plain && !is_str_tag;
-                let mut span = span;
-                if matches!(style, ScalarStyle::SingleQuoted | ScalarStyle::DoubleQuoted) {
-                    // saphyr's end runs past trailing blanks and comments; stop at the quote.
-                    span.end = quoted_end(source, span.start as usize) as u32;
-                }
-                Some((
-                    Node {
-                        kind: Kind::Scalar { text, plain },
-                        span,
-                    },
-                    anchor,
-                    1,
-                ))
-            }
-            Event::SequenceStart(anchor, _) => {
-                if stack.len() >= MAX_DEPTH {
-                    return Err(limit_error(span, "nesting depth", MAX_DEPTH));
-                }
-                stack.push(Frame::Seq(Vec::new(), span, anchor, 1));
-                total_nodes += 1;
-                None
-            }
-            Event::MappingStart(anchor, _) => {
-                if stack.len() >= MAX_DEPTH {
-                    return Err(limit_error(span, "nesting depth", MAX_DEPTH));
-                }
-                stack.push(Frame::Map(Vec::new(), None, span, anchor, 1));
-                total_nodes += 1;
-                None
-            }
-            Event::SequenceEnd => match stack.pop() {
-                Some(Frame::Seq(items, start, anchor, size)) => Some((
-                    Node {
-                        span: join(
-                            source,
-                            start,
-                            span,
-                            items.first().map(|n| n.span),
-                            items.last().map(|n| n.span),
-                        ),
-                        kind: Kind::Seq(items),
-                    },
-                    anchor,
-                    size,
-                )),
-                _ => return Err(Diagnostic::error("E0001", span, "unbalanced sequence end")),
-            },
-            Event::MappingEnd => match stack.pop() {
-                Some(Frame::Map(items, _, start, anchor, size)) => Some((
-                    Node {
-                        span: join(
-                            source,
-                            start,
-                            span,
-                            items.first().map(|(k, _)| k.span),
-                            items.last().map(|(_, v)| v.span),
-                        ),
-                        kind: Kind::Map(items),
-                    },
-                    anchor,
-                    size,
-                )),
-                _ => return Err(Diagnostic::error("E0001", span, "unbalanced mapping end")),
-            },
-        };
-        if total_nodes > node_limit {
-            return Err(limit_error(span, "node count", node_limit));
-        }
-        if let Some((node, anchor, size)) = done {
-            if anchor > 0 {
-                anchors.insert(anchor, (node.clone(), size));
-            }
-            match stack.last_mut() {
-                None => root = Some(node),
-                Some(Frame::Seq(items, _, _, total)) => {
-                    *total += size;
-                    items.push(node)
-                }
-                Some(Frame::Map(items, pending, _, _, total)) => {
-                    *total += size;
-                    match pending.take() {
-                        None => *pending = Some(node),
-                        Some(key) => items.push((key, node)),
-                    }
-                }
-            }
-        }
-    }
-    Ok(root.unwrap_or(Node {
-        kind: Kind::Scalar {
-            text: Cow::Borrowed(""),
-            plain: true,
-        },
-        span: Span {
-            file,
-            start: 0,
-            end: 0,
-            line: 1,
-            col: 1,
-        },
-    }))
-}
-
-/// Span of a collection: a flow collection runs through its closing bracket, a block
-/// collection ends where its last child ends.
-fn join(
-    text: &str,
-    a: Span,
-    end_event: Span,
-    first_child: Option<Span>,
-    last_child: Option<Span>,
-) -> Span {
-    let bytes = text.as_bytes();
-    // saphyr starts an indentless block sequence at its first item, which may itself be a
-    // flow collection: a flow collection never starts where its first child does.
-    let flow = matches!(bytes.get(a.start as usize), Some(b'[' | b'{'))
-        && first_child.is_none_or(|c| c.start != a.start);
-    let end = if flow {
-        // The end event sits on the closing bracket, or on a trailing comma before it.
-        let mut i = end_event.start as usize;
-        while matches!(bytes.get(i), Some(b',' | b' ' | b'\n' | b'\t' | b'\r')) {
-            i += 1;
-        }
-        i as u32 + 1
-    } else {
-        last_child.map_or(a.start, |c| c.end.max(c.start))
+/// The tree of a map to lower, with its level lists left out when the fast reader read
+/// it (see [`Lists`]): the whole tree of a large map is then never in memory, only one
+/// list item at a time.
+pub(crate) fn parse_map(text: &str, file: FileId) -> Result<(Node<'_>, Lists<'_>), Diagnostic> {
+    let mut lists = Lists {
+        text,
+        file,
+        fast: Vec::new(),
+        general: Vec::new(),
     };
-    Span {
-        end: end.max(a.start),
-        ..a
+    match fast::parse_lists(text, file, true) {
+        Some((root, fast)) => {
+            lists.fast = fast;
+            Ok((root, lists))
+        }
+        None => general::parse_lists(text, file, true).map(|(root, general)| {
+            lists.general = general;
+            (root, lists)
+        }),
     }
 }
 
-fn limit_error(span: Span, what: &str, limit: usize) -> Diagnostic {
-    Diagnostic::error(
-        "E0002",
-        span,
-        format!("input exceeds the {what} limit of {limit}"),
-    )
-    .with_help(
-        "this is far beyond any real building map; check for runaway aliases or generated nesting",
-    )
+/// The general reader (saphyr-parser events), whole tree.
+pub(crate) fn parse_general(text: &str, file: FileId) -> Result<Node<'_>, Diagnostic> {
+    general::parse_lists(text, file, false).map(|(root, _)| root)
+}
+
+/// Keys of a level whose lists grow with the map (one entry per line) and are lowered one
+/// entry at a time ([`Lists`]).
+const LIST_KEYS: &[&str] = &[
+    "vertices",
+    "lanes",
+    "walls",
+    "measurements",
+    "doors",
+    "human_lanes",
+];
+
+/// The level lists (vertices, lanes, walls, measurements, doors, human_lanes) that
+/// [`parse_map`] left out of the tree: such a list is an empty sequence in the tree, with
+/// the list's span, and [`Lists::items`] reads its items again from the text, with the
+/// reader that read the document.
+///
+/// Why: a map's tree took 56 bytes a node, a lane of 70 bytes 12 nodes; whole at the end
+/// of parsing, the tree of a large map was 10 times the file (issue 18 bounds the whole
+/// process by that). Read again one item at a time, each item's tree lives only while it
+/// is lowered. The lists are read twice (the first time to check the document and count
+/// its nodes), which costs less than building and freeing the tree did.
+pub(crate) struct Lists<'a> {
+    text: &'a str,
+    file: FileId,
+    fast: Vec<fast::List>,
+    general: Vec<general::List>,
+}
+
+/// The items of a sequence, by value: from the tree, or read again from the text.
+pub(crate) struct Items<'a> {
+    from: From<'a>,
+    /// Items handed out so far, and how many the list has (when read again).
+    yielded: usize,
+    len: usize,
+    /// To read the whole tree if a list ever failed to read again.
+    text: &'a str,
+    file: FileId,
+    key: u32,
+}
+
+/// Readers are boxed: a saphyr parser's state is a few hundred bytes.
+enum From<'a> {
+    Tree(std::vec::IntoIter<Node<'a>>),
+    Fast(Box<fast::Items<'a>>),
+    General(Box<general::Items<'a>>),
+}
+
+impl<'a> Iterator for Items<'a> {
+    type Item = Node<'a>;
+    fn next(&mut self) -> Option<Node<'a>> {
+        let next = match &mut self.from {
+            From::Tree(i) => return i.next(),
+            From::Fast(i) => i.next(),
+            From::General(i) => i.next(),
+        };
+        if next.is_some() {
+            self.yielded += 1;
+            return next;
+        }
+        if self.yielded < self.len {
+            // The same reader accepted this text before, so this does not happen; if it
+            // ever did, the list is taken from the whole tree rather than cut short.
+            let rest = parse(self.text, self.file)
+                .ok()
+                .and_then(|root| whole_list(root, self.key))
+                .unwrap_or_default();
+            let mut rest = rest.into_iter();
+            if self.yielded > 0 {
+                rest.nth(self.yielded - 1);
+            }
+            self.from = From::Tree(rest);
+            self.yielded = self.len;
+            return self.next();
+        }
+        None
+    }
+}
+
+/// The level list starting at `key` in a whole tree.
+fn whole_list(root: Node<'_>, key: u32) -> Option<Vec<Node<'_>>> {
+    let Kind::Map(entries) = root.kind else {
+        return None;
+    };
+    let (_, levels) = entries
+        .into_iter()
+        .rev()
+        .find(|(k, _)| k.key_text() == Some("levels"))?;
+    let Kind::Map(levels) = levels.kind else {
+        return None;
+    };
+    levels
+        .into_iter()
+        .filter_map(|(_, level)| match level.kind {
+            Kind::Map(lists) => Some(lists),
+            _ => None,
+        })
+        .flatten()
+        .find(|(_, v)| v.span.start == key && matches!(v.kind, Kind::Seq(_)))
+        .map(|(_, v)| v.into_seq())
+}
+
+impl<'a> Lists<'a> {
+    /// No list left out: every sequence is read from the tree.
+    #[cfg(test)]
+    pub(crate) fn whole(text: &'a str, file: FileId) -> Self {
+        Lists {
+            text,
+            file,
+            fast: Vec::new(),
+            general: Vec::new(),
+        }
+    }
+    /// The list left out at `node`, by the reader that left it out.
+    fn find(&self, node: &Node) -> Option<Result<&fast::List, &general::List>> {
+        match &node.kind {
+            Kind::Seq(items) if items.is_empty() => {}
+            _ => return None,
+        }
+        let key = node.span.start;
+        if let Ok(i) = self.fast.binary_search_by_key(&key, |l| l.key) {
+            return Some(Ok(&self.fast[i]));
+        }
+        let i = self.general.binary_search_by_key(&key, |l| l.key).ok()?;
+        Some(Err(&self.general[i]))
+    }
+    /// Number of items of a sequence (0 for any other node).
+    pub(crate) fn len(&self, node: &Node) -> usize {
+        match self.find(node) {
+            Some(Ok(l)) => l.len,
+            Some(Err(l)) => l.len,
+            None => node.as_seq().map_or(0, <[Node]>::len),
+        }
+    }
+    /// The items of a sequence by value (none for any other node).
+    pub(crate) fn items(&self, node: Node<'a>) -> Items<'a> {
+        let key = node.span.start;
+        let (from, len) = match self.find(&node) {
+            Some(Ok(l)) => (
+                From::Fast(Box::new(fast::Items::new(self.text, self.file, l))),
+                l.len,
+            ),
+            Some(Err(l)) => (
+                From::General(Box::new(general::Items::new(self.text, self.file, l))),
+                l.len,
+            ),
+            None => (From::Tree(node.into_seq().into_iter()), 0),
+        };
+        Items {
+            from,
+            yielded: 0,
+            len,
+            text: self.text,
+            file: self.file,
+            key,
+        }
+    }
 }
 
 #[cfg(test)]
@@ -640,6 +515,39 @@ mod tests {
             .collect();
         let e2 = parse(&s2, FileId(0)).unwrap_err();
         assert_eq!(e2.code, "E0002", "{e2:?}");
+    }
+
+    /// Both readers leave the level lists out of a map's tree and read them again with the
+    /// same items and spans as the whole tree has.
+    #[test]
+    fn level_lists_are_left_out_and_read_again() {
+        let lf = "levels:\n  L1:\n    vertices:\n    - [0, 0, 0, a]\n    - [1, 2, 0, \"\u{e9}\"]\n    lanes:\n      - [0, 1]\n    models:\n      - {name: m}\n";
+        let crlf = lf.replace('\n', "\r\n");
+        let json = "{\n  \"levels\": {\n    \"L1\": {\n      \"vertices\": [[0, 0, 0, \"a\"],\n        [1, 2, 0, \"b\"]],\n      \"lanes\": [[0, 1]]\n    }\n  }\n}\n";
+        for (text, fast) in [(lf, true), (crlf.as_str(), false), (json, false)] {
+            let (mut root, lists) = parse_map(text, FileId(0)).unwrap();
+            assert_eq!(lists.fast.len(), if fast { 2 } else { 0 }, "{text:?}");
+            assert_eq!(lists.general.len(), if fast { 0 } else { 2 }, "{text:?}");
+            let whole = parse(text, FileId(0)).unwrap();
+            let level = root.get_mut("levels").unwrap().get_mut("L1").unwrap();
+            let level_whole = whole.get("levels").unwrap().get("L1").unwrap();
+            for key in ["vertices", "lanes"] {
+                let list = level.get_mut(key).unwrap().take();
+                let expected = level_whole.get(key).unwrap();
+                assert_eq!(list.span, expected.span, "{text:?} {key}");
+                assert_eq!(lists.len(&list), expected.as_seq().unwrap().len());
+                let items: Vec<Node> = lists.items(list).collect();
+                let items = Node {
+                    kind: Kind::Seq(items),
+                    span: expected.span,
+                };
+                oracle::same(&items, expected, key).unwrap();
+            }
+            // Other lists stay in the tree.
+            if let Some(models) = level.get("models") {
+                assert_eq!(models.as_seq().unwrap().len(), 1);
+            }
+        }
     }
 
     #[test]
