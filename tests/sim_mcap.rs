@@ -27,6 +27,25 @@ fn run(args: &[&str]) {
     assert_eq!(code, 0, "mapc {args:?}: {err}");
 }
 
+/// The Python mcap readers' view of `mcap` against the trace `jsonl` (no mismatches).
+fn read_mcap(py: &Path, mcap: &str, jsonl: &str) -> serde_json::Value {
+    let script = Path::new(env!("CARGO_MANIFEST_DIR")).join("ros2/tests/python/read_mcap.py");
+    let out = Command::new(py)
+        .arg(script)
+        .arg(mcap)
+        .arg(jsonl)
+        .output()
+        .expect("python runs");
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let r: serde_json::Value = serde_json::from_slice(&out.stdout).expect("json");
+    assert_eq!(r["mismatches"], serde_json::json!([]), "{r:#}");
+    r
+}
+
 #[test]
 fn mcap_decodes_to_the_trace() {
     let dir = tempfile::tempdir().expect("tempdir");
@@ -72,20 +91,7 @@ fn mcap_decodes_to_the_trace() {
         println!("skipped: mcap-ros2-support (Python) not found; .ci/run makes target/ros2-venv");
         return;
     };
-    let script = Path::new(env!("CARGO_MANIFEST_DIR")).join("ros2/tests/python/read_mcap.py");
-    let out = Command::new(py)
-        .arg(script)
-        .arg(p("run.mcap"))
-        .arg(p("a.jsonl"))
-        .output()
-        .expect("python runs");
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    let r: serde_json::Value = serde_json::from_slice(&out.stdout).expect("json");
-    assert_eq!(r["mismatches"], serde_json::json!([]), "{r:#}");
+    let r = read_mcap(&py, &p("run.mcap"), &p("a.jsonl"));
     assert_eq!(r["profile"], "ros2");
 
     // Every topic of the trace, with its number of messages, and its schema.
@@ -187,20 +193,7 @@ fn mcap_people_decode_to_the_trace() {
         "--mcap",
         &p("run.mcap"),
     ]);
-    let script = Path::new(env!("CARGO_MANIFEST_DIR")).join("ros2/tests/python/read_mcap.py");
-    let out = Command::new(py)
-        .arg(script)
-        .arg(p("run.mcap"))
-        .arg(p("a.jsonl"))
-        .output()
-        .expect("python runs");
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    let r: serde_json::Value = serde_json::from_slice(&out.stdout).expect("json");
-    assert_eq!(r["mismatches"], serde_json::json!([]), "{r:#}");
+    let r = read_mcap(&py, &p("run.mcap"), &p("a.jsonl"));
     assert_eq!(
         r["schemas"]["rmf_obstacle_msgs/msg/Obstacles"], "ros2msg",
         "{r:#}"

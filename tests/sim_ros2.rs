@@ -69,6 +69,36 @@ rc=0; wait $pid || rc=$?
 echo "mapc exit $rc" >&2
 "#;
 
+/// Runs `script` under `sh` in a private network namespace (`unshare -rn`) with MAPC, DIR,
+/// PY and `env` set; asserts it succeeded. Returns the context for failure messages (the
+/// script's stderr, `<peer>.err`, `mapc.err`) and a reader of the files the run left in `dir`.
+fn in_namespace<'a>(
+    script: &str,
+    dir: &'a Path,
+    py: &Path,
+    env: &[(&str, std::ffi::OsString)],
+    peer: &str,
+) -> (String, impl Fn(&str) -> String + 'a) {
+    let mut cmd = Command::new("unshare");
+    cmd.args(["-rn", "sh", "-c", script])
+        .env("MAPC", env!("CARGO_BIN_EXE_mapc"))
+        .env("DIR", dir)
+        .env("PY", py);
+    for (k, v) in env {
+        cmd.env(k, v);
+    }
+    let out = cmd.output().expect("unshare runs");
+    let read = move |n: &str| std::fs::read_to_string(dir.join(n)).unwrap_or_default();
+    let context = format!(
+        "script: {}\n{peer}: {}\nmapc: {}",
+        String::from_utf8_lossy(&out.stderr),
+        read(&format!("{peer}.err")),
+        read("mapc.err")
+    );
+    assert!(out.status.success(), "{context}");
+    (context, read)
+}
+
 #[test]
 fn rmf_side_drives_mapc_over_cyclone_dds() {
     let Some(py) = python() else {
@@ -99,27 +129,20 @@ fn rmf_side_drives_mapc_over_cyclone_dds() {
     });
     std::fs::write(dir.path().join("config.json"), config.to_string()).expect("config");
     let started = std::time::Instant::now();
-    let out = Command::new("unshare")
-        .args(["-rn", "sh", "-c", SCRIPT])
-        .env("MAPC", env!("CARGO_BIN_EXE_mapc"))
-        .env(
-            "SCENARIO",
-            root.join("fixtures/two_level_clinic.scenario.yaml"),
-        )
-        .env("RATE", RATE.to_string())
-        .env("DIR", dir.path())
-        .env("PY", &py)
-        .env("PEER", root.join("ros2/tests/python/rmf_peer.py"))
-        .output()
-        .expect("unshare runs");
-    let read = |n: &str| std::fs::read_to_string(dir.path().join(n)).unwrap_or_default();
-    let context = format!(
-        "script: {}\npeer: {}\nmapc: {}",
-        String::from_utf8_lossy(&out.stderr),
-        read("peer.err"),
-        read("mapc.err")
+    let (context, read) = in_namespace(
+        SCRIPT,
+        dir.path(),
+        &py,
+        &[
+            (
+                "SCENARIO",
+                root.join("fixtures/two_level_clinic.scenario.yaml").into(),
+            ),
+            ("RATE", RATE.to_string().into()),
+            ("PEER", root.join("ros2/tests/python/rmf_peer.py").into()),
+        ],
+        "peer",
     );
-    assert!(out.status.success(), "{context}");
     assert!(
         context.contains("mapc exit 130"),
         "mapc stops on SIGINT\n{context}"
@@ -211,24 +234,17 @@ fn watch_full_run(
         .collect();
     let config = serde_json::json!({"definitions": defs, "domain_id": domain, "topics": topics});
     std::fs::write(dir.path().join("config.json"), config.to_string()).expect("config");
-    let out = Command::new("unshare")
-        .args(["-rn", "sh", "-c", WATCH_SCRIPT])
-        .env("MAPC", env!("CARGO_BIN_EXE_mapc"))
-        .env("SCENARIO", root.join("fixtures").join(fixture))
-        .env("DOMAIN", domain.to_string())
-        .env("DIR", dir.path())
-        .env("PY", &py)
-        .env("WATCH", root.join("ros2/tests/python/rmf_watch.py"))
-        .output()
-        .expect("unshare runs");
-    let read = |n: &str| std::fs::read_to_string(dir.path().join(n)).unwrap_or_default();
-    let context = format!(
-        "script: {}\nwatch: {}\nmapc: {}",
-        String::from_utf8_lossy(&out.stderr),
-        read("watch.err"),
-        read("mapc.err")
+    let (context, read) = in_namespace(
+        WATCH_SCRIPT,
+        dir.path(),
+        &py,
+        &[
+            ("SCENARIO", root.join("fixtures").join(fixture).into()),
+            ("DOMAIN", domain.to_string().into()),
+            ("WATCH", root.join("ros2/tests/python/rmf_watch.py").into()),
+        ],
+        "watch",
     );
-    assert!(out.status.success(), "{context}");
     let seen: serde_json::Value = serde_json::from_str(&read("watch.json"))
         .unwrap_or_else(|e| panic!("watch output: {e}\n{context}"));
     // Publishing changed nothing: the same run without --ros2 writes the same trace and
