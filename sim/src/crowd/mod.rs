@@ -44,6 +44,31 @@ pub const PERSON_HEIGHT: f64 = 1.8;
 pub const SOURCE: &str = "mapc_crowd";
 /// Clearance (m, between the outlines) under which a robot and a person near-miss.
 pub const NEAR_MISS: f64 = 0.5;
+/// Radius (m) of the circle in which a person counts the others for the local density.
+const DENSITY_RADIUS: f64 = 1.0;
+/// Weidmann's fundamental diagram (1993): γ (m⁻²) and the jam density ρmax (m⁻²).
+const WEIDMANN_GAMMA: f64 = 1.913;
+const WEIDMANN_RHO_MAX: f64 = 5.4;
+
+/// `pref` slowed to the speed of the fundamental diagram at the density of `others` people
+/// within `DENSITY_RADIUS`, with the profile's `pref_speed` as the free speed v0. Alone,
+/// nothing changes; at the jam density people still creep (5 % of v0) so that a crowd
+/// never freezes for good.
+fn density_speed(pref: Vec2, v0: f64, others: usize) -> Vec2 {
+    let speed = pref.norm();
+    if others == 0 || speed <= 0.0 {
+        return pref;
+    }
+    let rho = others as f64 / (std::f64::consts::PI * DENSITY_RADIUS * DENSITY_RADIUS);
+    let v = v0 * (1.0 - (-WEIDMANN_GAMMA * (1.0 / rho - 1.0 / WEIDMANN_RHO_MAX)).exp());
+    let v = v.max(0.05 * v0);
+    if v >= speed {
+        pref
+    } else {
+        pref.scale(v / speed)
+    }
+}
+
 /// First radius (m) of the neighbour search.
 const NEAR_RADIUS: f64 = 2.0;
 /// Extra clearance (m) people keep from a robot's footprint.
@@ -483,6 +508,14 @@ impl Crowd {
                     break;
                 }
             }
+            // Local density (others within DENSITY_RADIUS): people slow down in a crowd as
+            // the fundamental diagram says (Weidmann), which ORCA alone does not do in a
+            // crowd without closing speeds (a density filter, as in DenseSense).
+            let others = near
+                .iter()
+                .filter(|n| n.0 < DENSITY_RADIUS * DENSITY_RADIUS)
+                .count();
+            let pref = density_speed(self.people[i].pref, pr.pref_speed, others);
             let by = |a: &(f64, usize), b: &(f64, usize)| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1));
             if near.len() > k_max {
                 near.select_nth_unstable_by(k_max, by);
@@ -534,7 +567,7 @@ impl Crowd {
                 me.compute_avoiding_velocity(
                     &neighbours,
                     &walls,
-                    f32v(p.pref),
+                    f32v(pref),
                     pr.max_speed as f32,
                     dt as f32,
                     &opts,

@@ -230,10 +230,10 @@ fn ring_speed(people: usize) -> (f64, f64, f64) {
     (c.people.len() as f64 / area, sum / count, gap)
 }
 
-/// Unidirectional flow in a ring: at low density people walk at Weidmann's speed; ORCA
-/// departs from the diagram above about 0.5 /m² (everyone keeps the free speed, since
-/// ORCA only reacts to closing speeds and a homogeneous crowd has none; docs/sim.md has
-/// the table). Speed never rises with density and people overlap by less than 2 cm.
+/// Unidirectional flow in a ring: people walk near Weidmann's speed at every density
+/// (ORCA alone would keep the free speed, having no closing speeds to react to; the
+/// density filter slows them; docs/sim.md has the table). Speed never rises with density
+/// and people overlap by less than 2 cm.
 #[test]
 fn ring_corridor_speed_against_weidmann() {
     let mut last = f64::INFINITY;
@@ -247,12 +247,17 @@ fn ring_corridor_speed_against_weidmann() {
         assert!(v <= 1.34 + 0.02, "{rows:?}");
     }
     println!("ρ, v, Weidmann, min gap: {rows:?}");
-    for &(rho, v, w, _) in rows.iter().filter(|r| r.0 <= 0.5) {
+    for &(rho, v, w, _) in &rows {
+        // Near the diagram: within 0.06 m/s up to 0.5 /m², 0.2 m/s above (the density each
+        // person sees in a 1 m circle, not the ring's mean).
+        let tol = if rho <= 0.5 { 0.06 } else { 0.2 };
         assert!(
-            (v - w).abs() < 0.06,
+            (v - w).abs() < tol,
             "ρ = {rho}: {v} vs Weidmann {w}: {rows:?}"
         );
     }
+    // Speed falls with density: at 1.5 /m² well below the free speed.
+    assert!(rows[3].1 < 0.8 * rows[0].1, "{rows:?}");
 }
 
 /// People from a room through a bottleneck of width `w` (2 m long): the time between the
@@ -297,6 +302,15 @@ fn bottleneck_flow_grows_with_width() {
     println!("width, flow (1/s): {flows:?}");
     for k in 1..flows.len() {
         assert!(flows[k].1 > flows[k - 1].1, "{flows:?}");
+    }
+    // Near the measured specific flow, about 1.9 /s per metre of width (Seyfried et al.
+    // 2009): within a factor of two.
+    for &(w, f) in &flows {
+        let measured = 1.9 * w;
+        assert!(
+            f > measured / 2.0 && f < measured * 2.0,
+            "width {w}: {f} /s vs {measured}: {flows:?}"
+        );
     }
 }
 
