@@ -7,6 +7,9 @@
 //! minutes: real-time factor = 600 s / measured time, and the cost against the size of the
 //! crowd (near linear: neighbour search on a uniform grid, at most 10 neighbours each).
 //!
+//! `people_1000_20_robots_1h`: the target, 1,000 people and 20 robots for one
+//! simulated hour (one sample).
+//!
 //! Run with `cargo bench --bench crowd`.
 
 use divan::Bencher;
@@ -113,21 +116,38 @@ fn map(people: usize) -> String {
     y
 }
 
-const SCENARIO: &str = "seed: 1\nduration: 10min\nfleets:\n  - {name: tiny, graph: 0, robot: TinyRobot, count: 20, spawn: auto}\ngenerators:\n  - {every: 30s, start: 0, end: 10min, loop: {start: v0_0, finish: v5_5, loops: 1}}\n  - {every: 30s, start: 0, end: 10min, loop: {start: v5_0, finish: v0_5, loops: 1}}\n";
+/// 20 tiny robots looping corner to corner for `duration` (e.g. `10min`).
+fn scenario(duration: &str) -> String {
+    format!(
+        "seed: 1\nduration: {duration}\nfleets:\n  - {{name: tiny, graph: 0, robot: TinyRobot, count: 20, spawn: auto}}\ngenerators:\n  - {{every: 30s, start: 0, end: {duration}, loop: {{start: v0_0, finish: v5_5, loops: 1}}}}\n  - {{every: 30s, start: 0, end: {duration}, loop: {{start: v5_0, finish: v0_5, loops: 1}}}}\n"
+    )
+}
 
-fn load(people: usize) -> (mapc_ir::Building, mapc_sim::Scenario) {
+fn load(people: usize, duration: &str) -> (mapc_ir::Building, mapc_sim::Scenario) {
     let parsed = mapc_frontend::parse_str("map", &map(people));
     let building = parsed.valid_building().expect("valid map").clone();
-    let (scenario, diags) = parse_scenario(mapc_ir::FileId(0), SCENARIO, Path::new("."));
+    let (scenario, diags) = parse_scenario(mapc_ir::FileId(0), &scenario(duration), Path::new("."));
     (building, scenario.unwrap_or_else(|| panic!("{diags:?}")))
 }
 
 #[divan::bench(args = [250, 500, 1000], sample_count = 2, sample_size = 1)]
 fn people_20_robots_10min(bencher: Bencher, people: usize) {
-    let (b, s) = load(people);
+    let (b, s) = load(people, "10min");
     bencher.bench_local(|| {
         let r = simulate(&b, &s, RunOptions::default()).expect("runs");
         assert_eq!(r.crowd.as_ref().map(|c| c.humans), Some(people));
+        r
+    });
+}
+
+/// The target run: 1,000 people and 20 robots for one simulated hour
+/// (real-time factor = 3,600 s / measured time). One sample: it takes about 40 s.
+#[divan::bench(sample_count = 1, sample_size = 1)]
+fn people_1000_20_robots_1h(bencher: Bencher) {
+    let (b, s) = load(1000, "1h");
+    bencher.bench_local(|| {
+        let r = simulate(&b, &s, RunOptions::default()).expect("runs");
+        assert_eq!(r.crowd.as_ref().map(|c| c.humans), Some(1000));
         r
     });
 }

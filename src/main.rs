@@ -10,6 +10,7 @@ mod info;
 mod limit;
 mod lints;
 mod lsp;
+mod models_cmd;
 mod output;
 mod render_cmd;
 mod replay;
@@ -164,6 +165,10 @@ enum Command {
     /// Write the crowd simulator's Menge files into CONFIG_DIR and make WORLD hold the
     /// crowd_simulation plugin (a drop-in for `building_crowdsim MAP CONFIG_DIR WORLD`).
     Crowdsim(crowdsim_cmd::CrowdsimArgs),
+    /// List the models a map needs (Fuel names, the crowd's actors) where
+    /// `building_map_model_downloader` would download them; mapc downloads nothing and names
+    /// those missing from the export directory (`-e DIR`).
+    Models(models_cmd::ModelsArgs),
     /// Run a scenario (robots, tasks, doors, lifts) on a map with the headless RMF runtime and
     /// report what happened: task times, throughput, door and lift waits, near misses.
     /// Scenario format, trace and report: docs/sim.md.
@@ -228,6 +233,7 @@ fn main() -> ExitCode {
         Command::Ignition(args) => world_cmd::run(mapc_backends::sdf::Flavour::Ignition, &args),
         Command::Classic(args) => world_cmd::run(mapc_backends::sdf::Flavour::Classic, &args),
         Command::Crowdsim(args) => crowdsim_cmd::run(&args),
+        Command::Models(args) => models_cmd::run(&args),
         Command::Sim(args) => sim_cmd::run(&args),
         Command::Sweep(args) => sweep::run(&args),
         Command::Info(args) => info::run(&args),

@@ -69,8 +69,12 @@ fn density_speed(pref: Vec2, v0: f64, others: usize) -> Vec2 {
     }
 }
 
-/// First radius (m) of the neighbour search.
-const NEAR_RADIUS: f64 = 2.0;
+/// Cell size (m) of the people's grid, unless the mesh is large for its crowd.
+const PEOPLE_CELL: f64 = 1.0;
+const PEOPLE_CELLS_PER_PERSON: f64 = 32.0;
+const MIN_PEOPLE_CELLS: f64 = 16384.0;
+/// Most cells of the walls' grid (built once).
+const MAX_WALL_CELLS: f64 = 1e6;
 /// Extra clearance (m) people keep from a robot's footprint.
 pub const ROBOT_BERTH: f64 = 0.15;
 /// Most people a run may have (`crowd.scale` times the map's groups).
@@ -202,8 +206,11 @@ impl Crowd {
                 )
             },
         );
-        let grid = Grid::new(lo, hi, 2.0);
-        let mut walls = Grid::new(lo, hi, 2.0);
+        // The people's grid is rebuilt every step: at most PEOPLE_CELLS_PER_PERSON cells
+        // per person (larger cells on meshes much larger than their crowd).
+        let cap = (PEOPLE_CELLS_PER_PERSON * total as f64).max(MIN_PEOPLE_CELLS);
+        let grid = Grid::new(lo, hi, PEOPLE_CELL, cap);
+        let mut walls = Grid::new(lo, hi, 2.0, MAX_WALL_CELLS);
         // A wall matters to an agent within tau_obst·max_speed + r (RVO2's range).
         let reach = profiles
             .iter()
@@ -400,8 +407,8 @@ impl Crowd {
         let dz = p[2] - self.z;
         let r2 = r * r - dz * dz;
         let mut hit = false;
-        self.grid.visit(q, r, |k| {
-            let d = self.people[k].pos.minus(q);
+        self.grid.visit_points(q, r, |_, pos| {
+            let d = pos.minus(q);
             hit |= d.x * d.x + d.y * d.y < r2;
         });
         hit
@@ -463,8 +470,8 @@ impl Crowd {
             let speed = pr.pref_speed.min(dist / dt);
             p.pref = d.scale(speed / dist);
         }
-        // Avoidance against the positions at the start of the step.
-        self.grid.rebuild(self.people.iter().map(|p| p.pos));
+        // Avoidance against the positions at the start of the step: the grid holds them
+        // (rebuilt after the last move; the behaviour above moves no one).
         let origin = self.mesh.origin;
         let on_level: Vec<Agent> = robots
             .iter()
@@ -485,43 +492,20 @@ impl Crowd {
         for i in 0..self.people.len() {
             let p = &self.people[i];
             let pr = self.profiles[p.profile];
-            // The max_neighbors nearest within neighbor_dist: first within a small radius
-            // (enough in a crowd, and every one within it is seen), the full radius only
-            // when that finds too few. Squared distances; ties by index (deterministic).
-            let k_max = pr.max_neighbors;
-            for radius in [NEAR_RADIUS.min(pr.neighbor_dist), pr.neighbor_dist] {
-                near.clear();
-                let r2 = radius * radius;
-                self.grid.visit(p.pos, radius, |k| {
-                    if k != i {
-                        let d = self.people[k].pos.minus(p.pos);
-                        let d2 = d.x * d.x + d.y * d.y;
-                        // Coincident agents have no direction to avoid along (the crate
-                        // would divide by zero); placement and the mesh clamp keep people
-                        // apart, so this is only a guard.
-                        if d2 < r2 && d2 > 1e-8 {
-                            near.push((d2, k));
-                        }
-                    }
-                });
-                if near.len() >= k_max || radius >= pr.neighbor_dist {
-                    break;
-                }
-            }
-            // Local density (others within DENSITY_RADIUS): people slow down in a crowd as
-            // the fundamental diagram says (Weidmann), which ORCA alone does not do in a
-            // crowd without closing speeds (a density filter, as in DenseSense).
-            let others = near
-                .iter()
-                .filter(|n| n.0 < DENSITY_RADIUS * DENSITY_RADIUS)
-                .count();
+            // The max_neighbors nearest within neighbor_dist (squared distances, ties by
+            // index: deterministic), and the local density: how many others stand within
+            // DENSITY_RADIUS. People slow down in a crowd as the fundamental diagram says
+            // (Weidmann), which ORCA alone does not do in a crowd without closing speeds (a
+            // density filter, as in DenseSense).
+            let others = self.grid.nearest(
+                p.pos,
+                pr.neighbor_dist,
+                pr.max_neighbors,
+                i,
+                DENSITY_RADIUS * DENSITY_RADIUS,
+                &mut near,
+            );
             let pref = density_speed(self.people[i].pref, pr.pref_speed, others);
-            let by = |a: &(f64, usize), b: &(f64, usize)| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1));
-            if near.len() > k_max {
-                near.select_nth_unstable_by(k_max, by);
-                near.truncate(k_max);
-            }
-            near.sort_unstable_by(by);
             neighbours.clear();
             for &(_, k) in &near {
                 let q = &self.people[k];
@@ -625,7 +609,7 @@ impl Crowd {
                 continue;
             }
             let q = Vec2::new(r.x, r.y).minus(self.mesh.origin);
-            self.grid.visit(q, r.footprint + reach, |k| {
+            self.grid.visit_points(q, r.footprint + reach, |k, _| {
                 let p = &self.people[k];
                 let gap = p.pos.minus(q).norm() - r.footprint - self.profiles[p.profile].r;
                 if gap < NEAR_MISS {
