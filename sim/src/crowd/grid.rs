@@ -44,21 +44,25 @@ impl Grid {
         }
     }
 
+    // Truncation is the floor for the non-negative values it sees (a call to libm's
+    // floor otherwise, on every query); NaN and negatives go to 0, overflow to the last.
+    #[inline]
     fn ix(&self, x: f64) -> usize {
-        let i = ((x - self.x0) * self.inv).floor();
-        if i.is_nan() || i < 0.0 {
-            0
-        } else {
+        let i = (x - self.x0) * self.inv;
+        if i >= 0.0 {
             (i as usize).min(self.nx - 1)
+        } else {
+            0
         }
     }
 
+    #[inline]
     fn iy(&self, y: f64) -> usize {
-        let i = ((y - self.y0) * self.inv).floor();
-        if i.is_nan() || i < 0.0 {
-            0
-        } else {
+        let i = (y - self.y0) * self.inv;
+        if i >= 0.0 {
             (i as usize).min(self.ny - 1)
+        } else {
+            0
         }
     }
 
@@ -150,97 +154,81 @@ impl Grid {
 const LB_MARGIN: f64 = 1e-6;
 
 impl Grid {
-    /// The `k` points nearest to `p` within `r` (squared distance, index), nearest first
-    /// (ties by index), into `best`, leaving out `skip` and points closer than 1e-4 m;
-    /// returns how many of the points within `r` are closer than `sqrt(count_r2)`. Exact:
-    /// the same set and order as scanning every point within `r` and sorting them. Rows of
-    /// cells are read nearest first, each as one run of cells as wide as the distance of
-    /// the k-th point found so far allows, and the search stops at the first row that
-    /// cannot hold a nearer point: in a crowd it reads about the cells of the k nearest.
+    /// Points (index, position) within the disc of radius `r` around `p` or near it: per
+    /// row of cells, the run of cells that the disc reaches (a little more than the disc).
+    #[inline]
+    fn visit_disc(&self, p: Vec2, r: f64, mut f: impl FnMut(usize, Vec2)) {
+        let cell = 1.0 / self.inv;
+        for y in self.iy(p.y - r)..=self.iy(p.y + r) {
+            // The band of row y: [lo, lo + cell); its distance from p.
+            let lo = self.y0 + y as f64 * cell;
+            let gy = ((lo - p.y).max(p.y - (lo + cell)).max(0.0) - LB_MARGIN).max(0.0);
+            // Rows outside the box hold the points beyond it: no bound, the whole width.
+            let edge = y == 0 || y == self.ny - 1;
+            let w = if edge || gy >= r {
+                r
+            } else {
+                (r * r - gy * gy).sqrt() + LB_MARGIN
+            };
+            let (x0, x1) = (self.ix(p.x - w), self.ix(p.x + w));
+            let row = y * self.nx;
+            let (s, e) = (
+                self.start[row + x0] as usize,
+                self.start[row + x1 + 1] as usize,
+            );
+            for (&q, &pos) in self.items[s..e].iter().zip(&self.pts[s..e]) {
+                f(q as usize, pos);
+            }
+        }
+    }
+
+    /// The `k` points nearest to `p` within `r` as (squared distance, index), nearest
+    /// first, ties by index, into `near`, leaving out `skip` and points closer than 1e-4 m;
+    /// returns how many points within `r` are closer than `count_r`. Exact: the same as
+    /// scanning every point within `r` and sorting them. The scan starts with the disc of
+    /// radius `hint` (at least `count_r`; the caller's guess of the k-th distance, such as
+    /// the last step's) and doubles it until it holds k points or reaches `r`: in a crowd
+    /// it reads little more than the disc of the k nearest.
+    #[allow(clippy::too_many_arguments)]
     pub fn nearest(
         &self,
         p: Vec2,
         r: f64,
         k: usize,
         skip: usize,
-        count_r2: f64,
-        best: &mut Vec<(f64, usize)>,
+        count_r: f64,
+        hint: f64,
+        near: &mut Vec<(f64, usize)>,
     ) -> usize {
-        best.clear();
         let r2 = r * r;
-        let mut count = 0;
-        let mut consider = |q: usize, pos: Vec2, best: &mut Vec<(f64, usize)>| {
-            if q == skip {
-                return;
-            }
-            let d = pos.minus(p);
-            let d2 = d.x * d.x + d.y * d.y;
-            // Coincident agents have no direction to avoid along (the avoidance crate
-            // would divide by zero): only a guard, placement keeps people apart.
-            if !(d2 < r2 && d2 > 1e-8) {
-                return;
-            }
-            if d2 < count_r2 {
-                count += 1;
-            }
-            let before = |a: (f64, usize), b: (f64, usize)| a.0 < b.0 || (a.0 == b.0 && a.1 < b.1);
-            let item = (d2, q);
-            if best.len() == k {
-                match best.last() {
-                    Some(&w) if before(item, w) => {
-                        best.pop();
-                    }
-                    _ => return,
+        let mut rho = hint.max(count_r).min(r);
+        loop {
+            near.clear();
+            let rho2 = rho * rho;
+            self.visit_disc(p, rho, |q, pos| {
+                let d = pos.minus(p);
+                let d2 = d.x * d.x + d.y * d.y;
+                // Coincident agents have no direction to avoid along (the avoidance
+                // crate would divide by zero): only a guard, placement keeps people apart.
+                if q != skip && d2 < rho2 && d2 < r2 && d2 > 1e-8 {
+                    near.push((d2, q));
                 }
-            }
-            // Insertion into a short sorted list.
-            let mut at = best.len();
-            while at > 0 && before(item, best[at - 1]) {
-                at -= 1;
-            }
-            best.insert(at, item);
-        };
-        let fx = ((p.x - self.x0) * self.inv).floor();
-        let fy = ((p.y - self.y0) * self.inv).floor();
-        let inside = fx >= 0.0 && fy >= 0.0 && fx < self.nx as f64 && fy < self.ny as f64;
-        if !inside || k == 0 || !r.is_finite() {
-            // Outside the box the cells' bounds do not hold: every cell in reach.
-            self.visit_points(p, r, |q, pos| consider(q, pos, best));
-            return count;
-        }
-        let (cx, cy) = (fx as i64, fy as i64);
-        let (nx, ny) = (self.nx as i64, self.ny as i64);
-        let cell = 1.0 / self.inv;
-        // Rows beyond this many cells from p's cannot hold a point within r.
-        let reach = ((r * self.inv).ceil() as i64 + 1).min(ny);
-        for j in 0..=2 * reach {
-            // 0, -1, 1, -2, 2, ...: the lower bound gy never decreases.
-            let dy = if j % 2 == 1 { -(j + 1) / 2 } else { j / 2 };
-            let gy = (((dy.abs() - 1).max(0)) as f64 * cell - LB_MARGIN).max(0.0);
-            let gy2 = gy * gy;
-            // Squared distance beyond which no point matters: r, or once k are found the
-            // k-th (ties included) and the counting circle.
-            let lim2 = match best.last() {
-                Some(w) if best.len() == k => w.0.max(count_r2).min(r2),
-                _ => r2,
-            };
-            if gy2 > lim2 || gy2 >= r2 {
+            });
+            if near.len() >= k || rho >= r || !rho.is_finite() {
                 break;
             }
-            let y = cy + dy;
-            if y < 0 || y >= ny {
-                continue;
-            }
-            let w = ((lim2 - gy2).sqrt() + LB_MARGIN) * self.inv;
-            let dx = (w.floor() as i64 + 1).min(nx);
-            let (x0, x1) = ((cx - dx).max(0), (cx + dx).min(nx - 1));
-            let row = y as usize * self.nx;
-            let s = self.start[row + x0 as usize] as usize;
-            let e = self.start[row + x1 as usize + 1] as usize;
-            for (&q, &pos) in self.items[s..e].iter().zip(&self.pts[s..e]) {
-                consider(q as usize, pos, best);
-            }
+            rho = (rho * 2.0).min(r);
         }
+        let count_r2 = count_r * count_r;
+        let count = near.iter().filter(|n| n.0 < count_r2).count();
+        let by = |a: &(f64, usize), b: &(f64, usize)| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1));
+        if near.len() > k {
+            if k > 0 {
+                near.select_nth_unstable_by(k - 1, by);
+            }
+            near.truncate(k);
+        }
+        near.sort_unstable_by(by);
         count
     }
 }

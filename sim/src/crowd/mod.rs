@@ -55,7 +55,7 @@ const WEIDMANN_RHO_MAX: f64 = 5.4;
 /// nothing changes; at the jam density people still creep (5 % of v0) so that a crowd
 /// never freezes for good.
 fn density_speed(pref: Vec2, v0: f64, others: usize) -> Vec2 {
-    let speed = pref.norm();
+    let speed = len(pref);
     if others == 0 || speed <= 0.0 {
         return pref;
     }
@@ -70,9 +70,11 @@ fn density_speed(pref: Vec2, v0: f64, others: usize) -> Vec2 {
 }
 
 /// Cell size (m) of the people's grid, unless the mesh is large for its crowd.
-const PEOPLE_CELL: f64 = 1.0;
-const PEOPLE_CELLS_PER_PERSON: f64 = 32.0;
+const PEOPLE_CELL: f64 = 0.5;
+const PEOPLE_CELLS_PER_PERSON: f64 = 64.0;
 const MIN_PEOPLE_CELLS: f64 = 16384.0;
+/// Added (m) to a person's k-th neighbour distance for the next step's first scan.
+const REACH_MARGIN: f64 = 0.2;
 /// Most cells of the walls' grid (built once).
 const MAX_WALL_CELLS: f64 = 1e6;
 /// Extra clearance (m) people keep from a robot's footprint.
@@ -146,6 +148,8 @@ pub(crate) struct Crowd {
     publish_every: u64,
     grid: Grid,
     walls: Grid,
+    /// Per person: the radius of the first neighbour scan (a guess; any value is exact).
+    reach: Vec<f64>,
     wall_obstacles: Vec<Obstacle>,
     wall_segments: Vec<(Vec2, Vec2)>,
     max_r: f64,
@@ -248,6 +252,7 @@ impl Crowd {
             publish_every,
             grid,
             walls,
+            reach: Vec::new(),
             wall_obstacles,
             wall_segments,
             max_r: 0.0,
@@ -300,6 +305,7 @@ impl Crowd {
             .map(|p| crowd.profiles[p.profile].r)
             .fold(0.0, f64::max);
         crowd.stats = stats::Stats::new(crowd.people.len());
+        crowd.reach = vec![0.0; crowd.people.len()];
         crowd.grid.rebuild(crowd.people.iter().map(|p| p.pos));
         Ok(Some(crowd))
     }
@@ -390,11 +396,7 @@ impl Crowd {
     fn goal_dist(&self, i: usize) -> f64 {
         let p = &self.people[i];
         p.mind.goal.map_or(f64::INFINITY, |g| {
-            self.fsm.goals[g]
-                .pos
-                .minus(self.mesh.origin)
-                .minus(p.pos)
-                .norm()
+            len(self.fsm.goals[g].pos.minus(self.mesh.origin).minus(p.pos))
         })
     }
 
@@ -456,14 +458,14 @@ impl Crowd {
                 let d = w.minus(p.pos);
                 let leg = next.minus(w);
                 let beyond = (p.pos.minus(w).x * leg.x + p.pos.minus(w).y * leg.y) > 0.0;
-                if d.norm() < pr.r.max(0.2) || beyond {
+                if len(d) < pr.r.max(0.2) || beyond {
                     p.wp += 1;
                 } else {
                     break;
                 }
             }
             let d = p.path[p.wp].minus(p.pos);
-            let dist = d.norm();
+            let dist = len(d);
             if dist * dist <= 1e-4 {
                 continue;
             }
@@ -502,9 +504,17 @@ impl Crowd {
                 pr.neighbor_dist,
                 pr.max_neighbors,
                 i,
-                DENSITY_RADIUS * DENSITY_RADIUS,
+                DENSITY_RADIUS,
+                self.reach[i],
                 &mut near,
             );
+            // Next step's first guess: the k-th distance now, plus what two people can
+            // close in one step at walking speed (a wrong guess costs a wider scan only).
+            self.reach[i] = if near.len() >= pr.max_neighbors {
+                near.last().map_or(0.0, |n| n.0.sqrt()) + REACH_MARGIN
+            } else {
+                pr.neighbor_dist
+            };
             let pref = density_speed(self.people[i].pref, pr.pref_speed, others);
             neighbours.clear();
             for &(_, k) in &near {
@@ -571,8 +581,8 @@ impl Crowd {
             let p = &mut self.people[i];
             let dv = v_new.minus(p.vel);
             let lim = pr.max_accel * dt;
-            p.vel = if dv.norm() > lim {
-                p.vel.plus(dv.scale(lim / dv.norm()))
+            p.vel = if len(dv) > lim {
+                p.vel.plus(dv.scale(lim / len(dv)))
             } else {
                 v_new
             };
@@ -589,9 +599,9 @@ impl Crowd {
                     p.vel = Vec2::default();
                 }
             }
-            p.walked += next.minus(p.pos).norm();
+            p.walked += len(next.minus(p.pos));
             p.pos = next;
-            let speed = p.vel.norm();
+            let speed = len(p.vel);
             if speed > 1e-3 {
                 p.yaw = p.vel.y.atan2(p.vel.x);
             }
@@ -611,7 +621,7 @@ impl Crowd {
             let q = Vec2::new(r.x, r.y).minus(self.mesh.origin);
             self.grid.visit_points(q, r.footprint + reach, |k, _| {
                 let p = &self.people[k];
-                let gap = p.pos.minus(q).norm() - r.footprint - self.profiles[p.profile].r;
+                let gap = len(p.pos.minus(q)) - r.footprint - self.profiles[p.profile].r;
                 if gap < NEAR_MISS {
                     seen.push((ri, k, gap));
                 }
@@ -619,7 +629,7 @@ impl Crowd {
         }
         self.stats.encounters(t, &seen);
         for (i, p) in self.people.iter().enumerate() {
-            self.stats.walk(i, p.vel.norm(), self.dt);
+            self.stats.walk(i, len(p.vel), self.dt);
         }
     }
 
@@ -724,6 +734,14 @@ fn f32v(v: Vec2) -> dodgy_2d::Vec2 {
     dodgy_2d::Vec2::new(v.x as f32, v.y as f32)
 }
 
+/// The length of `v`: a square root where `Vec2::norm` calls libm's `hypot` (which guards
+/// against overflow that metre-scale vectors never reach, at several times the cost; a
+/// tenth of the crowd step's time went there).
+#[inline]
+fn len(v: Vec2) -> f64 {
+    (v.x * v.x + v.y * v.y).sqrt()
+}
+
 fn seg_dist(p: Vec2, a: Vec2, b: Vec2) -> f64 {
     let d = b.minus(a);
     let l2 = d.x * d.x + d.y * d.y;
@@ -732,7 +750,7 @@ fn seg_dist(p: Vec2, a: Vec2, b: Vec2) -> f64 {
     } else {
         0.0
     };
-    a.plus(d.scale(t.clamp(0.0, 1.0))).minus(p).norm()
+    len(a.plus(d.scale(t.clamp(0.0, 1.0))).minus(p))
 }
 
 fn round_mm(x: f64) -> f64 {
