@@ -154,31 +154,39 @@ impl Grid {
 const LB_MARGIN: f64 = 1e-6;
 
 impl Grid {
-    /// Points (index, position) within the disc of radius `r` around `p` or near it: per
-    /// row of cells, the run of cells that the disc reaches (a little more than the disc).
+    /// Entries (`items[s..e]`, `pts[s..e]`) of the points within the disc of radius `r`
+    /// around `p` or near it: per row of cells, the run of cells that the disc reaches (a
+    /// little more than the disc).
     #[inline]
-    fn visit_disc(&self, p: Vec2, r: f64, mut f: impl FnMut(usize, Vec2)) {
+    fn disc_runs(&self, p: Vec2, r: f64, mut f: impl FnMut(usize, usize)) {
         let cell = 1.0 / self.inv;
-        for y in self.iy(p.y - r)..=self.iy(p.y + r) {
-            // The band of row y: [lo, lo + cell); its distance from p.
-            let lo = self.y0 + y as f64 * cell;
-            let gy = ((lo - p.y).max(p.y - (lo + cell)).max(0.0) - LB_MARGIN).max(0.0);
-            // Rows outside the box hold the points beyond it: no bound, the whole width.
-            let edge = y == 0 || y == self.ny - 1;
-            let w = if edge || gy >= r {
-                r
-            } else {
-                (r * r - gy * gy).sqrt() + LB_MARGIN
-            };
-            let (x0, x1) = (self.ix(p.x - w), self.ix(p.x + w));
-            let row = y * self.nx;
-            let (s, e) = (
-                self.start[row + x0] as usize,
-                self.start[row + x1 + 1] as usize,
-            );
-            for (&q, &pos) in self.items[s..e].iter().zip(&self.pts[s..e]) {
-                f(q as usize, pos);
+        let (y0, y1) = (self.iy(p.y - r), self.iy(p.y + r));
+        // All the runs first, then their points: the rows' square roots overlap instead of
+        // each waiting after the previous row's scan.
+        let mut runs = [(0u32, 0u32); 32];
+        let mut y = y0;
+        while y <= y1 {
+            let rows = (y1 + 1 - y).min(runs.len());
+            for (j, run) in runs[..rows].iter_mut().enumerate() {
+                let y = y + j;
+                // The band of row y: [lo, lo + cell); its distance from p.
+                let lo = self.y0 + y as f64 * cell;
+                let gy = ((lo - p.y).max(p.y - (lo + cell)).max(0.0) - LB_MARGIN).max(0.0);
+                // Rows outside the box hold the points beyond it: no bound, the whole width.
+                let edge = y == 0 || y == self.ny - 1;
+                let w = if edge || gy >= r {
+                    r
+                } else {
+                    (r * r - gy * gy).sqrt() + LB_MARGIN
+                };
+                let (x0, x1) = (self.ix(p.x - w), self.ix(p.x + w));
+                let row = y * self.nx;
+                *run = (self.start[row + x0], self.start[row + x1 + 1]);
             }
+            for &(s, e) in &runs[..rows] {
+                f(s as usize, e as usize);
+            }
+            y += rows;
         }
     }
 
@@ -204,16 +212,26 @@ impl Grid {
         let mut rho = hint.max(count_r).min(r);
         loop {
             near.clear();
-            let rho2 = rho * rho;
-            self.visit_disc(p, rho, |q, pos| {
-                let d = pos.minus(p);
-                let d2 = d.x * d.x + d.y * d.y;
-                // Coincident agents have no direction to avoid along (the avoidance
-                // crate would divide by zero): only a guard, placement keeps people apart.
-                if q != skip && d2 < rho2 && d2 < r2 && d2 > 1e-8 {
-                    near.push((d2, q));
+            let lim2 = (rho * rho).min(r2);
+            let mut n = 0;
+            self.disc_runs(p, rho, |s, e| {
+                // Every entry is written and kept or not by its test, without a branch
+                // (which half of a crowd passes is not predictable).
+                if near.len() < n + (e - s) {
+                    near.resize(n + (e - s), (0.0, 0));
+                }
+                for (&q, &pos) in self.items[s..e].iter().zip(&self.pts[s..e]) {
+                    let d = pos.minus(p);
+                    let d2 = d.x * d.x + d.y * d.y;
+                    // Coincident agents have no direction to avoid along (the avoidance
+                    // crate would divide by zero): only a guard, placement keeps people
+                    // apart.
+                    let keep = (q as usize != skip) & (d2 < lim2) & (d2 > 1e-8);
+                    near[n] = (d2, q as usize);
+                    n += usize::from(keep);
                 }
             });
+            near.truncate(n);
             if near.len() >= k || rho >= r || !rho.is_finite() {
                 break;
             }

@@ -372,3 +372,47 @@ fn people_avoid_a_robot() {
     assert!(c.any_within([p.x + 0.5, p.y, 0.0], 0.75));
     assert!(!c.any_within([p.x + 0.5, p.y, 5.0], 0.75));
 }
+
+/// The grid's k-nearest query equals a brute-force scan and sort, whatever the first
+/// guess of the radius, for points inside and outside the grid's box, crowded and sparse.
+#[test]
+fn nearest_equals_brute_force() {
+    let mut rng = fastrand::Rng::with_seed(7);
+    let (lo, hi) = (Vec2::new(0.0, 0.0), Vec2::new(30.0, 12.0));
+    let mut g = grid::Grid::new(lo, hi, 0.5, 1e6);
+    // A dense knot, a sparse field, and some points beyond the box on every side.
+    let mut pts: Vec<Vec2> = (0..300)
+        .map(|_| Vec2::new(5.0 + 2.0 * rng.f64(), 5.0 + 2.0 * rng.f64()))
+        .collect();
+    pts.extend((0..200).map(|_| Vec2::new(34.0 * rng.f64() - 2.0, 16.0 * rng.f64() - 2.0)));
+    // Two coincident points (left out of each other's neighbours).
+    pts.push(Vec2::new(20.0, 6.0));
+    pts.push(Vec2::new(20.0, 6.0));
+    g.rebuild(pts.iter().copied());
+    let mut near = Vec::new();
+    let mut checked = 0;
+    for (i, &p) in pts.iter().enumerate() {
+        for (r, k) in [(5.0, 10), (1.5, 3), (0.7, 50)] {
+            let mut all: Vec<(f64, usize)> = pts
+                .iter()
+                .enumerate()
+                .filter(|&(j, _)| j != i)
+                .map(|(j, q)| {
+                    let d = q.minus(p);
+                    (d.x * d.x + d.y * d.y, j)
+                })
+                .filter(|&(d2, _)| d2 < r * r && d2 > 1e-8)
+                .collect();
+            let count = all.iter().filter(|a| a.0 < 1.0).count();
+            all.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
+            all.truncate(k);
+            for hint in [0.0, 0.3, 2.0, 100.0] {
+                let c = g.nearest(p, r, k, i, 1.0, hint, &mut near);
+                assert_eq!(near, all, "point {i} at {p:?}, r {r}, k {k}, hint {hint}");
+                assert_eq!(c, count, "point {i}, r {r}");
+                checked += 1;
+            }
+        }
+    }
+    assert_eq!(checked, 502 * 3 * 4);
+}
