@@ -338,6 +338,18 @@ fn same_seed_same_walk() {
     assert_eq!(run(), run());
 }
 
+/// A robot of footprint 0.4 m standing at (10, 0), facing `yaw`.
+fn standing_robot(yaw: f64) -> RobotTruth {
+    RobotTruth {
+        x: 10.0,
+        y: 0.0,
+        z: 0.0,
+        yaw,
+        v: 0.0,
+        footprint: 0.4,
+    }
+}
+
 /// A robot standing in the corridor: people walk around it and never touch it.
 #[test]
 fn people_avoid_a_robot() {
@@ -351,14 +363,7 @@ fn people_avoid_a_robot() {
         r: 0.25,
     });
     let mut c = crowd(&b);
-    let robot = RobotTruth {
-        x: 10.0,
-        y: 0.0,
-        z: 0.0,
-        yaw: 0.0,
-        v: 0.0,
-        footprint: 0.4,
-    };
+    let robot = standing_robot(0.0);
     for k in 1..=400u64 {
         c.walk(k as f64 * 0.1, &[robot]);
     }
@@ -390,14 +395,7 @@ fn a_person_held_up_by_a_waiting_robot_gives_way() {
     });
     let mut c = crowd(&b);
     // Facing the person (yaw pi): its stop zone is 0.75 m ahead, 0.75 m around.
-    let robot = RobotTruth {
-        x: 10.0,
-        y: 0.0,
-        z: 0.0,
-        yaw: std::f64::consts::PI,
-        v: 0.0,
-        footprint: 0.4,
-    };
+    let robot = standing_robot(std::f64::consts::PI);
     let zone = [10.0 - 0.75, 0.0, 0.0];
     let (mut entered, mut cleared) = (None, None);
     for k in 1..=300u64 {
