@@ -7,7 +7,10 @@ directory (a first build, as in CI). Prints per map the median wall time of each
 median of the per-round ratios (reference / mapc), and both commands' median CPU time
 (user + system, from the children's rusage).
 
-    scripts/first_compile.py [--rounds 9] [--mapc target/release/mapc] [MAP ...]
+    scripts/first_compile.py [--rounds 9] [--mapc target/release/mapc] [--work DIR] [MAP ...]
+
+--work: where the fresh output directories are made (default: the system's temporary
+directory); e.g. /dev/shm to take the file system's inode allocation out of the figures.
 
 Textures: the reference copies them from its share directory; mapc is given the same
 directory with --texture-path. Run from the crate root; needs ../shared.
@@ -45,6 +48,7 @@ def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("--rounds", type=int, default=9)
     ap.add_argument("--mapc", default=os.path.join(ROOT, "target/release/mapc"))
+    ap.add_argument("--work", default=None)
     ap.add_argument("maps", nargs="*", default=MAPS)
     a = ap.parse_args()
     if not os.path.isdir(SHARED):
@@ -52,7 +56,7 @@ def main():
         return
     ref = os.path.join(SHARED, "tools/reference-gen")
     textures = os.path.join(SHARED, "textures")
-    work = tempfile.mkdtemp(prefix="mapc-first-compile-")
+    work = tempfile.mkdtemp(prefix="mapc-first-compile-", dir=a.work)
     print(f"| map | reference wall (median) | mapc wall (median) | ratio (median of {a.rounds}) "
           "| min ratio | reference CPU | mapc CPU |")
     print("| --- | ---: | ---: | ---: | ---: | ---: | ---: |")

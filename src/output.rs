@@ -10,13 +10,19 @@
 //! into their directory.
 
 use mapc_backends::OutputFile;
-use std::collections::BTreeSet;
-use std::io::Write;
+use std::collections::{BTreeSet, HashMap, HashSet};
+use std::ffi::OsString;
+use std::io::{Read, Write};
 use std::path::{Component, Path, PathBuf};
-use std::sync::Mutex;
+use std::sync::atomic::{AtomicUsize, Ordering};
+use std::sync::{Mutex, RwLock};
 
 /// Temporaries that exist right now (created and not yet renamed or removed).
 static LIVE: Mutex<Vec<PathBuf>> = Mutex::new(Vec::new());
+/// Held shared while a temporary is created and registered (by several threads at once),
+/// and exclusively by the signal watcher's sweep: it never runs while a temporary exists
+/// unregistered.
+static GATE: RwLock<()> = RwLock::new(());
 const TMP_MARK: &str = ".mapc-tmp-";
 
 /// Resolves `rel` inside `root`, refusing anything that could escape it (absolute paths,
@@ -97,6 +103,7 @@ pub fn io_message(root: &Path, role: &str, path: &Path, e: &std::io::Error) -> S
 /// Removes every registered temporary and exits with `code` (called by the signal watcher).
 /// Exits while holding the registry lock, so no new temporary can appear after the sweep.
 pub fn remove_temporaries_and_exit(code: i32) -> ! {
+    let _gate = GATE.write().unwrap_or_else(|e| e.into_inner());
     let live = LIVE.lock().unwrap_or_else(|e| e.into_inner());
     for p in live.iter() {
         let _ = std::fs::remove_file(p);
@@ -109,23 +116,62 @@ pub fn remove_temporaries_and_exit(code: i32) -> ! {
 /// Creates a registered temporary for `path`; `None` once a signal asked to stop.
 pub fn create_temporary(path: &Path) -> std::io::Result<(PathBuf, std::fs::File)> {
     let tmp = temporary_name(path);
-    let mut live = LIVE.lock().unwrap_or_else(|e| e.into_inner());
-    // Created under the lock: the watcher either sees it registered or it never exists.
-    // A new file, never one found there: a temporary left by an earlier process with
-    // this pid may be a hard link to a texture, which truncating would empty.
-    let _ = std::fs::remove_file(&tmp);
-    let f = std::fs::OpenOptions::new()
-        .write(true)
-        .create_new(true)
-        .open(&tmp)?;
-    live.push(tmp.clone());
+    let f = create_registered(&tmp)?;
     Ok((tmp, f))
+}
+
+/// Creates `tmp` as a new file and registers it. A new file, never one found there: a
+/// temporary left by an earlier process with this pid may be a hard link to a texture,
+/// which truncating would empty; such a leftover is removed and the creation retried.
+fn create_registered(tmp: &Path) -> std::io::Result<std::fs::File> {
+    let open = || {
+        std::fs::OpenOptions::new()
+            .write(true)
+            .create_new(true)
+            .open(tmp)
+    };
+    // Created under the gate: the watcher either sees it registered or it never exists.
+    let _gate = GATE.read().unwrap_or_else(|e| e.into_inner());
+    let f = match open() {
+        Err(e) if e.kind() == std::io::ErrorKind::AlreadyExists => {
+            let _ = std::fs::remove_file(tmp);
+            open()?
+        }
+        r => r?,
+    };
+    LIVE.lock()
+        .unwrap_or_else(|e| e.into_inner())
+        .push(tmp.to_path_buf());
+    Ok(f)
+}
+
+/// Hard-links `src` at `tmp` and registers it (as [`create_registered`]).
+fn link_registered(src: &Path, tmp: &Path) -> std::io::Result<()> {
+    let _gate = GATE.read().unwrap_or_else(|e| e.into_inner());
+    match std::fs::hard_link(src, tmp) {
+        Err(e) if e.kind() == std::io::ErrorKind::AlreadyExists => {
+            let _ = std::fs::remove_file(tmp);
+            std::fs::hard_link(src, tmp)?
+        }
+        r => r?,
+    }
+    LIVE.lock()
+        .unwrap_or_else(|e| e.into_inner())
+        .push(tmp.to_path_buf());
+    Ok(())
 }
 
 /// Forgets a temporary that was renamed or removed.
 pub fn release_temporary(tmp: &Path) {
     let mut live = LIVE.lock().unwrap_or_else(|e| e.into_inner());
     live.retain(|p| p != tmp);
+}
+
+/// Forgets many temporaries at once (one pass over the registry, not one per file).
+fn release_temporaries<'a>(done: impl IntoIterator<Item = &'a Path>) {
+    let done: HashSet<&Path> = done.into_iter().collect();
+    let mut live = LIVE.lock().unwrap_or_else(|e| e.into_inner());
+    live.retain(|p| !done.contains(p.as_path()));
 }
 
 /// Writes `contents` to `path` via a temporary file in the same directory and a rename,
@@ -153,22 +199,32 @@ fn alive(pid: u32) -> bool {
 
 /// Removes temporaries of processes that no longer run from `dir` (not recursive).
 pub fn sweep_temporaries(dir: &Path) {
-    let Ok(entries) = std::fs::read_dir(dir) else {
-        return;
-    };
-    for e in entries.flatten() {
+    let _ = sweep_and_list(dir);
+}
+
+/// [`sweep_temporaries`], returning the names the directory holds besides temporaries
+/// (one `readdir` tells which outputs already exist).
+fn sweep_and_list(dir: &Path) -> std::io::Result<HashSet<OsString>> {
+    let mut names = HashSet::new();
+    for e in std::fs::read_dir(dir)?.flatten() {
         let name = e.file_name();
-        let Some(name) = name.to_str() else { continue };
-        let Some((_, pid)) = name.rsplit_once(TMP_MARK) else {
+        let Some(s) = name.to_str() else {
+            names.insert(name);
             continue;
         };
-        if !name.starts_with('.') || !e.file_type().is_ok_and(|t| t.is_file()) {
+        let Some((_, pid)) = s.rsplit_once(TMP_MARK) else {
+            names.insert(name);
+            continue;
+        };
+        if !s.starts_with('.') || !e.file_type().is_ok_and(|t| t.is_file()) {
+            names.insert(name);
             continue;
         }
         if pid.parse::<u32>().is_ok_and(|p| !alive(p)) {
             let _ = std::fs::remove_file(e.path());
         }
     }
+    Ok(names)
 }
 
 /// What a write did: how many files the outputs are, and how many were already identical.
@@ -180,24 +236,52 @@ pub struct Written {
     pub removed: usize,
 }
 
-/// Files read from disk whose bytes an output may repeat verbatim (textures): such an
-/// output is hard-linked to the file instead of written (no data to copy or flush).
-static LINK_SOURCES: Mutex<Vec<(PathBuf, Vec<u8>)>> = Mutex::new(Vec::new());
+/// Files read from disk whose bytes an output may repeat verbatim (textures), with their
+/// length: such an output is hard-linked to the file instead of written (no data to copy
+/// or flush). Only paths are kept, not bytes: a candidate is compared with the file itself.
+static LINK_SOURCES: Mutex<Vec<(PathBuf, u64)>> = Mutex::new(Vec::new());
 
-/// Records that `path` holds `bytes`, so an output with exactly these bytes and the same
-/// file name may be a hard link to it.
-pub fn note_link_source(path: &Path, bytes: &[u8]) {
+/// Records that `path` holds `len` bytes that an output with the same file name may repeat.
+pub fn note_link_source(path: &Path, len: u64) {
     let mut l = LINK_SOURCES.lock().unwrap_or_else(|e| e.into_inner());
     if !l.iter().any(|(p, _)| p == path) {
-        l.push((path.to_path_buf(), bytes.to_vec()));
+        l.push((path.to_path_buf(), len));
     }
 }
 
+/// A known source file with `target`'s name whose bytes are exactly `contents` now.
 fn link_source(target: &Path, contents: &[u8]) -> Option<PathBuf> {
-    let l = LINK_SOURCES.lock().unwrap_or_else(|e| e.into_inner());
-    l.iter()
-        .find(|(p, b)| p.file_name() == target.file_name() && b.as_slice() == contents)
+    let candidates: Vec<PathBuf> = LINK_SOURCES
+        .lock()
+        .unwrap_or_else(|e| e.into_inner())
+        .iter()
+        .filter(|(p, len)| p.file_name() == target.file_name() && *len == contents.len() as u64)
         .map(|(p, _)| p.clone())
+        .collect();
+    candidates.into_iter().find(|p| holds(p, contents))
+}
+
+/// Whether the file at `path` holds exactly `contents` (read in small pieces: no copy of
+/// a whole texture in memory).
+fn holds(path: &Path, contents: &[u8]) -> bool {
+    let Ok(mut f) = std::fs::File::open(path) else {
+        return false;
+    };
+    let mut buf = vec![0u8; 64 << 10];
+    let mut at = 0;
+    loop {
+        match f.read(&mut buf) {
+            Ok(0) => return at == contents.len(),
+            Ok(n) => {
+                if contents.get(at..at + n) != Some(&buf[..n]) {
+                    return false;
+                }
+                at += n;
+            }
+            Err(e) if e.kind() == std::io::ErrorKind::Interrupted => {}
+            Err(_) => return false,
+        }
+    }
 }
 
 /// A new file staged as a temporary beside its target, renamed over it at commit.
@@ -208,17 +292,17 @@ struct Staged {
     written: bool,
 }
 
-/// Stages `contents` for `path`: a hard link to a known source with the same bytes when
-/// possible (same file system), else a temporary written with those bytes.
-fn stage(path: &Path, contents: &[u8]) -> std::io::Result<Staged> {
-    let dir = path.parent().unwrap_or(Path::new("."));
-    std::fs::create_dir_all(dir)?;
-    if let Some(src) = link_source(path, contents) {
-        let tmp = temporary_name(path);
-        let mut live = LIVE.lock().unwrap_or_else(|e| e.into_inner());
-        let _ = std::fs::remove_file(&tmp);
-        if std::fs::hard_link(&src, &tmp).is_ok() {
-            live.push(tmp.clone());
+/// Stages `data` for `path` at `tmp`: a hard link to a file with the same bytes when
+/// possible (a linked output, or bytes that repeat a known source; same file system), else
+/// a temporary written with those bytes, whose write-back starts at once (it overlaps the
+/// staging of the other files).
+fn stage(path: &Path, tmp: PathBuf, data: Data) -> std::io::Result<Staged> {
+    let src = match data {
+        Data::Link(src) => Some(src.to_path_buf()),
+        Data::Bytes(contents) => link_source(path, contents),
+    };
+    if let Some(src) = src {
+        if link_registered(&src, &tmp).is_ok() {
             return Ok(Staged {
                 tmp,
                 target: path.to_path_buf(),
@@ -227,12 +311,25 @@ fn stage(path: &Path, contents: &[u8]) -> std::io::Result<Staged> {
         }
         // Another device, or links not allowed: copy.
     }
-    let (tmp, mut f) = create_temporary(path)?;
-    let result = f.write_all(contents);
-    if let Err(e) = result {
+    let read;
+    let contents = match data {
+        Data::Bytes(b) => b,
+        Data::Link(src) => {
+            read = std::fs::read(src)?;
+            &read[..]
+        }
+    };
+    let mut f = create_registered(&tmp)?;
+    if let Err(e) = f.write_all(contents) {
         let _ = std::fs::remove_file(&tmp);
         release_temporary(&tmp);
         return Err(e);
+    }
+    #[cfg(target_os = "linux")]
+    {
+        use std::os::fd::AsRawFd;
+        // SAFETY: a plain syscall on an open descriptor. Only a hint: errors are ignored.
+        unsafe { libc::sync_file_range(f.as_raw_fd(), 0, 0, libc::SYNC_FILE_RANGE_WRITE) };
     }
     Ok(Staged {
         tmp,
@@ -241,9 +338,96 @@ fn stage(path: &Path, contents: &[u8]) -> std::io::Result<Staged> {
     })
 }
 
-/// Makes the data of every staged temporary durable, in one pass: on Linux one `syncfs`
-/// per file system (one journal commit, instead of one per file), elsewhere `fsync` of
-/// each file.
+/// Whether the existing file at `path` already holds `data`.
+fn unchanged(path: &Path, data: Data) -> bool {
+    match data {
+        Data::Bytes(contents) => std::fs::read(path).is_ok_and(|old| old == contents),
+        Data::Link(src) => {
+            #[cfg(unix)]
+            {
+                use std::os::unix::fs::MetadataExt;
+                let (Ok(a), Ok(b)) = (std::fs::metadata(path), std::fs::metadata(src)) else {
+                    return false;
+                };
+                if a.dev() == b.dev() && a.ino() == b.ino() {
+                    return true;
+                }
+            }
+            std::fs::read(src).is_ok_and(|bytes| holds(path, &bytes))
+        }
+    }
+}
+
+/// Runs `work` on every item, on up to two threads (file creation is kernel time that
+/// two cores share; more threads only contend for the same directory and group locks).
+/// Results come back in the items' order.
+fn parallel<T: Sync, R: Send>(items: &[T], work: impl Fn(&T) -> R + Sync) -> Vec<R> {
+    let threads = if items.len() < 16 {
+        1
+    } else {
+        std::thread::available_parallelism().map_or(1, |n| n.get().min(2))
+    };
+    if threads == 1 {
+        return items.iter().map(&work).collect();
+    }
+    let next = AtomicUsize::new(0);
+    let run = || {
+        let mut out = Vec::new();
+        loop {
+            let i = next.fetch_add(1, Ordering::Relaxed);
+            let Some(item) = items.get(i) else { break };
+            out.push((i, work(item)));
+        }
+        out
+    };
+    let mut done: Vec<(usize, R)> = std::thread::scope(|s| {
+        let helpers: Vec<_> = (1..threads).map(|_| s.spawn(run)).collect();
+        let mut all = run();
+        for h in helpers {
+            // A panic in a helper is a bug; surface it here.
+            all.extend(h.join().unwrap_or_else(|p| std::panic::resume_unwind(p)));
+        }
+        all
+    });
+    done.sort_unstable_by_key(|(i, _)| *i);
+    done.into_iter().map(|(_, r)| r).collect()
+}
+
+/// Before a batch of new files on ext2/3/4: one `syncfs`. Without a journal, ext4 avoids
+/// reusing an inode freed less than 5 s ago, or 5 min ago while its inode-table block is
+/// still dirty, and checks every free inode of the group from its start for each new file
+/// (the whole group when it holds no other free inode); after a busy minute of builds that
+/// is thousands of checks per file, most of a first compile's time (BENCHMARKS.md). Writing
+/// the dirty inode tables first narrows the window to 5 s. The dirty data it writes would
+/// otherwise wait for the flush after staging, so little is added; errors are ignored (the
+/// flush after staging is what makes the outputs durable).
+fn clean_inode_tables(root: &Path) {
+    #[cfg(target_os = "linux")]
+    {
+        use std::os::fd::AsRawFd;
+        const EXT_SUPER_MAGIC: libc::c_long = 0xEF53;
+        let Ok(f) = std::fs::File::open(root) else {
+            return;
+        };
+        // SAFETY: plain syscalls on an open descriptor, with a zeroed out-parameter.
+        unsafe {
+            let mut st: libc::statfs = std::mem::zeroed();
+            if libc::fstatfs(f.as_raw_fd(), &mut st) == 0
+                && st.f_type as libc::c_long == EXT_SUPER_MAGIC
+            {
+                libc::syncfs(f.as_raw_fd());
+            }
+        }
+    }
+    #[cfg(not(target_os = "linux"))]
+    let _ = root;
+}
+
+/// Makes the data of every written temporary durable, in one pass: on Linux one `syncfs`
+/// per file system (their write-back was started as they were written), elsewhere `fsync`
+/// of each file. Measured against `fdatasync` of each file on two threads
+/// (BENCHMARKS.md): one `syncfs` waits less, even though it also writes other processes'
+/// dirty pages, because each `fdatasync` also writes its inode and directory on its own.
 fn flush(staged: &[Staged]) -> std::io::Result<()> {
     let written: Vec<&Staged> = staged.iter().filter(|s| s.written).collect();
     if written.is_empty() {
@@ -278,8 +462,8 @@ fn flush(staged: &[Staged]) -> std::io::Result<()> {
 fn discard(staged: &[Staged]) {
     for s in staged {
         let _ = std::fs::remove_file(&s.tmp);
-        release_temporary(&s.tmp);
     }
+    release_temporaries(staged.iter().map(|s| s.tmp.as_path()));
 }
 
 fn temporary_name(path: &Path) -> PathBuf {
@@ -295,7 +479,8 @@ pub fn write_all(root: &Path, role: &str, files: &[OutputFile]) -> Result<Writte
     write_dirs(&[DirWrite {
         root,
         role,
-        files,
+        files: files.iter().collect(),
+        links: Vec::new(),
         manifest: None,
     }])
     .map(|w| w[0])
@@ -306,8 +491,41 @@ pub struct DirWrite<'a> {
     pub root: &'a Path,
     /// The argument that named `root`, for messages (`OUTPUT_DIR`).
     pub role: &'a str,
-    pub files: &'a [OutputFile],
+    pub files: Vec<&'a OutputFile>,
+    /// Outputs that repeat a file on disk (after `files`).
+    pub links: Vec<&'a LinkedFile>,
     pub manifest: Option<&'a Manifest<'a>>,
+}
+
+/// An output that repeats a file already on disk byte for byte (a texture found on the
+/// texture path): a hard link to it, or a copy when no link can be made (another file
+/// system). Nothing of it is read into memory on a first build.
+pub struct LinkedFile {
+    /// Relative to the output directory, as [`OutputFile::path`].
+    pub path: PathBuf,
+    pub source: PathBuf,
+}
+
+/// What an output holds: bytes in memory, or those of a file on disk.
+#[derive(Clone, Copy)]
+enum Data<'a> {
+    Bytes(&'a [u8]),
+    Link(&'a Path),
+}
+
+impl<'a> DirWrite<'a> {
+    /// Every output: relative path and data, `files` then `links`.
+    fn entries(&self) -> impl Iterator<Item = (&'a Path, Data<'a>)> + '_ {
+        let files = self
+            .files
+            .iter()
+            .map(|f| (f.path.as_path(), Data::Bytes(&f.contents)));
+        let links = self
+            .links
+            .iter()
+            .map(|l| (l.path.as_path(), Data::Link(&l.source)));
+        files.chain(links)
+    }
 }
 
 /// What one directory of a write will do, computed before anything is written.
@@ -322,9 +540,8 @@ struct Plan {
 fn plan(d: &DirWrite) -> Result<Plan, String> {
     // Resolve every path first so nothing is written if any name is unsafe.
     let targets: Vec<PathBuf> = d
-        .files
-        .iter()
-        .map(|f| confined(d.root, &f.path))
+        .entries()
+        .map(|(rel, _)| confined(d.root, rel))
         .collect::<Result<_, _>>()?;
     let Some(manifest) = d.manifest else {
         return Ok(Plan {
@@ -335,7 +552,7 @@ fn plan(d: &DirWrite) -> Result<Plan, String> {
     };
     let mpath = confined(d.root, Path::new(&manifest.name))?;
     let old = std::fs::read_to_string(&mpath).unwrap_or_default();
-    let now: BTreeSet<&Path> = d.files.iter().map(|f| f.path.as_path()).collect();
+    let now: BTreeSet<&Path> = d.entries().map(|(rel, _)| rel).collect();
     let mut text = String::new();
     let mut stale = Vec::new();
     for line in old.lines() {
@@ -354,12 +571,8 @@ fn plan(d: &DirWrite) -> Result<Plan, String> {
             stale.push(path);
         }
     }
-    for f in d.files {
-        text.push_str(&format!(
-            "{}\t{}\n",
-            (manifest.group)(&f.path),
-            f.path.display()
-        ));
+    for (rel, _) in d.entries() {
+        text.push_str(&format!("{}\t{}\n", (manifest.group)(rel), rel.display()));
     }
     let manifest = (old != text).then_some((mpath, text));
     Ok(Plan {
@@ -376,87 +589,132 @@ fn plan(d: &DirWrite) -> Result<Plan, String> {
 /// each file either old or new, never partly written (ARCHITECTURE.md, "Crash safety").
 pub fn write_dirs(dirs: &[DirWrite]) -> Result<Vec<Written>, String> {
     let plans: Vec<Plan> = dirs.iter().map(plan).collect::<Result<_, _>>()?;
-    let mut staged: Vec<Staged> = Vec::new();
-    // Target -> position in `staged`.
-    let mut index: std::collections::HashMap<PathBuf, usize> = std::collections::HashMap::new();
-    let mut manifests: Vec<Staged> = Vec::new();
-    let mut written = Vec::with_capacity(dirs.len());
-    let fail = |staged: &[Staged], manifests: &[Staged], msg: String| {
-        discard(staged);
-        discard(manifests);
-        msg
-    };
-    for (d, p) in dirs.iter().zip(&plans) {
+    for d in dirs {
         let root = d.root;
         if root.exists() && !root.is_dir() {
-            return Err(fail(
-                &staged,
-                &manifests,
-                format!(
-                    "`{}` is a file; {} must be a directory",
-                    shown(root),
-                    d.role
-                ),
+            return Err(format!(
+                "`{}` is a file; {} must be a directory",
+                shown(root),
+                d.role
             ));
         }
         if let Err(e) = std::fs::create_dir_all(root) {
-            return Err(fail(
-                &staged,
-                &manifests,
-                io_message(root, d.role, &root.join("x"), &e),
-            ));
+            return Err(io_message(root, d.role, &root.join("x"), &e));
         }
-        let targets: BTreeSet<&Path> = p
-            .targets
-            .iter()
-            .filter_map(|t| t.parent())
-            .chain([root])
-            .collect();
-        for t in targets {
-            sweep_temporaries(t);
+    }
+    // Every directory once, parents before children (paths order by components). One that
+    // already existed is read once: temporaries of dead processes are swept, and its names
+    // tell which outputs exist (only those are read to see whether they are unchanged). One
+    // created now is empty: nothing to read.
+    let mut needed: std::collections::BTreeMap<&Path, (usize, &Path)> = Default::default();
+    for (i, (d, p)) in dirs.iter().zip(&plans).enumerate() {
+        needed.entry(d.root).or_insert((i, d.root));
+        for t in &p.targets {
+            needed
+                .entry(t.parent().unwrap_or(d.root))
+                .or_insert((i, t.as_path()));
         }
+    }
+    let mut existing: HashMap<&Path, HashSet<OsString>> = HashMap::new();
+    for (&dir, &(i, inside)) in &needed {
+        let made = match std::fs::create_dir(dir) {
+            Ok(()) => Ok(()),
+            Err(e) if e.kind() == std::io::ErrorKind::AlreadyExists => {
+                sweep_and_list(dir).map(|names| {
+                    existing.insert(dir, names);
+                })
+            }
+            Err(e) if e.kind() == std::io::ErrorKind::NotFound => std::fs::create_dir_all(dir),
+            Err(e) => Err(e),
+        };
+        if let Err(e) = made {
+            let target = if inside == dir {
+                dir.join("x")
+            } else {
+                inside.to_path_buf()
+            };
+            return Err(io_message(dirs[i].root, dirs[i].role, &target, &e));
+        }
+    }
+    let exists = |path: &Path| {
+        let (Some(dir), Some(name)) = (path.parent(), path.file_name()) else {
+            return true;
+        };
+        existing.get(dir).is_some_and(|names| names.contains(name))
+    };
+
+    struct Job<'a> {
+        target: &'a Path,
+        data: Data<'a>,
+        /// Which [`DirWrite`] it belongs to (for messages).
+        dir: usize,
+        manifest: bool,
+    }
+    let mut jobs: Vec<Job> = Vec::new();
+    // Target -> position in `jobs`: a path given twice is written once, with the last
+    // contents.
+    let mut index: HashMap<&Path, usize> = HashMap::new();
+    let mut written = Vec::with_capacity(dirs.len());
+    for (i, (d, p)) in dirs.iter().zip(&plans).enumerate() {
         let mut w = Written {
-            files: d.files.len(),
+            files: d.files.len() + d.links.len(),
             ..Written::default()
         };
-        for (f, path) in d.files.iter().zip(&p.targets) {
-            if std::fs::read(path).is_ok_and(|old| old == f.contents) {
+        for ((_, data), path) in d.entries().zip(&p.targets) {
+            if exists(path) && unchanged(path, data) {
                 w.unchanged += 1;
                 continue;
             }
-            match stage(path, &f.contents) {
-                // A path given twice: the last contents win, in the one temporary.
-                Ok(s) => match index.get(&s.target) {
-                    Some(&i) => staged[i] = s,
-                    None => {
-                        index.insert(s.target.clone(), staged.len());
-                        staged.push(s);
-                    }
-                },
-                Err(e) => {
-                    return Err(fail(
-                        &staged,
-                        &manifests,
-                        io_message(root, d.role, path, &e),
-                    ))
-                }
-            }
-        }
-        if let Some((mpath, text)) = &p.manifest {
-            match stage(mpath, text.as_bytes()) {
-                Ok(s) => manifests.push(s),
-                Err(e) => {
-                    return Err(fail(
-                        &staged,
-                        &manifests,
-                        io_message(root, d.role, mpath, &e),
-                    ))
+            let job = Job {
+                target: path,
+                data,
+                dir: i,
+                manifest: false,
+            };
+            match index.get(path.as_path()) {
+                Some(&k) => jobs[k] = job,
+                None => {
+                    index.insert(path, jobs.len());
+                    jobs.push(job);
                 }
             }
         }
         written.push(w);
     }
-    let all: Vec<Staged> = staged.into_iter().chain(manifests).collect();
+    let outputs = jobs.len();
+    for (i, p) in plans.iter().enumerate() {
+        if let Some((mpath, text)) = &p.manifest {
+            jobs.push(Job {
+                target: mpath,
+                data: Data::Bytes(text.as_bytes()),
+                dir: i,
+                manifest: true,
+            });
+        }
+    }
+    // Measured: on a dozen files the extra flush costs more than it saves (BENCHMARKS.md).
+    if jobs.len() >= 32 {
+        clean_inode_tables(dirs[0].root);
+    }
+    let results = parallel(&jobs, |j| stage(j.target, temporary_name(j.target), j.data));
+    let mut all: Vec<Staged> = Vec::with_capacity(jobs.len());
+    let mut failed = None;
+    for (j, r) in jobs.iter().zip(results) {
+        match r {
+            Ok(s) => all.push(s),
+            Err(e) => {
+                failed.get_or_insert_with(|| {
+                    let d = &dirs[j.dir];
+                    io_message(d.root, d.role, j.target, &e)
+                });
+            }
+        }
+    }
+    debug_assert!(jobs.iter().skip(outputs).all(|j| j.manifest));
+    if let Some(msg) = failed {
+        discard(&all);
+        return Err(msg);
+    }
     if let Err(e) = flush(&all) {
         discard(&all);
         return Err(format!("cannot write to the output directory: {e}"));
@@ -478,12 +736,30 @@ pub fn write_dirs(dirs: &[DirWrite]) -> Result<Vec<Written>, String> {
             }
         }
     }
-    for (i, s) in all.iter().enumerate() {
-        if let Err(e) = std::fs::rename(&s.tmp, &s.target) {
-            discard(&all[i..]);
-            return Err(format!("cannot write `{}`: {e}", shown(&s.target)));
+    // Outputs in any order (on two threads), manifests only once every output is in place.
+    let (files, manifests) = all.split_at(outputs);
+    let renamed = parallel(files, |s| std::fs::rename(&s.tmp, &s.target));
+    let mut failed = None;
+    for (s, r) in files.iter().zip(&renamed) {
+        if let Err(e) = r {
+            let _ = std::fs::remove_file(&s.tmp);
+            failed.get_or_insert_with(|| format!("cannot write `{}`: {e}", shown(&s.target)));
         }
-        release_temporary(&s.tmp);
+    }
+    if failed.is_none() {
+        for (k, s) in manifests.iter().enumerate() {
+            if let Err(e) = std::fs::rename(&s.tmp, &s.target) {
+                discard(&manifests[k..]);
+                failed = Some(format!("cannot write `{}`: {e}", shown(&s.target)));
+                break;
+            }
+        }
+    } else {
+        discard(manifests);
+    }
+    release_temporaries(all.iter().map(|s| s.tmp.as_path()));
+    if let Some(msg) = failed {
+        return Err(msg);
     }
     // The renames are not synced: a power loss may undo the last of them, which leaves
     // those files old (and whole); the next run writes them again.
@@ -513,7 +789,8 @@ pub fn write_dir(
     write_dirs(&[DirWrite {
         root,
         role,
-        files,
+        files: files.iter().collect(),
+        links: Vec::new(),
         manifest: Some(manifest),
     }])
     .map(|w| w[0])
@@ -536,6 +813,19 @@ pub fn single_writes(
     command: &str,
     map: &str,
 ) -> Result<Vec<Written>, String> {
+    let dirs: Vec<_> = dirs
+        .iter()
+        .map(|&(r, role, f)| (r, role, f, &[][..]))
+        .collect();
+    single_writes_linked(&dirs, command, map)
+}
+
+/// [`single_writes`] with, per directory, outputs that repeat files on disk.
+pub fn single_writes_linked(
+    dirs: &[(&Path, &str, &[OutputFile], &[LinkedFile])],
+    command: &str,
+    map: &str,
+) -> Result<Vec<Written>, String> {
     let group = |_: &Path| command.to_string();
     let manifest = Manifest {
         name: format!(".mapc-manifest-{command}-{map}"),
@@ -544,42 +834,32 @@ pub fn single_writes(
     };
     // Two outputs into one directory (a world beside its models) share its manifest: one
     // job, or each would record only its own files and remove the other's as stale.
-    let mut merged: Vec<(&Path, &str, Vec<OutputFile>, Vec<usize>)> = Vec::new();
-    for (i, &(root, role, files)) in dirs.iter().enumerate() {
-        match merged.iter_mut().find(|m| same_dir(m.0, root)) {
-            Some(m) => {
-                m.2.extend_from_slice(files);
-                m.3.push(i);
+    let mut merged: Vec<(DirWrite, Vec<usize>)> = Vec::new();
+    for (i, &(root, role, files, links)) in dirs.iter().enumerate() {
+        match merged.iter_mut().find(|m| same_dir(m.0.root, root)) {
+            Some((d, at)) => {
+                d.files.extend(files);
+                d.links.extend(links);
+                at.push(i);
             }
-            None => merged.push((root, role, files.to_vec(), vec![i])),
+            None => merged.push((
+                DirWrite {
+                    root,
+                    role,
+                    files: files.iter().collect(),
+                    links: links.iter().collect(),
+                    manifest: Some(&manifest),
+                },
+                vec![i],
+            )),
         }
     }
-    if merged.len() == dirs.len() {
-        let jobs: Vec<DirWrite> = dirs
-            .iter()
-            .map(|&(root, role, files)| DirWrite {
-                root,
-                role,
-                files,
-                manifest: Some(&manifest),
-            })
-            .collect();
-        return write_dirs(&jobs);
-    }
-    let jobs: Vec<DirWrite> = merged
-        .iter()
-        .map(|(root, role, files, _)| DirWrite {
-            root,
-            role,
-            files,
-            manifest: Some(&manifest),
-        })
-        .collect();
+    let (jobs, at): (Vec<DirWrite>, Vec<Vec<usize>>) = merged.into_iter().unzip();
     let done = write_dirs(&jobs)?;
-    // Reported per directory asked for: the merged job's figures go to its first entry.
+    // Reported per directory asked for: a merged job's figures go to its first entry.
     let mut out = vec![Written::default(); dirs.len()];
-    for (m, w) in merged.iter().zip(done) {
-        out[m.3[0]] = w;
+    for (at, w) in at.iter().zip(done) {
+        out[at[0]] = w;
     }
     Ok(out)
 }
@@ -632,6 +912,105 @@ mod tests {
         assert_eq!(std::fs::read(&src).unwrap(), b"source texture");
         assert_eq!(std::fs::read(out.join("brick.png")).unwrap(), b"generated");
         assert_eq!(std::fs::read_dir(&out).unwrap().count(), 1);
+    }
+
+    #[test]
+    fn linked_outputs_are_links_recorded_in_the_manifest_and_unchanged_on_rerun() {
+        use std::os::unix::fs::MetadataExt;
+        let dir = tempfile::tempdir().unwrap();
+        let src = dir.path().join("wall.png");
+        std::fs::write(&src, b"texture bytes").unwrap();
+        let out = dir.path().join("out");
+        let files = [OutputFile {
+            path: "L1/model.sdf".into(),
+            contents: b"<sdf/>".to_vec(),
+        }];
+        let links = [LinkedFile {
+            path: "L1/meshes/wall.png".into(),
+            source: src.clone(),
+        }];
+        let run = || single_writes_linked(&[(&out, "DIR", &files, &links)], "gz", "m").unwrap();
+        assert_eq!(
+            run()[0],
+            Written {
+                files: 2,
+                unchanged: 0,
+                removed: 0
+            }
+        );
+        let png = out.join("L1/meshes/wall.png");
+        assert_eq!(std::fs::read(&png).unwrap(), b"texture bytes");
+        let (a, b) = (
+            std::fs::metadata(&png).unwrap(),
+            std::fs::metadata(&src).unwrap(),
+        );
+        assert_eq!((a.dev(), a.ino()), (b.dev(), b.ino()));
+        let manifest = std::fs::read_to_string(out.join(".mapc-manifest-gz-m")).unwrap();
+        assert_eq!(manifest, "gz\tL1/model.sdf\ngz\tL1/meshes/wall.png\n");
+        assert_eq!(
+            run()[0],
+            Written {
+                files: 2,
+                unchanged: 2,
+                removed: 0
+            }
+        );
+        // A copy with the same bytes (another tool wrote it) is unchanged too; other bytes
+        // are replaced by the link.
+        std::fs::remove_file(&png).unwrap();
+        std::fs::write(&png, b"texture bytes").unwrap();
+        assert_eq!(run()[0].unchanged, 2);
+        std::fs::remove_file(&png).unwrap();
+        std::fs::write(&png, b"older texture").unwrap();
+        assert_eq!(run()[0].unchanged, 1);
+        assert_eq!(std::fs::metadata(&png).unwrap().ino(), b.ino());
+        // Dropped from the outputs: removed as stale, the source kept.
+        let none: [LinkedFile; 0] = [];
+        let w = single_writes_linked(&[(&out, "DIR", &files, &none)], "gz", "m").unwrap();
+        assert_eq!(w[0].removed, 1);
+        assert!(!png.exists() && src.exists());
+        assert_eq!(std::fs::read_dir(out.join("L1")).unwrap().count(), 1);
+    }
+
+    #[test]
+    fn many_files_in_fresh_and_existing_directories() {
+        // Enough files for two staging threads; some directories exist with files.
+        let dir = tempfile::tempdir().unwrap();
+        let out = dir.path().join("out");
+        std::fs::create_dir_all(out.join("d3")).unwrap();
+        std::fs::write(out.join("d3/f3.txt"), "3 in d3").unwrap();
+        std::fs::write(out.join("d3/f8.txt"), "old").unwrap();
+        let files: Vec<OutputFile> = (0..40)
+            .map(|i| OutputFile {
+                path: format!("d{}/f{i}.txt", i % 5).into(),
+                contents: format!("{i} in d{}", i % 5).into_bytes(),
+            })
+            .collect();
+        let w = write_all(&out, "DIR", &files).unwrap();
+        assert_eq!(
+            w,
+            Written {
+                files: 40,
+                unchanged: 1,
+                removed: 0
+            }
+        );
+        for f in &files {
+            assert_eq!(std::fs::read(out.join(&f.path)).unwrap(), f.contents);
+        }
+        let leftovers = (0..5)
+            .flat_map(|d| std::fs::read_dir(out.join(format!("d{d}"))).unwrap())
+            .filter(|e| {
+                e.as_ref()
+                    .unwrap()
+                    .file_name()
+                    .to_string_lossy()
+                    .contains(TMP_MARK)
+            })
+            .count();
+        assert_eq!(leftovers, 0);
+        let live = LIVE.lock().unwrap_or_else(|e| e.into_inner());
+        assert!(!live.iter().any(|p| p.starts_with(&out)));
     }
 
     #[test]

@@ -52,6 +52,32 @@ impl SearchPath {
         self.locate(file).map(|(_, bytes)| bytes)
     }
 
+    /// The path [`SearchPath::locate`] reads `file` from, without reading it.
+    pub fn path_of(&self, file: &str) -> Option<PathBuf> {
+        self.dirs.iter().map(|d| d.join(file)).find(|p| {
+            std::fs::metadata(p).is_ok_and(|m| m.is_file() && m.len() <= MAX_TEXTURE_BYTES)
+        })
+    }
+
+    /// As [`SearchPath::find`] for an image that is linked into the outputs rather than
+    /// copied: only the head of the file, as far as a PNG decoder reads to accept it (the
+    /// chunks before the pixel data; the whole file when they are not within its first
+    /// 64 KiB), so that whether it is a PNG is decided as on the whole file.
+    pub fn find_head(&self, file: &str) -> Option<Vec<u8>> {
+        use std::io::Read;
+        let p = self.path_of(file)?;
+        let mut head = Vec::with_capacity(64 << 10);
+        std::fs::File::open(&p)
+            .ok()?
+            .take(64 << 10)
+            .read_to_end(&mut head)
+            .ok()?;
+        if head.len() < 64 << 10 || mapc_backends::is_png(&head) {
+            return Some(head);
+        }
+        std::fs::read(&p).ok()
+    }
+
     /// As [`SearchPath::find`], with the path the file was read from (for depfiles).
     pub fn locate(&self, file: &str) -> Option<(PathBuf, Vec<u8>)> {
         self.dirs.iter().find_map(|d| {
@@ -62,7 +88,7 @@ impl SearchPath {
             }
             let bytes = std::fs::read(&p).ok()?;
             // An output repeating these bytes can be a link to this file, not a copy.
-            crate::output::note_link_source(&p, &bytes);
+            crate::output::note_link_source(&p, bytes.len() as u64);
             Some((p, bytes))
         })
     }

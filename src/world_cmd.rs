@@ -3,9 +3,9 @@
 
 use crate::{
     emit, load_and_check, not_written, output, plural, sanity, success_line, summary_line,
-    textures_for, DiagOpts, Format,
+    DiagOpts, Format,
 };
-use mapc_backends::sdf::world::{parse_template, world_files, WorldOptions};
+use mapc_backends::sdf::world::{parse_template, world_files_untextured, WorldOptions};
 use mapc_backends::sdf::Flavour;
 use mapc_backends::OutputFile;
 use mapc_ir::lints::Outputs;
@@ -110,18 +110,39 @@ pub(crate) fn run(flavour: Flavour, args: &WorldArgs) -> ExitCode {
                 .map(|(h, _)| (h, mapc_backends::level_meshes(b, h)))
                 .collect();
             let names = mapc_backends::texture_names(meshes.iter().flat_map(|(_, m)| m.all()));
-            let (textures, diags) = textures_for(
-                b,
-                names.iter().map(String::as_str),
-                &args.texture_path,
-                &args.input,
-            );
+            // Found images are linked from where they are (below), so only their heads are
+            // read, to tell a PNG from anything else; placeholders are whole.
+            let search = crate::texture::SearchPath::from_env(&args.texture_path, &args.input);
+            let (textures, diags) =
+                mapc_backends::resolve_textures(b, names.iter().map(String::as_str), &mut |f| {
+                    search.find_head(f)
+                });
             texture_diags = diags;
             let opts = WorldOptions {
                 template,
                 skip_camera_pose: args.skip_camera_pose,
             };
-            out = Some(world_files(b, flavour, &opts, &meshes, &textures));
+            let (mut files, images) = world_files_untextured(b, flavour, &opts, &meshes);
+            // Images found on disk are linked from there (nothing copied, in memory or on
+            // disk); placeholders are written.
+            let mut links = Vec::new();
+            for (path, name) in images {
+                let Some(image) = textures.get(name) else {
+                    continue;
+                };
+                let source = (!image.placeholder)
+                    .then(|| mapc_backends::texture_file_name(name))
+                    .flatten()
+                    .and_then(|f| search.path_of(&f));
+                match source {
+                    Some(source) => links.push(output::LinkedFile { path, source }),
+                    None => files.models.push(OutputFile {
+                        path,
+                        contents: image.png.clone(),
+                    }),
+                }
+            }
+            out = Some((files, links));
         }
     }
     checked.extend(texture_diags);
@@ -135,7 +156,7 @@ pub(crate) fn run(flavour: Flavour, args: &WorldArgs) -> ExitCode {
         not_written(&args.input, &checked, wanted, wanted);
         return ExitCode::from(1);
     }
-    let Some(out) = out else {
+    let Some((out, links)) = out else {
         return ExitCode::from(1);
     };
     // Models first: the world refers to them. The crowd simulator's Menge files
@@ -165,10 +186,15 @@ pub(crate) fn run(flavour: Flavour, args: &WorldArgs) -> ExitCode {
         );
         return ExitCode::from(1);
     }
-    let result = output::single_writes(
+    let result = output::single_writes_linked(
         &[
-            (&args.output_model_dir, "OUTPUT_MODEL_DIR", &out.models),
-            (world_dir, "the world's directory", &world),
+            (
+                &args.output_model_dir,
+                "OUTPUT_MODEL_DIR",
+                &out.models,
+                &links,
+            ),
+            (world_dir, "the world's directory", &world, &[]),
         ],
         cmd,
         &label,

@@ -24,6 +24,13 @@ fn map() -> PathBuf {
     }
 }
 
+/// The demo textures, when present: found images are staged as hard links to them, so the
+/// kills also hit linked temporaries (and must leave the sources as they were).
+fn textures() -> Option<PathBuf> {
+    let t = Path::new(env!("CARGO_MANIFEST_DIR")).join("../shared/textures");
+    t.is_dir().then_some(t)
+}
+
 fn gazebo(map: &Path, out: &Path) -> Command {
     let mut c = Command::new(env!("CARGO_BIN_EXE_mapc"));
     c.arg("gazebo")
@@ -32,6 +39,9 @@ fn gazebo(map: &Path, out: &Path) -> Command {
         .arg(out.join("models"))
         .stdout(Stdio::null())
         .stderr(Stdio::null());
+    if let Some(t) = textures() {
+        c.arg("--texture-path").arg(t);
+    }
     c
 }
 
@@ -57,6 +67,7 @@ fn tree(dir: &Path) -> BTreeMap<PathBuf, Option<Vec<u8>>> {
 #[test]
 fn reruns_after_kill_9_leave_a_clean_tree() {
     let map = map();
+    let sources = textures().map(|t| tree(&t));
     let tmp = tempfile::tempdir().unwrap();
     let clean = tmp.path().join("clean");
     let start = Instant::now();
@@ -136,6 +147,9 @@ fn reruns_after_kill_9_leave_a_clean_tree() {
                 k.display()
             );
         }
+    }
+    if let Some(t) = textures() {
+        assert!(Some(tree(&t)) == sources, "a texture source changed");
     }
     eprintln!("{KILLS} kills, {left_behind} left temporaries that the rerun swept");
 }

@@ -28,8 +28,8 @@ pub use gltf::{
 pub use mesh::{Material, Mesh, MeshKind};
 pub use nav::{graph_file_stem, nav_graph_text, nav_graphs};
 pub use obj::{
-    level_obj_files, level_obj_files_from, level_texture_files, mesh_mtl, mesh_obj, model_material,
-    wall_origin,
+    level_obj_files, level_obj_files_from, level_texture_files, level_texture_paths, mesh_mtl,
+    mesh_obj, model_material, wall_origin,
 };
 pub use site::site_json;
 pub use texture::{

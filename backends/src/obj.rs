@@ -88,6 +88,25 @@ pub fn level_texture_files(
     meshes: &LevelMeshes,
     textures: &crate::Textures,
 ) -> Vec<OutputFile> {
+    level_texture_paths(b, level, meshes)
+        .into_iter()
+        .filter_map(|(path, name)| {
+            textures.get(name).map(|image| OutputFile {
+                path,
+                contents: image.png.clone(),
+            })
+        })
+        .collect()
+}
+
+/// Where [`level_texture_files`] puts each texture of the level, without the images:
+/// (path, texture name) for every plain name, in file-name order. A caller that has the
+/// image on disk can link it there instead of copying its bytes.
+pub fn level_texture_paths<'m>(
+    b: &Building,
+    level: Handle<Level>,
+    meshes: &'m LevelMeshes,
+) -> Vec<(PathBuf, &'m str)> {
     let dir = PathBuf::from(format!("{}_{}", b.name, b.levels[level].name)).join("meshes");
     let mut names = std::collections::BTreeSet::new();
     for m in meshes.all() {
@@ -103,11 +122,8 @@ pub fn level_texture_files(
             && file != "."
             && file != ".."
             && !file.contains(['/', '\\', '\0', ':']);
-        if let (true, Some(image)) = (plain, textures.get(name)) {
-            out.push(OutputFile {
-                path: dir.join(file),
-                contents: image.png.clone(),
-            });
+        if plain {
+            out.push((dir.join(file), name));
         }
     }
     out

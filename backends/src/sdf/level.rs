@@ -113,6 +113,17 @@ pub fn level_model_files(
     meshes: &LevelMeshes,
     textures: &Textures,
 ) -> Vec<OutputFile> {
+    let mut out = level_model_files_untextured(b, level, meshes);
+    out.extend(crate::level_texture_files(b, level, meshes, textures));
+    out
+}
+
+/// [`level_model_files`] without the texture images (see [`crate::level_texture_paths`]).
+pub fn level_model_files_untextured(
+    b: &Building,
+    level: Handle<Level>,
+    meshes: &LevelMeshes,
+) -> Vec<OutputFile> {
     let dir = PathBuf::from(level_model_name(b, level));
     let mut out = vec![
         OutputFile {
@@ -127,7 +138,6 @@ pub fn level_model_files(
         },
     ];
     out.extend(crate::level_obj_files_from(b, level, meshes));
-    out.extend(crate::level_texture_files(b, level, meshes, textures));
     out
 }
 

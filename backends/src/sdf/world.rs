@@ -26,6 +26,7 @@ use super::Flavour;
 use crate::py_float;
 use mapc_ir::{Building, CoordinateSystem, Handle, Level, Vertex};
 use std::collections::HashMap;
+use std::path::PathBuf;
 
 const GZ_TEMPLATE: &str = include_str!("templates/gz.sdf");
 const IGNITION_TEMPLATE: &str = include_str!("templates/ignition.sdf");
@@ -497,6 +498,29 @@ pub fn world_files(
         models,
         crowd: super::crowd::crowd_files(b),
     }
+}
+
+/// [`world_files`] without the texture images in `models`, and where each goes: (path
+/// relative to the model directory, texture name). A caller that has the images on disk
+/// links them there instead of holding a copy of their bytes per level.
+pub fn world_files_untextured<'m>(
+    b: &Building,
+    flavour: Flavour,
+    opts: &WorldOptions,
+    meshes: &'m [(Handle<Level>, crate::LevelMeshes)],
+) -> (WorldFiles, Vec<(PathBuf, &'m str)>) {
+    let mut models = Vec::new();
+    let mut textures = Vec::new();
+    for (h, m) in meshes {
+        models.extend(super::level::level_model_files_untextured(b, *h, m));
+        textures.extend(crate::level_texture_paths(b, *h, m));
+    }
+    let files = WorldFiles {
+        world: world_text(b, flavour, opts),
+        models,
+        crowd: super::crowd::crowd_files(b),
+    };
+    (files, textures)
 }
 
 #[cfg(test)]

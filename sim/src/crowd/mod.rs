@@ -79,6 +79,14 @@ const REACH_MARGIN: f64 = 0.2;
 const MAX_WALL_CELLS: f64 = 1e6;
 /// Extra clearance (m) people keep from a robot's footprint.
 pub const ROBOT_BERTH: f64 = 0.15;
+/// A person who wants to walk but has stood this long (s) beside a robot that stands
+/// still gives way: the robot stops for people in front of it, so neither would move
+/// again (a stand-off that lasted hours on the airport map). The person steps back
+/// away from the robot for `GIVE_WAY` s, at half its preferred speed, then walks on.
+const GIVE_WAY_AFTER: f64 = 3.0;
+const GIVE_WAY: f64 = 3.0;
+/// How near (m, beyond the robot's footprint and berth) a robot holds a person up.
+const GIVE_WAY_NEAR: f64 = 1.0;
 /// Most people a run may have (`crowd.scale` times the map's groups).
 pub const MAX_PEOPLE: usize = 100_000;
 
@@ -131,6 +139,10 @@ pub(crate) struct Person {
     pub walked: f64,
     /// The navmesh node the person stands in.
     node: usize,
+    /// How long (s) the person has wanted to walk and not moved.
+    stalled: f64,
+    /// Stepping back out of a waiting robot's way: until when, and which way.
+    give_way: Option<(f64, Vec2)>,
 }
 
 pub(crate) struct Crowd {
@@ -294,6 +306,8 @@ impl Crowd {
                     pref: Vec2::default(),
                     walked: 0.0,
                     node: crowd.mesh.locate(p).unwrap_or(0),
+                    stalled: 0.0,
+                    give_way: None,
                 });
                 let i = crowd.people.len() - 1;
                 crowd.enter(i, state, 0.0);
@@ -443,6 +457,8 @@ impl Crowd {
             }
         }
         // Preferred velocities.
+        let origin = self.mesh.origin;
+        let z = self.z;
         for i in 0..self.people.len() {
             let pr = self.profiles[self.people[i].profile];
             let final_state = self.fsm.states[self.people[i].mind.state].is_final;
@@ -450,6 +466,29 @@ impl Crowd {
             p.pref = Vec2::default();
             if final_state || p.path.is_empty() {
                 continue;
+            }
+            if p.stalled >= GIVE_WAY_AFTER {
+                p.stalled = 0.0;
+                let held_by = robots
+                    .iter()
+                    .filter(|r| (r.z - z).abs() < 0.5 && r.v.abs() < 0.05)
+                    .map(|r| (Vec2::new(r.x, r.y).minus(origin), r.footprint))
+                    .map(|(q, fp)| (p.pos.minus(q), fp))
+                    .filter(|(d, fp)| d.norm() < fp + ROBOT_BERTH + pr.r + GIVE_WAY_NEAR)
+                    .min_by(|a, b| a.0.norm().total_cmp(&b.0.norm()));
+                if let Some((d, _)) = held_by {
+                    let n = d.norm();
+                    if n > 1e-6 {
+                        p.give_way = Some((t + GIVE_WAY, d.scale(1.0 / n)));
+                    }
+                }
+            }
+            if let Some((until, dir)) = p.give_way {
+                if t < until {
+                    p.pref = dir.scale(0.5 * pr.pref_speed);
+                    continue;
+                }
+                p.give_way = None;
             }
             // Past a waypoint (within reach, or beyond it along the next leg): next one.
             while p.wp + 1 < p.path.len() {
@@ -602,6 +641,11 @@ impl Crowd {
             p.walked += len(next.minus(p.pos));
             p.pos = next;
             let speed = len(p.vel);
+            p.stalled = if len(p.pref) > 0.1 && speed < 0.05 {
+                p.stalled + dt
+            } else {
+                0.0
+            };
             if speed > 1e-3 {
                 p.yaw = p.vel.y.atan2(p.vel.x);
             }

@@ -338,6 +338,18 @@ fn same_seed_same_walk() {
     assert_eq!(run(), run());
 }
 
+/// A robot of footprint 0.4 m standing at (10, 0), facing `yaw`.
+fn standing_robot(yaw: f64) -> RobotTruth {
+    RobotTruth {
+        x: 10.0,
+        y: 0.0,
+        z: 0.0,
+        yaw,
+        v: 0.0,
+        footprint: 0.4,
+    }
+}
+
 /// A robot standing in the corridor: people walk around it and never touch it.
 #[test]
 fn people_avoid_a_robot() {
@@ -351,14 +363,7 @@ fn people_avoid_a_robot() {
         r: 0.25,
     });
     let mut c = crowd(&b);
-    let robot = RobotTruth {
-        x: 10.0,
-        y: 0.0,
-        z: 0.0,
-        yaw: 0.0,
-        v: 0.0,
-        footprint: 0.4,
-    };
+    let robot = standing_robot(0.0);
     for k in 1..=400u64 {
         c.walk(k as f64 * 0.1, &[robot]);
     }
@@ -415,4 +420,47 @@ fn nearest_equals_brute_force() {
         }
     }
     assert_eq!(checked, 502 * 3 * 4);
+}
+
+/// A robot standing in a corridor too narrow to pass it, facing a person whose goal lies
+/// behind it: the robot stops for the person in front of it, so the person gives way
+/// (steps back after `GIVE_WAY_AFTER` s), and the robot's stop zone clears. Without it
+/// both would wait for ever (a stand-off that lasted hours on the airport map).
+#[test]
+fn a_person_held_up_by_a_waiting_robot_gives_way() {
+    let b = building(&MapSpec {
+        pts: vec![(0.0, 0.0), (20.0, 0.0)],
+        lanes: vec![(0, 1, 1.2)],
+        states: vec![("walk", Some(1)), ("arrived", None)],
+        transitions: vec![("walk", "arrived", 0.5)],
+        groups: vec![("walk", 1, 4.0, 0.0)],
+        pref_speed: 1.34,
+        r: 0.25,
+    });
+    let mut c = crowd(&b);
+    // Facing the person (yaw pi): its stop zone is 0.75 m ahead, 0.75 m around.
+    let robot = standing_robot(std::f64::consts::PI);
+    let zone = [10.0 - 0.75, 0.0, 0.0];
+    let (mut entered, mut cleared) = (None, None);
+    for k in 1..=300u64 {
+        let t = k as f64 * 0.1;
+        c.walk(t, &[robot]);
+        let inside = c.any_within(zone, 0.75);
+        if inside && entered.is_none() {
+            entered = Some(t);
+        }
+        if !inside && entered.is_some() && cleared.is_none() {
+            cleared = Some(t);
+        }
+    }
+    let (t_in, t_out) = (entered.expect("walks up to the robot"), cleared);
+    let t_out = t_out.expect("the person never gave way");
+    // It walks up, stands still for GIVE_WAY_AFTER s, then backs off at half its speed
+    // for at most GIVE_WAY s.
+    assert!(t_out - t_in >= GIVE_WAY_AFTER, "{t_in} {t_out}");
+    assert!(
+        t_out - t_in <= GIVE_WAY_AFTER + GIVE_WAY + 1.0,
+        "{t_in} {t_out}"
+    );
+    assert_eq!(c.report(30.0).contacts, 0);
 }

@@ -137,9 +137,51 @@ pub(super) fn park_vertices(nav: &Nav, conf: &Conflicts, scenario: &Scenario) ->
                         .iter()
                         .all(|&x| !used.get(x as usize).copied().unwrap_or(true));
             }
+            // A robot parked where it cannot drive to the tasks, or back, is of no use.
+            let wps: Vec<usize> = kinds
+                .iter()
+                .flat_map(|k| waypoint_names(k))
+                .filter_map(|name| nav.find(slot, name))
+                .collect();
+            if let Some(&a) = wps.first() {
+                let from_a = nav.tree_from(slot, a, 1.0).0;
+                for &v in &nav.members[slot] {
+                    if ok[v] {
+                        ok[v] =
+                            from_a[v].is_finite() && nav.tree_from(slot, v, 1.0).0[a].is_finite();
+                    }
+                }
+            }
+            keep_refuges(nav, slot, &mut ok);
             ok
         })
         .collect()
+}
+
+/// Leaves the entrance of every pocket of parking vertices (a connected set of them,
+/// entered from the rest of the graph) free of parked robots: a robot making room needs a
+/// place to step into, and a pocket filled up to its entrance offers none, so robots on
+/// the corridors in front of it take turns pushing each other back and forth (a livelock
+/// that held four robots for hours on the hotel map with 16 robots). A lone parking vertex
+/// is its own entrance. When that would leave a graph with no parking vertex at all,
+/// the graph keeps them all (a robot must stand somewhere).
+fn keep_refuges(nav: &Nav, slot: usize, ok: &mut [bool]) {
+    let mut nbrs: Vec<Vec<usize>> = vec![Vec::new(); nav.vertices.len()];
+    for e in nav.edges.iter().filter(|e| e.graph == slot) {
+        nbrs[e.from].push(e.to);
+        nbrs[e.to].push(e.from);
+    }
+    let entrances: Vec<usize> = nav.members[slot]
+        .iter()
+        .copied()
+        .filter(|&v| ok[v] && nbrs[v].iter().any(|&w| !ok[w]))
+        .collect();
+    let parked = nav.members[slot].iter().filter(|&&v| ok[v]).count();
+    if entrances.len() < parked {
+        for v in entrances {
+            ok[v] = false;
+        }
+    }
 }
 
 /// Whether a robot parks (`Fleets::park_spot`) after a task of this kind.

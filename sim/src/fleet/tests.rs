@@ -773,7 +773,7 @@ fn clean_without_dock_waits_clean_duration() {
         vec![task(0.5, TaskKind::Clean { zone: "e".into() })],
     );
     s.options.clean_duration = 30.0;
-    let (events, mock, _) = run(&b, &s, 300.0);
+    let (events, _, f) = run(&b, &s, 300.0);
     let done: Vec<&TaskEvent> = events.iter().filter(|e| e.event == "completed").collect();
     assert_eq!(done.len(), 1, "{events:#?}");
     // 10 m at 0.5 m/s, then 30 s of cleaning; the fleet sees arrival through RobotState
@@ -781,7 +781,16 @@ fn clean_without_dock_waits_clean_duration() {
     let t = done[0].time.as_secs();
     let expect = 0.5 + 10.0 / 0.5 + 30.0;
     assert!(t >= expect - 1e-6 && t <= expect + 1.0, "{t} vs {expect}");
-    assert!((mock.robots[0].pos.x - 10.0).abs() < 1e-9);
+    // Then it parks at park_w, the one parking vertex that is not a pocket's entrance
+    // (w and park_w make a pocket entered at w; park_e stands alone).
+    let r = &f.robots[0];
+    let park_w = vertex(&f.nav, "park_w");
+    assert!(
+        r.at == park_w || matches!(r.cur, Cur::GoTo { goal, .. } if goal == park_w),
+        "{:?} at {}",
+        r.cur,
+        r.at
+    );
 }
 
 #[test]
@@ -1201,31 +1210,40 @@ fn loop_w_e() -> TaskSpec {
     )
 }
 
+/// The names of the waypoints the robots of `p` start on, sorted.
+fn home_names(b: &Building, p: &Placement) -> Vec<String> {
+    let nav = Nav::build(b, &[0]);
+    let mut names: Vec<String> = p
+        .robots
+        .iter()
+        .map(|r| {
+            nav.members[0]
+                .iter()
+                .copied()
+                .find(|&v| (nav.vertices[v].pos.x, nav.vertices[v].pos.y) == (r.x, r.y))
+                .map(|v| nav.vertices[v].name.clone())
+                .expect("on a vertex")
+        })
+        .collect();
+    names.sort();
+    names
+}
+
 #[test]
 fn auto_spawn_gives_each_robot_a_home_and_keeps_the_rest_in_reserve() {
-    // Task routes: the lane w-e. Homes: every vertex off it (parking spots, the dead
-    // ends s, n, far_w, far_e). Eight robots: six homes, two in reserve.
+    // Task routes: the lane w-e. Homes: the vertices off it that the route can be
+    // reached from and back (the parking spots; not s, n, far_w, far_e, on lanes of
+    // their own). Eight robots: two homes, six in reserve.
     let b = cross();
     let s = scenario(vec![fleet("tiny", 8, SpawnSpec::Auto)], vec![loop_w_e()]);
     let p = Fleets::place(&b, &s).expect("placement");
-    assert_eq!(p.robots.len(), 6, "{:?}", p.robots);
-    assert_eq!(p.reserve, vec![("tiny".to_string(), 2)]);
-    let nav = Nav::build(&b, &[0]);
-    let at = |r: &RobotSpawn| {
-        nav.members[0]
-            .iter()
-            .copied()
-            .find(|&v| (nav.vertices[v].pos.x, nav.vertices[v].pos.y) == (r.x, r.y))
-            .map(|v| nav.vertices[v].name.clone())
-            .expect("on a vertex")
-    };
-    let mut homes: Vec<String> = p.robots.iter().map(at).collect();
-    homes.sort();
-    assert_eq!(homes, ["far_e", "far_w", "n", "park_e", "park_w", "s"]);
+    assert_eq!(p.robots.len(), 2, "{:?}", p.robots);
+    assert_eq!(p.reserve, vec![("tiny".to_string(), 6)]);
+    assert_eq!(home_names(&b, &p), ["park_e", "park_w"]);
     // The report counts them.
     let (_, _, f) = run(&b, &s, 1.0);
-    assert_eq!(f.robots.len(), 6);
-    // Two fleets share the homes in proportion to their sizes.
+    assert_eq!(f.robots.len(), 2);
+    // Two fleets share the homes: the first home to the larger fleet, then by share.
     let s = scenario(
         vec![
             fleet("a", 6, SpawnSpec::Auto),
@@ -1235,8 +1253,8 @@ fn auto_spawn_gives_each_robot_a_home_and_keeps_the_rest_in_reserve() {
     );
     let p = Fleets::place(&b, &s).expect("placement");
     let count = |n: &str| p.robots.iter().filter(|r| r.fleet == n).count();
-    assert_eq!((count("a"), count("b")), (4, 2), "{:?}", p.robots);
-    assert_eq!(p.reserve, vec![("a".to_string(), 2)]);
+    assert_eq!((count("a"), count("b")), (1, 1), "{:?}", p.robots);
+    assert_eq!(p.reserve, vec![("a".to_string(), 5), ("b".to_string(), 1)]);
 }
 
 #[test]
@@ -1284,4 +1302,47 @@ fn a_robot_that_made_room_waits_until_the_one_it_made_room_for_gets_going() {
         .into();
     f.robots[a].made_room = Some((c, 10.0));
     assert!(f.try_reserve(a, 10.0 + HOLD_OFF + 0.1));
+}
+
+/// A lane w-e with a lone parking spot off w and a dead-end pocket of three vertices
+/// off e, and a far lane nobody can drive to.
+const POCKET: &str = r#"
+coordinate_system: cartesian_meters
+name: pocket
+levels:
+  L1:
+    elevation: 0
+    vertices:
+      - [0, 5, 0, w]
+      - [10, 5, 0, e]
+      - [0, 8, 0, park_w, {is_parking_spot: [4, true]}]
+      - [13, 5, 0, p1]
+      - [16, 5, 0, p2]
+      - [19, 5, 0, p3]
+      - [0, 30, 0, far_w]
+      - [10, 30, 0, far_e]
+    lanes:
+      - [0, 1, {bidirectional: [4, true], graph_idx: [2, 0]}]
+      - [0, 2, {bidirectional: [4, true], graph_idx: [2, 0]}]
+      - [1, 3, {bidirectional: [4, true], graph_idx: [2, 0]}]
+      - [3, 4, {bidirectional: [4, true], graph_idx: [2, 0]}]
+      - [4, 5, {bidirectional: [4, true], graph_idx: [2, 0]}]
+      - [6, 7, {bidirectional: [4, true], graph_idx: [2, 0]}]
+"#;
+
+#[test]
+fn homes_leave_each_pocket_entrance_free_and_are_reachable() {
+    let parsed = mapc_frontend::parse_str("pocket", POCKET);
+    assert!(!parsed.has_errors(), "{:?}", parsed.diagnostics);
+    let b = parsed.building.expect("pocket parses");
+    // Off the task route w-e: park_w (a lone spot, its own entrance), p1-p3 (a pocket
+    // entered at p1), far_w/far_e (unreachable). Homes: p2 and p3 only.
+    let s = scenario(vec![fleet("tiny", 5, SpawnSpec::Auto)], vec![loop_w_e()]);
+    let p = Fleets::place(&b, &s).expect("placement");
+    assert_eq!(home_names(&b, &p), ["p2", "p3"]);
+    assert_eq!(p.reserve, vec![("tiny".to_string(), 3)]);
+    // The loop gets done by a robot from the pocket, out through its free entrance.
+    let (events, _, _) = run(&b, &s, 1800.0);
+    let done = events.iter().filter(|e| e.event == "completed").count();
+    assert_eq!(done, 1, "{events:#?}");
 }
