@@ -2,7 +2,7 @@
 //! graphs, named waypoints by role, doors, lifts, dispensers and ingestors. Human text or
 //! one JSON object (`--format json`).
 
-use crate::{load_and_check, output, report, summary_line};
+use crate::load_readable;
 use mapc_ir::Building;
 use serde_json::{json, Value};
 use std::collections::{BTreeMap, BTreeSet};
@@ -237,33 +237,12 @@ pub(crate) fn human(i: &Value) -> String {
 }
 
 pub(crate) fn run(args: &InfoArgs) -> ExitCode {
-    let checked = match load_and_check(&args.input, &args.lints) {
-        Ok(c) => c,
-        Err(e) => {
-            eprintln!("error: {e}");
-            return ExitCode::from(2);
-        }
-    };
     // Errors matter (the listing may be incomplete); warnings are `mapc check`'s business.
-    let errors: Vec<&mapc_ir::Diagnostic> = checked
-        .diagnostics
-        .iter()
-        .filter(|d| d.is_error())
-        .collect();
-    report::emit(
-        &checked.parsed.sources,
-        &errors,
-        &[],
-        report::Style::Snippets,
-    );
-    if !errors.is_empty() {
-        summary_line(&args.input, &checked);
-    }
+    let checked = match load_readable(&args.input, &args.lints) {
+        Ok(c) => c,
+        Err(code) => return code,
+    };
     let Some(b) = checked.parsed.building.as_ref() else {
-        eprintln!(
-            "error: {}: the map could not be read",
-            output::shown(&args.input)
-        );
         return ExitCode::from(1);
     };
     let i = info(b);
@@ -271,5 +250,5 @@ pub(crate) fn run(args: &InfoArgs) -> ExitCode {
         InfoFormat::Human => print!("{}", human(&i)),
         InfoFormat::Json => println!("{i}"),
     }
-    ExitCode::from(u8::from(!errors.is_empty()))
+    ExitCode::from(u8::from(checked.diagnostics.iter().any(|d| d.is_error())))
 }

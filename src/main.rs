@@ -369,6 +369,36 @@ fn load_and_check(input: &Path, opts: &LintOpts) -> Result<Checked, String> {
     })
 }
 
+/// For commands that only read a map (`info`, `models`): loads and checks it, prints its
+/// errors (warnings are `mapc check`'s business), and gives the checked map when a
+/// building could be read. `Err` is the exit code: 2 for I/O or usage, 1 for an unreadable
+/// map.
+fn load_readable(input: &Path, opts: &LintOpts) -> Result<Checked, ExitCode> {
+    let checked = load_and_check(input, opts).map_err(|e| {
+        eprintln!("error: {e}");
+        ExitCode::from(2)
+    })?;
+    let errors: Vec<&mapc_ir::Diagnostic> = checked
+        .diagnostics
+        .iter()
+        .filter(|d| d.is_error())
+        .collect();
+    report::emit(
+        &checked.parsed.sources,
+        &errors,
+        &[],
+        report::Style::Snippets,
+    );
+    if !errors.is_empty() {
+        summary_line(input, &checked);
+    }
+    if checked.parsed.building.is_none() {
+        eprintln!("error: {}: the map could not be read", output::shown(input));
+        return Err(ExitCode::from(1));
+    }
+    Ok(checked)
+}
+
 /// Prints the diagnostics of `c` in the chosen format, at most `--max-diagnostics` per
 /// code (SARIF is printed by the caller, once for all maps). `style` is the command's
 /// human style; `--verbose` always gives snippets.

@@ -7,7 +7,7 @@
 //! that the build succeeds and the user knows what to fetch (`gz fuel download`, or the
 //! real downloader). It accepts the downloader's options so that the same command line works.
 
-use crate::{load_and_check, output, report, summary_line};
+use crate::{load_readable, output};
 use std::collections::BTreeSet;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
@@ -64,32 +64,12 @@ fn present(dir: &Path, name: &str) -> bool {
 }
 
 pub(crate) fn run(args: &ModelsArgs) -> ExitCode {
-    let checked = match load_and_check(&args.input, &args.lints) {
+    // Errors matter (the listing may be incomplete); warnings are `mapc check`'s business.
+    let checked = match load_readable(&args.input, &args.lints) {
         Ok(c) => c,
-        Err(e) => {
-            eprintln!("error: {e}");
-            return ExitCode::from(2);
-        }
+        Err(code) => return code,
     };
-    let errors: Vec<&mapc_ir::Diagnostic> = checked
-        .diagnostics
-        .iter()
-        .filter(|d| d.is_error())
-        .collect();
-    report::emit(
-        &checked.parsed.sources,
-        &errors,
-        &[],
-        report::Style::Snippets,
-    );
-    if !errors.is_empty() {
-        summary_line(&args.input, &checked);
-    }
     let Some(b) = checked.parsed.building.as_ref() else {
-        eprintln!(
-            "error: {}: the map could not be read",
-            output::shown(&args.input)
-        );
         return ExitCode::from(1);
     };
     let names = needed(b);
@@ -122,5 +102,5 @@ pub(crate) fn run(args: &ModelsArgs) -> ExitCode {
                 .join(", ")
         );
     }
-    ExitCode::from(u8::from(!errors.is_empty()))
+    ExitCode::from(u8::from(checked.diagnostics.iter().any(|d| d.is_error())))
 }
