@@ -86,6 +86,9 @@ pub struct FleetReport {
     /// route): they stayed in the depot and are not in `robots`.
     #[serde(skip_serializing_if = "is_zero")]
     pub reserve: usize,
+    /// For auto spawn: the robots the fleet's task stream keeps busy, the most it places.
+    #[serde(skip_serializing_if = "is_zero")]
+    pub needed: usize,
     pub tasks_completed: usize,
     pub tasks_failed: usize,
     pub tasks_unfinished: usize,
@@ -251,6 +254,7 @@ struct Approach {
 pub struct ReportBuilder {
     fleets: Vec<String>,
     reserve: BTreeMap<String, usize>,
+    needed: BTreeMap<String, usize>,
     robots: Vec<RobotAcc>,
     robot_index: BTreeMap<String, usize>,
     tasks: Vec<TaskReport>,
@@ -293,6 +297,7 @@ impl ReportBuilder {
         let mut b = ReportBuilder {
             fleets: scenario.fleets.iter().map(|f| f.name.clone()).collect(),
             reserve: placement.reserve.iter().cloned().collect(),
+            needed: placement.needed.iter().cloned().collect(),
             robots: Vec::new(),
             robot_index: BTreeMap::new(),
             tasks: Vec::new(),
@@ -683,6 +688,7 @@ impl ReportBuilder {
                     name: name.clone(),
                     robots: mine.len(),
                     reserve: self.reserve.get(name).copied().unwrap_or(0),
+                    needed: self.needed.get(name).copied().unwrap_or(0),
                     tasks_completed: completed,
                     tasks_failed: count("failed"),
                     tasks_unfinished: count("unfinished"),
@@ -802,7 +808,12 @@ impl Report {
             count("unfinished")
         );
         for f in &self.fleets {
-            let reserve = if f.reserve > 0 {
+            let reserve = if f.reserve > 0 && f.needed > 0 && f.robots >= f.needed {
+                format!(
+                    " (+{} in reserve: its tasks keep {} busy)",
+                    f.reserve, f.needed
+                )
+            } else if f.reserve > 0 {
                 format!(" (+{} in reserve: no home on the floor)", f.reserve)
             } else {
                 String::new()
@@ -995,6 +1006,7 @@ mod tests {
             ],
             workcells: Vec::new(),
             reserve: Vec::new(),
+            needed: Vec::new(),
         };
         ReportBuilder::new(&building, &scenario, &placement)
     }
@@ -1416,6 +1428,7 @@ mod sweep_tests {
                 .collect(),
             workcells: Vec::new(),
             reserve: Vec::new(),
+            needed: Vec::new(),
         };
         let mut b = ReportBuilder::new(&building, &scenario.unwrap(), &placement);
         let mut rng = fastrand::Rng::with_seed(11);

@@ -103,7 +103,8 @@ fn headline(report: &Value) -> Vec<Value> {
     };
     let waits = &report["waits"];
     let b = &report["bottleneck"];
-    // The fleets' sizes as asked; `reserve` of them stayed in the depot (no home).
+    // The fleets' sizes as asked; `reserve` of them stayed in the depot (not needed, or
+    // no home).
     let reserve = sum("reserve") as u64;
     vec![
         Value::from(list("robots").len() as u64 + reserve),

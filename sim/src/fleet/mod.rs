@@ -96,6 +96,9 @@ pub struct Placement {
     /// Per fleet, robots that auto spawn found no home for on the floor (a free place off
     /// every task route, or a charger): they stay in the depot and take no part.
     pub reserve: Vec<(String, usize)>,
+    /// Per auto-spawned fleet, the robots its task stream keeps busy (`spawn::needed`):
+    /// auto spawn places no more.
+    pub needed: Vec<(String, usize)>,
 }
 
 #[derive(Debug, Clone)]

@@ -112,6 +112,15 @@ impl Fleets {
             }
             explicit[fi] = Some(chosen);
         }
+        // No more robots than the task stream can keep busy.
+        let need = spawn::needed(&nav, scenario);
+        let mut needed = Vec::new();
+        for a in &mut auto {
+            a.count = a.count.min(need[a.fleet]);
+            if need[a.fleet] < usize::MAX {
+                needed.push((scenario.fleets[a.fleet].name.clone(), need[a.fleet]));
+            }
+        }
         let auto_chosen = spawn::auto_spawn(&nav, &park, &auto, &taken);
         for (a, vs) in auto.iter().zip(auto_chosen) {
             explicit[a.fleet] = Some(vs.into_iter().map(|v| (v, None)).collect());
@@ -204,6 +213,7 @@ impl Fleets {
             robots,
             workcells,
             reserve,
+            needed,
         })
     }
 

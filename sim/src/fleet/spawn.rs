@@ -9,7 +9,8 @@
 //! home place robots on any free vertex, as before.
 //!
 //! Fleets share the homes in proportion to their sizes: robots are placed one at a time,
-//! always for the fleet with the smallest share placed so far.
+//! always for the fleet with the smallest share placed so far. No fleet places more
+//! robots than its task stream keeps busy (`needed`).
 
 use super::*;
 
@@ -130,4 +131,117 @@ pub(super) fn auto_spawn(
         }
     }
     chosen
+}
+
+/// Target utilisation of a fleet's robots by its task stream (see `needed`).
+const UTILISATION: f64 = 0.5;
+
+/// Per scenario fleet: how many robots its task stream can keep busy at `UTILISATION`
+/// (at least one): the work its tasks ask for over the scenario's duration (driving
+/// between their waypoints at nominal speed, and from where the fleet's tasks end to
+/// where they start; a clean's dwell), divided by the duration. A task any of several
+/// fleets takes counts for each in proportion to its robots. Robots beyond it would
+/// have nothing to do but wait in the corridors: past a building's capacity they take
+/// throughput away (clinic, 9 tiny robots: 49 loops in 4 h where 6 to 8 do 61 to 63),
+/// so `spawn: auto` keeps them in the depot.
+pub(super) fn needed(nav: &Nav, scenario: &Scenario) -> Vec<usize> {
+    let horizon = scenario.duration.max(1.0);
+    // (kind, fleet, how many over the horizon)
+    let mut stream: Vec<(&TaskKind, Option<&str>, f64)> = scenario
+        .tasks
+        .iter()
+        .filter(|t| t.at < horizon)
+        .map(|t| (&t.kind, t.fleet.as_deref(), 1.0))
+        .collect();
+    for g in &scenario.generators {
+        let end = g.end.unwrap_or(horizon).min(horizon);
+        let n = if g.every > 0.0 && g.start < end {
+            ((end - g.start) / g.every).ceil()
+        } else {
+            0.0
+        };
+        stream.push((&g.kind, g.fleet.as_deref(), n));
+    }
+    let takes = |fi: usize, kind: &TaskKind, fleet: Option<&str>| {
+        let f = &scenario.fleets[fi];
+        fleet.is_none_or(|n| n == f.name)
+            && (f.task_kinds.is_empty() || f.task_kinds.contains(&kind.category()))
+            && nav.slot(f.graph).is_some_and(|slot| {
+                waypoint_names(kind)
+                    .iter()
+                    .all(|w| nav.find(slot, w).is_some())
+            })
+    };
+    let mut work = vec![0.0; scenario.fleets.len()];
+    for (fi, f) in scenario.fleets.iter().enumerate() {
+        let Some(slot) = nav.slot(f.graph) else {
+            continue;
+        };
+        let speed = f.robot.nominal_drive_speed.max(0.05);
+        let mine: Vec<&(&TaskKind, Option<&str>, f64)> =
+            stream.iter().filter(|s| takes(fi, s.0, s.1)).collect();
+        if mine.is_empty() {
+            // Its tasks come from outside (RMF's task API over DDS): no stream to size by.
+            work[fi] = f64::INFINITY;
+            continue;
+        }
+        // Travel times from every waypoint the fleet's tasks use.
+        let mut wps: Vec<usize> = mine
+            .iter()
+            .flat_map(|s| waypoint_names(s.0))
+            .filter_map(|w| nav.find(slot, w))
+            .collect();
+        wps.sort_unstable();
+        wps.dedup();
+        let times: BTreeMap<usize, Vec<f64>> = wps
+            .iter()
+            .map(|&w| (w, nav.times_from(slot, w, speed)))
+            .collect();
+        let leg = |a: usize, b: usize| {
+            times
+                .get(&a)
+                .and_then(|t| t.get(b))
+                .copied()
+                .filter(|x| x.is_finite())
+                .unwrap_or(0.0)
+        };
+        for (kind, fleet, n) in mine {
+            let v: Vec<usize> = waypoint_names(kind)
+                .iter()
+                .filter_map(|w| nav.find(slot, w))
+                .collect();
+            let (Some(&first), Some(&last)) = (v.first(), v.last()) else {
+                continue;
+            };
+            let sharing: usize = (0..scenario.fleets.len())
+                .filter(|&o| takes(o, kind, *fleet))
+                .map(|o| scenario.fleets[o].count)
+                .sum();
+            let share = f.count as f64 / sharing.max(1) as f64;
+            // From where the fleet's tasks end, on average.
+            let approach = wps.iter().map(|&w| leg(w, first)).sum::<f64>() / wps.len() as f64;
+            let body = match kind {
+                TaskKind::Loop { loops, .. } => {
+                    let k = (*loops).max(1) as f64;
+                    k * leg(first, last) + (k - 1.0) * leg(last, first)
+                }
+                TaskKind::Delivery { .. } => leg(first, last) + 10.0,
+                TaskKind::Clean { .. } => scenario.options.clean_duration,
+                TaskKind::GoToPlace { .. } => 0.0,
+            };
+            work[fi] += n * share * (approach + body);
+        }
+    }
+    // Square-root staffing (Halfin–Whitt): the offered load and a spare of its square
+    // root, for the tasks that arrive together.
+    work.iter()
+        .map(|w| {
+            let load = w / horizon / UTILISATION;
+            if load.is_finite() {
+                ((load + load.sqrt()).ceil() as usize).max(1)
+            } else {
+                usize::MAX
+            }
+        })
+        .collect()
 }

@@ -1235,7 +1235,9 @@ fn auto_spawn_gives_each_robot_a_home_and_keeps_the_rest_in_reserve() {
     // reached from and back (the parking spots; not s, n, far_w, far_e, on lanes of
     // their own). Eight robots: two homes, six in reserve.
     let b = cross();
-    let s = scenario(vec![fleet("tiny", 8, SpawnSpec::Auto)], vec![loop_w_e()]);
+    // A short scenario: its one loop keeps more robots busy than there are homes.
+    let mut s = scenario(vec![fleet("tiny", 8, SpawnSpec::Auto)], vec![loop_w_e()]);
+    s.duration = 5.0;
     let p = Fleets::place(&b, &s).expect("placement");
     assert_eq!(p.robots.len(), 2, "{:?}", p.robots);
     assert_eq!(p.reserve, vec![("tiny".to_string(), 6)]);
@@ -1244,13 +1246,14 @@ fn auto_spawn_gives_each_robot_a_home_and_keeps_the_rest_in_reserve() {
     let (_, _, f) = run(&b, &s, 1.0);
     assert_eq!(f.robots.len(), 2);
     // Two fleets share the homes: the first home to the larger fleet, then by share.
-    let s = scenario(
+    let mut s = scenario(
         vec![
             fleet("a", 6, SpawnSpec::Auto),
             fleet("b", 2, SpawnSpec::Auto),
         ],
         vec![loop_w_e()],
     );
+    s.duration = 5.0;
     let p = Fleets::place(&b, &s).expect("placement");
     let count = |n: &str| p.robots.iter().filter(|r| r.fleet == n).count();
     assert_eq!((count("a"), count("b")), (1, 1), "{:?}", p.robots);
@@ -1337,7 +1340,9 @@ fn homes_leave_each_pocket_entrance_free_and_are_reachable() {
     let b = parsed.building.expect("pocket parses");
     // Off the task route w-e: park_w (a lone spot, its own entrance), p1-p3 (a pocket
     // entered at p1), far_w/far_e (unreachable). Homes: p2 and p3 only.
-    let s = scenario(vec![fleet("tiny", 5, SpawnSpec::Auto)], vec![loop_w_e()]);
+    // A short scenario: its one loop keeps more robots busy than there are homes.
+    let mut s = scenario(vec![fleet("tiny", 5, SpawnSpec::Auto)], vec![loop_w_e()]);
+    s.duration = 5.0;
     let p = Fleets::place(&b, &s).expect("placement");
     assert_eq!(home_names(&b, &p), ["p2", "p3"]);
     assert_eq!(p.reserve, vec![("tiny".to_string(), 3)]);
@@ -1345,4 +1350,55 @@ fn homes_leave_each_pocket_entrance_free_and_are_reachable() {
     let (events, _, _) = run(&b, &s, 1800.0);
     let done = events.iter().filter(|e| e.event == "completed").count();
     assert_eq!(done, 1, "{events:#?}");
+}
+
+#[test]
+fn auto_spawn_places_no_more_robots_than_the_task_stream_keeps_busy() {
+    // POCKET: w-e is 10 m; at 0.5 m/s a loop w->e takes 21 s (20 s and the graph's
+    // second per lane), and the approach from where the fleet's loops end (w or e)
+    // averages (0 + 21) / 2 = 10.5 s: 31.5 s a loop.
+    let parsed = mapc_frontend::parse_str("pocket", POCKET);
+    let b = parsed.building.expect("pocket parses");
+    let nav = Nav::build(&b, &[0]);
+    assert_eq!(
+        nav.times_from(0, vertex(&nav, "w"), 0.5)[vertex(&nav, "e")],
+        21.0
+    );
+    let stream = |every: f64| {
+        let mut f = fleet("tiny", 20, SpawnSpec::Auto);
+        f.robot.nominal_drive_speed = 0.5;
+        let mut s = scenario(vec![f], vec![]);
+        s.duration = 3600.0;
+        s.generators.push(GeneratorSpec {
+            every,
+            start: 0.0,
+            end: None,
+            kind: TaskKind::Loop {
+                start: "w".into(),
+                finish: "e".into(),
+                loops: 1,
+            },
+            fleet: None,
+            span: Span::UNKNOWN,
+        });
+        s
+    };
+    // Every 240 s: 15 loops, 472.5 s of work in 3600 s, a load of 0.26 robots at 50 %
+    // utilisation; with a spare of its square root, 0.78: one robot.
+    let p = Fleets::place(&b, &stream(240.0)).expect("placement");
+    assert_eq!(p.robots.len(), 1);
+    assert_eq!(p.needed, vec![("tiny".to_string(), 1)]);
+    assert_eq!(p.reserve, vec![("tiny".to_string(), 19)]);
+    // Every 20 s: 180 loops, 5670 s of work, a load of 3.15 and a spare of 1.77: five
+    // robots, but the pocket has two homes.
+    let p = Fleets::place(&b, &stream(20.0)).expect("placement");
+    assert_eq!(p.needed, vec![("tiny".to_string(), 5)]);
+    assert_eq!(p.robots.len(), 2);
+    // Tasks that come from outside (no stream in the scenario): the homes alone limit,
+    // and without task routes every one of the eight waypoints is one.
+    let mut s = stream(20.0);
+    s.generators.clear();
+    let p = Fleets::place(&b, &s).expect("placement");
+    assert!(p.needed.is_empty());
+    assert_eq!(p.robots.len(), 8);
 }
