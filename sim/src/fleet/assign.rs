@@ -23,6 +23,13 @@ impl Fleets {
             ended: false,
         });
         self.event(t, ti, "queued", None, String::new(), out);
+        self.assign(ti, t, out);
+    }
+
+    /// Gives task `ti` to the robot that can start it soonest, or fails it when no robot
+    /// can reach it.
+    pub(super) fn assign(&mut self, ti: usize, t: f64, out: &mut Vec<(Topic, Msg)>) {
+        let category = self.tasks[ti].category;
         // Pick the robot that can start soonest: (ready time + travel to the first
         // waypoint, robot index).
         let mut best: Option<(f64, usize, f64)> = None;

@@ -236,6 +236,8 @@ struct FleetRt {
     speed: f64,
     recharge_threshold: f64,
     recharge_soc: f64,
+    /// Battery percent gained per second on a charger.
+    charge_rate: f64,
     kinds: Vec<TaskCategory>,
     robots: Vec<usize>,
 }

@@ -239,6 +239,8 @@ impl Fleets {
                 speed: f.robot.nominal_drive_speed.max(0.05),
                 recharge_threshold: f.recharge_threshold,
                 recharge_soc: f.recharge_soc,
+                charge_rate: 100.0 * f.robot.charging_current
+                    / (f.robot.nominal_capacity * 3600.0).max(1e-9),
                 kinds: f.task_kinds.clone(),
                 robots: Vec::new(),
             };

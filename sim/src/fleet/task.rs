@@ -270,6 +270,7 @@ impl Fleets {
         if self.robots[i].charger.is_none() && self.maybe_charge(i) {
             // The charger is where it stays afterwards.
             self.robots[i].park_pending = false;
+            self.hand_back_for_charging(i, t, out);
             return true;
         }
         let Some(ti) = self.robots[i].queue.pop_front() else {
@@ -314,6 +315,27 @@ impl Fleets {
             }
         }
         true
+    }
+
+    /// Robot `i` goes to charge, which takes long (CleanerBotA: 72 s a percent): it
+    /// counts as busy until charged, and the tasks queued behind go to whoever is then
+    /// soonest (RMF's task planner likewise puts the charge into the robot's estimates).
+    fn hand_back_for_charging(&mut self, i: usize, t: f64, out: &mut Vec<(Topic, Msg)>) {
+        let r = &self.robots[i];
+        let f = &self.fleets[r.fleet];
+        let to = r.charger.unwrap_or(r.at);
+        let drive = self
+            .nav
+            .plan(f.slot, r.at, to, f.speed)
+            .map_or(0.0, |p| p.0);
+        let charge = (f.recharge_soc * 100.0 - r.battery()).max(0.0) / f.charge_rate.max(1e-9);
+        let r = &mut self.robots[i];
+        r.free_at = t + drive + charge;
+        r.end_vertex = to;
+        let back: Vec<usize> = r.queue.drain(..).collect();
+        for ti in back {
+            self.assign(ti, t, out);
+        }
     }
 
     pub(super) fn maybe_charge(&mut self, i: usize) -> bool {

@@ -488,6 +488,67 @@ fn world_low_battery_goes_charging() {
     assert!(low, "battery never dropped below the threshold");
 }
 
+#[test]
+fn world_a_robot_going_to_charge_hands_its_queued_task_to_another() {
+    // a_0 starts on the L1 charger, b_0 on L2. The first task (the lobby, next to the
+    // charger) goes to a_0; the second (the corridor) too, queued behind it: it will be
+    // there long before b_0 rides down. a_0's battery drains fast (20 kW), so after its
+    // first task it is below its 90 % threshold and must charge for about an hour: the
+    // corridor goes to b_0.
+    let b = load("two_level_clinic", None);
+    let mut a = fleet(
+        "a",
+        1,
+        SpawnSpec::Waypoints(vec!["tinyRobot1_charger".into()]),
+    );
+    a.robot.nominal_power = 20_000.0;
+    a.recharge_threshold = 0.9;
+    a.recharge_soc = 1.0;
+    let other = fleet("b", 1, SpawnSpec::Waypoints(vec!["ward_b".into()]));
+    let s = scenario(
+        vec![a, other],
+        vec![go_to(0.5, "lobby"), go_to(1.0, "corridor")],
+    );
+    let r = run(&b, &s, 600.0);
+    let assigned: Vec<(&str, &str)> = r
+        .events
+        .iter()
+        .filter(|e| e.event == "assigned")
+        .map(|e| (e.task_id.as_str(), e.robot.as_str()))
+        .collect();
+    assert_eq!(
+        assigned,
+        [
+            ("go_to_place_0", "a_0"),
+            ("go_to_place_1", "a_0"),
+            ("go_to_place_1", "b_0"),
+        ],
+        "{}",
+        dump(&r.events)
+    );
+    let done: Vec<(&str, &str, &str)> = r
+        .events
+        .iter()
+        .filter(|e| e.event == "completed")
+        .map(|e| (e.task_id.as_str(), e.robot.as_str(), e.event.as_str()))
+        .collect();
+    assert_eq!(
+        done,
+        [
+            ("go_to_place_0", "a_0", "completed"),
+            ("go_to_place_1", "b_0", "completed")
+        ],
+        "{}",
+        dump(&r.events)
+    );
+    // a_0 went back to its charger and charges.
+    let charging = r.published.iter().any(|p| {
+        matches!(&p.msg, Msg::RobotState(rs) if rs.name == "a_0"
+            && rs.mode.mode == crate::msgs::robot_mode::CHARGING)
+    });
+    assert!(charging);
+}
+
 /// Timing of `update` with many robots on a demo map (run with `--release --ignored`).
 #[test]
 #[ignore]
