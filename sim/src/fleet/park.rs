@@ -159,28 +159,68 @@ pub(super) fn park_vertices(nav: &Nav, conf: &Conflicts, scenario: &Scenario) ->
 }
 
 /// Leaves the entrance of every pocket of parking vertices (a connected set of them,
-/// entered from the rest of the graph) free of parked robots: a robot making room needs a
-/// place to step into, and a pocket filled up to its entrance offers none, so robots on
+/// entered from the rest of the graph) free of parked robots: a robot making room needs
+/// a place to step into, and a pocket filled up to its entrance offers none, so robots on
 /// the corridors in front of it take turns pushing each other back and forth (a livelock
-/// that held four robots for hours on the hotel map with 16 robots). A lone parking vertex
-/// is its own entrance. When that would leave a graph with no parking vertex at all,
-/// the graph keeps them all (a robot must stand somewhere).
+/// that held four robots for hours on the hotel map with 16 robots). A lone parking
+/// vertex is its own entrance. When that would leave a graph with no parking vertex at
+/// all, the graph keeps them all (a robot must stand somewhere), except in front of a
+/// charger: a pocket that holds a charger always keeps its entrance free, or a robot
+/// parked there would shut the one charging in (triple_H, 8 robots: four robots never
+/// left their chargers).
 fn keep_refuges(nav: &Nav, slot: usize, ok: &mut [bool]) {
     let mut nbrs: Vec<Vec<usize>> = vec![Vec::new(); nav.vertices.len()];
     for e in nav.edges.iter().filter(|e| e.graph == slot) {
         nbrs[e.from].push(e.to);
         nbrs[e.to].push(e.from);
     }
-    let entrances: Vec<usize> = nav.members[slot]
-        .iter()
-        .copied()
-        .filter(|&v| ok[v] && nbrs[v].iter().any(|&w| !ok[w]))
-        .collect();
-    let parked = nav.members[slot].iter().filter(|&&v| ok[v]).count();
-    if entrances.len() < parked {
-        for v in entrances {
-            ok[v] = false;
+    let charger = |v: usize| nav.vertices[v].roles.is_charger && nav.vertices[v].lift.is_none();
+    let inside = |v: usize| ok[v] || charger(v);
+    // Pockets: connected sets of parking vertices and chargers; which hold a charger.
+    let mut pocket = vec![usize::MAX; nav.vertices.len()];
+    let mut powered: Vec<bool> = Vec::new();
+    for &v0 in &nav.members[slot] {
+        if !inside(v0) || pocket[v0] != usize::MAX {
+            continue;
         }
+        let id = powered.len();
+        powered.push(false);
+        let mut stack = vec![v0];
+        pocket[v0] = id;
+        while let Some(v) = stack.pop() {
+            powered[id] |= charger(v);
+            for &w in &nbrs[v] {
+                if inside(w) && pocket[w] == usize::MAX {
+                    pocket[w] = id;
+                    stack.push(w);
+                }
+            }
+        }
+    }
+    let entrance = |v: usize| ok[v] && nbrs[v].iter().any(|&w| !inside(w));
+    let mut shut: Vec<usize> = Vec::new();
+    let mut plain: Vec<usize> = Vec::new();
+    let mut parked = 0;
+    for &v in &nav.members[slot] {
+        if !ok[v] {
+            continue;
+        }
+        if powered[pocket[v]] {
+            if entrance(v) {
+                shut.push(v);
+            }
+        } else {
+            parked += 1;
+            if entrance(v) {
+                plain.push(v);
+            }
+        }
+    }
+    if plain.len() < parked {
+        shut.extend(plain);
+    }
+    for v in shut {
+        ok[v] = false;
     }
 }
 

@@ -1402,3 +1402,39 @@ fn auto_spawn_places_no_more_robots_than_the_task_stream_keeps_busy() {
     assert!(p.needed.is_empty());
     assert_eq!(p.robots.len(), 8);
 }
+
+/// The lane w-e with a lone parking spot off w, and off e a parking vertex in front of a
+/// charger at the end of a spur.
+const CHARGER_SPUR: &str = r#"
+coordinate_system: cartesian_meters
+name: spur
+levels:
+  L1:
+    elevation: 0
+    vertices:
+      - [0, 5, 0, w]
+      - [10, 5, 0, e]
+      - [0, 8, 0, park_w, {is_parking_spot: [4, true]}]
+      - [13, 5, 0, p1]
+      - [16, 5, 0, chg, {is_charger: [4, true]}]
+    lanes:
+      - [0, 1, {bidirectional: [4, true], graph_idx: [2, 0]}]
+      - [0, 2, {bidirectional: [4, true], graph_idx: [2, 0]}]
+      - [1, 3, {bidirectional: [4, true], graph_idx: [2, 0]}]
+      - [3, 4, {bidirectional: [4, true], graph_idx: [2, 0]}]
+"#;
+
+#[test]
+fn no_home_in_front_of_a_charger() {
+    // p1 is off the task route, but a robot parked there would shut the one on the
+    // charger in: the charger's spur keeps its entrance free. park_w, a lone parking spot
+    // and the only one of its kind, stays a home.
+    let parsed = mapc_frontend::parse_str("spur", CHARGER_SPUR);
+    assert!(!parsed.has_errors(), "{:?}", parsed.diagnostics);
+    let b = parsed.building.expect("spur parses");
+    let mut s = scenario(vec![fleet("tiny", 5, SpawnSpec::Auto)], vec![loop_w_e()]);
+    s.duration = 5.0;
+    let p = Fleets::place(&b, &s).expect("placement");
+    assert_eq!(home_names(&b, &p), ["chg", "park_w"]);
+    assert_eq!(p.reserve, vec![("tiny".to_string(), 3)]);
+}

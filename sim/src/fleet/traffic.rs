@@ -325,7 +325,12 @@ impl Fleets {
             if on_its_way {
                 continue;
             }
-            let pushed = self.push(b, c, &far, 0, c, t) || self.push(b, c, &near, PUSH_DEPTH, c, t);
+            // Off the claimant's way ahead if at all possible, even by pushing others first:
+            // a robot pushed onto it (into the claimant's goal in a dead end, say) is only
+            // pushed back out again, and the two take turns for ever.
+            let pushed = self.push(b, c, &far, 0, c, t)
+                || self.push(b, c, &far, PUSH_DEPTH, c, t)
+                || self.push(b, c, &near, PUSH_DEPTH, c, t);
             if !pushed {
                 cannot.push(b);
             }
@@ -494,6 +499,20 @@ impl Fleets {
         through_waiting: bool,
         keep: usize,
     ) -> Option<(usize, Vec<usize>)> {
+        self.find_spot_in(b, needed, through_waiting, false, keep)
+    }
+
+    /// [`Fleets::find_spot`]; with `onto_waiting`, the spot may also be where a robot at
+    /// rest (other than `keep`) stands, which the caller pushes on first (a shift along a
+    /// chain of robots, as PIBT pushes).
+    fn find_spot_in(
+        &self,
+        b: usize,
+        needed: &[Res],
+        through_waiting: bool,
+        onto_waiting: bool,
+        keep: usize,
+    ) -> Option<(usize, Vec<usize>)> {
         let r = &self.robots[b];
         let f = &self.fleets[r.fleet];
         let standing = &self.conf.vertex[r.at];
@@ -526,7 +545,16 @@ impl Fleets {
             .copied()
             .filter(|&v| v != r.at && times[v].is_finite())
             .filter(|&v| self.nav.vertices[v].lift.is_none())
-            .filter(|&v| self.res.is_free_ignoring(b, &self.conf.vertex[v], None))
+            .filter(|&v| {
+                self.res.is_free_ignoring(b, &self.conf.vertex[v], None)
+                    || (onto_waiting
+                        && self.conf.vertex[v].iter().all(|&x| {
+                            self.res.holders(x).iter().all(|&o| {
+                                let o = o as usize;
+                                o == b || (o != keep && self.at_rest(o))
+                            })
+                        }))
+            })
             .filter(|&v| !meets(&self.conf.vertex[v], needed))
             .filter(|&v| {
                 !self
@@ -563,28 +591,32 @@ impl Fleets {
         if depth == 0 {
             return false;
         }
-        let Some((v, path)) = self.find_spot(b, avoid, true, keep) else {
-            return false;
-        };
-        let standing = self.conf.vertex[self.robots[b].at].clone();
-        let mut way: Vec<Res> = self.conf.vertex[v].clone();
-        for &e in &path {
-            way.extend(
-                self.conf.edge[e]
-                    .iter()
-                    .filter(|x| standing.binary_search(x).is_err()),
-            );
-        }
-        way.sort_unstable();
-        way.dedup();
-        let deeper = union(avoid, &way);
-        for o in self.res.blockers(b, &way) {
-            if o != keep && self.at_rest(o) && !self.push(o, c, &deeper, depth - 1, keep, t) {
-                return false;
+        // A free spot behind robots at rest, else one where a robot at rest stands.
+        for onto in [false, true] {
+            let Some((v, path)) = self.find_spot_in(b, avoid, true, onto, keep) else {
+                continue;
+            };
+            let standing = self.conf.vertex[self.robots[b].at].clone();
+            let mut way: Vec<Res> = self.conf.vertex[v].clone();
+            for &e in &path {
+                way.extend(
+                    self.conf.edge[e]
+                        .iter()
+                        .filter(|x| standing.binary_search(x).is_err()),
+                );
+            }
+            way.sort_unstable();
+            way.dedup();
+            let deeper = union(avoid, &way);
+            let moved = self.res.blockers(b, &way).into_iter().all(|o| {
+                o == keep || !self.at_rest(o) || self.push(o, c, &deeper, depth - 1, keep, t)
+            });
+            if moved {
+                self.escape(b, c, v, t);
+                return true;
             }
         }
-        self.escape(b, c, v, t);
-        true
+        false
     }
 
     /// Admission control: the robots that keep robot `i` out of a lift lobby (see

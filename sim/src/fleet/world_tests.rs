@@ -992,6 +992,61 @@ fn world_head_on_in_a_corridor_and_a_crossing_robot_all_complete() {
     }
 }
 
+/// One leg of triple_H: a corridor with a dead end at each end (top, bottom), joined
+/// half way (j) to a cross corridor (x1) and a second corridor (ct-x2-cb).
+const LEG: &str = r#"
+coordinate_system: cartesian_meters
+name: leg
+levels:
+  L1:
+    elevation: 0
+    vertices:
+      - [0, 10, 0, top]
+      - [0, 7.5, 0, u]
+      - [0, 5, 0, j]
+      - [0, 2.5, 0, d]
+      - [0, 0, 0, bottom]
+      - [3, 5, 0, x1]
+      - [6, 5, 0, x2]
+      - [6, 10, 0, ct]
+      - [6, 0, 0, cb]
+    lanes:
+      - [0, 1, {bidirectional: [4, true], graph_idx: [2, 0]}]
+      - [1, 2, {bidirectional: [4, true], graph_idx: [2, 0]}]
+      - [2, 3, {bidirectional: [4, true], graph_idx: [2, 0]}]
+      - [3, 4, {bidirectional: [4, true], graph_idx: [2, 0]}]
+      - [2, 5, {bidirectional: [4, true], graph_idx: [2, 0]}]
+      - [5, 6, {bidirectional: [4, true], graph_idx: [2, 0]}]
+      - [6, 7, {bidirectional: [4, true], graph_idx: [2, 0]}]
+      - [6, 8, {bidirectional: [4, true], graph_idx: [2, 0]}]
+"#;
+
+#[test]
+fn world_robots_into_and_out_of_a_dead_end_leg_all_arrive() {
+    // triple_H with 8 robots: one robot in the bottom dead end wants out to the top, two
+    // in the corridor want into the bottom, one from the cross corridor wants the top.
+    // The claimant bound for the bottom used to push the robot coming out back into the
+    // dead end (its own goal: off the claimed lane but on its way), then make room for it
+    // again, for hours.
+    let b = load("leg", Some(LEG));
+    let s = scenario(
+        vec![
+            fleet("a", 1, spawn(&["bottom"])),
+            fleet("b", 1, spawn(&["j"])),
+            fleet("c", 1, spawn(&["u"])),
+            fleet("e", 1, spawn(&["x2"])),
+        ],
+        vec![
+            go(0.5, "a", "top"),
+            go(0.5, "b", "bottom"),
+            go(0.5, "c", "d"),
+            go(0.5, "e", "u"),
+        ],
+    );
+    let r = run(&b, &s, 1800.0);
+    assert_all_completed(&r, 4);
+}
+
 #[test]
 fn world_second_delivery_waits_for_the_dispensers_item() {
     // One dispenser (at the junction) holds one item; two deliveries to the dead end start
