@@ -3,7 +3,7 @@
 //! would see. Every list is in a deterministic order (map order, first-seen order, or
 //! sorted), and every struct serialises its fields in declaration order.
 
-use crate::msgs::{door_mode, lift_request, lift_state, Msg, TaskWaits, Topic};
+use crate::msgs::{door_mode, lift_request, lift_state, robot_mode, Msg, TaskWaits, Topic};
 use crate::world::RobotTruth;
 use serde::Serialize;
 use std::collections::{BTreeMap, BTreeSet};
@@ -223,6 +223,9 @@ struct RobotAcc {
     anchor: Option<(f64, f64, f64)>,
     /// The still-since time already reported as stuck, and its entry in `stuck`.
     flagged: Option<(f64, usize)>,
+    /// It last reported CHARGING: standing still is then waiting for its battery (the
+    /// task's `charging` wait), not being stuck.
+    charging: bool,
 }
 
 #[derive(Default)]
@@ -326,6 +329,7 @@ impl ReportBuilder {
                 busy_s: 0.0,
                 anchor: None,
                 flagged: None,
+                charging: false,
             });
         }
         for (_, d) in building.doors.iter() {
@@ -357,6 +361,11 @@ impl ReportBuilder {
 
     pub fn observe(&mut self, p: &crate::msgs::Published) {
         match (&p.topic, &p.msg) {
+            (_, Msg::RobotState(s)) => {
+                if let Some(&i) = self.robot_index.get(&s.name) {
+                    self.robots[i].charging = s.mode.mode == robot_mode::CHARGING;
+                }
+            }
             (Topic::AdapterDoorRequests, Msg::DoorRequest(r)) => {
                 let i = self.door(&r.door_name);
                 let d = &mut self.doors[i];
@@ -546,9 +555,10 @@ impl ReportBuilder {
                 acc.distance += (r.x - x).hypot(r.y - y);
             }
             acc.last = Some((r.x, r.y));
-            // Motionless with a task for too long.
+            // Motionless with a task for too long (charging does not count).
             match acc.anchor {
-                Some((ax, ay, _)) if (r.x - ax).hypot(r.y - ay) <= STILL_TOLERANCE => {}
+                Some((ax, ay, _))
+                    if !acc.charging && (r.x - ax).hypot(r.y - ay) <= STILL_TOLERANCE => {}
                 _ => acc.anchor = Some((r.x, r.y, t)),
             }
             if let (Some(busy), Some((_, _, still))) = (acc.busy_since, acc.anchor) {
@@ -967,8 +977,8 @@ mod tests {
     use super::*;
     use crate::fleet::Placement;
     use crate::msgs::{
-        DoorMode, DoorRequest, DoorState, LiftRequest, LiftState, Published, TaskEvent, Time,
-        WaitCause,
+        DoorMode, DoorRequest, DoorState, LiftRequest, LiftState, Published, RobotMode, RobotState,
+        TaskEvent, Time, WaitCause,
     };
     use crate::params::RobotParams;
     use crate::world::RobotSpawn;
@@ -1284,6 +1294,42 @@ mod tests {
         );
         assert!((r.fleets[0].distance_m - 7.0).abs() < 1e-9);
         assert_eq!(r.fleets[1].distance_m, 0.0);
+    }
+
+    #[test]
+    fn a_robot_charging_with_a_task_queued_is_not_stuck() {
+        let mut b = builder();
+        let still = [at(0.0, 0.0, 0.0), at(10.0, 0.0, 0.0), at(20.0, 0.0, 0.0)];
+        b.observe(&event(0.0, "t1", "queued", "", ""));
+        b.observe(&event(0.0, "t1", "assigned", "a0", "a"));
+        let state = |t: f64, mode: u32| Published {
+            t,
+            topic: Topic::RobotState,
+            msg: Msg::RobotState(RobotState {
+                name: "a0".into(),
+                mode: RobotMode {
+                    mode,
+                    ..Default::default()
+                },
+                ..Default::default()
+            }),
+        };
+        // Charging for 1000 s, then waiting without charging for 400 s.
+        b.observe(&state(0.0, robot_mode::CHARGING));
+        let mut t = 0.0;
+        while t < 1000.0 {
+            b.sample(t, &still);
+            t += 10.0;
+        }
+        b.observe(&state(1000.0, robot_mode::IDLE));
+        while t <= 1400.0 {
+            b.sample(t, &still);
+            t += 10.0;
+        }
+        let r = b.finish(1400.0, &still);
+        let stuck: Vec<(&str, f64)> = r.stuck.iter().map(|s| (s.robot.as_str(), s.t)).collect();
+        // Still since the last sample while it charged (990 s), stuck 300 s later.
+        assert_eq!(stuck, [("a0", 990.0)]);
     }
 
     #[test]
