@@ -139,19 +139,21 @@ const UTILISATION: f64 = 0.5;
 /// Per scenario fleet: how many robots its task stream can keep busy at `UTILISATION`
 /// (at least one): the work its tasks ask for over the scenario's duration (driving
 /// between their waypoints at nominal speed, and from where the fleet's tasks end to
-/// where they start; a clean's dwell), divided by the duration. A task any of several
+/// where they start; a clean's dwell), divided by the duration; and at least as many as
+/// would be busy at once if every task started when requested (a burst of tasks). A task any of several
 /// fleets takes counts for each in proportion to its robots. Robots beyond it would
 /// have nothing to do but wait in the corridors: past a building's capacity they take
 /// throughput away (clinic, 9 tiny robots: 49 loops in 4 h where 6 to 8 do 61 to 63),
 /// so `spawn: auto` keeps them in the depot.
 pub(super) fn needed(nav: &Nav, scenario: &Scenario) -> Vec<usize> {
     let horizon = scenario.duration.max(1.0);
-    // (kind, fleet, how many over the horizon)
-    let mut stream: Vec<(&TaskKind, Option<&str>, f64)> = scenario
+    // (kind, fleet, how many over the horizon, request time of a single task)
+    type Entry<'a> = (&'a TaskKind, Option<&'a str>, f64, Option<f64>);
+    let mut stream: Vec<Entry> = scenario
         .tasks
         .iter()
         .filter(|t| t.at < horizon)
-        .map(|t| (&t.kind, t.fleet.as_deref(), 1.0))
+        .map(|t| (&t.kind, t.fleet.as_deref(), 1.0, Some(t.at)))
         .collect();
     for g in &scenario.generators {
         let end = g.end.unwrap_or(horizon).min(horizon);
@@ -160,7 +162,7 @@ pub(super) fn needed(nav: &Nav, scenario: &Scenario) -> Vec<usize> {
         } else {
             0.0
         };
-        stream.push((&g.kind, g.fleet.as_deref(), n));
+        stream.push((&g.kind, g.fleet.as_deref(), n, None));
     }
     let takes = |fi: usize, kind: &TaskKind, fleet: Option<&str>| {
         let f = &scenario.fleets[fi];
@@ -173,13 +175,15 @@ pub(super) fn needed(nav: &Nav, scenario: &Scenario) -> Vec<usize> {
             })
     };
     let mut work = vec![0.0; scenario.fleets.len()];
+    // Robots busy at once if every task started on request (nominal speed): a burst of
+    // tasks asks for more robots than its average over the run.
+    let mut peak = vec![0.0; scenario.fleets.len()];
     for (fi, f) in scenario.fleets.iter().enumerate() {
         let Some(slot) = nav.slot(f.graph) else {
             continue;
         };
         let speed = f.robot.nominal_drive_speed.max(0.05);
-        let mine: Vec<&(&TaskKind, Option<&str>, f64)> =
-            stream.iter().filter(|s| takes(fi, s.0, s.1)).collect();
+        let mine: Vec<&Entry> = stream.iter().filter(|s| takes(fi, s.0, s.1)).collect();
         if mine.is_empty() {
             // Its tasks come from outside (RMF's task API over DDS): no stream to size by.
             work[fi] = f64::INFINITY;
@@ -205,7 +209,10 @@ pub(super) fn needed(nav: &Nav, scenario: &Scenario) -> Vec<usize> {
                 .filter(|x| x.is_finite())
                 .unwrap_or(0.0)
         };
-        for (kind, fleet, n) in mine {
+        // (time, change in robots busy) of the single tasks; the generators' steady load.
+        let mut sweep: Vec<(f64, f64)> = Vec::new();
+        let mut steady = 0.0;
+        for (kind, fleet, n, at) in mine {
             let v: Vec<usize> = waypoint_names(kind)
                 .iter()
                 .filter_map(|w| nav.find(slot, w))
@@ -229,16 +236,34 @@ pub(super) fn needed(nav: &Nav, scenario: &Scenario) -> Vec<usize> {
                 TaskKind::Clean { .. } => scenario.options.clean_duration,
                 TaskKind::GoToPlace { .. } => 0.0,
             };
-            work[fi] += n * share * (approach + body);
+            let w = approach + body;
+            work[fi] += n * share * w;
+            match at {
+                Some(at) => {
+                    sweep.push((*at, share));
+                    sweep.push((at + w.max(1.0), -share));
+                }
+                None => steady += n * share * w / horizon,
+            }
         }
+        // Ends before starts at the same time.
+        sweep.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.total_cmp(&b.1)));
+        let mut now: f64 = 0.0;
+        let mut most: f64 = 0.0;
+        for (_, d) in sweep {
+            now += d;
+            most = most.max(now);
+        }
+        peak[fi] = most + steady;
     }
     // Square-root staffing (Halfin–Whitt): the offered load and a spare of its square
     // root, for the tasks that arrive together.
     work.iter()
-        .map(|w| {
+        .zip(&peak)
+        .map(|(w, p)| {
             let load = w / horizon / UTILISATION;
             if load.is_finite() {
-                ((load + load.sqrt()).ceil() as usize).max(1)
+                ((load + load.sqrt()).ceil().max((p - 1e-9).ceil()) as usize).max(1)
             } else {
                 usize::MAX
             }

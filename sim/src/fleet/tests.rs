@@ -1394,6 +1394,15 @@ fn auto_spawn_places_no_more_robots_than_the_task_stream_keeps_busy() {
     let p = Fleets::place(&b, &stream(20.0)).expect("placement");
     assert_eq!(p.needed, vec![("tiny".to_string(), 5)]);
     assert_eq!(p.robots.len(), 2);
+    // A burst: ten tasks asked at once need ten robots, whatever their average over the
+    // hour (one robot).
+    let mut s = stream(20.0);
+    s.generators.clear();
+    s.tasks = (0..10)
+        .map(|_| task(0.0, TaskKind::GoToPlace { place: "e".into() }))
+        .collect();
+    let p = Fleets::place(&b, &s).expect("placement");
+    assert_eq!(p.needed, vec![("tiny".to_string(), 10)]);
     // Tasks that come from outside (no stream in the scenario): the homes alone limit,
     // and without task routes every one of the eight waypoints is one.
     let mut s = stream(20.0);
