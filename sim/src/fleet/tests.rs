@@ -146,9 +146,7 @@ levels:
 "#;
 
 fn cross() -> Building {
-    let parsed = mapc_frontend::parse_str("cross", CROSS);
-    assert!(!parsed.has_errors(), "{:?}", parsed.diagnostics);
-    parsed.building.expect("cross parses")
+    parse_map("cross", CROSS)
 }
 
 #[test]
@@ -1210,6 +1208,20 @@ fn loop_w_e() -> TaskSpec {
     )
 }
 
+/// A scenario so short that its one loop w-e keeps more robots busy than any map here
+/// has homes (auto spawn's `needed` does not limit it).
+fn one_busy_loop(fleets: Vec<FleetSpec>) -> Scenario {
+    let mut s = scenario(fleets, vec![loop_w_e()]);
+    s.duration = 5.0;
+    s
+}
+
+fn parse_map(name: &str, text: &str) -> Building {
+    let parsed = mapc_frontend::parse_str(name, text);
+    assert!(!parsed.has_errors(), "{:?}", parsed.diagnostics);
+    parsed.building.expect("map parses")
+}
+
 /// The names of the waypoints the robots of `p` start on, sorted.
 fn home_names(b: &Building, p: &Placement) -> Vec<String> {
     let nav = Nav::build(b, &[0]);
@@ -1235,9 +1247,7 @@ fn auto_spawn_gives_each_robot_a_home_and_keeps_the_rest_in_reserve() {
     // reached from and back (the parking spots; not s, n, far_w, far_e, on lanes of
     // their own). Eight robots: two homes, six in reserve.
     let b = cross();
-    // A short scenario: its one loop keeps more robots busy than there are homes.
-    let mut s = scenario(vec![fleet("tiny", 8, SpawnSpec::Auto)], vec![loop_w_e()]);
-    s.duration = 5.0;
+    let s = one_busy_loop(vec![fleet("tiny", 8, SpawnSpec::Auto)]);
     let p = Fleets::place(&b, &s).expect("placement");
     assert_eq!(p.robots.len(), 2, "{:?}", p.robots);
     assert_eq!(p.reserve, vec![("tiny".to_string(), 6)]);
@@ -1246,14 +1256,10 @@ fn auto_spawn_gives_each_robot_a_home_and_keeps_the_rest_in_reserve() {
     let (_, _, f) = run(&b, &s, 1.0);
     assert_eq!(f.robots.len(), 2);
     // Two fleets share the homes: the first home to the larger fleet, then by share.
-    let mut s = scenario(
-        vec![
-            fleet("a", 6, SpawnSpec::Auto),
-            fleet("b", 2, SpawnSpec::Auto),
-        ],
-        vec![loop_w_e()],
-    );
-    s.duration = 5.0;
+    let s = one_busy_loop(vec![
+        fleet("a", 6, SpawnSpec::Auto),
+        fleet("b", 2, SpawnSpec::Auto),
+    ]);
     let p = Fleets::place(&b, &s).expect("placement");
     let count = |n: &str| p.robots.iter().filter(|r| r.fleet == n).count();
     assert_eq!((count("a"), count("b")), (1, 1), "{:?}", p.robots);
@@ -1335,14 +1341,10 @@ levels:
 
 #[test]
 fn homes_leave_each_pocket_entrance_free_and_are_reachable() {
-    let parsed = mapc_frontend::parse_str("pocket", POCKET);
-    assert!(!parsed.has_errors(), "{:?}", parsed.diagnostics);
-    let b = parsed.building.expect("pocket parses");
+    let b = parse_map("pocket", POCKET);
     // Off the task route w-e: park_w (a lone spot, its own entrance), p1-p3 (a pocket
     // entered at p1), far_w/far_e (unreachable). Homes: p2 and p3 only.
-    // A short scenario: its one loop keeps more robots busy than there are homes.
-    let mut s = scenario(vec![fleet("tiny", 5, SpawnSpec::Auto)], vec![loop_w_e()]);
-    s.duration = 5.0;
+    let s = one_busy_loop(vec![fleet("tiny", 5, SpawnSpec::Auto)]);
     let p = Fleets::place(&b, &s).expect("placement");
     assert_eq!(home_names(&b, &p), ["p2", "p3"]);
     assert_eq!(p.reserve, vec![("tiny".to_string(), 3)]);
@@ -1357,8 +1359,7 @@ fn auto_spawn_places_no_more_robots_than_the_task_stream_keeps_busy() {
     // POCKET: w-e is 10 m; at 0.5 m/s a loop w->e takes 21 s (20 s and the graph's
     // second per lane), and the approach from where the fleet's loops end (w or e)
     // averages (0 + 21) / 2 = 10.5 s: 31.5 s a loop.
-    let parsed = mapc_frontend::parse_str("pocket", POCKET);
-    let b = parsed.building.expect("pocket parses");
+    let b = parse_map("pocket", POCKET);
     let nav = Nav::build(&b, &[0]);
     assert_eq!(
         nav.times_from(0, vertex(&nav, "w"), 0.5)[vertex(&nav, "e")],
@@ -1438,11 +1439,8 @@ fn no_home_in_front_of_a_charger() {
     // p1 is off the task route, but a robot parked there would shut the one on the
     // charger in: the charger's spur keeps its entrance free. park_w, a lone parking spot
     // and the only one of its kind, stays a home.
-    let parsed = mapc_frontend::parse_str("spur", CHARGER_SPUR);
-    assert!(!parsed.has_errors(), "{:?}", parsed.diagnostics);
-    let b = parsed.building.expect("spur parses");
-    let mut s = scenario(vec![fleet("tiny", 5, SpawnSpec::Auto)], vec![loop_w_e()]);
-    s.duration = 5.0;
+    let b = parse_map("spur", CHARGER_SPUR);
+    let s = one_busy_loop(vec![fleet("tiny", 5, SpawnSpec::Auto)]);
     let p = Fleets::place(&b, &s).expect("placement");
     assert_eq!(home_names(&b, &p), ["chg", "park_w"]);
     assert_eq!(p.reserve, vec![("tiny".to_string(), 3)]);
