@@ -22,6 +22,7 @@
 //! triangulation. `tests/meshes.rs` checks our wall OBJ files against the reference's line
 //! by line. `model.material` is written fresh rather than appended to.
 
+use crate::fmt::push_fixed;
 use crate::geometry::{level_meshes, LevelMeshes};
 use crate::mesh::{Mesh, MeshKind};
 use crate::{py_float, OutputFile};
@@ -203,8 +204,43 @@ fn fixed4(out: &mut String, v: f64) {
     if v == 0.0 {
         out.push_str("0.000");
     } else {
-        let _ = write!(out, "{v:.4}");
+        push_fixed(out, v, 4);
     }
+}
+
+/// `{:.4}` (see [`push_fixed`]).
+fn f4(out: &mut String, v: f64) {
+    push_fixed(out, v, 4);
+}
+
+/// `vn x y z` with four decimals.
+fn vn4(out: &mut String, n: [f64; 3]) {
+    out.push_str("vn ");
+    f4(out, n[0]);
+    out.push(' ');
+    f4(out, n[1]);
+    out.push(' ');
+    f4(out, n[2]);
+    out.push('\n');
+}
+
+/// An OBJ index (itoa: `Display` through `fmt::write` was a tenth of a mesh's time).
+fn int(out: &mut String, v: usize) {
+    out.push_str(itoa::Buffer::new().format(v));
+}
+
+/// `f a/a/n b/b/n c/c/n`, the face line of a wall triangle.
+fn face_same(out: &mut String, v: [usize; 3], n: [usize; 3]) {
+    out.push('f');
+    for k in 0..3 {
+        out.push(' ');
+        int(out, v[k]);
+        out.push('/');
+        int(out, v[k]);
+        out.push('/');
+        int(out, n[k]);
+    }
+    out.push('\n');
 }
 
 /// Walls as the reference writes them (generator.md §2.3.4), with the correct normals on
@@ -232,12 +268,12 @@ fn walls_obj(mesh: &Mesh, offset: Vec2) -> String {
     for w in 0..walls {
         for (face, k) in CORNERS {
             let p = mesh.positions[20 * w + 4 * face + k];
-            let _ = write!(s, "v {:.4} {:.4} ", p[0] - shift[0], p[1] - shift[1]);
-            if p[2] == 0.0 {
-                s.push_str("0.000");
-            } else {
-                let _ = write!(s, "{:.4}", p[2]);
-            }
+            s.push_str("v ");
+            f4(&mut s, p[0] - shift[0]);
+            s.push(' ');
+            f4(&mut s, p[1] - shift[1]);
+            s.push(' ');
+            fixed4(&mut s, p[2]);
             s.push('\n');
         }
     }
@@ -254,8 +290,7 @@ fn walls_obj(mesh: &Mesh, offset: Vec2) -> String {
     s.push_str("vn 0.0000 0.0000 1.0000\n");
     for w in 0..walls {
         for face in 0..4 {
-            let n = mesh.normals[20 * w + 4 * face];
-            let _ = writeln!(s, "vn {:.4} {:.4} {:.4}", n[0], n[1], n[2]);
+            vn4(&mut s, mesh.normals[20 * w + 4 * face]);
         }
     }
     let _ = writeln!(s, "usemtl {}", mesh.name);
@@ -271,12 +306,18 @@ fn walls_obj(mesh: &Mesh, offset: Vec2) -> String {
         for (t1, t2, vn) in faces {
             for t in [t1, t2] {
                 let [x, y, z] = t.map(|i| b + i);
-                let vn = n + vn;
-                let _ = writeln!(s, "f {x}/{x}/{vn} {y}/{y}/{vn} {z}/{z}/{vn}");
+                face_same(&mut s, [x, y, z], [n + vn; 3]);
             }
         }
-        let _ = writeln!(s, "f {}/1/1 {}/1/1 {}/1/1", b + 2, b + 6, b + 4);
-        let _ = writeln!(s, "f {}/1/1 {}/1/1 {}/1/1", b + 2, b + 8, b + 6);
+        for [x, y, z] in [[b + 2, b + 6, b + 4], [b + 2, b + 8, b + 6]] {
+            s.push('f');
+            for v in [x, y, z] {
+                s.push(' ');
+                int(&mut s, v);
+                s.push_str("/1/1");
+            }
+            s.push('\n');
+        }
     }
     s
 }
@@ -346,26 +387,24 @@ fn generic_obj(mesh: &Mesh, offset: Vec2) -> String {
     for p in &mesh.positions {
         let (x, y) = (p[0] - shift[0], p[1] - shift[1]);
         if walls {
-            let z = if p[2] == 0.0 {
-                "0.000".to_string()
-            } else {
-                format!("{:.4}", p[2])
-            };
-            let _ = writeln!(s, "v {x:.4} {y:.4} {z}");
+            s.push_str("v ");
+            f4(&mut s, x);
+            s.push(' ');
+            f4(&mut s, y);
+            s.push(' ');
+            fixed4(&mut s, p[2]);
+            s.push('\n');
         } else {
             let _ = writeln!(s, "v {} {} {}", py_float(x), py_float(y), short(p[2]));
         }
     }
     for t in &mesh.uvs {
         if walls {
-            let f = |v: f64| {
-                if v == 0.0 {
-                    "0.000".to_string()
-                } else {
-                    format!("{v:.4}")
-                }
-            };
-            let _ = writeln!(s, "vt {} {}", f(t[0]), f(t[1]));
+            s.push_str("vt ");
+            fixed4(&mut s, t[0]);
+            s.push(' ');
+            fixed4(&mut s, t[1]);
+            s.push('\n');
         } else {
             let _ = writeln!(s, "vt {} {} 0", py_float(t[0]), py_float(t[1]));
         }
@@ -378,7 +417,7 @@ fn generic_obj(mesh: &Mesh, offset: Vec2) -> String {
         let next = normal_index.len() + 1;
         let i = *normal_index.entry(key).or_insert_with(|| {
             if walls {
-                let _ = writeln!(s, "vn {:.4} {:.4} {:.4}", n[0], n[1], n[2]);
+                vn4(&mut s, *n);
             } else {
                 let _ = writeln!(s, "vn {} {} {}", short(n[0]), short(n[1]), short(n[2]));
             }
@@ -393,19 +432,7 @@ fn generic_obj(mesh: &Mesh, offset: Vec2) -> String {
     }
     for t in &mesh.triangles {
         let [a, b, c] = t.map(|i| i as usize);
-        let _ = writeln!(
-            s,
-            "f {}/{}/{} {}/{}/{} {}/{}/{}",
-            a + 1,
-            a + 1,
-            vn[a],
-            b + 1,
-            b + 1,
-            vn[b],
-            c + 1,
-            c + 1,
-            vn[c]
-        );
+        face_same(&mut s, [a + 1, b + 1, c + 1], [vn[a], vn[b], vn[c]]);
     }
     s
 }
