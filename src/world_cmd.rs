@@ -104,11 +104,11 @@ pub(crate) fn run(flavour: Flavour, args: &WorldArgs) -> ExitCode {
     let mut texture_diags = Vec::new();
     if let Some(b) = checked.parsed.building.as_ref() {
         if checked.blocked(wanted).is_empty() {
-            let meshes: Vec<_> = b
-                .levels
-                .iter()
-                .map(|(h, _)| (h, mapc_backends::level_meshes(b, h)))
-                .collect();
+            let opts = WorldOptions {
+                template,
+                skip_camera_pose: args.skip_camera_pose,
+            };
+            let (meshes, mut files) = world_files_untextured(b, flavour, &opts);
             let names = mapc_backends::texture_names(meshes.iter().flat_map(|(_, m)| m.all()));
             // Found images are linked from where they are (below), so only their heads are
             // read, to tell a PNG from anything else; placeholders are whole.
@@ -118,11 +118,9 @@ pub(crate) fn run(flavour: Flavour, args: &WorldArgs) -> ExitCode {
                     search.find_head(f)
                 });
             texture_diags = diags;
-            let opts = WorldOptions {
-                template,
-                skip_camera_pose: args.skip_camera_pose,
-            };
-            let (mut files, images) = world_files_untextured(b, flavour, &opts, &meshes);
+            let images = meshes
+                .iter()
+                .flat_map(|(h, m)| mapc_backends::level_texture_paths(b, *h, m));
             // Images found on disk are linked from there (nothing copied, in memory or on
             // disk); placeholders are written.
             let mut links = Vec::new();

@@ -6,6 +6,21 @@ use std::fmt::Write as _;
 /// scientific (two-digit exponent) otherwise, always with a `.` or an exponent. The
 /// reference generator prints every float this way, so matching it keeps diffs small.
 pub fn py_float(x: f64) -> String {
+    // ryu lays out positionally from 1e-5 up to 1e16 with the same digits; Python switches
+    // to an exponent below 1e-4. Those (no `e`, no `0.0000` prefix) are taken as they are,
+    // the rest laid out again below.
+    if x.is_finite() {
+        let mut buf = ryu::Buffer::new();
+        let r = buf.format_finite(x);
+        if !r.contains('e') && !r.trim_start_matches('-').starts_with("0.0000") {
+            return r.to_string();
+        }
+    }
+    py_float_laid_out(x)
+}
+
+/// [`py_float`] from ryu's digits and exponent, for every value.
+fn py_float_laid_out(x: f64) -> String {
     if x.is_nan() {
         return "nan".into();
     }
@@ -189,6 +204,34 @@ mod tests {
             let got_mant = got.split('e').next().unwrap();
             assert_eq!(sig(got_mant), sig(m), "{got} vs {sci}");
             assert_eq!(got.contains('e'), !(-4..16).contains(&e), "{got}");
+        }
+    }
+
+    #[test]
+    fn the_shortcut_is_the_laid_out_text() {
+        let mut seed = 0x9E3779B97F4A7C15u64;
+        for k in 0..200_000 {
+            seed ^= seed << 13;
+            seed ^= seed >> 7;
+            seed ^= seed << 17;
+            let mag = 10f64.powi((seed % 44) as i32 - 22);
+            let x = ((seed >> 11) as f64 / (1u64 << 53) as f64 - 0.5) * 2.0 * mag;
+            // And round values, integers and the edges of the positional range.
+            let y = [x, (x * 1e3).round(), 1e-5 * (k as f64), 1e16 - k as f64][k % 4];
+            assert_eq!(super::py_float(y), super::py_float_laid_out(y), "{y:e}");
+        }
+        for y in [
+            0.0,
+            -0.0,
+            1e-4,
+            9.99999e-5,
+            1e-5,
+            1e15,
+            1e16,
+            9999999999999998.0,
+            -1e-4,
+        ] {
+            assert_eq!(super::py_float(y), super::py_float_laid_out(y), "{y:e}");
         }
     }
 

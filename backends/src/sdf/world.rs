@@ -26,7 +26,6 @@ use super::Flavour;
 use crate::py_float;
 use mapc_ir::{Building, CoordinateSystem, Handle, Level, Vertex};
 use std::collections::HashMap;
-use std::path::PathBuf;
 
 const GZ_TEMPLATE: &str = include_str!("templates/gz.sdf");
 const IGNITION_TEMPLATE: &str = include_str!("templates/ignition.sdf");
@@ -500,27 +499,40 @@ pub fn world_files(
     }
 }
 
-/// [`world_files`] without the texture images in `models`, and where each goes: (path
-/// relative to the model directory, texture name). A caller that has the images on disk
-/// links them there instead of holding a copy of their bytes per level.
-pub fn world_files_untextured<'m>(
+/// The level meshes (one entry per level, document order) and [`world_files`] without the
+/// texture images in `models` (see [`crate::level_texture_paths`]: a caller that has the
+/// images on disk links them instead of holding a copy of their bytes per level). The
+/// world's text is built on a second thread while the levels' meshes are: on a large map
+/// each is about half of the work.
+pub fn world_files_untextured(
     b: &Building,
     flavour: Flavour,
     opts: &WorldOptions,
-    meshes: &'m [(Handle<Level>, crate::LevelMeshes)],
-) -> (WorldFiles, Vec<(PathBuf, &'m str)>) {
-    let mut models = Vec::new();
-    let mut textures = Vec::new();
-    for (h, m) in meshes {
-        models.extend(super::level::level_model_files_untextured(b, *h, m));
-        textures.extend(crate::level_texture_paths(b, *h, m));
-    }
-    let files = WorldFiles {
-        world: world_text(b, flavour, opts),
-        models,
-        crowd: super::crowd::crowd_files(b),
-    };
-    (files, textures)
+) -> (Vec<(Handle<Level>, crate::LevelMeshes)>, WorldFiles) {
+    std::thread::scope(|s| {
+        let world = s.spawn(|| (world_text(b, flavour, opts), super::crowd::crowd_files(b)));
+        let meshes: Vec<_> = b
+            .levels
+            .iter()
+            .map(|(h, _)| (h, crate::level_meshes(b, h)))
+            .collect();
+        let mut models = Vec::new();
+        for (h, m) in &meshes {
+            models.extend(super::level::level_model_files_untextured(b, *h, m));
+        }
+        // A panic on the other thread is a bug: surface it here.
+        let (world, crowd) = world
+            .join()
+            .unwrap_or_else(|p| std::panic::resume_unwind(p));
+        (
+            meshes,
+            WorldFiles {
+                world,
+                models,
+                crowd,
+            },
+        )
+    })
 }
 
 #[cfg(test)]

@@ -2,8 +2,6 @@
 //! order, text is escaped, output is deterministic (two-space indentation, one element per
 //! line, `<tag attr="v" />` for empty elements, as the reference's `xml.etree` writes).
 
-use std::fmt::Write;
-
 #[derive(Debug, Clone, PartialEq, Default)]
 pub struct Element {
     pub name: String,
@@ -58,23 +56,33 @@ impl Element {
     }
 
     fn write(&self, out: &mut String, depth: usize) {
+        // Pushes rather than `write!`: the world of a large map is half a megabyte of
+        // these, and formatting machinery was most of its time.
         for _ in 0..depth {
             out.push_str("  ");
         }
         out.push('<');
         out.push_str(&self.name);
         for (k, v) in &self.attrs {
-            let _ = write!(out, " {k}=\"{}\"", escape(v, true));
+            out.push(' ');
+            out.push_str(k);
+            out.push_str("=\"");
+            escape_into(out, v, true);
+            out.push('"');
         }
         match (&self.text, self.children.is_empty()) {
             (None, true) => out.push_str(" />\n"),
             (Some(t), true) => {
-                let _ = writeln!(out, ">{}</{}>", escape(t, false), self.name);
+                out.push('>');
+                escape_into(out, t, false);
+                out.push_str("</");
+                out.push_str(&self.name);
+                out.push_str(">\n");
             }
             (text, false) => {
                 out.push('>');
                 if let Some(t) = text {
-                    out.push_str(&escape(t, false));
+                    escape_into(out, t, false);
                 }
                 out.push('\n');
                 for c in &self.children {
@@ -83,14 +91,25 @@ impl Element {
                 for _ in 0..depth {
                     out.push_str("  ");
                 }
-                let _ = writeln!(out, "</{}>", self.name);
+                out.push_str("</");
+                out.push_str(&self.name);
+                out.push_str(">\n");
             }
         }
     }
 }
 
-fn escape(s: &str, attr: bool) -> String {
-    let mut out = String::with_capacity(s.len());
+/// Appends `s` escaped; text without anything to escape (nearly all of it) is copied whole.
+fn escape_into(out: &mut String, s: &str, attr: bool) {
+    let special = |b: u8| {
+        matches!(b, b'&' | b'<' | b'>')
+            || (attr && b == b'"')
+            || (b < 0x20 && b != b'\t' && b != b'\n')
+    };
+    if !s.bytes().any(special) {
+        out.push_str(s);
+        return;
+    }
     for c in s.chars() {
         match c {
             '&' => out.push_str("&amp;"),
@@ -102,7 +121,6 @@ fn escape(s: &str, attr: bool) -> String {
             c => out.push(c),
         }
     }
-    out
 }
 
 #[cfg(test)]
@@ -117,6 +135,9 @@ mod tests {
                 .leaf("static", "true")
                 .child(Element::new("plugin").attr("name", "x")),
         );
+        let mut x = String::new();
+        escape_into(&mut x, "tab\there\u{1}é<", false);
+        assert_eq!(x, "tab\there\u{fffd}é&lt;");
         assert_eq!(
             e.to_document(true),
             "<?xml version='1.0' encoding='utf-8'?>\n<sdf version=\"1.7\">\n  <model name=\"a&lt;b&gt;&amp;&quot;c&quot;\">\n    <static>true</static>\n    <plugin name=\"x\" />\n  </model>\n</sdf>\n"

@@ -393,7 +393,6 @@ fn whole_list(root: Node<'_>, key: u32) -> Option<Vec<Node<'_>>> {
 
 impl<'a> Lists<'a> {
     /// No list left out: every sequence is read from the tree.
-    #[cfg(test)]
     pub(crate) fn whole(text: &'a str, file: FileId) -> Self {
         Lists {
             text,
