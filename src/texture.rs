@@ -66,16 +66,19 @@ impl SearchPath {
     pub fn find_head(&self, file: &str) -> Option<Vec<u8>> {
         use std::io::Read;
         let p = self.path_of(file)?;
-        let mut head = Vec::with_capacity(64 << 10);
-        std::fs::File::open(&p)
-            .ok()?
-            .take(64 << 10)
-            .read_to_end(&mut head)
-            .ok()?;
-        if head.len() < 64 << 10 || mapc_backends::is_png(&head) {
-            return Some(head);
+        let mut f = std::fs::File::open(&p).ok()?;
+        let mut head = Vec::new();
+        // 4 KiB holds the header chunks of nearly every image; 64 KiB those with a colour
+        // profile or text; beyond that, the whole file.
+        for want in [4 << 10, 64 << 10] {
+            let have = head.len() as u64;
+            (&mut f).take(want - have).read_to_end(&mut head).ok()?;
+            if (head.len() as u64) < want || mapc_backends::is_png(&head) {
+                return Some(head);
+            }
         }
-        std::fs::read(&p).ok()
+        f.read_to_end(&mut head).ok()?;
+        Some(head)
     }
 
     /// As [`SearchPath::find`], with the path the file was read from (for depfiles).
@@ -120,5 +123,37 @@ mod tests {
         assert_eq!(sp.dirs, want);
         let sp = SearchPath::new(&[], None, None, Path::new("x.building.yaml"));
         assert_eq!(sp.dirs, [PathBuf::from(".")]);
+    }
+
+    #[test]
+    fn heads_are_read_as_far_as_the_header_chunks_go() {
+        let dir = std::env::temp_dir().join(format!("mapc-heads-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        // Header chunks past 4 KiB: a 20 KB text chunk before the pixels.
+        let mut big = Vec::new();
+        {
+            let mut e = png::Encoder::new(&mut big, 2, 2);
+            e.set_color(png::ColorType::Rgb);
+            e.add_text_chunk("Comment".into(), "x".repeat(20_000))
+                .unwrap();
+            let mut w = e.write_header().unwrap();
+            w.write_image_data(&[0u8; 12]).unwrap();
+        }
+        std::fs::write(dir.join("big_header.png"), &big).unwrap();
+        std::fs::write(dir.join("junk.png"), vec![7u8; 100_000]).unwrap();
+        let small = mapc_backends::placeholder_png();
+        std::fs::write(dir.join("small.png"), &small).unwrap();
+        let sp = SearchPath {
+            dirs: vec![dir.clone()],
+        };
+        let h = sp.find_head("big_header.png").unwrap();
+        assert!(h.len() > 4 << 10 && h.len() <= 64 << 10, "{}", h.len());
+        assert!(mapc_backends::is_png(&h));
+        let j = sp.find_head("junk.png").unwrap();
+        assert_eq!(j.len(), 100_000);
+        assert!(!mapc_backends::is_png(&j));
+        assert_eq!(sp.find_head("small.png").unwrap(), small);
+        assert!(sp.find_head("missing.png").is_none());
+        std::fs::remove_dir_all(&dir).unwrap();
     }
 }

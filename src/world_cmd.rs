@@ -198,6 +198,10 @@ pub(crate) fn run(flavour: Flavour, args: &WorldArgs) -> ExitCode {
         &label,
     )
     .map(|w| (w[0], w[1]));
+    let diagnostics = checked.diagnostics.len();
+    // The process ends here: freeing the map, its tree and every file's bytes one by one
+    // would only delay the exit.
+    std::mem::forget((checked, out.models, world, links));
     match result {
         Ok((m, w)) => {
             if !args.diag.quiet {
@@ -207,13 +211,7 @@ pub(crate) fn run(flavour: Flavour, args: &WorldArgs) -> ExitCode {
                     removed: m.removed + w.removed,
                 };
                 let what = format!("1 world, {}", plural(meshes, "level mesh"));
-                success_line(
-                    &label,
-                    &what,
-                    &args.output_model_dir,
-                    total,
-                    checked.diagnostics.len(),
-                );
+                success_line(&label, &what, &args.output_model_dir, total, diagnostics);
                 eprintln!("  world: {}", output::shown(&args.output_world));
             }
             ExitCode::SUCCESS

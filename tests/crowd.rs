@@ -32,7 +32,7 @@ fn attr<'a>(e: &'a Element, k: &str) -> &'a str {
     e.attrs
         .iter()
         .find(|(n, _)| n == k)
-        .map(|(_, v)| v.as_str())
+        .map(|(_, v)| v.as_ref())
         .unwrap_or_else(|| panic!("<{}> has no {k}", e.name))
 }
 

@@ -84,7 +84,7 @@ fn attr<'a>(e: &'a Element, k: &str) -> &'a str {
     e.attrs
         .iter()
         .find(|(n, _)| n == k)
-        .map(|(_, v)| v.as_str())
+        .map(|(_, v)| v.as_ref())
         .unwrap_or_else(|| panic!("<{}> has no {k}", e.name))
 }
 
@@ -128,14 +128,16 @@ fn meaning(doc: &Element, level_models: &[String]) -> Meaning {
         ..Meaning::default()
     };
     for c in &w.children {
-        match c.name.as_str() {
+        match c.name.as_ref() {
             "include" if c.find("name").is_some() => {
                 let name = text(c, "name").to_string();
                 let pose = nums(text(c, "pose"));
                 if level_models.contains(&name) {
                     m.levels.insert(name, pose);
                 } else {
-                    let st = c.find("static").and_then(|s| s.text.clone());
+                    let st = c
+                        .find("static")
+                        .and_then(|s| s.text.as_ref().map(|t| t.to_string()));
                     m.includes
                         .insert(name, (text(c, "uri").to_string(), pose, st));
                 }
@@ -166,7 +168,7 @@ fn meaning(doc: &Element, level_models: &[String]) -> Meaning {
                 }
             }
             "offset" => m.offset = Some(nums(c.text.as_deref().unwrap())),
-            "crs" => m.crs = c.text.clone(),
+            "crs" => m.crs = c.text.as_ref().map(|t| t.to_string()),
             "gui" => {
                 for p in &c.children {
                     if p.name == "camera" {
@@ -692,7 +694,7 @@ fn offset_is_subtracted_from_everything() {
         let w = doc.find("world").unwrap();
         let mut poses = 0;
         for c in &w.children {
-            if matches!(c.name.as_str(), "include" | "model") {
+            if matches!(c.name.as_ref(), "include" | "model") {
                 if let Some(p) = c.find("pose") {
                     let p = nums(p.text.as_deref().unwrap());
                     assert!(p[0].abs() < 1000.0 && p[1].abs() < 1000.0, "{file}: {p:?}");

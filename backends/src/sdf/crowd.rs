@@ -76,7 +76,7 @@ pub fn crowd_plugin(b: &Building) -> Option<Element> {
         );
     }
     for n in external_agents(c) {
-        p.push(Element::new("external_agent").text(n));
+        p.push(Element::new("external_agent").text(n.to_string()));
     }
     Some(p)
 }

@@ -20,12 +20,12 @@ pub const DOOR_MASS: f64 = 50.0;
 
 /// `<geometry><box><size>x y z</size></box></geometry>`.
 pub(crate) fn box_geometry(size: &str) -> Element {
-    Element::new("geometry").child(Element::new("box").leaf("size", size))
+    Element::new("geometry").child(Element::new("box").leaf("size", size.to_owned()))
 }
 
 /// `<surface><contact><collide_bitmask>mask</collide_bitmask></contact></surface>`.
 pub(crate) fn bitmask_surface(mask: &str) -> Element {
-    Element::new("surface").child(Element::new("contact").leaf("collide_bitmask", mask))
+    Element::new("surface").child(Element::new("contact").leaf("collide_bitmask", mask.to_owned()))
 }
 
 /// Moment of inertia of a box of `mass` about the axis normal to the sides `a` and `b`:

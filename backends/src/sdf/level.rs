@@ -58,7 +58,7 @@ fn mesh_link(b: &Building, model: &str, m: &Mesh) -> Element {
     let wall = m.kind == MeshKind::Walls;
     let visual_name = if wall { m.name.as_str() } else { "visual" };
     let mut visual = Element::new("visual")
-        .attr("name", visual_name)
+        .attr("name", visual_name.to_owned())
         .child(mesh_uri(model, m));
     if wall {
         visual = visual.leaf("transparency", py_float(1.0 - m.material.alpha));

@@ -161,8 +161,8 @@ fn lift_material() -> Element {
 /// `box_link(N, size, pose, bitmask)` of the reference.
 fn box_link(name: &str, size: &str, pose: &str, mask: &str) -> Element {
     Element::new("link")
-        .attr("name", name)
-        .leaf("pose", pose)
+        .attr("name", name.to_owned())
+        .leaf("pose", pose.to_owned())
         .child(
             Element::new("visual")
                 .attr("name", format!("{name}_visual"))
@@ -230,14 +230,16 @@ fn door_joints(
     let half = py_float(door.width / 2.0);
     let joint = |name: &str, child: &str, lo: &str, hi: &str| {
         Element::new("joint")
-            .attr("name", name)
+            .attr("name", name.to_owned())
             .attr("type", "prismatic")
-            .leaf("parent", parent)
-            .leaf("child", child)
+            .leaf("parent", parent.to_owned())
+            .leaf("child", child.to_owned())
             .child(
-                Element::new("axis")
-                    .leaf("xyz", "1 0 0")
-                    .child(Element::new("limit").leaf("lower", lo).leaf("upper", hi)),
+                Element::new("axis").leaf("xyz", "1 0 0").child(
+                    Element::new("limit")
+                        .leaf("lower", lo.to_owned())
+                        .leaf("upper", hi.to_owned()),
+                ),
             )
     };
     [
@@ -255,9 +257,9 @@ fn door_plugin(name: &str, right_joint: &str, left_joint: &str, flavour: Flavour
         Element::new("dx_min_door").text("0.0001"),
         Element::new("f_max_door").text("35.0"),
         Element::new("door")
-            .attr("left_joint_name", left_joint)
-            .attr("name", name)
-            .attr("right_joint_name", right_joint)
+            .attr("left_joint_name", left_joint.to_owned())
+            .attr("name", name.to_owned())
+            .attr("right_joint_name", right_joint.to_owned())
             .attr("type", "DoubleSlidingDoor"),
     ];
     plugin(flavour, "Door", "door", "libdoor.so", children)
@@ -272,7 +274,7 @@ fn plugin<const N: usize>(
 ) -> Element {
     match flavour {
         Flavour::Gz => {
-            let mut c = Element::new("component").attr("name", component);
+            let mut c = Element::new("component").attr("name", component.to_owned());
             c.children.extend(children);
             Element::new("plugin")
                 .attr("name", "register_component")
@@ -281,8 +283,8 @@ fn plugin<const N: usize>(
         }
         Flavour::Classic | Flavour::Ignition => {
             let mut p = Element::new("plugin")
-                .attr("name", name)
-                .attr("filename", filename);
+                .attr("name", name.to_owned())
+                .attr("filename", filename.to_owned());
             p.children.extend(children);
             p
         }

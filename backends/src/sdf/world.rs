@@ -71,7 +71,7 @@ pub fn parse_template(text: &str, skip_camera_pose: bool) -> Result<Element, Str
             let a = a.map_err(|e| e.to_string())?;
             let k = String::from_utf8_lossy(a.key.as_ref()).into_owned();
             let v = a.unescape_value().map_err(|e| e.to_string())?.into_owned();
-            el.attrs.push((k, v));
+            el.attrs.push((k.into(), v.into()));
         }
         Ok(el)
     }
@@ -86,7 +86,10 @@ pub fn parse_template(text: &str, skip_camera_pose: bool) -> Result<Element, Str
     }
     let push_text = |stack: &mut Vec<Element>, s: &str| {
         if let Some(top) = stack.last_mut() {
-            top.text.get_or_insert_with(String::new).push_str(s);
+            match &mut top.text {
+                Some(t) => t.to_mut().push_str(s),
+                None => top.text = Some(s.to_owned().into()),
+            }
         }
     };
     loop {
@@ -168,7 +171,7 @@ fn attr<'a>(e: &'a Element, k: &str) -> Option<&'a str> {
     e.attrs
         .iter()
         .find(|(n, _)| n == k)
-        .map(|(_, v)| v.as_str())
+        .map(|(_, v)| v.as_ref())
 }
 
 /// The element whose text is the GUI camera pose, in any flavour's layout.
@@ -247,7 +250,7 @@ fn spawn_yaw(b: &Building, level: &Level, v: Handle<Vertex>) -> Option<f64> {
 
 fn include(name: &str, uri: &str, pose: String) -> Element {
     Element::new("include")
-        .leaf("name", name)
+        .leaf("name", name.to_owned())
         .leaf("uri", format!("model://{uri}"))
         .leaf("pose", pose)
 }
@@ -449,7 +452,7 @@ pub fn world(b: &Building, flavour: Flavour, opts: &WorldOptions) -> Element {
     let gui = child_mut(world, "gui").expect("just ensured");
     if !opts.skip_camera_pose {
         if let Some(p) = camera_pose_mut(gui) {
-            p.text = Some(camera_pose(b));
+            p.text = Some(camera_pose(b).into());
             p.children.clear();
         }
     }

@@ -2,28 +2,35 @@
 //! order, text is escaped, output is deterministic (two-space indentation, one element per
 //! line, `<tag attr="v" />` for empty elements, as the reference's `xml.etree` writes).
 
+use std::borrow::Cow;
+
 #[derive(Debug, Clone, PartialEq, Default)]
 pub struct Element {
-    pub name: String,
-    pub attrs: Vec<(String, String)>,
+    // `Cow`: nearly every tag, attribute name and many texts are literals; a world of a
+    // thousand models was a quarter allocations of such copies.
+    pub name: Text,
+    pub attrs: Vec<(Text, Text)>,
     pub children: Vec<Element>,
-    pub text: Option<String>,
+    pub text: Option<Text>,
 }
 
+/// A literal, or text made at run time.
+pub type Text = Cow<'static, str>;
+
 impl Element {
-    pub fn new(name: impl Into<String>) -> Element {
+    pub fn new(name: impl Into<Text>) -> Element {
         Element {
             name: name.into(),
             ..Element::default()
         }
     }
     /// Adds an attribute (builder style).
-    pub fn attr(mut self, k: impl Into<String>, v: impl Into<String>) -> Element {
+    pub fn attr(mut self, k: impl Into<Text>, v: impl Into<Text>) -> Element {
         self.attrs.push((k.into(), v.into()));
         self
     }
     /// Sets the text content (builder style).
-    pub fn text(mut self, t: impl Into<String>) -> Element {
+    pub fn text(mut self, t: impl Into<Text>) -> Element {
         self.text = Some(t.into());
         self
     }
@@ -33,7 +40,7 @@ impl Element {
         self
     }
     /// Appends a child `<name>text</name>` (builder style).
-    pub fn leaf(self, name: &str, text: impl Into<String>) -> Element {
+    pub fn leaf(self, name: &'static str, text: impl Into<Text>) -> Element {
         self.child(Element::new(name).text(text))
     }
     pub fn push(&mut self, c: Element) {
