@@ -153,9 +153,15 @@ pub fn resolve_textures<'a>(
 ) -> (Textures, Vec<Diagnostic>) {
     let mut textures = Textures::default();
     let mut diags = Vec::new();
-    let placeholder = TextureImage {
-        png: placeholder_png(),
-        placeholder: true,
+    // Encoded only when some texture needs it (most maps find all of theirs).
+    let placeholder_image = std::cell::OnceCell::new();
+    let placeholder = || -> TextureImage {
+        placeholder_image
+            .get_or_init(|| TextureImage {
+                png: placeholder_png(),
+                placeholder: true,
+            })
+            .clone()
     };
     for name in names {
         if textures.images.contains_key(name) {
@@ -171,7 +177,7 @@ pub fn resolve_textures<'a>(
                 )
                 .with_help("download it into a --texture-path directory and name it by file name; a placeholder is used"),
             );
-            placeholder.clone()
+            placeholder()
         } else {
             let found = texture_file_name(name).and_then(|f| find(&f).map(|bytes| (f, bytes)));
             match found {
@@ -190,7 +196,7 @@ pub fn resolve_textures<'a>(
                         )
                         .with_help("a placeholder texture is used instead"),
                     );
-                    placeholder.clone()
+                    placeholder()
                 }
                 None => {
                     diags.push(
@@ -204,7 +210,7 @@ pub fn resolve_textures<'a>(
                              a placeholder texture is used instead",
                         ),
                     );
-                    placeholder.clone()
+                    placeholder()
                 }
             }
         };

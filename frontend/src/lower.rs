@@ -424,9 +424,12 @@ impl Lower<'_> {
         let Some(entries) = self.map(node, format_args!("the parameters of {what}")) else {
             return (out, invalid);
         };
-        // Name -> position in `out`: a later duplicate replaces the earlier one in place,
-        // without a scan per parameter (maps are untrusted: a lane may have 10^5 of them).
-        let mut position: std::collections::HashMap<&str, usize> = std::collections::HashMap::new();
+        // A later duplicate replaces the earlier one in place. Name -> position in `out`
+        // for long lists, without a scan per parameter (maps are untrusted: a lane may have
+        // 10^5 of them); the few of a usual element are scanned (a hash map per vertex was
+        // a tenth of lowering).
+        let mut position: Option<std::collections::HashMap<&str, usize>> =
+            (entries.len() > 16).then(std::collections::HashMap::new);
         out.0.reserve_exact(entries.len());
         for (k, v) in entries {
             let Some(name) = k.key_text() else {
@@ -440,10 +443,16 @@ impl Lower<'_> {
                         value,
                         span: v.span,
                     };
-                    match position.get(name) {
-                        Some(&i) => out.0[i] = p,
+                    let earlier = match &position {
+                        Some(m) => m.get(name).copied(),
+                        None => out.0.iter().position(|q| q.name == name),
+                    };
+                    match earlier {
+                        Some(i) => out.0[i] = p,
                         None => {
-                            position.insert(name, out.0.len());
+                            if let Some(m) = &mut position {
+                                m.insert(name, out.0.len());
+                            }
                             out.0.push(p);
                         }
                     }

@@ -754,7 +754,7 @@ mod tests {
             .iter()
             .skip(1)
             .take(4)
-            .map(|c| c.attrs[0].1.as_str())
+            .map(|c| c.attrs[0].1.as_ref())
             .collect();
         assert_eq!(
             order,
