@@ -59,7 +59,7 @@ pub fn rules() -> impl Iterator<Item = &'static Rule> {
 pub fn validate(b: &Building) -> Vec<Diagnostic> {
     let ctx = Context::new(b);
     let rules: Vec<&Rule> = rules().collect();
-    let mut out = if elements(b) < PARALLEL_FROM {
+    let mut out = if !(PARALLEL_FROM..PARALLEL_BELOW).contains(&elements(b)) {
         let mut out = Vec::new();
         for rule in &rules {
             (rule.check)(&ctx, &mut out);
@@ -80,8 +80,11 @@ pub fn validate(b: &Building) -> Vec<Diagnostic> {
 }
 
 /// From this many waypoints, walls, models and doors on, the rules run on two threads
-/// (a thread costs about what validating a few hundred elements does).
+/// (a thread costs about what validating a few hundred elements does); from the second
+/// bound on, on one again: two rules then hold their indexes at once, and a huge map's
+/// memory is bounded by its size (issue 18) more tightly than its time.
 const PARALLEL_FROM: usize = 1000;
+const PARALLEL_BELOW: usize = 20_000;
 
 fn elements(b: &Building) -> usize {
     b.vertices.len() + b.walls.len() + b.models.len() + b.doors.len()
