@@ -24,6 +24,8 @@ static LIVE: Mutex<Vec<PathBuf>> = Mutex::new(Vec::new());
 /// unregistered.
 static GATE: RwLock<()> = RwLock::new(());
 const TMP_MARK: &str = ".mapc-tmp-";
+/// The flush [`start_early_flush`] started, joined before the first batch is staged.
+static EARLY_FLUSH: Mutex<Option<std::thread::JoinHandle<()>>> = Mutex::new(None);
 
 /// Resolves `rel` inside `root`, refusing anything that could escape it (absolute paths,
 /// `..`, drive prefixes, empty paths).
@@ -401,6 +403,49 @@ fn parallel<T: Sync, R: Send>(items: &[T], work: impl Fn(&T) -> R + Sync) -> Vec
 /// the dirty inode tables first narrows the window to 5 s. The dirty data it writes would
 /// otherwise wait for the flush after staging, so little is added; errors are ignored (the
 /// flush after staging is what makes the outputs durable).
+/// Starts, on a thread of its own, the flush that [`write_dirs`] makes before staging a
+/// batch of new files (see [`clean_inode_tables`]), for a command about to write into
+/// `dir`: the file system then writes other processes' dirty pages (the reference
+/// generator's textures, a build step's objects) while the map is read and its files are
+/// made, rather than after. Only for a first compile (`dir` does not exist): a rerun whose
+/// outputs are unchanged writes nothing and needs no flush. The thread is joined before
+/// staging; it only ever calls `syncfs`.
+pub fn start_early_flush(dir: &Path) {
+    if dir.exists() {
+        return;
+    }
+    // The nearest existing ancestor is on the file system the outputs will be on.
+    let mut on = dir.parent();
+    while let Some(d) = on {
+        let d = if d.as_os_str().is_empty() {
+            Path::new(".")
+        } else {
+            d
+        };
+        if d.is_dir() {
+            let d = d.to_path_buf();
+            let h = std::thread::spawn(move || clean_inode_tables(&d));
+            if let Ok(mut slot) = EARLY_FLUSH.lock() {
+                *slot = Some(h);
+            }
+            return;
+        }
+        on = d.parent();
+    }
+}
+
+/// Waits for the flush [`start_early_flush`] started; whether there was one.
+fn join_early_flush() -> bool {
+    let h = EARLY_FLUSH.lock().ok().and_then(|mut slot| slot.take());
+    match h {
+        Some(h) => {
+            let _ = h.join();
+            true
+        }
+        None => false,
+    }
+}
+
 fn clean_inode_tables(root: &Path) {
     #[cfg(target_os = "linux")]
     {
@@ -693,7 +738,9 @@ pub fn write_dirs(dirs: &[DirWrite]) -> Result<Vec<Written>, String> {
         }
     }
     // Measured: on a dozen files the extra flush costs more than it saves (BENCHMARKS.md).
-    if jobs.len() >= 32 {
+    // An early flush is joined whatever the batch: it has written what the flush after
+    // staging would otherwise wait for.
+    if !join_early_flush() && jobs.len() >= 32 {
         clean_inode_tables(dirs[0].root);
     }
     let results = parallel(&jobs, |j| stage(j.target, temporary_name(j.target), j.data));

@@ -91,6 +91,7 @@ pub(crate) fn run(flavour: Flavour, args: &WorldArgs) -> ExitCode {
         .filter(|p| !p.as_os_str().is_empty())
         .unwrap_or(Path::new("."));
 
+    output::start_early_flush(&args.output_model_dir);
     // A world includes its level models, so what breaks meshes breaks it too.
     let wanted = Outputs::WORLDS.union(Outputs::MESHES);
     let mut checked = match load_and_check(&args.input, &args.diag.lints) {
