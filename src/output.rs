@@ -395,14 +395,6 @@ fn parallel<T: Sync, R: Send>(items: &[T], work: impl Fn(&T) -> R + Sync) -> Vec
     done.into_iter().map(|(_, r)| r).collect()
 }
 
-/// Before a batch of new files on ext2/3/4: one `syncfs`. Without a journal, ext4 avoids
-/// reusing an inode freed less than 5 s ago, or 5 min ago while its inode-table block is
-/// still dirty, and checks every free inode of the group from its start for each new file
-/// (the whole group when it holds no other free inode); after a busy minute of builds that
-/// is thousands of checks per file, most of a first compile's time (BENCHMARKS.md). Writing
-/// the dirty inode tables first narrows the window to 5 s. The dirty data it writes would
-/// otherwise wait for the flush after staging, so little is added; errors are ignored (the
-/// flush after staging is what makes the outputs durable).
 /// Starts, on a thread of its own, the flush that [`write_dirs`] makes before staging a
 /// batch of new files (see [`clean_inode_tables`]), for a command about to write into
 /// `dir`: the file system then writes other processes' dirty pages (the reference
@@ -446,6 +438,14 @@ fn join_early_flush() -> bool {
     }
 }
 
+/// Before a batch of new files on ext2/3/4: one `syncfs`. Without a journal, ext4 avoids
+/// reusing an inode freed less than 5 s ago, or 5 min ago while its inode-table block is
+/// still dirty, and checks every free inode of the group from its start for each new file
+/// (the whole group when it holds no other free inode); after a busy minute of builds that
+/// is thousands of checks per file, most of a first compile's time (BENCHMARKS.md). Writing
+/// the dirty inode tables first narrows the window to 5 s. The dirty data it writes would
+/// otherwise wait for the flush after staging, so little is added; errors are ignored (the
+/// flush after staging is what makes the outputs durable).
 fn clean_inode_tables(root: &Path) {
     #[cfg(target_os = "linux")]
     {
