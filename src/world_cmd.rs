@@ -109,7 +109,7 @@ pub(crate) fn run(flavour: Flavour, args: &WorldArgs) -> ExitCode {
                 template,
                 skip_camera_pose: args.skip_camera_pose,
             };
-            let (meshes, mut files) = world_files_untextured(b, flavour, &opts);
+            let (meshes, mut files, tree) = world_files_untextured(b, flavour, &opts);
             let names = mapc_backends::texture_names(meshes.iter().flat_map(|(_, m)| m.all()));
             // Found images are linked from where they are (below), so only their heads are
             // read, to tell a PNG from anything else; placeholders are whole.
@@ -141,6 +141,8 @@ pub(crate) fn run(flavour: Flavour, args: &WorldArgs) -> ExitCode {
                     }),
                 }
             }
+            // The process ends soon: the tree and the meshes are not freed piece by piece.
+            std::mem::forget((tree, meshes, textures));
             out = Some((files, links));
         }
     }

@@ -506,14 +506,23 @@ pub fn world_files(
 /// texture images in `models` (see [`crate::level_texture_paths`]: a caller that has the
 /// images on disk links them instead of holding a copy of their bytes per level). The
 /// world's text is built on a second thread while the levels' meshes are: on a large map
-/// each is about half of the work.
+/// each is about half of the work. The world's element tree comes back too, not freed: a
+/// caller about to exit may skip freeing it (a fifth of that thread's time).
 pub fn world_files_untextured(
     b: &Building,
     flavour: Flavour,
     opts: &WorldOptions,
-) -> (Vec<(Handle<Level>, crate::LevelMeshes)>, WorldFiles) {
+) -> (
+    Vec<(Handle<Level>, crate::LevelMeshes)>,
+    WorldFiles,
+    Element,
+) {
     std::thread::scope(|s| {
-        let world = s.spawn(|| (world_text(b, flavour, opts), super::crowd::crowd_files(b)));
+        let world = s.spawn(|| {
+            let tree = world(b, flavour, opts);
+            let text = tree.to_document(false);
+            (text, tree, super::crowd::crowd_files(b))
+        });
         let meshes: Vec<_> = b
             .levels
             .iter()
@@ -524,7 +533,7 @@ pub fn world_files_untextured(
             models.extend(super::level::level_model_files_untextured(b, *h, m));
         }
         // A panic on the other thread is a bug: surface it here.
-        let (world, crowd) = world
+        let (world, tree, crowd) = world
             .join()
             .unwrap_or_else(|p| std::panic::resume_unwind(p));
         (
@@ -534,6 +543,7 @@ pub fn world_files_untextured(
                 models,
                 crowd,
             },
+            tree,
         )
     })
 }
