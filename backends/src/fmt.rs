@@ -152,6 +152,21 @@ pub fn push_fixed(out: &mut String, x: f64, prec: u32) {
 mod tests {
     use super::{push_fixed, py_float};
 
+    /// Xorshift values of either sign spread over `decades` powers of ten from 10^`lowest`,
+    /// each with the generator's state (for tests that draw more from it).
+    fn random_values(mut seed: u64, decades: u64, lowest: i32) -> impl Iterator<Item = (u64, f64)> {
+        std::iter::from_fn(move || {
+            seed ^= seed << 13;
+            seed ^= seed >> 7;
+            seed ^= seed << 17;
+            let mag = 10f64.powi((seed % decades) as i32 + lowest);
+            Some((
+                seed,
+                ((seed >> 11) as f64 / (1u64 << 53) as f64 - 0.5) * 2.0 * mag,
+            ))
+        })
+    }
+
     #[test]
     fn matches_python_repr() {
         for (x, s) in [
@@ -182,13 +197,7 @@ mod tests {
         // differ from Rust's in ties: Python and ryu round half to even, e.g.
         // -649260000196054.25 prints as ...054.2.)
         assert_eq!(py_float(-6.492600001960543e14), "-649260000196054.2");
-        let mut seed = 0x9E3779B97F4A7C15u64;
-        for _ in 0..20_000 {
-            seed ^= seed << 13;
-            seed ^= seed >> 7;
-            seed ^= seed << 17;
-            let mag = 10f64.powi((seed % 60) as i32 - 30);
-            let x = ((seed >> 11) as f64 / (1u64 << 53) as f64 - 0.5) * 2.0 * mag;
+        for (_, x) in random_values(0x9E3779B97F4A7C15, 60, -30).take(20_000) {
             if x == 0.0 {
                 continue;
             }
@@ -209,13 +218,8 @@ mod tests {
 
     #[test]
     fn the_shortcut_is_the_laid_out_text() {
-        let mut seed = 0x9E3779B97F4A7C15u64;
-        for k in 0..200_000 {
-            seed ^= seed << 13;
-            seed ^= seed >> 7;
-            seed ^= seed << 17;
-            let mag = 10f64.powi((seed % 44) as i32 - 22);
-            let x = ((seed >> 11) as f64 / (1u64 << 53) as f64 - 0.5) * 2.0 * mag;
+        let values = random_values(0x9E3779B97F4A7C15, 44, -22).take(200_000);
+        for (k, (_, x)) in values.enumerate() {
             // And round values, integers and the edges of the positional range.
             let y = [x, (x * 1e3).round(), 1e-5 * (k as f64), 1e16 - k as f64][k % 4];
             assert_eq!(super::py_float(y), super::py_float_laid_out(y), "{y:e}");
@@ -284,13 +288,7 @@ mod tests {
             check(k as f64 / 16384.0);
             check(-(k as f64) / 16384.0);
         }
-        let mut seed = 0x2545F4914F6CDD1Du64;
-        for _ in 0..200_000 {
-            seed ^= seed << 13;
-            seed ^= seed >> 7;
-            seed ^= seed << 17;
-            let mag = 10f64.powi((seed % 30) as i32 - 16);
-            let x = ((seed >> 11) as f64 / (1u64 << 53) as f64 - 0.5) * 2.0 * mag;
+        for (seed, x) in random_values(0x2545F4914F6CDD1D, 30, -16).take(200_000) {
             check(x);
             // Values a few ulps from a decimal tie, where a shortcut would slip.
             let tie = ((seed >> 20) % 2_000_000) as f64 / 10_000.0 + 0.00005;
