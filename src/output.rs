@@ -382,15 +382,9 @@ fn parallel<T: Sync, R: Send>(items: &[T], work: impl Fn(&T) -> R + Sync) -> Vec
         }
         out
     };
-    let mut done: Vec<(usize, R)> = std::thread::scope(|s| {
-        let helpers: Vec<_> = (1..threads).map(|_| s.spawn(run)).collect();
-        let mut all = run();
-        for h in helpers {
-            // A panic in a helper is a bug; surface it here.
-            all.extend(h.join().unwrap_or_else(|p| std::panic::resume_unwind(p)));
-        }
-        all
-    });
+    // A panic in the helper is a bug: `join` surfaces it here.
+    let (mut done, here) = mapc_ir::par::join(run, run);
+    done.extend(here);
     done.sort_unstable_by_key(|(i, _)| *i);
     done.into_iter().map(|(_, r)| r).collect()
 }
@@ -416,7 +410,7 @@ pub fn start_early_flush(dir: &Path) {
         };
         if d.is_dir() {
             let d = d.to_path_buf();
-            let h = std::thread::spawn(move || clean_inode_tables(&d));
+            let h = mapc_ir::par::spawn(move || clean_inode_tables(&d));
             if let Ok(mut slot) = EARLY_FLUSH.lock() {
                 *slot = Some(h);
             }

@@ -9,6 +9,7 @@ mod diag;
 mod geom;
 pub mod lints;
 mod navmesh;
+pub mod par;
 mod params;
 mod span;
 mod summary;

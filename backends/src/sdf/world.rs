@@ -517,35 +517,35 @@ pub fn world_files_untextured(
     WorldFiles,
     Element,
 ) {
-    std::thread::scope(|s| {
-        let world = s.spawn(|| {
+    // A panic on the other thread is a bug: `join` surfaces it here.
+    let ((world, tree, crowd), (meshes, models)) = mapc_ir::par::join(
+        || {
             let tree = world(b, flavour, opts);
             let text = tree.to_document(false);
             (text, tree, super::crowd::crowd_files(b))
-        });
-        let meshes: Vec<_> = b
-            .levels
-            .iter()
-            .map(|(h, _)| (h, crate::level_meshes(b, h)))
-            .collect();
-        let mut models = Vec::new();
-        for (h, m) in &meshes {
-            models.extend(super::level::level_model_files_untextured(b, *h, m));
-        }
-        // A panic on the other thread is a bug: surface it here.
-        let (world, tree, crowd) = world
-            .join()
-            .unwrap_or_else(|p| std::panic::resume_unwind(p));
-        (
-            meshes,
-            WorldFiles {
-                world,
-                models,
-                crowd,
-            },
-            tree,
-        )
-    })
+        },
+        || {
+            let meshes: Vec<_> = b
+                .levels
+                .iter()
+                .map(|(h, _)| (h, crate::level_meshes(b, h)))
+                .collect();
+            let mut models = Vec::new();
+            for (h, m) in &meshes {
+                models.extend(super::level::level_model_files_untextured(b, *h, m));
+            }
+            (meshes, models)
+        },
+    );
+    (
+        meshes,
+        WorldFiles {
+            world,
+            models,
+            crowd,
+        },
+        tree,
+    )
 }
 
 #[cfg(test)]

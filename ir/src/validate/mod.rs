@@ -106,17 +106,9 @@ fn run_on_two_threads(ctx: &Context, rules: &[&Rule]) -> Vec<Diagnostic> {
         }
         done
     };
-    let mut done = std::thread::scope(|s| {
-        let other = s.spawn(run);
-        let mut done = run();
-        // A panicking rule is a bug: surface it here.
-        done.extend(
-            other
-                .join()
-                .unwrap_or_else(|p| std::panic::resume_unwind(p)),
-        );
-        done
-    });
+    // A panicking rule is a bug: `join` surfaces it here.
+    let (other, mut done) = crate::par::join(run, run);
+    done.extend(other);
     done.sort_unstable_by_key(|(i, _)| *i);
     done.into_iter().flat_map(|(_, d)| d).collect()
 }

@@ -1,0 +1,206 @@
+//! Two jobs at once, the second one on another CPU from its first instruction.
+//!
+//! Why not `std::thread::scope` alone: Linux often queues a new thread on its parent's CPU,
+//! where it waits until the parent blocks; on a 2-vCPU VM, 60 % of such threads started
+//! only when the parent joined them (0.5 ms late in a 0.5 ms job: no parallelism at all).
+//! So the helper is placed on another CPU the process may use before it first runs, and
+//! takes back every CPU as soon as it does (it may still move later, as any thread).
+//! Measured (BENCHMARKS.md, "First compile, third pass"): it then starts 60-180 µs after
+//! the spawn, the time an idle vCPU takes to wake.
+
+/// Runs `a` on a new thread, placed on another CPU, and `b` on this one; returns both
+/// results. A panic in either is resumed here, after both have ended. With a single CPU
+/// (or where placing threads is not supported) `a` still runs on its own thread.
+pub fn join<RA, RB>(a: impl FnOnce() -> RA + Send, b: impl FnOnce() -> RB) -> (RA, RB)
+where
+    RA: Send,
+{
+    /// Joins the thread when dropped: also when `b` unwinds, so nothing `a` borrows can
+    /// end before the thread does.
+    struct Joined<T>(Option<std::thread::JoinHandle<T>>);
+    impl<T> Drop for Joined<T> {
+        fn drop(&mut self) {
+            if let Some(h) = self.0.take() {
+                let _ = h.join();
+            }
+        }
+    }
+    let cpus = Placement::now();
+    // `std::thread::scope` would do, but its handles do not give the pthread to place.
+    // SAFETY: the thread is joined before this function returns or unwinds (`Joined`),
+    // so whatever `a` borrows outlives it.
+    let other = unsafe {
+        std::thread::Builder::new().spawn_unchecked(move || {
+            cpus.restore();
+            a()
+        })
+    }
+    .expect("failed to spawn thread");
+    cpus.move_away(&other);
+    let mut other = Joined(Some(other));
+    let rb = b();
+    let ra = match other.0.take().map(std::thread::JoinHandle::join) {
+        Some(Ok(ra)) => ra,
+        Some(Err(p)) => std::panic::resume_unwind(p),
+        None => unreachable!("joined once"),
+    };
+    (ra, rb)
+}
+
+/// [`std::thread::spawn`], with the new thread placed on another CPU (as in [`join`]).
+pub fn spawn<T: Send + 'static>(
+    f: impl FnOnce() -> T + Send + 'static,
+) -> std::thread::JoinHandle<T> {
+    let cpus = Placement::now();
+    let h = std::thread::spawn(move || {
+        cpus.restore();
+        f()
+    });
+    cpus.move_away(&h);
+    h
+}
+
+/// The CPUs this thread may run on, and the one it runs on.
+#[derive(Clone, Copy)]
+struct Placement {
+    #[cfg(target_os = "linux")]
+    allowed: Option<libc::cpu_set_t>,
+    #[cfg(target_os = "linux")]
+    here: i32,
+}
+
+impl Placement {
+    fn now() -> Placement {
+        #[cfg(target_os = "linux")]
+        // SAFETY: plain syscalls with a zeroed out-parameter of the right size.
+        unsafe {
+            let mut set: libc::cpu_set_t = std::mem::zeroed();
+            let ok = libc::sched_getaffinity(0, std::mem::size_of_val(&set), &mut set) == 0;
+            Placement {
+                allowed: ok.then_some(set),
+                here: libc::sched_getcpu(),
+            }
+        }
+        #[cfg(not(target_os = "linux"))]
+        Placement {}
+    }
+
+    /// Makes the thread behind `h` (not yet running, or just started) run on one of the
+    /// allowed CPUs other than this one; nothing when there is none.
+    fn move_away<T>(&self, h: &std::thread::JoinHandle<T>) {
+        #[cfg(target_os = "linux")]
+        {
+            let (Some(mut set), Ok(here)) = (self.allowed, usize::try_from(self.here)) else {
+                return;
+            };
+            if here >= libc::CPU_SETSIZE as usize {
+                return;
+            }
+            // SAFETY: CPU_* only touch the set; the pthread is alive (not yet joined).
+            unsafe {
+                libc::CPU_CLR(here, &mut set);
+                if libc::CPU_COUNT(&set) > 0 {
+                    use std::os::unix::thread::JoinHandleExt;
+                    let t = h.as_pthread_t();
+                    libc::pthread_setaffinity_np(t, std::mem::size_of_val(&set), &set);
+                }
+            }
+        }
+        #[cfg(not(target_os = "linux"))]
+        let _ = h;
+    }
+
+    /// On the new thread: may run anywhere the parent could.
+    fn restore(&self) {
+        #[cfg(target_os = "linux")]
+        if let Some(set) = self.allowed {
+            // SAFETY: a plain syscall on the calling thread with a valid set.
+            unsafe {
+                libc::sched_setaffinity(0, std::mem::size_of_val(&set), &set);
+            }
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn both_results_come_back_and_borrows_work() {
+        let data: Vec<u64> = (1..=1000).collect();
+        let (a, b) = join(
+            || data.iter().filter(|&&x| x % 2 == 0).sum::<u64>(),
+            || data.iter().filter(|&&x| x % 2 == 1).sum::<u64>(),
+        );
+        assert_eq!((a, b), (250_500, 250_000));
+        let h = spawn(|| 6 * 7);
+        assert_eq!(h.join().unwrap(), 42);
+    }
+
+    #[test]
+    fn a_panic_on_either_side_reaches_the_caller_after_both_ended() {
+        let done = std::sync::atomic::AtomicBool::new(false);
+        let r = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
+            join(
+                || panic!("helper"),
+                || done.store(true, std::sync::atomic::Ordering::SeqCst),
+            )
+        }));
+        assert!(r.is_err());
+        assert!(done.load(std::sync::atomic::Ordering::SeqCst));
+        let r = std::panic::catch_unwind(|| join(|| 1, || -> u8 { panic!("here") }));
+        assert!(r.is_err());
+    }
+
+    /// The helper is held off every CPU but the caller's, then may run anywhere again.
+    #[cfg(target_os = "linux")]
+    #[test]
+    fn the_helper_is_placed_away_then_released() {
+        fn affinity(t: libc::pthread_t) -> libc::cpu_set_t {
+            // SAFETY: a zeroed set of the right size, filled by the call.
+            unsafe {
+                let mut set: libc::cpu_set_t = std::mem::zeroed();
+                assert_eq!(
+                    libc::pthread_getaffinity_np(t, std::mem::size_of_val(&set), &mut set),
+                    0
+                );
+                set
+            }
+        }
+        let cpus = Placement::now();
+        let (Some(allowed), Ok(here)) = (cpus.allowed, usize::try_from(cpus.here)) else {
+            return;
+        };
+        // SAFETY: reads a plain set.
+        if unsafe { libc::CPU_COUNT(&allowed) } < 2 {
+            eprintln!("skipped: a single CPU, nowhere else to place the helper");
+            return;
+        }
+        let go = std::sync::Barrier::new(2);
+        let (tx, rx) = std::sync::mpsc::channel();
+        let helper = || {
+            go.wait();
+            cpus.restore();
+            // SAFETY: the calling thread's own id.
+            tx.send(affinity(unsafe { libc::pthread_self() })).unwrap();
+        };
+        // SAFETY: joined below, before `go` and `tx` go.
+        let h = unsafe { std::thread::Builder::new().spawn_unchecked(helper) }.unwrap();
+        cpus.move_away(&h);
+        use std::os::unix::thread::JoinHandleExt;
+        let placed = affinity(h.as_pthread_t());
+        // SAFETY: reads plain sets.
+        unsafe {
+            assert!(!libc::CPU_ISSET(here, &placed), "still allowed on {here}");
+            assert_eq!(libc::CPU_COUNT(&placed), libc::CPU_COUNT(&allowed) - 1);
+        }
+        go.wait();
+        let released = rx.recv().unwrap();
+        h.join().unwrap();
+        // SAFETY: reads plain sets.
+        unsafe {
+            assert!(libc::CPU_EQUAL(&released, &allowed));
+        }
+    }
+}
