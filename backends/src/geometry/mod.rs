@@ -89,6 +89,17 @@ pub fn level_meshes(b: &Building, level: Handle<Level>) -> LevelMeshes {
     out
 }
 
+/// The mesh of a level's first floor (`floor_1`), as [`level_meshes`] makes it: `None`
+/// when the level has no floor or the first one has no area. The world's camera is placed
+/// by it, without the cost of every other mesh of the level.
+pub fn first_floor_mesh(b: &Building, level: Handle<Level>) -> Option<Mesh> {
+    let lvl = &b.levels[level];
+    let &fh = lvl.floors.first()?;
+    let floor = &b.floors[fh];
+    let region = floors::region_with_cutters(b, floor, &floors::cutters(b, level))?;
+    Some(floors::floor_mesh(&region, &floor.params, 1))
+}
+
 /// Meshes of every level, in document order.
 pub fn building_meshes(b: &Building) -> Vec<(Handle<Level>, LevelMeshes)> {
     b.levels

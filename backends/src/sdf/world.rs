@@ -258,10 +258,8 @@ fn include(name: &str, uri: &str, pose: String) -> Element {
 /// Centre of the bounding box of the first floor of the first level (holes and shafts cut
 /// out), map frame; `None` when that floor is missing, degenerate or cut away.
 fn first_floor_centre(b: &Building) -> Option<(f64, f64)> {
-    let (h, lvl) = b.levels.iter().next()?;
-    lvl.floors.first()?;
-    let meshes = crate::level_meshes(b, h);
-    let f = meshes.floors.first().filter(|f| f.name == "floor_1")?;
+    let (h, _) = b.levels.iter().next()?;
+    let f = crate::geometry::first_floor_mesh(b, h)?;
     let (lo, hi) = f.bounds()?;
     Some(((lo[0] + hi[0]) / 2.0, (lo[1] + hi[1]) / 2.0))
 }
@@ -518,12 +516,7 @@ pub fn world_files_untextured(
     Element,
 ) {
     // A panic on the other thread is a bug: `join` surfaces it here.
-    let ((world, tree, crowd), (meshes, models)) = mapc_ir::par::join(
-        || {
-            let tree = world(b, flavour, opts);
-            let text = tree.to_document(false);
-            (text, tree, super::crowd::crowd_files(b))
-        },
+    let ((meshes, models), (world, tree, crowd)) = mapc_ir::par::join(
         || {
             let meshes: Vec<_> = b
                 .levels
@@ -535,6 +528,11 @@ pub fn world_files_untextured(
                 models.extend(super::level::level_model_files_untextured(b, *h, m));
             }
             (meshes, models)
+        },
+        || {
+            let tree = world(b, flavour, opts);
+            let text = tree.to_document(false);
+            (text, tree, super::crowd::crowd_files(b))
         },
     );
     (
