@@ -46,6 +46,18 @@ pub fn level_obj_files_from(
     level: Handle<Level>,
     meshes: &LevelMeshes,
 ) -> Vec<OutputFile> {
+    let objs = meshes.all().map(|m| mesh_obj(m, b.offset)).collect();
+    level_obj_files_with(b, level, meshes, objs)
+}
+
+/// As [`level_obj_files_from`], with the OBJ text of each mesh already made: `objs[i]` is
+/// [`mesh_obj`] of the i-th mesh of `meshes.all()`.
+pub(crate) fn level_obj_files_with(
+    b: &Building,
+    level: Handle<Level>,
+    meshes: &LevelMeshes,
+    objs: Vec<String>,
+) -> Vec<OutputFile> {
     if meshes.is_empty() {
         return Vec::new();
     }
@@ -53,10 +65,11 @@ pub fn level_obj_files_from(
     let alphas = wall_alpha_texts(b, level);
     let mut out = Vec::new();
     let ordered: Vec<&Mesh> = meshes.all().collect();
-    for m in &ordered {
+    debug_assert_eq!(ordered.len(), objs.len());
+    for (m, obj) in ordered.iter().zip(objs) {
         out.push(OutputFile {
             path: dir.join(format!("{}.obj", m.name)),
-            contents: mesh_obj(m, b.offset).into_bytes(),
+            contents: obj.into_bytes(),
         });
         let d = match m.kind {
             MeshKind::Walls => alphas

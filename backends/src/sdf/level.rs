@@ -124,6 +124,18 @@ pub fn level_model_files_untextured(
     level: Handle<Level>,
     meshes: &LevelMeshes,
 ) -> Vec<OutputFile> {
+    let objs = meshes.all().map(|m| crate::mesh_obj(m, b.offset)).collect();
+    level_model_files_with(b, level, meshes, objs)
+}
+
+/// As [`level_model_files_untextured`], with the OBJ text of each mesh already made (see
+/// [`crate::obj::level_obj_files_with`]).
+pub(crate) fn level_model_files_with(
+    b: &Building,
+    level: Handle<Level>,
+    meshes: &LevelMeshes,
+    objs: Vec<String>,
+) -> Vec<OutputFile> {
     let dir = PathBuf::from(level_model_name(b, level));
     let mut out = vec![
         OutputFile {
@@ -137,7 +149,7 @@ pub fn level_model_files_untextured(
                 .into_bytes(),
         },
     ];
-    out.extend(crate::level_obj_files_from(b, level, meshes));
+    out.extend(crate::obj::level_obj_files_with(b, level, meshes, objs));
     out
 }
 

@@ -26,6 +26,8 @@ use super::Flavour;
 use crate::py_float;
 use mapc_ir::{Building, CoordinateSystem, Handle, Level, Vertex};
 use std::collections::HashMap;
+use std::sync::atomic::{AtomicUsize, Ordering};
+use std::sync::{Condvar, Mutex, OnceLock};
 
 const GZ_TEMPLATE: &str = include_str!("templates/gz.sdf");
 const IGNITION_TEMPLATE: &str = include_str!("templates/ignition.sdf");
@@ -503,9 +505,14 @@ pub fn world_files(
 /// The level meshes (one entry per level, document order) and [`world_files`] without the
 /// texture images in `models` (see [`crate::level_texture_paths`]: a caller that has the
 /// images on disk links them instead of holding a copy of their bytes per level). The
-/// world's text is built on a second thread while the levels' meshes are: on a large map
-/// each is about half of the work. The world's element tree comes back too, not freed: a
-/// caller about to exit may skip freeing it (a fifth of that thread's time).
+/// world's element tree comes back too, not freed: a caller about to exit may skip freeing
+/// it (a fifth of its cost).
+///
+/// On two threads: this one builds the world's tree and text (thousands of small
+/// allocations, which here reuse the heap the map's YAML tree freed), a helper makes the
+/// level meshes; then both write the meshes' OBJ texts, taking the next mesh as they come
+/// free. Which half is larger depends on the map: clinic's 119 doors make its world the
+/// larger, airport_terminal's 70 floors its meshes (BENCHMARKS.md).
 pub fn world_files_untextured(
     b: &Building,
     flavour: Flavour,
@@ -515,26 +522,49 @@ pub fn world_files_untextured(
     WorldFiles,
     Element,
 ) {
-    // A panic on the other thread is a bug: `join` surfaces it here.
-    let ((meshes, models), (world, tree, crowd)) = mapc_ir::par::join(
+    let made = Made::default();
+    let next = AtomicUsize::new(0);
+    // OBJ texts of the meshes (every level's, in order), each taken by whoever is free.
+    let objs = |meshes: &[crate::LevelMeshes]| {
+        let all: Vec<&crate::Mesh> = meshes.iter().flat_map(|m| m.all()).collect();
+        let mut done = Vec::new();
+        loop {
+            let i = next.fetch_add(1, Ordering::Relaxed);
+            let Some(m) = all.get(i) else { break };
+            done.push((i, crate::mesh_obj(m, b.offset)));
+        }
+        done
+    };
+    // A panic on the helper is a bug: `join` surfaces it here.
+    let (theirs, (world, tree, crowd, mine)) = mapc_ir::par::join(
         || {
-            let meshes: Vec<_> = b
-                .levels
-                .iter()
-                .map(|(h, _)| (h, crate::level_meshes(b, h)))
-                .collect();
-            let mut models = Vec::new();
-            for (h, m) in &meshes {
-                models.extend(super::level::level_model_files_untextured(b, *h, m));
-            }
-            (meshes, models)
+            // Releases the waiting thread also if making the meshes panics.
+            let _release = Release(&made);
+            let meshes = b.levels.iter().map(|(h, _)| crate::level_meshes(b, h));
+            objs(made.publish(meshes.collect()))
         },
         || {
             let tree = world(b, flavour, opts);
             let text = tree.to_document(false);
-            (text, tree, super::crowd::crowd_files(b))
+            let crowd = super::crowd::crowd_files(b);
+            let mine = made.wait().map(objs).unwrap_or_default();
+            (text, tree, crowd, mine)
         },
     );
+    let level_meshes = made.meshes.into_inner().unwrap_or_default();
+    let total = level_meshes.iter().map(|m| m.all().count()).sum();
+    let mut texts: Vec<Option<String>> = vec![None; total];
+    for (i, t) in theirs.into_iter().chain(mine) {
+        texts[i] = Some(t);
+    }
+    let mut texts = texts.into_iter().flatten();
+    let mut meshes = Vec::new();
+    let mut models = Vec::new();
+    for ((h, _), m) in b.levels.iter().zip(level_meshes) {
+        let objs = texts.by_ref().take(m.all().count()).collect();
+        models.extend(super::level::level_model_files_with(b, h, &m, objs));
+        meshes.push((h, m));
+    }
     (
         meshes,
         WorldFiles {
@@ -546,9 +576,77 @@ pub fn world_files_untextured(
     )
 }
 
+/// The level meshes, handed from the helper that makes them to the thread waiting for
+/// them (`OnceLock::wait` is newer than the crate's minimum Rust).
+#[derive(Default)]
+struct Made {
+    meshes: OnceLock<Vec<crate::LevelMeshes>>,
+    released: Mutex<bool>,
+    ready: Condvar,
+}
+
+impl Made {
+    /// Stores the meshes, wakes the waiter and gives them back.
+    fn publish(&self, meshes: Vec<crate::LevelMeshes>) -> &[crate::LevelMeshes] {
+        let _ = self.meshes.set(meshes);
+        self.release();
+        self.meshes.get().map_or(&[], Vec::as_slice)
+    }
+
+    fn release(&self) {
+        *self.released.lock().unwrap_or_else(|e| e.into_inner()) = true;
+        self.ready.notify_all();
+    }
+
+    /// The meshes once published; `None` when the helper ended without them (a panic).
+    fn wait(&self) -> Option<&[crate::LevelMeshes]> {
+        let mut released = self.released.lock().unwrap_or_else(|e| e.into_inner());
+        while !*released {
+            released = self.ready.wait(released).unwrap_or_else(|e| e.into_inner());
+        }
+        self.meshes.get().map(Vec::as_slice)
+    }
+}
+
+/// Releases [`Made`]'s waiter when dropped, whatever happened.
+struct Release<'a>(&'a Made);
+
+impl Drop for Release<'_> {
+    fn drop(&mut self) {
+        self.0.release();
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// The world's thread waits for the meshes, and is let go when the helper ends without
+    /// them (a panic) rather than waiting forever.
+    #[test]
+    fn the_meshes_are_handed_over_or_the_waiter_released() {
+        let made = Made::default();
+        let got = mapc_ir::par::join(
+            || {
+                let _release = Release(&made);
+                made.publish(vec![crate::LevelMeshes::default()]).len()
+            },
+            || made.wait().map(<[_]>::len),
+        );
+        assert_eq!(got, (1, Some(1)));
+        let made = Made::default();
+        let r = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
+            mapc_ir::par::join(
+                || {
+                    let _release = Release(&made);
+                    panic!("making the meshes failed")
+                },
+                || made.wait().is_none(),
+            )
+        }));
+        assert!(r.is_err());
+        assert!(made.wait().is_none());
+    }
 
     #[test]
     fn templates_parse() {
