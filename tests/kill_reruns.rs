@@ -3,6 +3,8 @@
 //! byte-equal to a clean run's (no `.*.mapc-tmp-*` temporary left, every file complete).
 //! Before each rerun, the killed run's tree is checked too: every file in it is whole (the
 //! clean run's bytes), whatever the moment of the kill (ARCHITECTURE.md, "Crash safety").
+//! A run into a place that does not exist stages it whole beside itself
+//! (`.killed.mapc-tmp-<pid>`): after each rerun nothing of that kind may be left there.
 //! The map is the airport demo from `../shared` when present (prints `skipped: ../shared not
 //! found` and uses a fixture otherwise). `MAPC_KILL_SEED` replays a run's kill moments.
 
@@ -133,6 +135,13 @@ fn reruns_after_kill_9_leave_a_clean_tree() {
             }
         }
         assert!(gazebo(&map, &out).status().unwrap().success(), "rerun {i}");
+        let beside: Vec<_> = std::fs::read_dir(tmp.path())
+            .unwrap()
+            .flatten()
+            .map(|e| e.file_name().to_string_lossy().into_owned())
+            .filter(|n| n.contains(".mapc-tmp-"))
+            .collect();
+        assert!(beside.is_empty(), "kill {i} after {delay:?}: left {beside:?}");
         let got = tree(&out);
         let extra: Vec<_> = got.keys().filter(|k| !expected.contains_key(*k)).collect();
         let missing: Vec<_> = expected.keys().filter(|k| !got.contains_key(*k)).collect();

@@ -7,7 +7,10 @@
 //!
 //! Temporary files (`.<name>.mapc-tmp-<pid>`) are registered while they exist, so the signal
 //! watcher can remove them; ones left by a killed process are swept before the next write
-//! into their directory.
+//! into their directory. An output directory that does not exist yet is staged whole and
+//! renamed into place once (`fresh`).
+
+mod fresh;
 
 use mapc_backends::OutputFile;
 use std::collections::{BTreeSet, HashMap, HashSet};
@@ -108,7 +111,10 @@ pub fn remove_temporaries_and_exit(code: i32) -> ! {
     let _gate = GATE.write().unwrap_or_else(|e| e.into_inner());
     let live = LIVE.lock().unwrap_or_else(|e| e.into_inner());
     for p in live.iter() {
-        let _ = std::fs::remove_file(p);
+        // A staging directory of a first build (`fresh`) goes whole.
+        if std::fs::remove_file(p).is_err() {
+            let _ = std::fs::remove_dir_all(p);
+        }
     }
     let _ = std::io::stderr().flush();
     eprintln!("\ninterrupted; temporary files removed");
@@ -292,6 +298,8 @@ struct Staged {
     target: PathBuf,
     /// Written here (its data must be flushed), rather than linked to an existing file.
     written: bool,
+    /// Under a new top directory staged whole (`fresh`): in place once that is renamed.
+    fresh: bool,
 }
 
 /// Stages `data` for `path` at `tmp`: a hard link to a file with the same bytes when
@@ -309,6 +317,7 @@ fn stage(path: &Path, tmp: PathBuf, data: Data) -> std::io::Result<Staged> {
                 tmp,
                 target: path.to_path_buf(),
                 written: false,
+                fresh: false,
             });
         }
         // Another device, or links not allowed: copy.
@@ -337,6 +346,7 @@ fn stage(path: &Path, tmp: PathBuf, data: Data) -> std::io::Result<Staged> {
         tmp,
         target: path.to_path_buf(),
         written: true,
+        fresh: false,
     })
 }
 
@@ -498,11 +508,11 @@ fn flush(staged: &[Staged]) -> std::io::Result<()> {
     }
 }
 
-fn discard(staged: &[Staged]) {
-    for s in staged {
+fn discard<'a>(staged: impl IntoIterator<Item = &'a Staged> + Clone) {
+    for s in staged.clone() {
         let _ = std::fs::remove_file(&s.tmp);
     }
-    release_temporaries(staged.iter().map(|s| s.tmp.as_path()));
+    release_temporaries(staged.into_iter().map(|s| s.tmp.as_path()));
 }
 
 fn temporary_name(path: &Path) -> PathBuf {
@@ -628,6 +638,26 @@ fn plan(d: &DirWrite) -> Result<Plan, String> {
 /// each file either old or new, never partly written (ARCHITECTURE.md, "Crash safety").
 pub fn write_dirs(dirs: &[DirWrite]) -> Result<Vec<Written>, String> {
     let plans: Vec<Plan> = dirs.iter().map(plan).collect::<Result<_, _>>()?;
+    let fresh = fresh::Fresh::find(dirs.iter().map(|d| d.root));
+    if let Err(e) = fresh.create() {
+        fresh.discard();
+        fresh.release();
+        return Err(io_message(dirs[0].root, dirs[0].role, dirs[0].root, &e));
+    }
+    let result = write_staged(dirs, &plans, &fresh);
+    if result.is_err() {
+        fresh.discard();
+    }
+    fresh.release();
+    result
+}
+
+/// [`write_dirs`] once the new top directories are staged (`fresh`).
+fn write_staged(
+    dirs: &[DirWrite],
+    plans: &[Plan],
+    fresh: &fresh::Fresh,
+) -> Result<Vec<Written>, String> {
     for d in dirs {
         let root = d.root;
         if root.exists() && !root.is_dir() {
@@ -637,7 +667,8 @@ pub fn write_dirs(dirs: &[DirWrite]) -> Result<Vec<Written>, String> {
                 d.role
             ));
         }
-        if let Err(e) = std::fs::create_dir_all(root) {
+        let at = fresh.staged(root);
+        if let Err(e) = std::fs::create_dir_all(at.as_deref().unwrap_or(root)) {
             return Err(io_message(root, d.role, &root.join("x"), &e));
         }
     }
@@ -646,7 +677,7 @@ pub fn write_dirs(dirs: &[DirWrite]) -> Result<Vec<Written>, String> {
     // tell which outputs exist (only those are read to see whether they are unchanged). One
     // created now is empty: nothing to read.
     let mut needed: std::collections::BTreeMap<&Path, (usize, &Path)> = Default::default();
-    for (i, (d, p)) in dirs.iter().zip(&plans).enumerate() {
+    for (i, (d, p)) in dirs.iter().zip(plans).enumerate() {
         needed.entry(d.root).or_insert((i, d.root));
         for t in &p.targets {
             needed
@@ -656,15 +687,19 @@ pub fn write_dirs(dirs: &[DirWrite]) -> Result<Vec<Written>, String> {
     }
     let mut existing: HashMap<&Path, HashSet<OsString>> = HashMap::new();
     for (&dir, &(i, inside)) in &needed {
-        let made = match std::fs::create_dir(dir) {
-            Ok(()) => Ok(()),
-            Err(e) if e.kind() == std::io::ErrorKind::AlreadyExists => {
-                sweep_and_list(dir).map(|names| {
-                    existing.insert(dir, names);
-                })
-            }
-            Err(e) if e.kind() == std::io::ErrorKind::NotFound => std::fs::create_dir_all(dir),
-            Err(e) => Err(e),
+        // Under a new top: made in its staging directory, empty.
+        let made = match fresh.staged(dir) {
+            Some(at) => std::fs::create_dir_all(at),
+            None => match std::fs::create_dir(dir) {
+                Ok(()) => Ok(()),
+                Err(e) if e.kind() == std::io::ErrorKind::AlreadyExists => {
+                    sweep_and_list(dir).map(|names| {
+                        existing.insert(dir, names);
+                    })
+                }
+                Err(e) if e.kind() == std::io::ErrorKind::NotFound => std::fs::create_dir_all(dir),
+                Err(e) => Err(e),
+            },
         };
         if let Err(e) = made {
             let target = if inside == dir {
@@ -694,7 +729,7 @@ pub fn write_dirs(dirs: &[DirWrite]) -> Result<Vec<Written>, String> {
     // contents.
     let mut index: HashMap<&Path, usize> = HashMap::new();
     let mut written = Vec::with_capacity(dirs.len());
-    for (i, (d, p)) in dirs.iter().zip(&plans).enumerate() {
+    for (i, (d, p)) in dirs.iter().zip(plans).enumerate() {
         let mut w = Written {
             files: d.files.len() + d.links.len(),
             ..Written::default()
@@ -737,7 +772,11 @@ pub fn write_dirs(dirs: &[DirWrite]) -> Result<Vec<Written>, String> {
     if !join_early_flush() && jobs.len() >= 32 {
         clean_inode_tables(dirs[0].root);
     }
-    let results = parallel(&jobs, |j| stage(j.target, temporary_name(j.target), j.data));
+    // Under a new top, a file is written in the staging directory under its own name.
+    let results = parallel(&jobs, |j| match fresh.staged(j.target) {
+        Some(at) => stage(j.target, at, j.data).map(|s| Staged { fresh: true, ..s }),
+        None => stage(j.target, temporary_name(j.target), j.data),
+    });
     let mut all: Vec<Staged> = Vec::with_capacity(jobs.len());
     let mut failed = None;
     for (j, r) in jobs.iter().zip(results) {
@@ -762,7 +801,7 @@ pub fn write_dirs(dirs: &[DirWrite]) -> Result<Vec<Written>, String> {
     }
     // Stale files go before the new manifest lands: a crash in between leaves the old
     // manifest, which still names them, so the next run finishes the job.
-    for ((d, p), w) in dirs.iter().zip(&plans).zip(written.iter_mut()) {
+    for ((d, p), w) in dirs.iter().zip(plans).zip(written.iter_mut()) {
         for path in &p.stale {
             if path.is_file() && std::fs::remove_file(path).is_ok() {
                 w.removed += 1;
@@ -777,9 +816,19 @@ pub fn write_dirs(dirs: &[DirWrite]) -> Result<Vec<Written>, String> {
             }
         }
     }
-    // Outputs in any order (on two threads), manifests only once every output is in place.
+    // New top directories first, whole (their own manifests inside): the world refers to
+    // the models. Then the other outputs in any order (on two threads), and their
+    // manifests only once every output is in place.
+    if let Err(e) = fresh.commit() {
+        discard(&all);
+        return Err(format!(
+            "cannot move the new output directory into place: {e}"
+        ));
+    }
     let (files, manifests) = all.split_at(outputs);
-    let renamed = parallel(files, |s| std::fs::rename(&s.tmp, &s.target));
+    let files: Vec<&Staged> = files.iter().filter(|s| !s.fresh).collect();
+    let manifests: Vec<&Staged> = manifests.iter().filter(|s| !s.fresh).collect();
+    let renamed = parallel(&files, |s| std::fs::rename(&s.tmp, &s.target));
     let mut failed = None;
     for (s, r) in files.iter().zip(&renamed) {
         if let Err(e) = r {
@@ -790,13 +839,13 @@ pub fn write_dirs(dirs: &[DirWrite]) -> Result<Vec<Written>, String> {
     if failed.is_none() {
         for (k, s) in manifests.iter().enumerate() {
             if let Err(e) = std::fs::rename(&s.tmp, &s.target) {
-                discard(&manifests[k..]);
+                discard(manifests[k..].iter().copied());
                 failed = Some(format!("cannot write `{}`: {e}", shown(&s.target)));
                 break;
             }
         }
     } else {
-        discard(manifests);
+        discard(manifests.iter().copied());
     }
     release_temporaries(all.iter().map(|s| s.tmp.as_path()));
     if let Some(msg) = failed {
