@@ -141,7 +141,10 @@ fn reruns_after_kill_9_leave_a_clean_tree() {
             .map(|e| e.file_name().to_string_lossy().into_owned())
             .filter(|n| n.contains(".mapc-tmp-"))
             .collect();
-        assert!(beside.is_empty(), "kill {i} after {delay:?}: left {beside:?}");
+        assert!(
+            beside.is_empty(),
+            "kill {i} after {delay:?}: left {beside:?}"
+        );
         let got = tree(&out);
         let extra: Vec<_> = got.keys().filter(|k| !expected.contains_key(*k)).collect();
         let missing: Vec<_> = expected.keys().filter(|k| !got.contains_key(*k)).collect();
