@@ -44,7 +44,39 @@ struct P<'a> {
     ctx: Ctx,
     /// The level lists read but not kept, in document order.
     lists: Vec<List>,
+    /// Where a helper thread reads the rest of the `levels` mapping (see [`Split`]).
+    split: Option<Split<'a>>,
 }
+
+/// The second half of the `levels` mapping, read on a helper thread while this one reads
+/// the rest of the document. Both read with the same code from the same state, so when
+/// this thread's `levels` mapping reaches the helper's first key it takes the helper's
+/// entries and position instead of reading them again. A wrong guess of where a level
+/// starts (the guess is a scan of lines, before any parsing) costs only the helper's work:
+/// a mapping that never reaches `at`, at the assumed indent and depth, reads on alone.
+struct Split<'a> {
+    /// Offset of the first key the helper reads.
+    at: usize,
+    depth: usize,
+    done: std::sync::mpsc::Receiver<R<Entries<'a>>>,
+}
+
+/// Mapping entries a helper read, and where it stopped.
+struct Entries<'a> {
+    items: Vec<(Node<'a>, Node<'a>)>,
+    nodes: usize,
+    pos: usize,
+    line: u32,
+    line_start: usize,
+    indent: Option<usize>,
+}
+
+/// Maps at least this large are read on two threads when their levels allow a split
+/// (below it, starting the helper costs about what it saves).
+const SPLIT_FROM: usize = 64 << 10;
+
+/// Depth of a level's mapping entry: the root mapping is 1, `levels` 2.
+const LEVELS_DEPTH: usize = 2;
 
 /// The place of the node about to be read, as far as deferring level lists cares: the
 /// root mapping, the `levels` mapping, a level, a list of a level, anything else.
@@ -85,6 +117,50 @@ pub(super) fn parse_lists(text: &str, file: FileId, defer: bool) -> Option<(Node
     if text.starts_with('\u{feff}') || has_unprintable(text.as_bytes()) {
         return None;
     }
+    // A whole tree of a large map: its later levels on a helper thread.
+    let at = (!defer && text.len() >= SPLIT_FROM)
+        .then(|| split_point(text.as_bytes()))
+        .flatten();
+    match at {
+        Some(at) => parse_split(text, file, at, |t, f, at| {
+            entries_from(t, f, at, LEVELS_DEPTH)
+        }),
+        None => parse_from_start(text, file, defer, None),
+    }
+}
+
+/// The whole tree, its `levels` entries from `at` on read by `helper` on another thread.
+fn parse_split<'a>(
+    text: &'a str,
+    file: FileId,
+    at: usize,
+    helper: impl FnOnce(&'a str, FileId, usize) -> R<Entries<'a>> + Send,
+) -> Option<(Node<'a>, Vec<List>)> {
+    let (tx, rx) = std::sync::mpsc::sync_channel(1);
+    let ((), root) = mapc_ir::par::join(
+        // A closed channel (this thread never asked) is fine: the result is dropped. The
+        // sender is moved in, so a panic closes the channel rather than leaving this
+        // thread waiting.
+        move || drop(tx.send(helper(text, file, at))),
+        || {
+            let split = Split {
+                at,
+                depth: LEVELS_DEPTH,
+                done: rx,
+            };
+            parse_from_start(text, file, false, Some(split))
+        },
+    );
+    root
+}
+
+/// The reader over the whole text, with an optional [`Split`].
+fn parse_from_start<'a>(
+    text: &'a str,
+    file: FileId,
+    defer: bool,
+    split: Option<Split<'a>>,
+) -> Option<(Node<'a>, Vec<List>)> {
     let mut p = P {
         s: text,
         b: text.as_bytes(),
@@ -100,6 +176,7 @@ pub(super) fn parse_lists(text: &str, file: FileId, defer: bool) -> Option<(Node
         map_items: Vec::new(),
         ctx: Ctx::None,
         lists: Vec::new(),
+        split,
     };
     let root = (|| {
         p.next_content()?;
@@ -159,6 +236,7 @@ impl<'a> Items<'a> {
             map_items: Vec::new(),
             ctx: Ctx::None,
             lists: Vec::new(),
+            split: None,
         };
         Items {
             p,
@@ -188,6 +266,92 @@ impl<'a> Iterator for Items<'a> {
     fn size_hint(&self) -> (usize, Option<usize>) {
         (0, Some(self.left))
     }
+}
+
+/// The entries of a block mapping from the key at `at` to the mapping's end, read as the
+/// whole-text reader would read them at depth `depth` (the helper of a [`Split`]).
+fn entries_from(text: &str, file: FileId, at: usize, depth: usize) -> R<Entries<'_>> {
+    let b = text.as_bytes();
+    let line_start = b[..at]
+        .iter()
+        .rposition(|&c| c == b'\n')
+        .map_or(0, |i| i + 1);
+    let line = 1 + b[..at].iter().filter(|&&c| c == b'\n').count();
+    let indent = at - line_start;
+    let mut p = P {
+        s: text,
+        b,
+        pos: at,
+        line: line as u32,
+        line_start,
+        file,
+        nodes: 0,
+        node_limit: max_nodes(text.len()),
+        indent: Some(indent),
+        line_ascii: None,
+        seq_items: Vec::new(),
+        map_items: Vec::new(),
+        ctx: Ctx::None,
+        lists: Vec::new(),
+        split: None,
+    };
+    p.map_entries(indent, depth, Ctx::None)?;
+    Ok(Entries {
+        items: p.map_items,
+        nodes: p.nodes,
+        pos: p.pos,
+        line: p.line,
+        line_start: p.line_start,
+        indent: p.indent,
+    })
+}
+
+/// Where to split a map's `levels` for [`Split`]: the start of the level key that best
+/// balances the text before it (and after the levels) against the levels from it on;
+/// `None` without a `levels:` line at the root or with fewer than two levels. A scan of
+/// lines, not a parse: [`Split`] says why a wrong guess is harmless.
+fn split_point(b: &[u8]) -> Option<usize> {
+    let lines = || {
+        let mut start = 0;
+        std::iter::from_fn(move || {
+            if start >= b.len() {
+                return None;
+            }
+            let end = b[start..]
+                .iter()
+                .position(|&c| c == b'\n')
+                .map_or(b.len(), |i| start + i);
+            let line = (start, &b[start..end]);
+            start = end + 1;
+            Some(line)
+        })
+    };
+    let content = |l: &[u8]| {
+        let indent = l.iter().take_while(|&&c| c == b' ').count();
+        (indent < l.len() && l[indent] != b'#').then_some(indent)
+    };
+    let mut it = lines()
+        .skip_while(|(_, l)| !(l.starts_with(b"levels:") && content(&l[7..]).is_none()))
+        .skip(1);
+    let mut keys = Vec::new();
+    let mut level_indent = None;
+    let mut end = b.len();
+    for (start, l) in it.by_ref() {
+        let Some(indent) = content(l) else { continue };
+        let want = *level_indent.get_or_insert(indent);
+        if indent == 0 || indent < want {
+            end = start;
+            break;
+        }
+        if indent == want {
+            keys.push(start + indent);
+        }
+    }
+    // The helper reads from a key to `end`; this thread the rest.
+    keys.iter()
+        .skip(1)
+        .copied()
+        .min_by_key(|&k| (end - k).abs_diff(b.len() - (end - k)))
 }
 
 /// Characters YAML does not allow in a stream (controls other than tab, LF and CR; C1
@@ -436,7 +600,26 @@ impl<'a> P<'a> {
         let start = self.span(self.pos, self.pos);
         let mark = self.map_items.len();
         let ctx = std::mem::replace(&mut self.ctx, Ctx::None);
+        self.map_entries(indent, depth, ctx)?;
+        let items: Vec<_> = self.map_items.drain(mark..).collect();
+        let end = items
+            .last()
+            .map_or(start.start, |(_, v)| v.span.end.max(v.span.start));
+        Ok(Node {
+            kind: Kind::Map(items),
+            span: Span { end, ..start },
+        })
+    }
+
+    /// The entries of a block mapping at `indent` (its first key at the cursor), pushed on
+    /// `map_items`, up to the first line indented less.
+    fn map_entries(&mut self, indent: usize, depth: usize, ctx: Ctx) -> R<()> {
         loop {
+            if self.split.as_ref().is_some_and(|sp| sp.at == self.pos)
+                && self.join_split(indent, depth)?
+            {
+                break;
+            }
             let key = self.key()?;
             // Only an entry's own value may see the context; whatever it holds resets it.
             self.ctx = match (ctx, key.key_text()) {
@@ -512,14 +695,39 @@ impl<'a> P<'a> {
                 _ => break,
             }
         }
-        let items: Vec<_> = self.map_items.drain(mark..).collect();
-        let end = items
-            .last()
-            .map_or(start.start, |(_, v)| v.span.end.max(v.span.start));
-        Ok(Node {
-            kind: Kind::Map(items),
-            span: Span { end, ..start },
-        })
+        Ok(())
+    }
+
+    /// At the first key of a [`Split`]: takes the helper's entries and position when it
+    /// read this very mapping (same indent, same depth) and succeeded; `false` (read on)
+    /// otherwise.
+    fn join_split(&mut self, indent: usize, depth: usize) -> R<bool> {
+        let Some(split) = self.split.take() else {
+            return Ok(false);
+        };
+        let col = self.pos - self.line_start;
+        if depth != split.depth || col != indent {
+            return Ok(false);
+        }
+        // A closed channel: the helper panicked (its panic is resumed by `join`).
+        let Ok(Ok(e)) = split.done.recv() else {
+            return Ok(false);
+        };
+        self.nodes += e.nodes;
+        if self.nodes > self.node_limit {
+            return Err(Bail);
+        }
+        self.map_items.extend(e.items);
+        self.pos = e.pos;
+        self.line = e.line;
+        self.line_start = e.line_start;
+        self.indent = e.indent;
+        self.line_ascii = None;
+        // The helper stopped where the mapping ends.
+        if self.indent.is_some_and(|i| i >= indent) {
+            return Err(Bail);
+        }
+        Ok(true)
     }
 
     fn block_seq(&mut self, indent: usize, depth: usize) -> R<Node<'a>> {
@@ -893,5 +1101,102 @@ impl<'a> P<'a> {
             kind,
             span: self.span(start, self.pos),
         })
+    }
+}
+
+#[cfg(test)]
+mod split_tests {
+    use super::*;
+
+    /// A map of `levels` levels of `vertices` vertices each, with keys before and after.
+    fn map(levels: usize, vertices: usize) -> String {
+        let mut s =
+            String::from("coordinate_system: reference_image\ncrowd_sim:\n  enable: 0\nlevels:\n");
+        for l in 0..levels {
+            s.push_str(&format!("  L{l}:\n    elevation: {l}\n    vertices:\n"));
+            for v in 0..vertices {
+                s.push_str(&format!(
+                    "      - [{v}.5, {}, 0, \"v{v}\", {{is_charger: [4, false]}}]\n",
+                    v * 2
+                ));
+            }
+            s.push_str("    # a comment\n    walls:\n      - [0, 1, {alpha: [3, 1]}]\n");
+        }
+        s.push_str("lifts: {}\nname: split\n");
+        s
+    }
+
+    fn sequential(text: &str) -> String {
+        format!(
+            "{:?}",
+            parse_from_start(text, FileId(0), false, None).map(|(r, _)| r)
+        )
+    }
+
+    #[test]
+    fn a_split_read_is_the_sequential_read() {
+        for (levels, vertices) in [(2, 3), (3, 400), (7, 20)] {
+            let text = map(levels, vertices);
+            let at = split_point(text.as_bytes()).expect("a split point");
+            assert!(text[at..].starts_with('L') && text[..at].ends_with("\n  "));
+            let split = parse_split(&text, FileId(0), at, |t, f, at| {
+                entries_from(t, f, at, LEVELS_DEPTH)
+            });
+            assert!(split.is_some());
+            assert_eq!(format!("{:?}", split.map(|(r, _)| r)), sequential(&text));
+        }
+        // Through the public path, above the size from which it splits.
+        let text = map(3, 1200);
+        assert!(text.len() >= SPLIT_FROM);
+        let whole = parse_lists(&text, FileId(0), false).map(|(r, _)| r);
+        assert_eq!(format!("{whole:?}"), sequential(&text));
+    }
+
+    /// The reader takes the helper's entries (here, on purpose, without the last level).
+    #[test]
+    fn the_helpers_entries_are_used() {
+        let text = map(3, 5);
+        let at = split_point(text.as_bytes()).unwrap();
+        let cut = parse_split(&text, FileId(0), at, |t, f, at| {
+            let mut e = entries_from(t, f, at, LEVELS_DEPTH)?;
+            e.items.pop();
+            Ok(e)
+        })
+        .unwrap()
+        .0;
+        let levels = cut.get("levels").unwrap();
+        let whole = parse_from_start(&text, FileId(0), false, None).unwrap().0;
+        let all = whole.get("levels").unwrap();
+        match (&levels.kind, &all.kind) {
+            (Kind::Map(a), Kind::Map(b)) => assert_eq!(a.len() + 1, b.len()),
+            _ => panic!("levels is not a mapping"),
+        }
+    }
+
+    /// A guess that is not a level key (a vertex's line; another indent), a helper that
+    /// gives up, a helper that panics: the tree is the sequential one (the panic resumed).
+    #[test]
+    fn a_wrong_guess_or_a_failed_helper_reads_on_alone() {
+        let text = map(3, 5);
+        let vertex = text.find("      - [2.5").unwrap() + 6;
+        let tree = |at, bail: bool| {
+            parse_split(&text, FileId(0), at, move |t, f, at| {
+                if bail {
+                    return Err(Bail);
+                }
+                entries_from(t, f, at, LEVELS_DEPTH)
+            })
+            .map(|(r, _)| r)
+        };
+        assert_eq!(format!("{:?}", tree(vertex, false)), sequential(&text));
+        let at = split_point(text.as_bytes()).unwrap();
+        assert_eq!(format!("{:?}", tree(at, true)), sequential(&text));
+        let r = std::panic::catch_unwind(|| {
+            parse_split(&text, FileId(0), at, |_, _, _| panic!("helper"))
+        });
+        assert!(r.is_err());
+        // No `levels:`, or a single level: no split.
+        assert_eq!(split_point(b"name: x\n"), None);
+        assert_eq!(split_point(map(1, 3).as_bytes()), None);
     }
 }
