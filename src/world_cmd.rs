@@ -12,7 +12,7 @@ use mapc_ir::lints::Outputs;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
-#[derive(clap::Args)]
+#[derive(clap::Args, Debug)]
 pub(crate) struct WorldArgs {
     /// The .building.yaml (or legacy .project.yaml) to read.
     input: PathBuf,
