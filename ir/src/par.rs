@@ -47,6 +47,26 @@ where
     (ra, rb)
 }
 
+/// `f` of every item on two threads (as in [`join`]), each taking the next item from a
+/// shared counter as it comes free; the results in the items' order.
+pub fn map<T: Sync, R: Send>(items: &[T], f: impl Fn(&T) -> R + Sync) -> Vec<R> {
+    use std::sync::atomic::{AtomicUsize, Ordering};
+    let next = AtomicUsize::new(0);
+    let run = || {
+        let mut done = Vec::new();
+        loop {
+            let i = next.fetch_add(1, Ordering::Relaxed);
+            let Some(item) = items.get(i) else { break };
+            done.push((i, f(item)));
+        }
+        done
+    };
+    let (mut done, here) = join(run, run);
+    done.extend(here);
+    done.sort_unstable_by_key(|(i, _)| *i);
+    done.into_iter().map(|(_, r)| r).collect()
+}
+
 /// [`std::thread::spawn`], with the new thread placed on another CPU (as in [`join`]).
 pub fn spawn<T: Send + 'static>(
     f: impl FnOnce() -> T + Send + 'static,
@@ -134,6 +154,9 @@ mod tests {
             || data.iter().filter(|&&x| x % 2 == 1).sum::<u64>(),
         );
         assert_eq!((a, b), (250_500, 250_000));
+        let squares = map(&data, |x| x * x);
+        assert_eq!(squares.len(), 1000);
+        assert!(squares.iter().zip(&data).all(|(s, x)| *s == x * x));
         let h = spawn(|| 6 * 7);
         assert_eq!(h.join().unwrap(), 42);
     }

@@ -17,7 +17,6 @@ use std::collections::{BTreeSet, HashMap, HashSet};
 use std::ffi::OsString;
 use std::io::{Read, Write};
 use std::path::{Component, Path, PathBuf};
-use std::sync::atomic::{AtomicUsize, Ordering};
 use std::sync::{Mutex, RwLock};
 
 /// Temporaries that exist right now (created and not yet renamed or removed).
@@ -382,21 +381,8 @@ fn parallel<T: Sync, R: Send>(items: &[T], work: impl Fn(&T) -> R + Sync) -> Vec
     if threads == 1 {
         return items.iter().map(&work).collect();
     }
-    let next = AtomicUsize::new(0);
-    let run = || {
-        let mut out = Vec::new();
-        loop {
-            let i = next.fetch_add(1, Ordering::Relaxed);
-            let Some(item) = items.get(i) else { break };
-            out.push((i, work(item)));
-        }
-        out
-    };
-    // A panic in the helper is a bug: `join` surfaces it here.
-    let (mut done, here) = mapc_ir::par::join(run, run);
-    done.extend(here);
-    done.sort_unstable_by_key(|(i, _)| *i);
-    done.into_iter().map(|(_, r)| r).collect()
+    // A panic in the helper is a bug: `map` surfaces it here.
+    mapc_ir::par::map(items, work)
 }
 
 /// Starts, on a thread of its own, the flush that [`write_dirs`] makes before staging a

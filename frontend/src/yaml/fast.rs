@@ -161,23 +161,8 @@ fn parse_from_start<'a>(
     defer: bool,
     split: Option<Split<'a>>,
 ) -> Option<(Node<'a>, Vec<List>)> {
-    let mut p = P {
-        s: text,
-        b: text.as_bytes(),
-        pos: 0,
-        line: 1,
-        line_start: 0,
-        file,
-        nodes: 0,
-        node_limit: max_nodes(text.len()),
-        indent: None,
-        line_ascii: None,
-        seq_items: Vec::new(),
-        map_items: Vec::new(),
-        ctx: Ctx::None,
-        lists: Vec::new(),
-        split,
-    };
+    let mut p = P::new(text, file, 0, 1, None, max_nodes(text.len()));
+    p.split = split;
     let root = (|| {
         p.next_content()?;
         let indent = p.indent.ok_or(Bail)?;
@@ -220,24 +205,16 @@ pub(crate) struct Items<'a> {
 
 impl<'a> Items<'a> {
     pub(crate) fn new(text: &'a str, file: FileId, list: &List) -> Self {
-        let p = P {
-            s: text,
-            b: text.as_bytes(),
-            pos: list.pos,
-            line: list.line,
-            line_start: list.line_start,
+        // Nodes were counted when the list was first read.
+        let mut p = P::new(
+            text,
             file,
-            nodes: 0,
-            // Counted when the list was first read.
-            node_limit: usize::MAX,
-            indent: Some(list.indent),
-            line_ascii: None,
-            seq_items: Vec::new(),
-            map_items: Vec::new(),
-            ctx: Ctx::None,
-            lists: Vec::new(),
-            split: None,
-        };
+            list.pos,
+            list.line,
+            Some(list.indent),
+            usize::MAX,
+        );
+        p.line_start = list.line_start;
         Items {
             p,
             left: list.len,
@@ -278,23 +255,15 @@ fn entries_from(text: &str, file: FileId, at: usize, depth: usize) -> R<Entries<
         .map_or(0, |i| i + 1);
     let line = 1 + b[..at].iter().filter(|&&c| c == b'\n').count();
     let indent = at - line_start;
-    let mut p = P {
-        s: text,
-        b,
-        pos: at,
-        line: line as u32,
-        line_start,
+    let mut p = P::new(
+        text,
         file,
-        nodes: 0,
-        node_limit: max_nodes(text.len()),
-        indent: Some(indent),
-        line_ascii: None,
-        seq_items: Vec::new(),
-        map_items: Vec::new(),
-        ctx: Ctx::None,
-        lists: Vec::new(),
-        split: None,
-    };
+        at,
+        line as u32,
+        Some(indent),
+        max_nodes(text.len()),
+    );
+    p.line_start = line_start;
     p.map_entries(indent, depth, Ctx::None)?;
     Ok(Entries {
         items: p.map_items,
@@ -404,6 +373,35 @@ fn is_flow_indicator(c: u8) -> bool {
 }
 
 impl<'a> P<'a> {
+    /// A reader of `text` from `pos`, on line `line` (taken to start at `pos`: a caller
+    /// starting inside a line sets `line_start`), whose content there is at `indent`.
+    fn new(
+        text: &'a str,
+        file: FileId,
+        pos: usize,
+        line: u32,
+        indent: Option<usize>,
+        node_limit: usize,
+    ) -> Self {
+        P {
+            s: text,
+            b: text.as_bytes(),
+            pos,
+            line,
+            line_start: pos,
+            file,
+            nodes: 0,
+            node_limit,
+            indent,
+            line_ascii: None,
+            seq_items: Vec::new(),
+            map_items: Vec::new(),
+            ctx: Ctx::None,
+            lists: Vec::new(),
+            split: None,
+        }
+    }
+
     fn span(&mut self, start: usize, end: usize) -> Span {
         // The start is always on the current line.
         let ascii = *self.line_ascii.get_or_insert_with(|| {

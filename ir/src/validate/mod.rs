@@ -93,24 +93,13 @@ fn elements(b: &Building) -> usize {
 /// The rules on two threads, each taking the next rule not yet taken (their costs differ
 /// by orders of magnitude); diagnostics come back in rule order, as one thread gives them.
 fn run_on_two_threads(ctx: &Context, rules: &[&Rule]) -> Vec<Diagnostic> {
-    use std::sync::atomic::{AtomicUsize, Ordering};
-    let next = AtomicUsize::new(0);
-    let run = || {
-        let mut done = Vec::new();
-        loop {
-            let i = next.fetch_add(1, Ordering::Relaxed);
-            let Some(rule) = rules.get(i) else { break };
-            let mut found = Vec::new();
-            (rule.check)(ctx, &mut found);
-            done.push((i, found));
-        }
-        done
-    };
-    // A panicking rule is a bug: `join` surfaces it here.
-    let (other, mut done) = crate::par::join(run, run);
-    done.extend(other);
-    done.sort_unstable_by_key(|(i, _)| *i);
-    done.into_iter().flat_map(|(_, d)| d).collect()
+    // A panicking rule is a bug: `map` surfaces it here.
+    let found = crate::par::map(rules, |rule| {
+        let mut found = Vec::new();
+        (rule.check)(ctx, &mut found);
+        found
+    });
+    found.into_iter().flatten().collect()
 }
 
 /// Looks up a rule by code.
