@@ -5,7 +5,8 @@ use crate::{
     emit, load_and_check, not_written, output, plural, sanity, success_line, summary_line,
     DiagOpts, Format,
 };
-use mapc_backends::sdf::world::{parse_template, world_files_untextured, WorldOptions};
+use mapc_backends::sdf::world::{parse_template, WorldOptions};
+use mapc_backends::sdf::world_files_untextured;
 use mapc_backends::sdf::Flavour;
 use mapc_backends::OutputFile;
 use mapc_ir::lints::Outputs;

@@ -303,8 +303,7 @@ struct Staged {
 
 /// Stages `data` for `path` at `tmp`: a hard link to a file with the same bytes when
 /// possible (a linked output, or bytes that repeat a known source; same file system), else
-/// a temporary written with those bytes, whose write-back starts at once (it overlaps the
-/// staging of the other files).
+/// a temporary written with those bytes.
 fn stage(path: &Path, tmp: PathBuf, data: Data) -> std::io::Result<Staged> {
     let src = match data {
         Data::Link(src) => Some(src.to_path_buf()),
@@ -335,12 +334,9 @@ fn stage(path: &Path, tmp: PathBuf, data: Data) -> std::io::Result<Staged> {
         release_temporary(&tmp);
         return Err(e);
     }
-    #[cfg(target_os = "linux")]
-    {
-        use std::os::fd::AsRawFd;
-        // SAFETY: a plain syscall on an open descriptor. Only a hint: errors are ignored.
-        unsafe { libc::sync_file_range(f.as_raw_fd(), 0, 0, libc::SYNC_FILE_RANGE_WRITE) };
-    }
+    // No write-back started here: one `syncfs` after staging submits every file in one
+    // batch, which on a virtual disk costs less than a request per file (BENCHMARKS.md,
+    // part 5, fourth pass).
     Ok(Staged {
         tmp,
         target: path.to_path_buf(),
@@ -475,8 +471,9 @@ fn flush(staged: &[Staged]) -> std::io::Result<()> {
         let dirs: BTreeSet<&Path> = written.iter().filter_map(|s| s.tmp.parent()).collect();
         let mut devices = BTreeSet::new();
         for d in dirs {
-            let f = std::fs::File::open(d)?;
-            if devices.insert(f.metadata()?.dev()) {
+            // A stat per directory; a descriptor only for the first of each file system.
+            if devices.insert(std::fs::metadata(d)?.dev()) {
+                let f = std::fs::File::open(d)?;
                 // SAFETY: a plain syscall on an open descriptor.
                 if unsafe { libc::syncfs(f.as_raw_fd()) } != 0 {
                     return Err(std::io::Error::last_os_error());

@@ -6,6 +6,7 @@ pub mod doors;
 pub mod level;
 pub mod lifts;
 pub mod navmesh;
+mod schedule;
 pub mod world;
 pub mod xml;
 
@@ -19,3 +20,5 @@ pub enum Flavour {
     /// gz-sim, Harmonic onwards (`building_map_generator gazebo` today).
     Gz,
 }
+
+pub use schedule::world_files_untextured;

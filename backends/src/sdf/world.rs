@@ -26,8 +26,6 @@ use super::Flavour;
 use crate::py_float;
 use mapc_ir::{Building, CoordinateSystem, Handle, Level, Vertex};
 use std::collections::HashMap;
-use std::sync::atomic::{AtomicUsize, Ordering};
-use std::sync::{Condvar, Mutex, OnceLock};
 
 const GZ_TEMPLATE: &str = include_str!("templates/gz.sdf");
 const IGNITION_TEMPLATE: &str = include_str!("templates/ignition.sdf");
@@ -281,6 +279,46 @@ pub fn camera_pose(b: &Building) -> String {
 
 /// The world document of `b` for `flavour` (root `<sdf>`).
 pub fn world(b: &Building, flavour: Flavour, opts: &WorldOptions) -> Element {
+    world_with(b, flavour, opts, &mut |p| part_elements(b, p, flavour))
+}
+
+/// A door's or a lift's models in the world: the larger share of a world with many doors,
+/// and independent of the rest, so another thread may make them (`schedule`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) enum Part {
+    Door(Handle<mapc_ir::Door>),
+    Lift(Handle<mapc_ir::Lift>),
+}
+
+/// The world's parts in the order [`world_with`] asks for them.
+pub(crate) fn parts(b: &Building) -> Vec<Part> {
+    let doors = b
+        .levels
+        .iter()
+        .flat_map(|(_, lvl)| lvl.doors.iter().map(|&d| Part::Door(d)));
+    let lifts = b
+        .lifts
+        .iter()
+        .filter(|(_, l)| !l.level_doors.is_empty())
+        .map(|(h, _)| Part::Lift(h));
+    doors.chain(lifts).collect()
+}
+
+/// The model elements of one part (a door without a model has none).
+pub(crate) fn part_elements(b: &Building, part: Part, flavour: Flavour) -> Vec<Element> {
+    match part {
+        Part::Door(d) => super::doors::door_model(b, d, flavour).into_iter().collect(),
+        Part::Lift(l) => super::lifts::lift_models(b, l, flavour),
+    }
+}
+
+/// [`world`], with each part's elements from `part` (called in [`parts`] order).
+pub(crate) fn world_with(
+    b: &Building,
+    flavour: Flavour,
+    opts: &WorldOptions,
+    part: &mut dyn FnMut(Part) -> Vec<Element>,
+) -> Element {
     let mut root = opts
         .template
         .clone()
@@ -288,13 +326,14 @@ pub fn world(b: &Building, flavour: Flavour, opts: &WorldOptions) -> Element {
     let Some(wi) = root.children.iter().position(|c| c.name == "world") else {
         // parse_template guarantees a world; a hand-built template without one gets one.
         root.push(Element::new("world").attr("name", "sim_world"));
-        return world(
+        return world_with(
             b,
             flavour,
             &WorldOptions {
                 template: Some(root),
                 skip_camera_pose: opts.skip_camera_pose,
             },
+            part,
         );
     };
     let world = &mut root.children[wi];
@@ -354,9 +393,7 @@ pub fn world(b: &Building, flavour: Flavour, opts: &WorldOptions) -> Element {
         }
         // 3. doors
         for &dh in &lvl.doors {
-            if let Some(m) = super::doors::door_model(b, dh, flavour) {
-                world.push(m);
-            }
+            world.children.extend(part(Part::Door(dh)));
             floor.push(Element::new("model").attr("name", b.doors[dh].name.clone()));
         }
         // 4. the level model
@@ -379,9 +416,7 @@ pub fn world(b: &Building, flavour: Flavour, opts: &WorldOptions) -> Element {
     // Lifts with level doors (others have no shaft and no cabin in the reference).
     for (lh, lift) in b.lifts.iter() {
         if !lift.level_doors.is_empty() {
-            for m in super::lifts::lift_models(b, lh, flavour) {
-                world.push(m);
-            }
+            world.children.extend(part(Part::Lift(lh)));
         }
     }
 
@@ -502,151 +537,9 @@ pub fn world_files(
     }
 }
 
-/// The level meshes (one entry per level, document order) and [`world_files`] without the
-/// texture images in `models` (see [`crate::level_texture_paths`]: a caller that has the
-/// images on disk links them instead of holding a copy of their bytes per level). The
-/// world's element tree comes back too, not freed: a caller about to exit may skip freeing
-/// it (a fifth of its cost).
-///
-/// On two threads: this one builds the world's tree and text (thousands of small
-/// allocations, which here reuse the heap the map's YAML tree freed), a helper makes the
-/// level meshes; then both write the meshes' OBJ texts, taking the next mesh as they come
-/// free. Which half is larger depends on the map: clinic's 119 doors make its world the
-/// larger, airport_terminal's 70 floors its meshes (BENCHMARKS.md).
-pub fn world_files_untextured(
-    b: &Building,
-    flavour: Flavour,
-    opts: &WorldOptions,
-) -> (
-    Vec<(Handle<Level>, crate::LevelMeshes)>,
-    WorldFiles,
-    Element,
-) {
-    let made = Made::default();
-    let next = AtomicUsize::new(0);
-    // OBJ texts of the meshes (every level's, in order), each taken by whoever is free.
-    let objs = |meshes: &[crate::LevelMeshes]| {
-        let all: Vec<&crate::Mesh> = meshes.iter().flat_map(|m| m.all()).collect();
-        let mut done = Vec::new();
-        loop {
-            let i = next.fetch_add(1, Ordering::Relaxed);
-            let Some(m) = all.get(i) else { break };
-            done.push((i, crate::mesh_obj(m, b.offset)));
-        }
-        done
-    };
-    // A panic on the helper is a bug: `join` surfaces it here.
-    let (theirs, (world, tree, crowd, mine)) = mapc_ir::par::join(
-        || {
-            // Releases the waiting thread also if making the meshes panics.
-            let _release = Release(&made);
-            let meshes = b.levels.iter().map(|(h, _)| crate::level_meshes(b, h));
-            objs(made.publish(meshes.collect()))
-        },
-        || {
-            let tree = world(b, flavour, opts);
-            let text = tree.to_document(false);
-            let crowd = super::crowd::crowd_files(b);
-            let mine = made.wait().map(objs).unwrap_or_default();
-            (text, tree, crowd, mine)
-        },
-    );
-    let level_meshes = made.meshes.into_inner().unwrap_or_default();
-    let total = level_meshes.iter().map(|m| m.all().count()).sum();
-    let mut texts: Vec<Option<String>> = vec![None; total];
-    for (i, t) in theirs.into_iter().chain(mine) {
-        texts[i] = Some(t);
-    }
-    let mut texts = texts.into_iter().flatten();
-    let mut meshes = Vec::new();
-    let mut models = Vec::new();
-    for ((h, _), m) in b.levels.iter().zip(level_meshes) {
-        let objs = texts.by_ref().take(m.all().count()).collect();
-        models.extend(super::level::level_model_files_with(b, h, &m, objs));
-        meshes.push((h, m));
-    }
-    (
-        meshes,
-        WorldFiles {
-            world,
-            models,
-            crowd,
-        },
-        tree,
-    )
-}
-
-/// The level meshes, handed from the helper that makes them to the thread waiting for
-/// them (`OnceLock::wait` is newer than the crate's minimum Rust).
-#[derive(Default)]
-struct Made {
-    meshes: OnceLock<Vec<crate::LevelMeshes>>,
-    released: Mutex<bool>,
-    ready: Condvar,
-}
-
-impl Made {
-    /// Stores the meshes, wakes the waiter and gives them back.
-    fn publish(&self, meshes: Vec<crate::LevelMeshes>) -> &[crate::LevelMeshes] {
-        let _ = self.meshes.set(meshes);
-        self.release();
-        self.meshes.get().map_or(&[], Vec::as_slice)
-    }
-
-    fn release(&self) {
-        *self.released.lock().unwrap_or_else(|e| e.into_inner()) = true;
-        self.ready.notify_all();
-    }
-
-    /// The meshes once published; `None` when the helper ended without them (a panic).
-    fn wait(&self) -> Option<&[crate::LevelMeshes]> {
-        let mut released = self.released.lock().unwrap_or_else(|e| e.into_inner());
-        while !*released {
-            released = self.ready.wait(released).unwrap_or_else(|e| e.into_inner());
-        }
-        self.meshes.get().map(Vec::as_slice)
-    }
-}
-
-/// Releases [`Made`]'s waiter when dropped, whatever happened.
-struct Release<'a>(&'a Made);
-
-impl Drop for Release<'_> {
-    fn drop(&mut self) {
-        self.0.release();
-    }
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    /// The world's thread waits for the meshes, and is let go when the helper ends without
-    /// them (a panic) rather than waiting forever.
-    #[test]
-    fn the_meshes_are_handed_over_or_the_waiter_released() {
-        let made = Made::default();
-        let got = mapc_ir::par::join(
-            || {
-                let _release = Release(&made);
-                made.publish(vec![crate::LevelMeshes::default()]).len()
-            },
-            || made.wait().map(<[_]>::len),
-        );
-        assert_eq!(got, (1, Some(1)));
-        let made = Made::default();
-        let r = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
-            mapc_ir::par::join(
-                || {
-                    let _release = Release(&made);
-                    panic!("making the meshes failed")
-                },
-                || made.wait().is_none(),
-            )
-        }));
-        assert!(r.is_err());
-        assert!(made.wait().is_none());
-    }
 
     #[test]
     fn templates_parse() {

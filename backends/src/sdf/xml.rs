@@ -46,6 +46,17 @@ impl Element {
     pub fn push(&mut self, c: Element) {
         self.children.push(c);
     }
+    /// XML already written at the depth where it sits: a subtree made on another thread
+    /// (its text is written as it is; an empty one writes nothing).
+    pub fn verbatim(xml: String) -> Element {
+        Element {
+            text: Some(xml.into()),
+            ..Element::default()
+        }
+    }
+    pub fn is_verbatim(&self) -> bool {
+        self.name.is_empty()
+    }
     /// First child named `name`.
     pub fn find(&self, name: &str) -> Option<&Element> {
         self.children.iter().find(|c| c.name == name)
@@ -58,13 +69,18 @@ impl Element {
         if declaration {
             out.push_str("<?xml version='1.0' encoding='utf-8'?>\n");
         }
-        self.write(&mut out, 0);
+        self.write_at(&mut out, 0);
         out
     }
 
-    fn write(&self, out: &mut String, depth: usize) {
+    /// Appends the element as it is written `depth` levels deep.
+    pub fn write_at(&self, out: &mut String, depth: usize) {
         // Pushes rather than `write!`: the world of a large map is half a megabyte of
         // these, and formatting machinery was most of its time.
+        if self.is_verbatim() {
+            out.push_str(self.text.as_deref().unwrap_or_default());
+            return;
+        }
         for _ in 0..depth {
             out.push_str("  ");
         }
@@ -93,7 +109,7 @@ impl Element {
                 }
                 out.push('\n');
                 for c in &self.children {
-                    c.write(out, depth + 1);
+                    c.write_at(out, depth + 1);
                 }
                 for _ in 0..depth {
                     out.push_str("  ");
