@@ -233,6 +233,13 @@ fn parse_world_args(args: &[std::ffi::OsString]) -> Option<Cli> {
 
 fn main() -> ExitCode {
     let cli = parse_cli();
+    // Batch commands end within seconds: no memory is given back meanwhile (mapc_ir::heap).
+    if !matches!(
+        cli.command,
+        Command::Lsp(_) | Command::Sim(_) | Command::Sweep(_)
+    ) {
+        mapc_ir::heap::tune_for_batch();
+    }
     // `mapc sim` stops cooperatively on the first signal (it writes what ran); every other
     // command removes its temporaries and exits.
     signals::install(usize::from(matches!(cli.command, Command::Sim(_))));

@@ -7,6 +7,7 @@ mod arena;
 mod building;
 mod diag;
 mod geom;
+pub mod heap;
 pub mod lints;
 mod navmesh;
 pub mod par;

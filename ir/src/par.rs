@@ -32,6 +32,7 @@ where
     let other = unsafe {
         std::thread::Builder::new().spawn_unchecked(move || {
             cpus.restore();
+            crate::heap::prepare_thread();
             a()
         })
     }
@@ -74,6 +75,7 @@ pub fn spawn<T: Send + 'static>(
     let cpus = Placement::now();
     let h = std::thread::spawn(move || {
         cpus.restore();
+        crate::heap::prepare_thread();
         f()
     });
     cpus.move_away(&h);

@@ -272,7 +272,9 @@ mod tests {
                 roles: Default::default(),
             };
             let start = b.vertices.append(v(Vec2 { x, y: 0.0 }), Span::default());
-            let end = b.vertices.append(v(Vec2 { x: x + 1.0, y: 0.0 }), Span::default());
+            let end = b
+                .vertices
+                .append(v(Vec2 { x: x + 1.0, y: 0.0 }), Span::default());
             let d = b.doors.append(
                 Door {
                     level,
@@ -304,8 +306,20 @@ mod tests {
             assert_eq!(files.world, super::super::world::world_text(&b, f, &opts));
             for d in ["door_0", "door_1"] {
                 // The model, and its name in the floor toggle.
-                assert_eq!(files.world.matches(&format!("<model name=\"{d}\">")).count(), 1);
-                assert_eq!(files.world.matches(&format!("<model name=\"{d}\" />")).count(), 1);
+                assert_eq!(
+                    files
+                        .world
+                        .matches(&format!("<model name=\"{d}\">"))
+                        .count(),
+                    1
+                );
+                assert_eq!(
+                    files
+                        .world
+                        .matches(&format!("<model name=\"{d}\" />"))
+                        .count(),
+                    1
+                );
             }
         }
     }
@@ -323,7 +337,11 @@ mod tests {
         shared.lock().parts[1] = Some("made\n".into());
         drop(Gone(&shared));
         let texts = shared.all_parts(&b, &list, Flavour::Gz);
-        assert!(texts[0].starts_with("    <model name=\"door_0\">\n"), "{}", texts[0]);
+        assert!(
+            texts[0].starts_with("    <model name=\"door_0\">\n"),
+            "{}",
+            texts[0]
+        );
         assert_eq!(texts[0], part_text(&b, list[0], Flavour::Gz));
         assert_eq!(texts[1], "made\n");
     }

@@ -307,7 +307,9 @@ pub(crate) fn parts(b: &Building) -> Vec<Part> {
 /// The model elements of one part (a door without a model has none).
 pub(crate) fn part_elements(b: &Building, part: Part, flavour: Flavour) -> Vec<Element> {
     match part {
-        Part::Door(d) => super::doors::door_model(b, d, flavour).into_iter().collect(),
+        Part::Door(d) => super::doors::door_model(b, d, flavour)
+            .into_iter()
+            .collect(),
         Part::Lift(l) => super::lifts::lift_models(b, l, flavour),
     }
 }
