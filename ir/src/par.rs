@@ -68,6 +68,41 @@ pub fn map<T: Sync, R: Send>(items: &[T], f: impl Fn(&T) -> R + Sync) -> Vec<R> 
     done.into_iter().map(|(_, r)| r).collect()
 }
 
+/// [`map`], the two threads starting at opposite ends of `items` and meeting in between:
+/// for work where neighbours contend, such as creating files, which in one directory take
+/// turns on its lock.
+pub fn map_ends<T: Sync, R: Send>(items: &[T], f: impl Fn(&T) -> R + Sync) -> Vec<R> {
+    // Front and back of what is left.
+    let left = std::sync::Mutex::new((0, items.len()));
+    let run = |from_back: bool| {
+        let (f, left) = (&f, &left);
+        move || {
+            let mut done = Vec::new();
+            loop {
+                let i = {
+                    let mut l = left.lock().unwrap_or_else(|e| e.into_inner());
+                    if l.0 >= l.1 {
+                        break;
+                    }
+                    if from_back {
+                        l.1 -= 1;
+                        l.1
+                    } else {
+                        l.0 += 1;
+                        l.0 - 1
+                    }
+                };
+                done.push((i, f(&items[i])));
+            }
+            done
+        }
+    };
+    let (mut done, here) = join(run(true), run(false));
+    done.extend(here);
+    done.sort_unstable_by_key(|(i, _)| *i);
+    done.into_iter().map(|(_, r)| r).collect()
+}
+
 /// [`std::thread::spawn`], with the new thread placed on another CPU (as in [`join`]).
 pub fn spawn<T: Send + 'static>(
     f: impl FnOnce() -> T + Send + 'static,
@@ -161,6 +196,21 @@ mod tests {
         assert!(squares.iter().zip(&data).all(|(s, x)| *s == x * x));
         let h = spawn(|| 6 * 7);
         assert_eq!(h.join().unwrap(), 42);
+    }
+
+    /// From both ends: every item once, results in order, each thread on one end's run.
+    #[test]
+    fn map_ends_takes_each_item_once_from_both_ends() {
+        for n in [0usize, 1, 2, 3, 100] {
+            let items: Vec<usize> = (0..n).collect();
+            let who = map_ends(&items, |&i| (i, std::thread::current().id()));
+            assert_eq!(who.iter().map(|w| w.0).collect::<Vec<_>>(), items);
+            // The thread that made item 0 made a prefix; the other one the rest.
+            if let Some(first) = who.first().map(|w| w.1) {
+                let prefix = who.iter().take_while(|w| w.1 == first).count();
+                assert!(who[prefix..].iter().all(|w| w.1 != first), "{n}");
+            }
+        }
     }
 
     #[test]

@@ -377,8 +377,9 @@ fn parallel<T: Sync, R: Send>(items: &[T], work: impl Fn(&T) -> R + Sync) -> Vec
     if threads == 1 {
         return items.iter().map(&work).collect();
     }
-    // A panic in the helper is a bug: `map` surfaces it here.
-    mapc_ir::par::map(items, work)
+    // From both ends: the items are in directory order, and creating files in one
+    // directory takes turns on its lock. A panic in the helper is a bug: it surfaces here.
+    mapc_ir::par::map_ends(items, work)
 }
 
 /// Starts, on a thread of its own, the flush that [`write_dirs`] makes before staging a
