@@ -58,7 +58,8 @@ struct Split<'a> {
     /// Offset of the first key the helper reads.
     at: usize,
     depth: usize,
-    done: std::sync::mpsc::Receiver<R<Entries<'a>>>,
+    /// The helper's reading; taken back and done here if it has not started by then.
+    done: mapc_ir::par::Task<'a, R<Entries<'a>>>,
 }
 
 /// Mapping entries a helper read, and where it stopped.
@@ -134,24 +135,16 @@ fn parse_split<'a>(
     text: &'a str,
     file: FileId,
     at: usize,
-    helper: impl FnOnce(&'a str, FileId, usize) -> R<Entries<'a>> + Send,
+    helper: impl FnOnce(&'a str, FileId, usize) -> R<Entries<'a>> + Send + 'a,
 ) -> Option<(Node<'a>, Vec<List>)> {
-    let (tx, rx) = std::sync::mpsc::sync_channel(1);
-    let ((), root) = mapc_ir::par::join(
-        // A closed channel (this thread never asked) is fine: the result is dropped. The
-        // sender is moved in, so a panic closes the channel rather than leaving this
-        // thread waiting.
-        move || drop(tx.send(helper(text, file, at))),
-        || {
-            let split = Split {
-                at,
-                depth: LEVELS_DEPTH,
-                done: rx,
-            };
-            parse_from_start(text, file, false, Some(split))
-        },
-    );
-    root
+    let split = Split {
+        at,
+        depth: LEVELS_DEPTH,
+        done: mapc_ir::par::task(move || helper(text, file, at)),
+    };
+    // A split never joined is dropped with the reader, which waits for the helper if it
+    // runs (or cancels it if it never started).
+    parse_from_start(text, file, false, Some(split))
 }
 
 /// The reader over the whole text, with an optional [`Split`].
@@ -705,10 +698,16 @@ impl<'a> P<'a> {
         };
         let col = self.pos - self.line_start;
         if depth != split.depth || col != indent {
+            // Kept, never to match again, so the helper's end is waited for only when this
+            // reader ends, not now.
+            self.split = Some(Split {
+                at: usize::MAX,
+                ..split
+            });
             return Ok(false);
         }
-        // A closed channel: the helper panicked (its panic is resumed by `join`).
-        let Ok(Ok(e)) = split.done.recv() else {
+        // A panic of the helper is resumed here.
+        let Ok(e) = split.done.get() else {
             return Ok(false);
         };
         self.nodes += e.nodes;

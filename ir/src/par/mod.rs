@@ -6,46 +6,25 @@
 //! So the helper is placed on another CPU the process may use before it first runs, and
 //! takes back every CPU as soon as it does (it may still move later, as any thread).
 //! Measured (BENCHMARKS.md, "First compile, third pass"): it then starts 60-180 µs after
-//! the spawn, the time an idle vCPU takes to wake.
+//! the spawn, the time an idle vCPU takes to wake, and sometimes much later; so a job the
+//! helper has not started by the time its result is needed is run by the caller
+//! (`task`).
+
+mod task;
+
+pub use task::{task, Task};
 
 /// Runs `a` on a new thread, placed on another CPU, and `b` on this one; returns both
-/// results. A panic in either is resumed here, after both have ended. With a single CPU
-/// (or where placing threads is not supported) `a` still runs on its own thread.
+/// results. `a` runs here after `b` instead when the thread has not started it by then
+/// ([`Task`]). A panic in either is resumed here, after both have ended (or, when `b`
+/// panics first, with `a` cancelled if it had not started).
 pub fn join<RA, RB>(a: impl FnOnce() -> RA + Send, b: impl FnOnce() -> RB) -> (RA, RB)
 where
     RA: Send,
 {
-    /// Joins the thread when dropped: also when `b` unwinds, so nothing `a` borrows can
-    /// end before the thread does.
-    struct Joined<T>(Option<std::thread::JoinHandle<T>>);
-    impl<T> Drop for Joined<T> {
-        fn drop(&mut self) {
-            if let Some(h) = self.0.take() {
-                let _ = h.join();
-            }
-        }
-    }
-    let cpus = Placement::now();
-    // `std::thread::scope` would do, but its handles do not give the pthread to place.
-    // SAFETY: the thread is joined before this function returns or unwinds (`Joined`),
-    // so whatever `a` borrows outlives it.
-    let other = unsafe {
-        std::thread::Builder::new().spawn_unchecked(move || {
-            cpus.restore();
-            crate::heap::prepare_thread();
-            a()
-        })
-    }
-    .expect("failed to spawn thread");
-    cpus.move_away(&other);
-    let mut other = Joined(Some(other));
+    let a = task(a);
     let rb = b();
-    let ra = match other.0.take().map(std::thread::JoinHandle::join) {
-        Some(Ok(ra)) => ra,
-        Some(Err(p)) => std::panic::resume_unwind(p),
-        None => unreachable!("joined once"),
-    };
-    (ra, rb)
+    (a.get(), rb)
 }
 
 /// `f` of every item on two threads (as in [`join`]), each taking the next item from a
