@@ -291,6 +291,10 @@ fn holds(path: &Path, contents: &[u8]) -> bool {
     }
 }
 
+/// Files from this size on have their write-back started as soon as they are staged.
+#[cfg(target_os = "linux")]
+const EARLY_WRITE_BACK: usize = 16 << 10;
+
 /// A new file staged as a temporary beside its target, renamed over it at commit.
 struct Staged {
     tmp: PathBuf,
@@ -334,9 +338,16 @@ fn stage(path: &Path, tmp: PathBuf, data: Data) -> std::io::Result<Staged> {
         release_temporary(&tmp);
         return Err(e);
     }
-    // No write-back started here: one `syncfs` after staging submits every file in one
-    // batch, which on a virtual disk costs less than a request per file (BENCHMARKS.md,
+    // A large file's write-back starts now, so its bytes move while the rest is staged; a
+    // small one's waits for the one `syncfs` after staging, which submits them in one
+    // batch (a request per file cost more than it saved on a virtual disk: BENCHMARKS.md,
     // part 5, fourth pass).
+    #[cfg(target_os = "linux")]
+    if contents.len() >= EARLY_WRITE_BACK {
+        use std::os::fd::AsRawFd;
+        // SAFETY: a plain syscall on an open descriptor. Only a hint: errors are ignored.
+        unsafe { libc::sync_file_range(f.as_raw_fd(), 0, 0, libc::SYNC_FILE_RANGE_WRITE) };
+    }
     Ok(Staged {
         tmp,
         target: path.to_path_buf(),
