@@ -44,14 +44,14 @@ struct P<'a> {
     ctx: Ctx,
     /// The level lists read but not kept, in document order.
     lists: Vec<List>,
-    /// Where a helper thread reads the rest of the `levels` mapping (see [`Split`]).
+    /// Where a helper thread reads the rest of a mapping (see [`Split`]).
     split: Option<Split<'a>>,
 }
 
-/// The second half of the `levels` mapping, read on a helper thread while this one reads
-/// the rest of the document. Both read with the same code from the same state, so when
-/// this thread's `levels` mapping reaches the helper's first key it takes the helper's
-/// entries and position instead of reading them again. A wrong guess of where a level
+/// The rest of the `levels` mapping, or of one level, read on a helper thread while this
+/// one reads the rest of the document. Both read with the same code from the same state,
+/// so when this thread's mapping reaches the helper's first key it takes the helper's
+/// entries and position instead of reading them again. A wrong guess of where a key
 /// starts (the guess is a scan of lines, before any parsing) costs only the helper's work:
 /// a mapping that never reaches `at`, at the assumed indent and depth, reads on alone.
 struct Split<'a> {
@@ -78,6 +78,9 @@ const SPLIT_FROM: usize = 64 << 10;
 
 /// Depth of a level's mapping entry: the root mapping is 1, `levels` 2.
 const LEVELS_DEPTH: usize = 2;
+/// How much longer the helper takes for the same text in a split read: it starts later
+/// (its thread wakes) and fills a fresh heap arena.
+const HELPER_SLOWER: f64 = 1.2;
 
 /// The place of the node about to be read, as far as deferring level lists cares: the
 /// root mapping, the `levels` mapping, a level, a list of a level, anything else.
@@ -123,23 +126,25 @@ pub(super) fn parse_lists(text: &str, file: FileId, defer: bool) -> Option<(Node
         .then(|| split_point(text.as_bytes()))
         .flatten();
     match at {
-        Some(at) => parse_split(text, file, at, |t, f, at| {
-            entries_from(t, f, at, LEVELS_DEPTH)
+        Some((at, depth)) => parse_split(text, file, at, depth, move |t, f, at| {
+            entries_from(t, f, at, depth)
         }),
         None => parse_from_start(text, file, defer, None),
     }
 }
 
-/// The whole tree, its `levels` entries from `at` on read by `helper` on another thread.
+/// The whole tree, the entries of the mapping at `depth` from `at` on read by `helper` on
+/// another thread.
 fn parse_split<'a>(
     text: &'a str,
     file: FileId,
     at: usize,
+    depth: usize,
     helper: impl FnOnce(&'a str, FileId, usize) -> R<Entries<'a>> + Send + 'a,
 ) -> Option<(Node<'a>, Vec<List>)> {
     let split = Split {
         at,
-        depth: LEVELS_DEPTH,
+        depth,
         done: mapc_ir::par::task(move || helper(text, file, at)),
     };
     // A split never joined is dropped with the reader, which waits for the helper if it
@@ -268,11 +273,13 @@ fn entries_from(text: &str, file: FileId, at: usize, depth: usize) -> R<Entries<
     })
 }
 
-/// Where to split a map's `levels` for [`Split`]: the start of the level key that best
-/// balances the text before it (and after the levels) against the levels from it on;
-/// `None` without a `levels:` line at the root or with fewer than two levels. A scan of
-/// lines, not a parse: [`Split`] says why a wrong guess is harmless.
-fn split_point(b: &[u8]) -> Option<usize> {
+/// Where to split a map for [`Split`], and the depth of the mapping split there: a level
+/// key (the helper reads the `levels` mapping from it on) or a key inside a level (the
+/// helper reads the rest of that level), whichever should end the read soonest (bytes as
+/// the measure of time, the helper's [`HELPER_SLOWER`]); `None` without a `levels:` line
+/// at the root or when no split beats reading alone. A scan of lines, not a parse:
+/// [`Split`] says why a wrong guess is harmless.
+fn split_point(b: &[u8]) -> Option<(usize, usize)> {
     let lines = || {
         let mut start = 0;
         std::iter::from_fn(move || {
@@ -295,8 +302,11 @@ fn split_point(b: &[u8]) -> Option<usize> {
     let mut it = lines()
         .skip_while(|(_, l)| !(l.starts_with(b"levels:") && content(&l[7..]).is_none()))
         .skip(1);
-    let mut keys = Vec::new();
+    // Level keys (line start, key), and keys inside each level (key, its level).
+    let mut levels: Vec<(usize, usize)> = Vec::new();
+    let mut inner: Vec<(usize, usize)> = Vec::new();
     let mut level_indent = None;
+    let mut inner_indent = None;
     let mut end = b.len();
     for (start, l) in it.by_ref() {
         let Some(indent) = content(l) else { continue };
@@ -306,14 +316,38 @@ fn split_point(b: &[u8]) -> Option<usize> {
             break;
         }
         if indent == want {
-            keys.push(start + indent);
+            levels.push((start, start + indent));
+            inner_indent = None;
+            continue;
+        }
+        // Inside a level: its keys (not the items of a sequence written at their indent),
+        // but the first (from there the helper would read the whole level).
+        match inner_indent {
+            None => inner_indent = Some(indent),
+            Some(own) if indent == own && l[indent] != b'-' && !levels.is_empty() => {
+                inner.push((start + indent, levels.len() - 1));
+            }
+            Some(_) => {}
         }
     }
-    // The helper reads from a key to `end`; this thread the rest.
-    keys.iter()
-        .skip(1)
-        .copied()
-        .min_by_key(|&k| (end - k).abs_diff(b.len() - (end - k)))
+    // The helper reads from a key to the end of its mapping while this thread reads up to
+    // the key; then this thread reads on from the end of that mapping, alone. The time is
+    // that of the longer of the first two, plus the third.
+    let level_end = |i: usize| levels.get(i + 1).map_or(end, |&(line, _)| line);
+    let at_levels = levels.iter().skip(1).map(|&(_, k)| (k, LEVELS_DEPTH, end));
+    let in_levels = inner
+        .iter()
+        .map(|&(k, i)| (k, LEVELS_DEPTH + 1, level_end(i)));
+    let cost = |&(k, _, stop): &(usize, usize, usize)| {
+        let theirs = (stop - k) as f64 * HELPER_SLOWER;
+        (k as f64).max(theirs) + (b.len() - stop) as f64
+    };
+    at_levels
+        .chain(in_levels)
+        .map(|c| (cost(&c), c))
+        .filter(|&(t, _)| t < b.len() as f64)
+        .min_by(|a, b| a.0.total_cmp(&b.0))
+        .map(|(_, (k, depth, _))| (k, depth))
 }
 
 /// Characters YAML does not allow in a stream (controls other than tab, LF and CR; C1
@@ -1123,6 +1157,66 @@ mod split_tests {
         s
     }
 
+    /// Every level key but the first, and every key inside a level.
+    fn candidates(text: &str) -> Vec<(usize, usize)> {
+        let mut out = Vec::new();
+        let mut at = 0;
+        for l in text.split_inclusive('\n') {
+            if l.starts_with("  L") && !l.starts_with("  L0") {
+                out.push((at + 2, LEVELS_DEPTH));
+            } else if l.starts_with("    ") && !l.starts_with("     ") && !l.starts_with("    #") {
+                out.push((at + 4, LEVELS_DEPTH + 1));
+            }
+            at += l.len();
+        }
+        out
+    }
+
+    /// The split that ends soonest: inside the level when there is one level, at a level
+    /// key when there are many (this thread reads on alone after the helper's mapping).
+    #[test]
+    fn the_split_balances_the_text() {
+        // Levels of two lists alike, as real ones have several large lists.
+        let map = |levels: usize, n: usize| {
+            let mut s = String::from("levels:\n");
+            for l in 0..levels {
+                s.push_str(&format!("  L{l}:\n    elevation: {l}\n    lanes:\n"));
+                for v in 0..n {
+                    s.push_str(&format!(
+                        "      - [{v}, {}, {{bidirectional: [4, true]}}]\n",
+                        v + 1
+                    ));
+                }
+                s.push_str("    vertices:\n");
+                for v in 0..n {
+                    s.push_str(&format!("      - [{v}.5, {}, 0, \"v{v}\"]\n", v * 2));
+                }
+            }
+            s.push_str("lifts: {}\n");
+            s
+        };
+        // One level: its vertices (40 % of the text) to the helper, the lanes here. Two:
+        // the second. Eight: the last four (the helper's 50 % against 50 % here beats
+        // three, 37.5 % against 62.5 %, given that it is 1.2 times slower).
+        for (levels, n, share) in [(1, 300, 0.4), (2, 300, 0.5), (8, 40, 0.5)] {
+            let text = map(levels, n);
+            assert_eq!(
+                format!("{:?}", parse_lists(&text, FileId(0), false).map(|(r, _)| r)),
+                sequential(&text)
+            );
+            let (at, _) = split_point(text.as_bytes()).unwrap();
+            // Each case's helper reads on to the end of the levels.
+            let theirs = (text.find("lifts:").unwrap() - at) as f64 / text.len() as f64;
+            assert!((theirs - share).abs() < 0.02, "{levels} levels: {theirs}");
+        }
+        let one = map(1, 300);
+        let vertices = one.find("    vertices:").unwrap() + 4;
+        assert_eq!(
+            split_point(one.as_bytes()),
+            Some((vertices, LEVELS_DEPTH + 1))
+        );
+    }
+
     fn sequential(text: &str) -> String {
         format!(
             "{:?}",
@@ -1132,15 +1226,27 @@ mod split_tests {
 
     #[test]
     fn a_split_read_is_the_sequential_read() {
-        for (levels, vertices) in [(2, 3), (3, 400), (7, 20)] {
+        for (levels, vertices) in [(1, 50), (2, 3), (3, 400), (7, 20)] {
             let text = map(levels, vertices);
-            let at = split_point(text.as_bytes()).expect("a split point");
-            assert!(text[at..].starts_with('L') && text[..at].ends_with("\n  "));
-            let split = parse_split(&text, FileId(0), at, |t, f, at| {
-                entries_from(t, f, at, LEVELS_DEPTH)
+            let (at, depth) = split_point(text.as_bytes()).expect("a split point");
+            match depth {
+                LEVELS_DEPTH => {
+                    assert!(text[at..].starts_with('L') && text[..at].ends_with("\n  "))
+                }
+                _ => assert!(text[..at].ends_with("\n    ") && !text[at..].starts_with('-')),
+            }
+            let split = parse_split(&text, FileId(0), at, depth, move |t, f, at| {
+                entries_from(t, f, at, depth)
             });
             assert!(split.is_some());
             assert_eq!(format!("{:?}", split.map(|(r, _)| r)), sequential(&text));
+            // Every candidate, not only the chosen one, reads the same tree.
+            for k in candidates(&text) {
+                let split = parse_split(&text, FileId(0), k.0, k.1, move |t, f, at| {
+                    entries_from(t, f, at, k.1)
+                });
+                assert_eq!(format!("{:?}", split.map(|(r, _)| r)), sequential(&text));
+            }
         }
         // Through the public path, above the size from which it splits.
         let text = map(3, 1200);
@@ -1153,8 +1259,8 @@ mod split_tests {
     #[test]
     fn the_helpers_entries_are_used() {
         let text = map(3, 5);
-        let at = split_point(text.as_bytes()).unwrap();
-        let cut = parse_split(&text, FileId(0), at, |t, f, at| {
+        let at = text.find("  L2:").unwrap() + 2;
+        let cut = parse_split(&text, FileId(0), at, LEVELS_DEPTH, |t, f, at| {
             let mut e = entries_from(t, f, at, LEVELS_DEPTH)?;
             e.items.pop();
             Ok(e)
@@ -1176,24 +1282,38 @@ mod split_tests {
     fn a_wrong_guess_or_a_failed_helper_reads_on_alone() {
         let text = map(3, 5);
         let vertex = text.find("      - [2.5").unwrap() + 6;
-        let tree = |at, bail: bool| {
-            parse_split(&text, FileId(0), at, move |t, f, at| {
+        let tree = |at, depth, bail: bool| {
+            parse_split(&text, FileId(0), at, depth, move |t, f, at| {
                 if bail {
                     return Err(Bail);
                 }
-                entries_from(t, f, at, LEVELS_DEPTH)
+                entries_from(t, f, at, depth)
             })
             .map(|(r, _)| r)
         };
-        assert_eq!(format!("{:?}", tree(vertex, false)), sequential(&text));
-        let at = split_point(text.as_bytes()).unwrap();
-        assert_eq!(format!("{:?}", tree(at, true)), sequential(&text));
+        assert_eq!(
+            format!("{:?}", tree(vertex, LEVELS_DEPTH, false)),
+            sequential(&text)
+        );
+        // A level key taken for a key inside a level, and the other way round.
+        let level = text.find("  L2:").unwrap() + 2;
+        let walls = text.find("    walls:").unwrap() + 4;
+        assert_eq!(
+            format!("{:?}", tree(level, LEVELS_DEPTH + 1, false)),
+            sequential(&text)
+        );
+        assert_eq!(
+            format!("{:?}", tree(walls, LEVELS_DEPTH, false)),
+            sequential(&text)
+        );
+        let (at, depth) = split_point(text.as_bytes()).unwrap();
+        assert_eq!(format!("{:?}", tree(at, depth, true)), sequential(&text));
         let r = std::panic::catch_unwind(|| {
-            parse_split(&text, FileId(0), at, |_, _, _| panic!("helper"))
+            parse_split(&text, FileId(0), at, depth, |_, _, _| panic!("helper"))
         });
         assert!(r.is_err());
-        // No `levels:`, or a single level: no split.
+        // No `levels:`, or nothing to split at: no split.
         assert_eq!(split_point(b"name: x\n"), None);
-        assert_eq!(split_point(map(1, 3).as_bytes()), None);
+        assert_eq!(split_point(b"levels:\n  L1:\n    elevation: 0\n"), None);
     }
 }
