@@ -38,14 +38,21 @@ pub fn world_files_untextured(
     let list = parts(b);
     let shared = Shared::new(list.len());
     let next = AtomicUsize::new(0);
-    // OBJ texts of the meshes (every level's, in order), each taken by whoever is free.
-    let objs = |meshes: &[crate::LevelMeshes]| {
+    // The meshes' OBJ texts (every level's, in order; the larger jobs, first), then each
+    // level's other files, each taken by whoever is free.
+    let work = |meshes: &[crate::LevelMeshes]| {
         let all: Vec<&crate::Mesh> = meshes.iter().flat_map(|m| m.all()).collect();
+        let levels: Vec<Handle<Level>> = b.levels.iter().map(|(h, _)| h).collect();
         let mut done = Vec::new();
         loop {
             let i = next.fetch_add(1, Ordering::Relaxed);
-            let Some(m) = all.get(i) else { break };
-            done.push((i, crate::mesh_obj(m, b.offset)));
+            if let Some(m) = all.get(i) {
+                done.push(Job::Obj(i, crate::mesh_obj(m, b.offset)));
+            } else if let Some((&h, m)) = levels.get(i - all.len()).zip(meshes.get(i - all.len())) {
+                done.push(Job::Level(i - all.len(), level_files(b, h, m)));
+            } else {
+                break;
+            }
         }
         done
     };
@@ -57,7 +64,7 @@ pub fn world_files_untextured(
             let meshes = b.levels.iter().map(|(h, _)| crate::level_meshes(b, h));
             let meshes = shared.publish(meshes.collect());
             shared.make_parts(b, &list, flavour);
-            objs(meshes)
+            work(meshes)
         },
         || {
             let mut k = 0;
@@ -71,22 +78,31 @@ pub fn world_files_untextured(
             fill_parts(&mut tree, texts);
             let text = tree.to_document(false);
             let crowd = super::crowd::crowd_files(b);
-            let mine = shared.meshes().map(objs).unwrap_or_default();
+            let mine = shared.meshes().map(work).unwrap_or_default();
             (text, tree, crowd, mine)
         },
     );
     let level_meshes = shared.meshes.into_inner().unwrap_or_default();
     let total = level_meshes.iter().map(|m| m.all().count()).sum();
     let mut texts: Vec<Option<String>> = vec![None; total];
-    for (i, t) in theirs.into_iter().chain(mine) {
-        texts[i] = Some(t);
+    let mut files: Vec<Option<Vec<crate::OutputFile>>> = vec![None; level_meshes.len()];
+    for job in theirs.into_iter().chain(mine) {
+        match job {
+            Job::Obj(i, t) => texts[i] = Some(t),
+            Job::Level(l, f) => files[l] = Some(f),
+        }
     }
     let mut texts = texts.into_iter().flatten();
     let mut meshes = Vec::new();
     let mut models = Vec::new();
-    for ((h, _), m) in b.levels.iter().zip(level_meshes) {
-        let objs = texts.by_ref().take(m.all().count()).collect();
-        models.extend(super::level::level_model_files_with(b, h, &m, objs));
+    for (((h, _), m), level) in b.levels.iter().zip(level_meshes).zip(files) {
+        let mut level = level.unwrap_or_else(|| level_files(b, h, &m));
+        // The OBJ files, in mesh order, get their texts.
+        let mut objs = texts.by_ref().take(m.all().count());
+        for f in level.iter_mut().filter(|f| is_obj(&f.path)) {
+            f.contents = objs.next().unwrap_or_default().into_bytes();
+        }
+        models.extend(level);
         meshes.push((h, m));
     }
     (
@@ -98,6 +114,26 @@ pub fn world_files_untextured(
         },
         tree,
     )
+}
+
+/// What a thread made after the meshes: a mesh's OBJ text, or a level's other files.
+enum Job {
+    Obj(usize, String),
+    Level(usize, Vec<crate::OutputFile>),
+}
+
+/// A level model's files, its OBJ files still empty (their texts are made apart).
+fn level_files(
+    b: &Building,
+    level: Handle<Level>,
+    meshes: &crate::LevelMeshes,
+) -> Vec<crate::OutputFile> {
+    let empty = vec![String::new(); meshes.all().count()];
+    super::level::level_model_files_with(b, level, meshes, empty)
+}
+
+fn is_obj(path: &std::path::Path) -> bool {
+    path.extension().is_some_and(|e| e == "obj")
 }
 
 /// One part's models as they are written inside `<world>`.
@@ -292,6 +328,17 @@ mod tests {
                 Span::default(),
             );
             b.levels[level].doors.push(d);
+            // A wall beside each door: a level mesh, so the level has OBJ files.
+            let w = b.walls.append(
+                mapc_ir::Wall {
+                    level,
+                    start,
+                    end: b.vertices.append(v(Vec2 { x, y: 3.0 }), Span::default()),
+                    params: Params::default(),
+                },
+                Span::default(),
+            );
+            b.levels[level].walls.push(w);
         }
         b
     }
@@ -302,8 +349,21 @@ mod tests {
         let b = building();
         for f in [Flavour::Gz, Flavour::Ignition, Flavour::Classic] {
             let opts = WorldOptions::default();
-            let (_, files, _) = world_files_untextured(&b, f, &opts);
+            let (meshes, files, _) = world_files_untextured(&b, f, &opts);
             assert_eq!(files.world, super::super::world::world_text(&b, f, &opts));
+            // The level models too: the same files in the same order.
+            let one: Vec<_> = meshes
+                .iter()
+                .flat_map(|(h, m)| {
+                    let objs = m.all().map(|x| crate::mesh_obj(x, b.offset)).collect();
+                    super::super::level::level_model_files_with(&b, *h, m, objs)
+                })
+                .collect();
+            assert!(files
+                .models
+                .iter()
+                .any(|f| is_obj(&f.path) && !f.contents.is_empty()));
+            assert_eq!(files.models, one);
             for d in ["door_0", "door_1"] {
                 // The model, and its name in the floor toggle.
                 assert_eq!(
