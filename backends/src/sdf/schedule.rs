@@ -24,8 +24,9 @@ const PART_DEPTH: usize = 2;
 /// allocations, which here reuse the heap the map's YAML tree freed) while a helper makes
 /// the level meshes. Then both write the door and lift models, each taking the next as it
 /// comes free (clinic's 119 doors are most of its world); this thread writes the world's
-/// text around them, and both write the meshes' OBJ texts the same way
-/// (airport_terminal's 70 floors are most of its work). BENCHMARKS.md has the figures.
+/// text around them, and both write the meshes' OBJ texts and each level's other files
+/// the same way (airport_terminal's 70 floors are most of its work). BENCHMARKS.md has
+/// the figures.
 pub fn world_files_untextured(
     b: &Building,
     flavour: Flavour,
