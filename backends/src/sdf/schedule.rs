@@ -282,39 +282,16 @@ mod tests {
         assert!(shared.meshes().is_none());
     }
 
-    /// Two sliding doors on one level and a lift-free building.
+    /// Two sliding doors on one level, a wall beside each (a level mesh, so the level has
+    /// OBJ files), no lift.
     fn building() -> Building {
-        use mapc_ir::{
-            CoordinateSystem, Door, DoorKind, Level, MotionAxis, Params, Span, Vec2, Vertex,
-        };
-        let mut b = Building::new(
-            "b".into(),
-            CoordinateSystem::CartesianMeters,
-            Params::default(),
-        );
-        let level = b.levels.append(
-            Level {
-                name: "L1".into(),
-                ..Level::default()
-            },
-            Span::default(),
-        );
+        use mapc_ir::{Door, DoorKind, MotionAxis, Params, Span};
+        let mut m = crate::geometry::tests::Map::new();
         for (k, x) in [0.0, 5.0].into_iter().enumerate() {
-            let v = |pos| Vertex {
-                level,
-                name: String::new(),
-                pos,
-                raw: pos,
-                params: Params::default(),
-                roles: Default::default(),
-            };
-            let start = b.vertices.append(v(Vec2 { x, y: 0.0 }), Span::default());
-            let end = b
-                .vertices
-                .append(v(Vec2 { x: x + 1.0, y: 0.0 }), Span::default());
-            let d = b.doors.append(
+            let (start, end) = (m.v(x, 0.0), m.v(x + 1.0, 0.0));
+            let d = m.b.doors.append(
                 Door {
-                    level,
+                    level: m.level,
                     start,
                     end,
                     name: format!("door_{k}"),
@@ -328,20 +305,10 @@ mod tests {
                 },
                 Span::default(),
             );
-            b.levels[level].doors.push(d);
-            // A wall beside each door: a level mesh, so the level has OBJ files.
-            let w = b.walls.append(
-                mapc_ir::Wall {
-                    level,
-                    start,
-                    end: b.vertices.append(v(Vec2 { x, y: 3.0 }), Span::default()),
-                    params: Params::default(),
-                },
-                Span::default(),
-            );
-            b.levels[level].walls.push(w);
+            m.b.levels[m.level].doors.push(d);
+            m.wall((x, 0.0), (x, 3.0), Vec::new());
         }
-        b
+        m.b
     }
 
     /// On two threads the world is the same bytes as on one, its doors in place.
