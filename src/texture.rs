@@ -53,17 +53,17 @@ impl SearchPath {
     }
 
     /// The path [`SearchPath::locate`] reads `file` from, without reading it.
-    pub fn path_of(&self, file: &str) -> Option<PathBuf> {
+    fn path_of(&self, file: &str) -> Option<PathBuf> {
         self.dirs.iter().map(|d| d.join(file)).find(|p| {
             std::fs::metadata(p).is_ok_and(|m| m.is_file() && m.len() <= MAX_TEXTURE_BYTES)
         })
     }
 
-    /// As [`SearchPath::find`] for an image that is linked into the outputs rather than
+    /// As [`SearchPath::locate`] for an image that is linked into the outputs rather than
     /// copied: only the head of the file, as far as a PNG decoder reads to accept it (the
     /// chunks before the pixel data; the whole file when they are not within its first
     /// 64 KiB), so that whether it is a PNG is decided as on the whole file.
-    pub fn find_head(&self, file: &str) -> Option<Vec<u8>> {
+    pub fn find_head(&self, file: &str) -> Option<(PathBuf, Vec<u8>)> {
         use std::io::Read;
         let p = self.path_of(file)?;
         let mut f = std::fs::File::open(&p).ok()?;
@@ -73,12 +73,12 @@ impl SearchPath {
         for want in [4 << 10, 64 << 10] {
             let have = head.len() as u64;
             (&mut f).take(want - have).read_to_end(&mut head).ok()?;
-            if (head.len() as u64) < want || mapc_backends::is_png(&head) {
-                return Some(head);
+            if (head.len() as u64) < want || mapc_backends::png_head_is_enough(&head) {
+                return Some((p, head));
             }
         }
         f.read_to_end(&mut head).ok()?;
-        Some(head)
+        Some((p, head))
     }
 
     /// As [`SearchPath::find`], with the path the file was read from (for depfiles).
@@ -146,13 +146,25 @@ mod tests {
         let sp = SearchPath {
             dirs: vec![dir.clone()],
         };
-        let h = sp.find_head("big_header.png").unwrap();
+        let (p, h) = sp.find_head("big_header.png").unwrap();
+        assert_eq!(p, dir.join("big_header.png"));
         assert!(h.len() > 4 << 10 && h.len() <= 64 << 10, "{}", h.len());
         assert!(mapc_backends::is_png(&h));
-        let j = sp.find_head("junk.png").unwrap();
-        assert_eq!(j.len(), 100_000);
+        // No PNG signature: the first 4 KiB decide as well as the whole file.
+        let (_, j) = sp.find_head("junk.png").unwrap();
+        assert_eq!(j.len(), 4 << 10);
         assert!(!mapc_backends::is_png(&j));
-        assert_eq!(sp.find_head("small.png").unwrap(), small);
+        assert!(!mapc_backends::is_png(
+            &std::fs::read(dir.join("junk.png")).unwrap()
+        ));
+        // A PNG signature, then 100 KB of one chunk that never ends: read whole.
+        let mut endless = small[..8].to_vec();
+        endless.extend_from_slice(&200_000u32.to_be_bytes());
+        endless.extend_from_slice(b"tEXt");
+        endless.resize(100_000, b'x');
+        std::fs::write(dir.join("endless.png"), &endless).unwrap();
+        assert_eq!(sp.find_head("endless.png").unwrap().1, endless);
+        assert_eq!(sp.find_head("small.png").unwrap().1, small);
         assert!(sp.find_head("missing.png").is_none());
         std::fs::remove_dir_all(&dir).unwrap();
     }

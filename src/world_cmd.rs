@@ -115,9 +115,14 @@ pub(crate) fn run(flavour: Flavour, args: &WorldArgs) -> ExitCode {
             // Found images are linked from where they are (below), so only their heads are
             // read, to tell a PNG from anything else; placeholders are whole.
             let search = crate::texture::SearchPath::from_env(&args.texture_path, &args.input);
+            // Where each image was found, so that it is linked from there without a second
+            // look along the search path.
+            let mut found_at = std::collections::HashMap::new();
             let (textures, diags) =
                 mapc_backends::resolve_textures(b, names.iter().map(String::as_str), &mut |f| {
-                    search.find_head(f)
+                    let (path, head) = search.find_head(f)?;
+                    found_at.insert(f.to_string(), path);
+                    Some(head)
                 });
             texture_diags = diags;
             let images = meshes
@@ -133,7 +138,7 @@ pub(crate) fn run(flavour: Flavour, args: &WorldArgs) -> ExitCode {
                 let source = (!image.placeholder)
                     .then(|| mapc_backends::texture_file_name(name))
                     .flatten()
-                    .and_then(|f| search.path_of(&f));
+                    .and_then(|f| found_at.get(&f).cloned());
                 match source {
                     Some(source) => links.push(output::LinkedFile { path, source }),
                     None => files.models.push(OutputFile {

@@ -33,8 +33,8 @@ pub use obj::{
 };
 pub use site::site_json;
 pub use texture::{
-    is_png, is_url, placeholder_png, resolve_textures, strip_png, texture_file_name, texture_names,
-    TextureImage, Textures,
+    is_png, is_url, placeholder_png, png_head_is_enough, resolve_textures, strip_png,
+    texture_file_name, texture_names, TextureImage, Textures,
 };
 pub use yaml::{to_string as yaml_to_string, Yaml};
 

@@ -55,6 +55,34 @@ pub fn is_png(bytes: &[u8]) -> bool {
         .is_ok()
 }
 
+/// Can more bytes of the file that begins with `head` not change what [`is_png`] says of
+/// it? True once `head` reaches the first image-data chunk (the decoder reads no further to
+/// accept a PNG), and when it cannot be a PNG's beginning at all (wrong signature, a chunk
+/// length PNG forbids, or the end chunk first). A cheap walk over the chunk headers: the
+/// decoder itself runs once, on the head this accepts ([`is_png`]).
+pub fn png_head_is_enough(head: &[u8]) -> bool {
+    const SIGNATURE: &[u8; 8] = b"\x89PNG\r\n\x1a\n";
+    if head.len() < SIGNATURE.len() {
+        return !SIGNATURE.starts_with(head);
+    }
+    if !head.starts_with(SIGNATURE) {
+        return true;
+    }
+    let mut i = SIGNATURE.len();
+    // Each chunk: length (4 bytes, at most 2^31 - 1), type (4), data, CRC (4).
+    while let Some(header) = head.get(i..i + 8) {
+        let len = u32::from_be_bytes([header[0], header[1], header[2], header[3]]);
+        if len > i32::MAX as u32 {
+            return true;
+        }
+        if matches!(&header[4..], b"IDAT" | b"fdAT" | b"IEND") {
+            return true;
+        }
+        i = i.saturating_add(12).saturating_add(len as usize);
+    }
+    false
+}
+
 /// The PNG with only the chunks that define its pixels (IHDR, PLTE, tRNS, IDAT, IEND);
 /// colour-space, text, time and other ancillary chunks are dropped. glTF 2.0 requires
 /// viewers to ignore PNG colour-space information (§3.8.4.3), and the Khronos validator
@@ -244,6 +272,57 @@ mod tests {
         let mut cut = placeholder_png();
         cut.truncate(40);
         assert_eq!(strip_png(&cut), cut);
+    }
+
+    /// Whenever the head is said to be enough, the decoder says of it what it says of the
+    /// whole file: for every prefix of a PNG with an ancillary chunk before its pixels, of a
+    /// damaged one and of one without a signature.
+    #[test]
+    fn a_head_said_to_be_enough_decides_as_the_whole_file() {
+        let mut with_text = placeholder_png();
+        let mut text = Vec::new();
+        text.extend_from_slice(&4u32.to_be_bytes());
+        text.extend_from_slice(b"tEXtabcd");
+        let crc = png_crc(b"tEXtabcd");
+        text.extend_from_slice(&crc.to_be_bytes());
+        with_text.splice(33..33, text);
+        assert!(is_png(&with_text));
+        let mut bad_crc = with_text.clone();
+        bad_crc[30] ^= 1; // IHDR's CRC
+        assert!(!is_png(&bad_crc));
+        let mut no_signature = placeholder_png();
+        no_signature[1] = b'X';
+        let idat = with_text.windows(4).position(|w| w == b"IDAT").unwrap() - 4;
+        for whole in [&placeholder_png(), &with_text, &bad_crc, &no_signature] {
+            for n in 0..=whole.len() {
+                let head = &whole[..n];
+                if png_head_is_enough(head) {
+                    assert_eq!(is_png(head), is_png(whole), "prefix of {n} bytes");
+                }
+            }
+            assert!(png_head_is_enough(whole));
+        }
+        // Enough exactly from the image-data chunk's header on.
+        assert!(!png_head_is_enough(&with_text[..idat + 7]));
+        assert!(png_head_is_enough(&with_text[..idat + 8]));
+        assert!(png_head_is_enough(b"GIF89a"));
+        assert!(!png_head_is_enough(b"\x89PN"));
+    }
+
+    /// CRC-32 of PNG chunks (ISO 3309), for building test chunks.
+    fn png_crc(bytes: &[u8]) -> u32 {
+        let mut c = !0u32;
+        for &b in bytes {
+            c ^= u32::from(b);
+            for _ in 0..8 {
+                c = if c & 1 != 0 {
+                    0xEDB8_8320 ^ (c >> 1)
+                } else {
+                    c >> 1
+                };
+            }
+        }
+        !c
     }
 
     #[test]
