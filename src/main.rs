@@ -242,7 +242,11 @@ fn main() -> ExitCode {
     }
     // `mapc sim` stops cooperatively on the first signal (it writes what ran); every other
     // command removes its temporaries and exits.
-    signals::install(usize::from(matches!(cli.command, Command::Sim(_))));
+    let first = match &cli.command {
+        Command::Gazebo(a) | Command::Ignition(a) | Command::Classic(a) => world_cmd::first_job(a),
+        _ => None,
+    };
+    signals::install(usize::from(matches!(cli.command, Command::Sim(_))), first);
     match cli.command {
         Command::Nav {
             input,

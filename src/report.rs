@@ -34,23 +34,25 @@ pub fn emit(sources: &[SourceFile], diags: &[&Diagnostic], cut: &[CodeCount], st
     if diags.is_empty() && cut.is_empty() {
         return;
     }
-    let mut files = SimpleFiles::new();
-    for s in sources {
-        files.add(display_safe(&s.name), s.text.as_str());
-    }
-    let lines = SourceLines::new(sources);
     let choice = if std::io::stderr().is_terminal() {
         ColorChoice::Auto
     } else {
         ColorChoice::Never
     };
     let writer = BufferWriter::stderr(choice);
+    // The line index of every file only for snippets: one-line diagnostics carry their
+    // line and column (a build log of a large map would index it for nothing).
+    let snippets = (style != Style::OneLine).then(|| {
+        let mut files = SimpleFiles::new();
+        for s in sources {
+            files.add(display_safe(&s.name), s.text.as_str());
+        }
+        (files, SourceLines::new(sources))
+    });
     let config = term::Config::default();
     for d in diags {
         let mut one = writer.buffer();
-        if style == Style::OneLine {
-            let _ = writeln!(one, "{}", one_line(sources, d));
-        } else {
+        if let Some((files, lines)) = &snippets {
             let cs = to_codespan(sources, d);
             let labels: Vec<(usize, std::ops::Range<usize>)> = cs
                 .labels
@@ -59,14 +61,14 @@ pub fn emit(sources: &[SourceFile], diags: &[&Diagnostic], cut: &[CodeCount], st
                 .collect();
             let rendered = if lines.needs_excerpt(&labels) {
                 // Long lines cut, control and bidi characters escaped.
-                let (excerpts, ranges) = Excerpts::new(&lines, &labels);
+                let (excerpts, ranges) = Excerpts::new(lines, &labels);
                 let mut cs = cs;
                 for (l, r) in cs.labels.iter_mut().zip(ranges) {
                     l.range = r;
                 }
                 term::emit_to_write_style(&mut one, &config, &excerpts, &cs)
             } else {
-                term::emit_to_write_style(&mut one, &config, &files, &cs)
+                term::emit_to_write_style(&mut one, &config, files, &cs)
             };
             if rendered.is_err() {
                 // A span that does not fit its file (should not happen): plain fallback,
@@ -74,6 +76,8 @@ pub fn emit(sources: &[SourceFile], diags: &[&Diagnostic], cut: &[CodeCount], st
                 one = writer.buffer();
                 let _ = writeln!(one, "{}", one_line(sources, d));
             }
+        } else {
+            let _ = writeln!(one, "{}", one_line(sources, d));
         }
         // Nothing useful to do if stderr is gone (e.g. a closed pipe).
         let _ = writer.print(&one);

@@ -64,6 +64,12 @@ pub(crate) fn read_template(
         .and_then(|t| parse_template(&t, skip_camera_pose))
 }
 
+/// What the signal watcher runs first for a world command: the early flush of a first
+/// compile (`output::early_flush`).
+pub(crate) fn first_job(args: &WorldArgs) -> Option<crate::signals::FirstJob> {
+    output::early_flush(&args.output_model_dir)
+}
+
 pub(crate) fn run(flavour: Flavour, args: &WorldArgs) -> ExitCode {
     if let Err(e) = sanity::world_outputs(&args.output_world, &args.output_model_dir) {
         eprintln!("error: {e}");
@@ -92,7 +98,6 @@ pub(crate) fn run(flavour: Flavour, args: &WorldArgs) -> ExitCode {
         .filter(|p| !p.as_os_str().is_empty())
         .unwrap_or(Path::new("."));
 
-    output::start_early_flush(&args.output_model_dir);
     // A world includes its level models, so what breaks meshes breaks it too.
     let wanted = Outputs::WORLDS.union(Outputs::MESHES);
     let mut checked = match load_and_check(&args.input, &args.diag.lints) {

@@ -26,8 +26,38 @@ static LIVE: Mutex<Vec<PathBuf>> = Mutex::new(Vec::new());
 /// unregistered.
 static GATE: RwLock<()> = RwLock::new(());
 const TMP_MARK: &str = ".mapc-tmp-";
-/// The flush [`start_early_flush`] started, joined before the first batch is staged.
-static EARLY_FLUSH: Mutex<Option<std::thread::JoinHandle<()>>> = Mutex::new(None);
+/// The flush [`early_flush`] made a job of, waited for before the first batch is staged.
+static EARLY_FLUSH: Mutex<Option<std::sync::Arc<Ended>>> = Mutex::new(None);
+
+/// Set once a job has ended, or was dropped without running.
+#[derive(Default)]
+struct Ended {
+    yes: Mutex<bool>,
+    changed: std::sync::Condvar,
+}
+
+impl Ended {
+    fn set(&self) {
+        *self.yes.lock().unwrap_or_else(|e| e.into_inner()) = true;
+        self.changed.notify_all();
+    }
+
+    fn wait(&self) {
+        let mut yes = self.yes.lock().unwrap_or_else(|e| e.into_inner());
+        while !*yes {
+            yes = self.changed.wait(yes).unwrap_or_else(|e| e.into_inner());
+        }
+    }
+}
+
+/// Owned by the job: marks it ended when the job is done or dropped unrun.
+struct EndsOnDrop(std::sync::Arc<Ended>);
+
+impl Drop for EndsOnDrop {
+    fn drop(&mut self) {
+        self.0.set();
+    }
+}
 
 /// Resolves `rel` inside `root`, refusing anything that could escape it (absolute paths,
 /// `..`, drive prefixes, empty paths).
@@ -393,16 +423,16 @@ fn parallel<T: Sync, R: Send>(items: &[T], work: impl Fn(&T) -> R + Sync) -> Vec
     mapc_ir::par::map_ends(items, work)
 }
 
-/// Starts, on a thread of its own, the flush that [`write_dirs`] makes before staging a
-/// batch of new files (see [`clean_inode_tables`]), for a command about to write into
-/// `dir`: the file system then writes other processes' dirty pages (the reference
-/// generator's textures, a build step's objects) while the map is read and its files are
-/// made, rather than after. Only for a first compile (`dir` does not exist): a rerun whose
-/// outputs are unchanged writes nothing and needs no flush. The thread is joined before
-/// staging; it only ever calls `syncfs`.
-pub fn start_early_flush(dir: &Path) {
+/// The flush that [`write_dirs`] makes before staging a batch of new files (see
+/// [`clean_inode_tables`]), as a job for a thread that starts with a command about to write
+/// into `dir` (the signal watcher's): the file system then writes other processes' dirty
+/// pages (the reference generator's textures, a build step's objects) while the map is read
+/// and its files are made, rather than after. Only for a first compile (`dir` does not
+/// exist): a rerun whose outputs are unchanged writes nothing and needs no flush. Staging
+/// waits for the job to end (or to be dropped unrun); it only ever calls `syncfs`.
+pub fn early_flush(dir: &Path) -> Option<crate::signals::FirstJob> {
     if dir.exists() {
-        return;
+        return None;
     }
     // The nearest existing ancestor is on the file system the outputs will be on.
     let mut on = dir.parent();
@@ -414,22 +444,25 @@ pub fn start_early_flush(dir: &Path) {
         };
         if d.is_dir() {
             let d = d.to_path_buf();
-            let h = mapc_ir::par::spawn(move || clean_inode_tables(&d));
-            if let Ok(mut slot) = EARLY_FLUSH.lock() {
-                *slot = Some(h);
-            }
-            return;
+            let ended = std::sync::Arc::new(Ended::default());
+            *EARLY_FLUSH.lock().unwrap_or_else(|e| e.into_inner()) = Some(ended.clone());
+            let ends = EndsOnDrop(ended);
+            return Some(Box::new(move || {
+                let _ends = ends;
+                clean_inode_tables(&d);
+            }));
         }
         on = d.parent();
     }
+    None
 }
 
-/// Waits for the flush [`start_early_flush`] started; whether there was one.
+/// Waits for the flush [`early_flush`] made a job of; whether there was one.
 fn join_early_flush() -> bool {
-    let h = EARLY_FLUSH.lock().ok().and_then(|mut slot| slot.take());
-    match h {
-        Some(h) => {
-            let _ = h.join();
+    let ended = EARLY_FLUSH.lock().ok().and_then(|mut slot| slot.take());
+    match ended {
+        Some(e) => {
+            e.wait();
             true
         }
         None => false,
@@ -959,6 +992,37 @@ fn same_dir(a: &Path, b: &Path) -> bool {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// The early flush's job tells staging it has ended when it runs, and when it is
+    /// dropped unrun (no watcher thread could start): staging never waits for a job that
+    /// will not come.
+    #[test]
+    fn the_early_flush_ends_run_or_dropped() {
+        let ended = std::sync::Arc::new(Ended::default());
+        let ends = EndsOnDrop(ended.clone());
+        let job: crate::signals::FirstJob = Box::new(move || drop(ends));
+        assert!(!*ended.yes.lock().unwrap());
+        drop(job);
+        assert!(*ended.yes.lock().unwrap());
+        ended.wait();
+
+        let ended = std::sync::Arc::new(Ended::default());
+        let ends = EndsOnDrop(ended.clone());
+        let job: crate::signals::FirstJob = Box::new(move || {
+            std::thread::sleep(std::time::Duration::from_millis(20));
+            drop(ends);
+        });
+        let t = std::thread::spawn(job);
+        ended.wait();
+        assert!(*ended.yes.lock().unwrap());
+        t.join().unwrap();
+        // A first compile into a directory that does not exist gets a job; an existing one
+        // (a rerun) none.
+        let dir = std::env::temp_dir();
+        assert!(early_flush(&dir).is_none());
+        let job = early_flush(&dir.join(format!("mapc-no-such-{}", std::process::id())));
+        assert!(job.is_some());
+    }
 
     #[test]
     fn refuses_escapes() {

@@ -82,18 +82,22 @@ pub fn map_ends<T: Sync, R: Send>(items: &[T], f: impl Fn(&T) -> R + Sync) -> Ve
     done.into_iter().map(|(_, r)| r).collect()
 }
 
-/// [`std::thread::spawn`], with the new thread placed on another CPU (as in [`join`]).
+/// A named thread (as [`std::thread::Builder::spawn`]: an error when none can be made),
+/// placed on another CPU (as in [`join`]).
 pub fn spawn<T: Send + 'static>(
+    name: &str,
     f: impl FnOnce() -> T + Send + 'static,
-) -> std::thread::JoinHandle<T> {
+) -> std::io::Result<std::thread::JoinHandle<T>> {
     let cpus = Placement::now();
-    let h = std::thread::spawn(move || {
-        cpus.restore();
-        crate::heap::prepare_thread();
-        f()
-    });
+    let h = std::thread::Builder::new()
+        .name(name.into())
+        .spawn(move || {
+            cpus.restore();
+            crate::heap::prepare_thread();
+            f()
+        })?;
     cpus.move_away(&h);
-    h
+    Ok(h)
 }
 
 /// The CPUs this thread may run on, and the one it runs on.
@@ -173,8 +177,11 @@ mod tests {
         let squares = map(&data, |x| x * x);
         assert_eq!(squares.len(), 1000);
         assert!(squares.iter().zip(&data).all(|(s, x)| *s == x * x));
-        let h = spawn(|| 6 * 7);
-        assert_eq!(h.join().unwrap(), 42);
+        let h = spawn("answer", || {
+            (std::thread::current().name().map(str::to_owned), 6 * 7)
+        });
+        let (name, answer) = h.unwrap().join().unwrap();
+        assert_eq!((name.as_deref(), answer), (Some("answer"), 42));
     }
 
     /// From both ends: every item once, results in order, each thread on one end's run.
