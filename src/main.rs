@@ -489,11 +489,21 @@ fn summary_line(input: &Path, c: &Checked) {
     let errors = c.diagnostics.iter().filter(|d| d.is_error()).count();
     let warnings = c.diagnostics.len() - errors;
     if errors + warnings > 0 {
-        eprintln!(
+        say(format!(
             "{}: {errors} error(s), {warnings} warning(s)",
             output::shown(input)
-        );
+        ));
     }
+}
+
+/// One line on stderr in one write (`eprintln!` writes each piece of its format on its
+/// own to unbuffered stderr: a log's reader wakes for each, and lines of processes sharing
+/// a log can interleave).
+pub(crate) fn say(mut line: String) {
+    use std::io::Write;
+    line.push('\n');
+    // Nothing useful to do if stderr is gone (e.g. a closed pipe).
+    let _ = std::io::stderr().write_all(line.as_bytes());
 }
 
 fn nav(input: &Path, output_dir: &Path, opts: &DiagOpts) -> ExitCode {
@@ -563,12 +573,12 @@ pub(crate) fn success_line(
     } else {
         String::new()
     };
-    eprintln!(
+    say(format!(
         "{label}: {what}, {} written to {} ({} unchanged{removed}){warn}",
         plural(w.files, "file"),
         output::shown(dir),
         w.unchanged
-    );
+    ));
 }
 
 /// The shape every single-map command shares: read and check `input`; unless an error

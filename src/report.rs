@@ -29,7 +29,9 @@ pub enum Style {
 /// were found. Colour only on a terminal.
 ///
 /// Each diagnostic is rendered into a buffer first: the renderer issues many small writes
-/// (a colour change, a gutter, a fragment of a line), and stderr is unbuffered.
+/// (a colour change, a gutter, a fragment of a line), and stderr is unbuffered. All of them
+/// then go out in one write: a build log's reader (a pipe) wakes once, and the
+/// diagnostics of processes writing to one log at once do not interleave.
 pub fn emit(sources: &[SourceFile], diags: &[&Diagnostic], cut: &[CodeCount], style: Style) {
     if diags.is_empty() && cut.is_empty() {
         return;
@@ -50,6 +52,7 @@ pub fn emit(sources: &[SourceFile], diags: &[&Diagnostic], cut: &[CodeCount], st
         (files, SourceLines::new(sources))
     });
     let config = term::Config::default();
+    let mut all = writer.buffer();
     for d in diags {
         let mut one = writer.buffer();
         if let Some((files, lines)) = &snippets {
@@ -79,16 +82,14 @@ pub fn emit(sources: &[SourceFile], diags: &[&Diagnostic], cut: &[CodeCount], st
         } else {
             let _ = writeln!(one, "{}", one_line(sources, d));
         }
-        // Nothing useful to do if stderr is gone (e.g. a closed pipe).
-        let _ = writer.print(&one);
+        // In memory: cannot fail.
+        let _ = all.write_all(one.as_slice());
     }
-    if !cut.is_empty() {
-        let mut one = writer.buffer();
-        for c in cut {
-            let _ = writeln!(one, "{}", crate::limit::summary_text(c));
-        }
-        let _ = writer.print(&one);
+    for c in cut {
+        let _ = writeln!(all, "{}", crate::limit::summary_text(c));
     }
+    // Nothing useful to do if stderr is gone (e.g. a closed pipe).
+    let _ = writer.print(&all);
 }
 
 fn to_codespan(sources: &[SourceFile], d: &Diagnostic) -> CsDiagnostic<usize> {

@@ -226,7 +226,7 @@ pub(crate) fn run(flavour: Flavour, args: &WorldArgs) -> ExitCode {
                 };
                 let what = format!("1 world, {}", plural(meshes, "level mesh"));
                 success_line(&label, &what, &args.output_model_dir, total, diagnostics);
-                eprintln!("  world: {}", output::shown(&args.output_world));
+                crate::say(format!("  world: {}", output::shown(&args.output_world)));
             }
             ExitCode::SUCCESS
         }
