@@ -119,7 +119,7 @@ mod parallel_tests {
         // lanes doubled, dead ends, walls crossing lanes, waypoints on one spot.
         let mut m = TestMap::new();
         let mut vs = Vec::new();
-        for i in 0..PARALLEL_FROM + 200 {
+        for i in 0..1200 {
             let name = format!("w{}", i % 700);
             vs.push(m.vertex(&name, (i % 37) as f64 * 0.5, (i / 37) as f64 * 0.5));
         }
