@@ -64,6 +64,12 @@ pub(crate) fn read_template(
         .and_then(|t| parse_template(&t, skip_camera_pose))
 }
 
+impl WorldArgs {
+    pub(crate) fn input(&self) -> &Path {
+        &self.input
+    }
+}
+
 /// What the signal watcher runs first for a world command: the early flush of a first
 /// compile (`output::early_flush`).
 pub(crate) fn first_job(args: &WorldArgs) -> Option<crate::signals::FirstJob> {

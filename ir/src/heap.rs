@@ -26,15 +26,22 @@ const THREAD_ARENA: usize = 4 << 20;
 #[cfg(all(target_os = "linux", target_env = "gnu"))]
 const HUGE_PAGE: usize = 2 << 20;
 
-/// How far the main heap grows at a time (from the start: the part in huge pages).
+/// How far the main heap grows at a time with huge pages (from the start: the part in
+/// huge pages).
 #[cfg(all(target_os = "linux", target_env = "gnu"))]
 const MAIN_HEAP_STEP: usize = 8 << 20;
 
+/// The largest map whose run gets huge pages (`tune_for_batch(true)`): every demo map and
+/// nearly every real one. A larger map's run lasts long enough for its page faults not to
+/// matter, and its memory is bounded by its size (10 times the file, issue 12), which a
+/// 2 MiB page rounding counts against.
+pub const HUGE_PAGES_UP_TO: u64 = 1 << 20;
+
 /// Keeps large buffers in the heap (below 32 MiB), frees memory back to the system only
-/// past 64 MiB at the top, grows the main heap 8 MiB at a time, and lays it out for huge
-/// pages. For batch commands only: a long-lived server should give memory back. A no-op off
-/// glibc.
-pub fn tune_for_batch() {
+/// past 64 MiB at the top, and grows the main heap 1 MiB at a time; with `huge_pages`,
+/// 8 MiB at a time and laid out for huge pages. For batch commands only: a long-lived
+/// server should give memory back. A no-op off glibc.
+pub fn tune_for_batch(huge_pages: bool) {
     #[cfg(all(target_os = "linux", target_env = "gnu"))]
     // SAFETY: mallopt only sets allocator parameters; called before other threads exist.
     // `from_huge_boundary` only allocates, shrinks its own block, and advises memory that
@@ -42,9 +49,12 @@ pub fn tune_for_batch() {
     unsafe {
         let ok = libc::mallopt(libc::M_MMAP_THRESHOLD, 32 << 20) == 1
             && libc::mallopt(libc::M_TRIM_THRESHOLD, 64 << 20) == 1
-            && libc::mallopt(libc::M_TOP_PAD, MAIN_HEAP_STEP as i32) == 1;
+            && libc::mallopt(
+                libc::M_TOP_PAD,
+                if huge_pages { MAIN_HEAP_STEP } else { 1 << 20 } as i32,
+            ) == 1;
         TUNED.store(ok, Ordering::Relaxed);
-        if ok {
+        if ok && huge_pages {
             if let Some((from, _)) = from_huge_boundary(HUGE_PAGE) {
                 // On the main heap (the main thread's arena, below the break), which grew
                 // past the probe by a step: all of it to the break.
@@ -55,6 +65,8 @@ pub fn tune_for_batch() {
             }
         }
     }
+    #[cfg(not(all(target_os = "linux", target_env = "gnu")))]
+    let _ = huge_pages;
 }
 
 /// Makes what this thread's arena allocates next start on a huge-page boundary, with at
@@ -95,7 +107,7 @@ mod tests {
     /// The set-up leaves allocation working, on this thread and a helper's.
     #[test]
     fn allocation_works_after_tuning() {
-        super::tune_for_batch();
+        super::tune_for_batch(true);
         let (a, b) = crate::par::join(
             || {
                 (0..100_000u32)
@@ -119,7 +131,7 @@ mod tests {
     #[cfg(all(target_os = "linux", target_env = "gnu"))]
     #[test]
     fn the_next_block_starts_on_a_huge_page() {
-        super::tune_for_batch();
+        super::tune_for_batch(true);
         std::thread::spawn(|| {
             // SAFETY: plain allocations, freed below; the probe block is kept, as in use.
             unsafe {
