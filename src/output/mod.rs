@@ -26,38 +26,9 @@ static LIVE: Mutex<Vec<PathBuf>> = Mutex::new(Vec::new());
 /// unregistered.
 static GATE: RwLock<()> = RwLock::new(());
 const TMP_MARK: &str = ".mapc-tmp-";
-/// The flush [`early_flush`] made a job of, waited for before the first batch is staged.
-static EARLY_FLUSH: Mutex<Option<std::sync::Arc<Ended>>> = Mutex::new(None);
-
-/// Set once a job has ended, or was dropped without running.
-#[derive(Default)]
-struct Ended {
-    yes: Mutex<bool>,
-    changed: std::sync::Condvar,
-}
-
-impl Ended {
-    fn set(&self) {
-        *self.yes.lock().unwrap_or_else(|e| e.into_inner()) = true;
-        self.changed.notify_all();
-    }
-
-    fn wait(&self) {
-        let mut yes = self.yes.lock().unwrap_or_else(|e| e.into_inner());
-        while !*yes {
-            yes = self.changed.wait(yes).unwrap_or_else(|e| e.into_inner());
-        }
-    }
-}
-
-/// Owned by the job: marks it ended when the job is done or dropped unrun.
-struct EndsOnDrop(std::sync::Arc<Ended>);
-
-impl Drop for EndsOnDrop {
-    fn drop(&mut self) {
-        self.0.set();
-    }
-}
+/// The flush [`early_flush`] made a job of, waited for before the first batch is staged:
+/// its sender goes with the job, so receiving ends when the job has run or was dropped.
+static EARLY_FLUSH: Mutex<Option<std::sync::mpsc::Receiver<()>>> = Mutex::new(None);
 
 /// Resolves `rel` inside `root`, refusing anything that could escape it (absolute paths,
 /// `..`, drive prefixes, empty paths).
@@ -444,12 +415,11 @@ pub fn early_flush(dir: &Path) -> Option<crate::signals::FirstJob> {
         };
         if d.is_dir() {
             let d = d.to_path_buf();
-            let ended = std::sync::Arc::new(Ended::default());
-            *EARLY_FLUSH.lock().unwrap_or_else(|e| e.into_inner()) = Some(ended.clone());
-            let ends = EndsOnDrop(ended);
+            let (ends, ended) = std::sync::mpsc::channel::<()>();
+            *EARLY_FLUSH.lock().unwrap_or_else(|e| e.into_inner()) = Some(ended);
             return Some(Box::new(move || {
-                let _ends = ends;
                 clean_inode_tables(&d);
+                drop(ends);
             }));
         }
         on = d.parent();
@@ -462,7 +432,8 @@ fn join_early_flush() -> bool {
     let ended = EARLY_FLUSH.lock().ok().and_then(|mut slot| slot.take());
     match ended {
         Some(e) => {
-            e.wait();
+            // Nothing is sent: this returns once the sender is gone.
+            let _ = e.recv();
             true
         }
         None => false,
@@ -993,35 +964,29 @@ fn same_dir(a: &Path, b: &Path) -> bool {
 mod tests {
     use super::*;
 
-    /// The early flush's job tells staging it has ended when it runs, and when it is
-    /// dropped unrun (no watcher thread could start): staging never waits for a job that
-    /// will not come.
+    /// Staging waits for the early flush's job until it has run, and not forever when the
+    /// job is dropped unrun (no watcher thread could start). A rerun (the directory exists)
+    /// gets no job. (Other tests that write may take the wait over: either way it ends.)
     #[test]
     fn the_early_flush_ends_run_or_dropped() {
-        let ended = std::sync::Arc::new(Ended::default());
-        let ends = EndsOnDrop(ended.clone());
-        let job: crate::signals::FirstJob = Box::new(move || drop(ends));
-        assert!(!*ended.yes.lock().unwrap());
+        let ends = |job: Option<crate::signals::FirstJob>| {
+            let (tx, rx) = std::sync::mpsc::channel();
+            std::thread::spawn(move || {
+                join_early_flush();
+                let _ = tx.send(());
+            });
+            if let Some(job) = job {
+                std::thread::spawn(job);
+            }
+            rx.recv_timeout(std::time::Duration::from_secs(20)).is_ok()
+        };
+        let missing = std::env::temp_dir().join(format!("mapc-no-such-{}", std::process::id()));
+        let job = early_flush(&missing).unwrap();
         drop(job);
-        assert!(*ended.yes.lock().unwrap());
-        ended.wait();
-
-        let ended = std::sync::Arc::new(Ended::default());
-        let ends = EndsOnDrop(ended.clone());
-        let job: crate::signals::FirstJob = Box::new(move || {
-            std::thread::sleep(std::time::Duration::from_millis(20));
-            drop(ends);
-        });
-        let t = std::thread::spawn(job);
-        ended.wait();
-        assert!(*ended.yes.lock().unwrap());
-        t.join().unwrap();
-        // A first compile into a directory that does not exist gets a job; an existing one
-        // (a rerun) none.
-        let dir = std::env::temp_dir();
-        assert!(early_flush(&dir).is_none());
-        let job = early_flush(&dir.join(format!("mapc-no-such-{}", std::process::id())));
-        assert!(job.is_some());
+        assert!(ends(None), "a job dropped unrun is waited for forever");
+        let job = early_flush(&missing).unwrap();
+        assert!(ends(Some(job)), "a job that ran is waited for forever");
+        assert!(early_flush(&std::env::temp_dir()).is_none());
     }
 
     #[test]
