@@ -258,14 +258,20 @@ mod tests {
         assert_eq!(a, placeholder_png());
     }
 
-    #[test]
-    fn strip_keeps_pixels_and_drops_metadata() {
+    /// The placeholder with a tEXt chunk after IHDR (8 + 25 bytes), its CRC right.
+    fn with_text_chunk() -> Vec<u8> {
         let mut png = placeholder_png();
-        // Insert a tEXt chunk after IHDR (8 + 25 bytes).
         let mut text = Vec::new();
         text.extend_from_slice(&4u32.to_be_bytes());
-        text.extend_from_slice(b"tEXtabcd\0\0\0\0");
+        text.extend_from_slice(b"tEXtabcd");
+        text.extend_from_slice(&png_crc(b"tEXtabcd").to_be_bytes());
         png.splice(33..33, text);
+        png
+    }
+
+    #[test]
+    fn strip_keeps_pixels_and_drops_metadata() {
+        let png = with_text_chunk();
         let stripped = strip_png(&png);
         assert_eq!(stripped, placeholder_png());
         assert_eq!(strip_png(b"garbage"), b"garbage");
@@ -279,13 +285,7 @@ mod tests {
     /// damaged one and of one without a signature.
     #[test]
     fn a_head_said_to_be_enough_decides_as_the_whole_file() {
-        let mut with_text = placeholder_png();
-        let mut text = Vec::new();
-        text.extend_from_slice(&4u32.to_be_bytes());
-        text.extend_from_slice(b"tEXtabcd");
-        let crc = png_crc(b"tEXtabcd");
-        text.extend_from_slice(&crc.to_be_bytes());
-        with_text.splice(33..33, text);
+        let with_text = with_text_chunk();
         assert!(is_png(&with_text));
         let mut bad_crc = with_text.clone();
         bad_crc[30] ^= 1; // IHDR's CRC
