@@ -12,13 +12,14 @@ directory:
 - writer: a Python process writing 80 files of 40 KB without syncing them;
 - reference: the reference generator on the same map (../shared/tools/reference-gen).
 
-    scripts/after_other_work.py [--rounds 11] [--mapc target/release/mapc] [--work DIR] [MAP]
+    scripts/after_other_work.py [--rounds 11] [--mapc target/<target>/release/mapc] [--work DIR] [MAP]
 
 Prints the median wall time of mapc after each. Outputs stay in --work until the end (a
 fresh directory of the system's temporary directory by default). Needs ../shared.
 """
 
 import argparse
+import glob
 import os
 import shutil
 import statistics
@@ -31,10 +32,17 @@ ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 SHARED = os.path.join(ROOT, "..", "shared")
 
 
+def release_mapc():
+    """The release build: target/<target>/release/mapc (.cargo/config.toml names the
+    machine's own target), else target/release/mapc."""
+    found = sorted(glob.glob(os.path.join(ROOT, "target", "*", "release", "mapc")))
+    return found[0] if found else os.path.join(ROOT, "target/release/mapc")
+
+
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("--rounds", type=int, default=11)
-    ap.add_argument("--mapc", default=os.path.join(ROOT, "target/release/mapc"))
+    ap.add_argument("--mapc", default=release_mapc())
     ap.add_argument("--work", default=None)
     ap.add_argument("map", nargs="?", default="hotel")
     a = ap.parse_args()

@@ -7,7 +7,7 @@ directory (a first build, as in CI). Prints per map the median wall time of each
 median of the per-round ratios (reference / mapc), and both commands' median CPU time
 (user + system, from the children's rusage).
 
-    scripts/first_compile.py [--rounds 9] [--mapc target/release/mapc ...] [--work DIR] [MAP ...]
+    scripts/first_compile.py [--rounds 9] [--mapc target/<target>/release/mapc ...] [--work DIR] [MAP ...]
 
 --mapc may be given several times (an older build beside a newer one): every round then
 runs the reference and each build, the builds in a new random order per round, and each
@@ -22,6 +22,7 @@ directory with --texture-path. Run from the crate root; needs ../shared.
 """
 
 import argparse
+import glob
 import os
 import random
 import resource
@@ -34,6 +35,13 @@ import time
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 SHARED = os.path.join(ROOT, "..", "shared")
+
+
+def release_mapc():
+    """The release build: target/<target>/release/mapc (.cargo/config.toml names the
+    machine's own target), else target/release/mapc."""
+    found = sorted(glob.glob(os.path.join(ROOT, "target", "*", "release", "mapc")))
+    return found[0] if found else os.path.join(ROOT, "target/release/mapc")
 MAPS = ["triple_H", "battle_royale", "office", "campus", "hotel", "airport_terminal", "clinic"]
 
 
@@ -57,7 +65,7 @@ def main():
     ap.add_argument("--work", default=None)
     ap.add_argument("maps", nargs="*", default=MAPS)
     a = ap.parse_args()
-    builds = a.mapc or [os.path.join(ROOT, "target/release/mapc")]
+    builds = a.mapc or [release_mapc()]
     if not os.path.isdir(SHARED):
         print("skipped: ../shared not found")
         return
