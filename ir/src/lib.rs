@@ -3,6 +3,7 @@
 //! Invariants: every `Handle` stored in a [`Building`] is valid for its arenas; all
 //! positions are finite metres in the map frame; every element has a span.
 
+mod append_levels;
 mod arena;
 mod building;
 mod diag;
