@@ -19,7 +19,6 @@ fresh directory of the system's temporary directory by default). Needs ../shared
 """
 
 import argparse
-import glob
 import os
 import shutil
 import statistics
@@ -28,15 +27,7 @@ import sys
 import tempfile
 import time
 
-ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-SHARED = os.path.join(ROOT, "..", "shared")
-
-
-def release_mapc():
-    """The release build: target/<target>/release/mapc (.cargo/config.toml names the
-    machine's own target), else target/release/mapc."""
-    found = sorted(glob.glob(os.path.join(ROOT, "target", "*", "release", "mapc")))
-    return found[0] if found else os.path.join(ROOT, "target/release/mapc")
+from paths import SHARED, release_mapc
 
 
 def main():

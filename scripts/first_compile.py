@@ -22,7 +22,6 @@ directory with --texture-path. Run from the crate root; needs ../shared.
 """
 
 import argparse
-import glob
 import os
 import random
 import resource
@@ -33,15 +32,8 @@ import sys
 import tempfile
 import time
 
-ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-SHARED = os.path.join(ROOT, "..", "shared")
+from paths import SHARED, release_mapc
 
-
-def release_mapc():
-    """The release build: target/<target>/release/mapc (.cargo/config.toml names the
-    machine's own target), else target/release/mapc."""
-    found = sorted(glob.glob(os.path.join(ROOT, "target", "*", "release", "mapc")))
-    return found[0] if found else os.path.join(ROOT, "target/release/mapc")
 MAPS = ["triple_H", "battle_royale", "office", "campus", "hotel", "airport_terminal", "clinic"]
 
 
