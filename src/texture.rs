@@ -52,10 +52,20 @@ impl SearchPath {
         self.locate(file).map(|(_, bytes)| bytes)
     }
 
-    /// The path [`SearchPath::locate`] reads `file` from, without reading it.
-    fn path_of(&self, file: &str) -> Option<PathBuf> {
-        self.dirs.iter().map(|d| d.join(file)).find(|p| {
-            std::fs::metadata(p).is_ok_and(|m| m.is_file() && m.len() <= MAX_TEXTURE_BYTES)
+    /// The first `file` in the search directories that is a regular file within the size
+    /// limit, opened: opening it first and asking the open file walks each path once.
+    fn open_first(&self, file: &str) -> Option<(PathBuf, std::fs::File)> {
+        self.dirs.iter().find_map(|d| {
+            let p = d.join(file);
+            let mut open = std::fs::OpenOptions::new();
+            open.read(true);
+            // Non-blocking: a FIFO of that name must not stall the run (it is then passed
+            // over as not a regular file).
+            #[cfg(unix)]
+            std::os::unix::fs::OpenOptionsExt::custom_flags(&mut open, libc::O_NONBLOCK);
+            let f = open.open(&p).ok()?;
+            let m = f.metadata().ok()?;
+            (m.is_file() && m.len() <= MAX_TEXTURE_BYTES).then_some((p, f))
         })
     }
 
@@ -65,13 +75,14 @@ impl SearchPath {
     /// 64 KiB), so that whether it is a PNG is decided as on the whole file.
     pub fn find_head(&self, file: &str) -> Option<(PathBuf, Vec<u8>)> {
         use std::io::Read;
-        let p = self.path_of(file)?;
-        let mut f = std::fs::File::open(&p).ok()?;
+        let (p, mut f) = self.open_first(file)?;
         let mut head = Vec::new();
         // 4 KiB holds the header chunks of nearly every image; 64 KiB those with a colour
-        // profile or text; beyond that, the whole file.
+        // profile or text; beyond that, the whole file. Room is made first, so that each
+        // step is one read (from an empty buffer, reading starts with 32 bytes and doubles).
         for want in [4 << 10, 64 << 10] {
             let have = head.len() as u64;
+            head.reserve_exact((want - have) as usize);
             (&mut f).take(want - have).read_to_end(&mut head).ok()?;
             if (head.len() as u64) < want || mapc_backends::png_head_is_enough(&head) {
                 return Some((p, head));
@@ -167,5 +178,32 @@ mod tests {
         assert_eq!(sp.find_head("small.png").unwrap().1, small);
         assert!(sp.find_head("missing.png").is_none());
         std::fs::remove_dir_all(&dir).unwrap();
+    }
+
+    /// A directory or a FIFO of the texture's name is passed over for the next directory's
+    /// file, and the FIFO (which no process writes) does not stall the search.
+    #[cfg(unix)]
+    #[test]
+    fn only_regular_files_are_found() {
+        let tmp = tempfile::tempdir().unwrap();
+        let (a, b, c) = (
+            tmp.path().join("a"),
+            tmp.path().join("b"),
+            tmp.path().join("c"),
+        );
+        for d in [&a, &b, &c] {
+            std::fs::create_dir(d).unwrap();
+        }
+        std::fs::create_dir(a.join("wood.png")).unwrap();
+        let fifo = std::ffi::CString::new(b.join("wood.png").into_os_string().into_encoded_bytes())
+            .unwrap();
+        // SAFETY: a valid NUL-terminated path.
+        assert_eq!(unsafe { libc::mkfifo(fifo.as_ptr(), 0o644) }, 0);
+        let png = mapc_backends::placeholder_png();
+        std::fs::write(c.join("wood.png"), &png).unwrap();
+        let sp = SearchPath {
+            dirs: vec![a, b, c.clone()],
+        };
+        assert_eq!(sp.find_head("wood.png"), Some((c.join("wood.png"), png)));
     }
 }

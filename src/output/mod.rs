@@ -384,7 +384,7 @@ fn parallel<T: Sync, R: Send>(items: &[T], work: impl Fn(&T) -> R + Sync) -> Vec
     let threads = if items.len() < 16 {
         1
     } else {
-        std::thread::available_parallelism().map_or(1, |n| n.get().min(2))
+        mapc_ir::par::cpus().min(2)
     };
     if threads == 1 {
         return items.iter().map(&work).collect();

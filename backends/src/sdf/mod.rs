@@ -7,6 +7,8 @@ pub mod level;
 pub mod lifts;
 pub mod navmesh;
 mod schedule;
+#[rustfmt::skip]
+mod template_trees;
 pub mod world;
 pub mod xml;
 

@@ -27,10 +27,6 @@ use crate::py_float;
 use mapc_ir::{Building, CoordinateSystem, Handle, Level, Vertex};
 use std::collections::HashMap;
 
-const GZ_TEMPLATE: &str = include_str!("templates/gz.sdf");
-const IGNITION_TEMPLATE: &str = include_str!("templates/ignition.sdf");
-const CLASSIC_TEMPLATE: &str = include_str!("templates/classic.sdf");
-
 /// Options of a world run.
 #[derive(Debug, Clone, Default)]
 pub struct WorldOptions {
@@ -40,14 +36,17 @@ pub struct WorldOptions {
     pub skip_camera_pose: bool,
 }
 
-/// The default world template of `flavour`.
+/// The default world template of `flavour`: `templates/<flavour>.sdf` as [`parse_template`]
+/// reads it, built from code made from that reading (`template_trees.rs`; a test keeps it
+/// current). Why not parse at run time: the XML reader took 0.8 M instructions and 500
+/// allocations of each world run, and its first search for a byte asks the CPU for its
+/// features (a dozen `cpuid`, each a trap to the hypervisor on a VM, 3.6 µs here).
 pub fn default_template(flavour: Flavour) -> Element {
-    let text = match flavour {
-        Flavour::Gz => GZ_TEMPLATE,
-        Flavour::Ignition => IGNITION_TEMPLATE,
-        Flavour::Classic => CLASSIC_TEMPLATE,
-    };
-    parse_template(text, false).expect("built-in templates are valid (tested)")
+    match flavour {
+        Flavour::Gz => super::template_trees::gz(),
+        Flavour::Ignition => super::template_trees::ignition(),
+        Flavour::Classic => super::template_trees::classic(),
+    }
 }
 
 /// Parses an SDF world template: root `<sdf>` with a `<world>` child. Unless
@@ -542,6 +541,78 @@ pub fn world_files(
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    // The sources of `template_trees.rs`.
+    const GZ_TEMPLATE: &str = include_str!("templates/gz.sdf");
+    const IGNITION_TEMPLATE: &str = include_str!("templates/ignition.sdf");
+    const CLASSIC_TEMPLATE: &str = include_str!("templates/classic.sdf");
+
+    /// `template_trees.rs` is the code of the trees `parse_template` reads from
+    /// `templates/*.sdf`: when a template changed, this test writes the new code and fails
+    /// (run it again to see it pass; commit the file).
+    #[test]
+    fn template_trees_are_current() {
+        fn emit(e: &Element, depth: usize, out: &mut String) {
+            let pad = "    ".repeat(depth);
+            let attrs: Vec<String> = e
+                .attrs
+                .iter()
+                .map(|(k, v)| format!("({k:?}, {v:?})"))
+                .collect();
+            let head = format!(
+                "{pad}e({:?}, &[{}], {:?}, vec![",
+                e.name,
+                attrs.join(", "),
+                e.text.as_deref()
+            );
+            if e.children.is_empty() {
+                out.push_str(&format!("{head}]),\n"));
+            } else {
+                out.push_str(&format!("{head}\n"));
+                for c in &e.children {
+                    emit(c, depth + 1, out);
+                }
+                out.push_str(&format!("{pad}]),\n"));
+            }
+        }
+        let mut code = String::from(
+            "//! The default world templates (`templates/*.sdf`) as trees: made by the test\n\
+             //! `sdf::world::tests::template_trees_are_current` from `parse_template`'s reading\n\
+             //! of them. Do not edit; change the template and run that test.\n\n\
+             use super::xml::Element;\n\n\
+             fn e(\n    name: &'static str,\n    attrs: &[(&'static str, &'static str)],\n    \
+             text: Option<&'static str>,\n    children: Vec<Element>,\n) -> Element {\n    \
+             Element {\n        name: name.into(),\n        \
+             attrs: attrs.iter().map(|&(k, v)| (k.into(), v.into())).collect(),\n        \
+             children,\n        text: text.map(Into::into),\n    }\n}\n",
+        );
+        let all = [
+            (Flavour::Gz, "gz", GZ_TEMPLATE),
+            (Flavour::Ignition, "ignition", IGNITION_TEMPLATE),
+            (Flavour::Classic, "classic", CLASSIC_TEMPLATE),
+        ];
+        for (_, name, text) in all {
+            let tree = parse_template(text, false).unwrap();
+            code.push_str(&format!("\npub(super) fn {name}() -> Element {{\n"));
+            let mut body = String::new();
+            emit(&tree, 1, &mut body);
+            // The root is the function's value, not an argument.
+            code.push_str(body.trim_end().trim_end_matches(','));
+            code.push_str("\n}\n");
+        }
+        let path =
+            std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("src/sdf/template_trees.rs");
+        if std::fs::read_to_string(&path).ok().as_deref() != Some(code.as_str()) {
+            std::fs::write(&path, &code).unwrap();
+            panic!(
+                "{} was out of date: written anew, run the test again",
+                path.display()
+            );
+        }
+        for (f, _, text) in all {
+            assert_eq!(default_template(f), parse_template(text, false).unwrap());
+        }
+    }
 
     #[test]
     fn templates_parse() {

@@ -100,6 +100,18 @@ pub fn spawn<T: Send + 'static>(
     Ok(h)
 }
 
+/// How many CPUs this thread may run on: its affinity mask, one syscall. Not the cgroup's
+/// CPU quota, which `std::thread::available_parallelism` also reads (a dozen syscalls on
+/// files under /proc and /sys); enough for choosing between one thread and two.
+pub fn cpus() -> usize {
+    #[cfg(target_os = "linux")]
+    if let Some(set) = Placement::now().allowed {
+        // SAFETY: CPU_COUNT only reads the set.
+        return usize::try_from(unsafe { libc::CPU_COUNT(&set) }).map_or(1, |n| n.max(1));
+    }
+    std::thread::available_parallelism().map_or(1, |n| n.get())
+}
+
 /// The CPUs this thread may run on, and the one it runs on.
 #[derive(Clone, Copy)]
 struct Placement {
@@ -182,6 +194,42 @@ mod tests {
         });
         let (name, answer) = h.unwrap().join().unwrap();
         assert_eq!((name.as_deref(), answer), (Some("answer"), 42));
+    }
+
+    /// The count follows the thread's affinity mask: all allowed CPUs, then one.
+    #[cfg(target_os = "linux")]
+    #[test]
+    fn cpus_counts_the_allowed_cpus() {
+        let all = cpus();
+        assert!(
+            all >= 1
+                && all
+                    <= std::thread::available_parallelism()
+                        .map_or(1, |n| n.get())
+                        .max(all)
+        );
+        std::thread::spawn(|| {
+            // SAFETY: plain syscalls on this thread with a valid set.
+            unsafe {
+                let mut set: libc::cpu_set_t = std::mem::zeroed();
+                assert_eq!(
+                    libc::sched_getaffinity(0, std::mem::size_of_val(&set), &mut set),
+                    0
+                );
+                let first = (0..libc::CPU_SETSIZE as usize)
+                    .find(|&c| libc::CPU_ISSET(c, &set))
+                    .unwrap();
+                libc::CPU_ZERO(&mut set);
+                libc::CPU_SET(first, &mut set);
+                assert_eq!(
+                    libc::sched_setaffinity(0, std::mem::size_of_val(&set), &set),
+                    0
+                );
+            }
+            assert_eq!(cpus(), 1);
+        })
+        .join()
+        .unwrap();
     }
 
     /// From both ends: every item once, results in order, each thread on one end's run.

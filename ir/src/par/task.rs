@@ -223,12 +223,16 @@ mod tests {
     /// queued one never runs.
     #[test]
     fn dropping_waits_for_a_running_job() {
-        let ran = AtomicBool::new(false);
+        let (started, ran) = (AtomicBool::new(false), AtomicBool::new(false));
         let t = task(|| {
+            started.store(true, Ordering::SeqCst);
             std::thread::sleep(Duration::from_millis(20));
             ran.store(true, Ordering::SeqCst);
         });
-        std::thread::sleep(Duration::from_millis(5));
+        // Running (a busy machine may start the helper late; not started, it is cancelled).
+        while !started.load(Ordering::SeqCst) {
+            std::thread::sleep(Duration::from_millis(1));
+        }
         drop(t);
         assert!(ran.load(Ordering::SeqCst));
         // Cancelled while queued: a thread coming late finds nothing to run.
