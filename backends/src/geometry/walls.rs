@@ -81,18 +81,25 @@ fn normalised(p: &Params) -> Vec<(String, ParamValue)> {
 pub fn wall_groups(b: &Building, level: Handle<Level>) -> Vec<WallGroup> {
     let mut groups: Vec<WallGroup> = Vec::new();
     for &w in &b.levels[level].walls {
-        let key = normalised(&b.walls[w].params);
+        let p = &b.walls[w].params;
+        // The wall's `normalised` parameters, compared in place: a copy is made only for a
+        // new group (copying every wall's was most of this function's allocations).
+        let (no_texture, no_alpha) = (p.get("texture_name").is_none(), p.get("alpha").is_none());
+        let len = p.0.len() + usize::from(no_texture) + usize::from(no_alpha);
+        let has =
+            |g: &WallGroup, n: &str, v: &ParamValue| g.get(n).is_some_and(|gv| same_value(gv, v));
         let found = groups.iter_mut().find(|g| {
             // Names are unique in a map, so equal lengths and inclusion mean equality.
-            g.params.len() == key.len()
-                && key
-                    .iter()
-                    .all(|(n, v)| g.get(n).is_some_and(|gv| same_value(gv, v)))
+            g.params.len() == len
+                && p.iter().all(|q| has(g, &q.name, &q.value))
+                && (!no_texture
+                    || g.get("texture_name").and_then(ParamValue::as_str) == Some("default"))
+                && (!no_alpha || has(g, "alpha", &ParamValue::Double(1.0)))
         });
         match found {
             Some(g) => g.walls.push(w),
             None => groups.push(WallGroup {
-                params: key,
+                params: normalised(p),
                 walls: vec![w],
             }),
         }
