@@ -8,6 +8,7 @@
 
 use super::xml::Element;
 use super::Flavour;
+use crate::fmt::cat;
 use crate::py_float;
 use mapc_ir::{Building, Door, DoorKind, Handle};
 
@@ -98,13 +99,13 @@ fn section_elements(s: &Section, flavour: Flavour) -> [Element; 2] {
         .leaf("pose", format!("{x0} 0 {} 0 0 0", DOOR_HEIGHT / 2.0 + 0.01))
         .child(
             Element::new("visual")
-                .attr("name", format!("{}_visual", s.name))
+                .attr("name", cat(&[s.name, "_visual"]))
                 .child(box_geometry(&size))
                 .child(material),
         )
         .child(
             Element::new("collision")
-                .attr("name", format!("{}_collision", s.name))
+                .attr("name", cat(&[s.name, "_collision"]))
                 .child(box_geometry(&size))
                 .child(bitmask_surface("0x02")),
         )
@@ -130,7 +131,7 @@ fn section_elements(s: &Section, flavour: Flavour) -> [Element; 2] {
     let limit = Element::new("limit")
         .leaf("lower", s.lower.clone())
         .leaf("upper", s.upper.clone());
-    let joint = Element::new("joint").attr("name", format!("{}_joint", s.name));
+    let joint = Element::new("joint").attr("name", cat(&[s.name, "_joint"]));
     let joint = match s.joint {
         JointKind::Slide => joint
             .attr("type", "prismatic")
@@ -146,7 +147,7 @@ fn section_elements(s: &Section, flavour: Flavour) -> [Element; 2] {
             .leaf("parent", "world")
             .leaf("child", s.name)
             .child(Element::new("axis").leaf("xyz", axis).child(limit))
-            .leaf("pose", format!("{} 0 0 0 0 0", py_float(pose_x))),
+            .leaf("pose", cat(&[&py_float(pose_x), " 0 0 0 0 0"])),
     };
     [link, joint]
 }
@@ -250,7 +251,7 @@ pub fn door_model(b: &Building, door: Handle<Door>, flavour: Flavour) -> Option<
     };
     let mut model = Element::new("model").attr("name", d.name.clone()).leaf(
         "pose",
-        format!("{} {} {} 0 0 {}", f(c.x), f(c.y), f(elevation), f(yaw)),
+        cat(&[&f(c.x), " ", &f(c.y), " ", &f(elevation), " 0 0 ", &f(yaw)]),
     );
     if !d.plugin {
         model = model.leaf("static", "true");

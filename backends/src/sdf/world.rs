@@ -23,6 +23,7 @@
 
 use super::xml::Element;
 use super::Flavour;
+use crate::fmt::cat;
 use crate::py_float;
 use mapc_ir::{Building, CoordinateSystem, Handle, Level, Vertex};
 use std::collections::HashMap;
@@ -204,7 +205,7 @@ fn instance_names(b: &Building) -> HashMap<Handle<mapc_ir::Model>, String> {
             let inst = if *k == 1 {
                 name.to_string()
             } else {
-                format!("{name}_{k}")
+                cat(&[name, "_", &k.to_string()])
             };
             out.insert(m, inst);
         }
@@ -250,7 +251,7 @@ fn spawn_yaw(b: &Building, level: &Level, v: Handle<Vertex>) -> Option<f64> {
 fn include(name: &str, uri: &str, pose: String) -> Element {
     Element::new("include")
         .leaf("name", name.to_owned())
-        .leaf("uri", format!("model://{uri}"))
+        .leaf("uri", cat(&["model://", uri]))
         .leaf("pose", pose)
 }
 
@@ -358,18 +359,15 @@ pub(crate) fn world_with(
             let m = &b.models[mh];
             let inst = &names[&mh];
             let name = if m.dispensable {
-                format!("{inst}_dispensable")
+                cat(&[inst, "_dispensable"])
             } else {
                 inst.clone()
             };
             let is_static =
                 m.is_static && !matches!(m.model_name.as_str(), "Sesto" | "MiR100" | "Magni");
             let (x, y) = world_xy(b, m.pos);
-            let pose = format!(
-                "{x} {y} {} 0 0 {}",
-                py_float(m.z + lvl.elevation),
-                py_float(m.yaw)
-            );
+            let (z, yaw) = (py_float(m.z + lvl.elevation), py_float(m.yaw));
+            let pose = cat(&[&x, " ", &y, " ", &z, " 0 0 ", &yaw]);
             world.push(
                 include(&name, strip_first_segment(&m.model_name), pose)
                     .leaf("static", if is_static { "true" } else { "false" }),
@@ -389,7 +387,7 @@ pub(crate) fn world_with(
             world.push(include(
                 n,
                 robot_type(t, flavour),
-                format!("{x} {y} {elev} 0 0 {yaw}"),
+                cat(&[&x, " ", &y, " ", &elev, " 0 0 ", &yaw]),
             ));
         }
         // 3. doors
@@ -401,7 +399,7 @@ pub(crate) fn world_with(
         world.push(include(
             &model_name,
             &model_name,
-            format!("0 0 {elev} 0 0 0"),
+            cat(&["0 0 ", &elev, " 0 0 0"]),
         ));
         // Shaft doors of the lifts that open on this level.
         for (lift, _) in b.lifts.iter() {
