@@ -6,17 +6,31 @@ use std::fmt::Write as _;
 /// scientific (two-digit exponent) otherwise, always with a `.` or an exponent. The
 /// reference generator prints every float this way, so matching it keeps diffs small.
 pub fn py_float(x: f64) -> String {
-    // ryu lays out positionally from 1e-5 up to 1e16 with the same digits; Python switches
-    // to an exponent below 1e-4. Those (no `e`, no `0.0000` prefix) are taken as they are,
-    // the rest laid out again below.
-    if x.is_finite() {
-        let mut buf = ryu::Buffer::new();
-        let r = buf.format_finite(x);
-        if !r.contains('e') && !r.trim_start_matches('-').starts_with("0.0000") {
-            return r.to_string();
-        }
+    let mut buf = ryu::Buffer::new();
+    match ryu_as_python(&mut buf, x) {
+        Some(r) => r.to_string(),
+        None => py_float_laid_out(x),
     }
-    py_float_laid_out(x)
+}
+
+/// [`py_float`] appended to `out` (no string of its own in the usual case).
+pub(crate) fn push_py_float(out: &mut String, x: f64) {
+    let mut buf = ryu::Buffer::new();
+    match ryu_as_python(&mut buf, x) {
+        Some(r) => out.push_str(r),
+        None => out.push_str(&py_float_laid_out(x)),
+    }
+}
+
+/// ryu's text of `x` when it is Python's as well. ryu lays out positionally from 1e-5 up to
+/// 1e16 with the same digits; Python switches to an exponent below 1e-4. Those (no `e`, no
+/// `0.0000` prefix) are taken as they are, the rest laid out again by the caller.
+fn ryu_as_python(buf: &mut ryu::Buffer, x: f64) -> Option<&str> {
+    if !x.is_finite() {
+        return None;
+    }
+    let r = buf.format_finite(x);
+    (!r.contains('e') && !r.trim_start_matches('-').starts_with("0.0000")).then_some(r)
 }
 
 /// `parts` end to end, in one allocation of the right size: for the short texts of a world

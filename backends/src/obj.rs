@@ -22,7 +22,7 @@
 //! triangulation. `tests/meshes.rs` checks our wall OBJ files against the reference's line
 //! by line. `model.material` is written fresh rather than appended to.
 
-use crate::fmt::push_fixed;
+use crate::fmt::{push_fixed, push_py_float};
 use crate::geometry::{level_meshes, LevelMeshes};
 use crate::mesh::{Mesh, MeshKind};
 use crate::{py_float, OutputFile};
@@ -345,40 +345,43 @@ fn floor_obj(mesh: &Mesh, offset: Vec2) -> String {
     s.push_str(HEADER);
     let _ = writeln!(s, "mtllib {}.mtl", mesh.name);
     let _ = writeln!(s, "o {}", mesh.name);
+    // Pushed piece by piece: `writeln!` of `py_float` texts was most of a floor's time.
     for i in 0..np {
         let (top, bottom) = (mesh.positions[i], mesh.positions[np + i]);
-        let (x, y) = (py_float(top[0] - offset.x), py_float(top[1] - offset.y));
-        let _ = writeln!(s, "v {x} {y} {}", short(top[2]));
-        let _ = writeln!(s, "v {x} {y} {}", short(bottom[2]));
+        for z in [top[2], bottom[2]] {
+            s.push_str("v ");
+            push_py_float(&mut s, top[0] - offset.x);
+            s.push(' ');
+            push_py_float(&mut s, top[1] - offset.y);
+            s.push(' ');
+            push_short(&mut s, z);
+            s.push('\n');
+        }
     }
     for t in &mesh.uvs[..np] {
-        let _ = writeln!(s, "vt {} {} 0", py_float(t[0]), py_float(t[1]));
+        s.push_str("vt ");
+        push_py_float(&mut s, t[0]);
+        s.push(' ');
+        push_py_float(&mut s, t[1]);
+        s.push_str(" 0\n");
     }
     s.push_str("vn 0 0 1\nvn 0 0 -1\n");
     let _ = writeln!(s, "usemtl {}", mesh.name);
     s.push_str("s off\n");
     for t in &mesh.triangles[..nt] {
         let [a, b, c] = t.map(|i| i as usize);
-        let _ = writeln!(
-            s,
-            "f {}/{}/1 {}/{}/1 {}/{}/1",
-            2 * a + 1,
-            a + 1,
-            2 * b + 1,
-            b + 1,
-            2 * c + 1,
-            c + 1
-        );
-        let _ = writeln!(
-            s,
-            "f {}/{}/2 {}/{}/2 {}/{}/2",
-            2 * c + 2,
-            c + 1,
-            2 * b + 2,
-            b + 1,
-            2 * a + 2,
-            a + 1
-        );
+        // `f v/vt/1 ...` (top, normal 1) and the bottom reversed (normal 2).
+        for (k, side) in [(1, [a, b, c]), (2, [c, b, a])] {
+            s.push('f');
+            for i in side {
+                s.push(' ');
+                int(&mut s, 2 * i + k);
+                s.push('/');
+                int(&mut s, i + 1);
+                s.push_str(if k == 1 { "/1" } else { "/2" });
+            }
+            s.push('\n');
+        }
     }
     s
 }
@@ -408,7 +411,13 @@ fn generic_obj(mesh: &Mesh, offset: Vec2) -> String {
             fixed4(&mut s, p[2]);
             s.push('\n');
         } else {
-            let _ = writeln!(s, "v {} {} {}", py_float(x), py_float(y), short(p[2]));
+            s.push_str("v ");
+            push_py_float(&mut s, x);
+            s.push(' ');
+            push_py_float(&mut s, y);
+            s.push(' ');
+            push_short(&mut s, p[2]);
+            s.push('\n');
         }
     }
     for t in &mesh.uvs {
@@ -419,7 +428,11 @@ fn generic_obj(mesh: &Mesh, offset: Vec2) -> String {
             fixed4(&mut s, t[1]);
             s.push('\n');
         } else {
-            let _ = writeln!(s, "vt {} {} 0", py_float(t[0]), py_float(t[1]));
+            s.push_str("vt ");
+            push_py_float(&mut s, t[0]);
+            s.push(' ');
+            push_py_float(&mut s, t[1]);
+            s.push_str(" 0\n");
         }
     }
     // Distinct normals in order of first use.
@@ -448,6 +461,15 @@ fn generic_obj(mesh: &Mesh, offset: Vec2) -> String {
         face_same(&mut s, [a + 1, b + 1, c + 1], [vn[a], vn[b], vn[c]]);
     }
     s
+}
+
+/// [`short`] appended to `out`.
+fn push_short(out: &mut String, x: f64) {
+    if x.fract() == 0.0 && x.abs() < 1e15 {
+        out.push_str(itoa::Buffer::new().format(x as i64));
+    } else {
+        push_py_float(out, x);
+    }
 }
 
 /// Integral values without a fraction (`0`, `-1`, as the reference writes z and normals of
