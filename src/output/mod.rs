@@ -726,7 +726,8 @@ fn write_staged(
     let mut jobs: Vec<Job> = Vec::new();
     // Target -> position in `jobs`: a path given twice is written once, with the last
     // contents.
-    let mut index: HashMap<&Path, usize> = HashMap::new();
+    let mut index: HashMap<&Path, usize> =
+        HashMap::with_capacity(plans.iter().map(|p| p.targets.len()).sum());
     let mut written = Vec::with_capacity(dirs.len());
     for (i, (d, p)) in dirs.iter().zip(plans).enumerate() {
         let mut w = Written {

@@ -24,7 +24,8 @@ pub(crate) struct PointGrid {
 impl PointGrid {
     /// A grid of `points` (an id and a position each) in cells of side `cell` (> 0).
     pub(crate) fn new(cell: f64, points: impl IntoIterator<Item = (u32, Vec2)>) -> Self {
-        let mut cells: HashMap<(i64, i64), Vec<u32>> = HashMap::new();
+        let points = points.into_iter();
+        let mut cells: HashMap<(i64, i64), Vec<u32>> = HashMap::with_capacity(points.size_hint().0);
         for (id, p) in points {
             cells.entry(cell_of(p, cell)).or_default().push(id);
         }
@@ -94,7 +95,8 @@ impl BoxGrid {
         };
         let mut grid = BoxGrid {
             cell,
-            cells: HashMap::new(),
+            // A typical box spans a few cells: room for one each at least.
+            cells: HashMap::with_capacity(boxes.len()),
             seen: vec![u32::MAX; boxes.len()],
             query: 0,
         };

@@ -33,18 +33,16 @@ pub(crate) static RULE: Rule = Rule {
 };
 
 fn check(ctx: &Context, out: &mut Vec<Diagnostic>) {
-    let mut seen: HashMap<(i64, Handle<Vertex>, Handle<Vertex>), Handle<Lane>> = HashMap::new();
+    let mut seen: HashMap<(i64, Handle<Vertex>, Handle<Vertex>), Handle<Lane>> =
+        HashMap::with_capacity(ctx.b.lanes.len());
     for (h, lane) in ctx.b.lanes.iter() {
         if lane.start == lane.end {
             continue; // E0201
         }
         let (s, e) = (lane.start, lane.end);
-        let mut edges = vec![(s, e)];
-        if lane.bidirectional {
-            edges.push((e, s));
-        }
+        let edges = [(s, e), (e, s)];
         let mut first_dup: Option<(Handle<Lane>, Handle<Vertex>, Handle<Vertex>)> = None;
-        for (from, to) in edges {
+        for &(from, to) in &edges[..1 + usize::from(lane.bidirectional)] {
             match seen.get(&(lane.graph, from, to)) {
                 Some(&other) => {
                     first_dup.get_or_insert((other, from, to));

@@ -56,7 +56,7 @@ struct Spot {
 /// waypoints leave the grid, so a spot of k waypoints costs O(k), not O(k²).
 fn spots(ctx: &Context, graph: i64, waypoints: &[Handle<Vertex>]) -> Vec<Spot> {
     let b = ctx.b;
-    let mut claimed: HashSet<Handle<Vertex>> = HashSet::new();
+    let mut claimed: HashSet<Handle<Vertex>> = HashSet::with_capacity(waypoints.len());
     let mut grid = PointGrid::new(
         NEAR_TOLERANCE,
         waypoints
@@ -70,13 +70,15 @@ fn spots(ctx: &Context, graph: i64, waypoints: &[Handle<Vertex>]) -> Vec<Spot> {
             continue;
         }
         let pv = b.vertices[v].pos;
-        // The vertices a lane of this graph joins to v.
-        let joined: HashSet<Handle<Vertex>> = ctx.lanes_at_vertex[v.index()]
+        // The vertices a lane of this graph joins to v, sorted for binary search (a set per
+        // waypoint, grown and hashed, was most of this rule's time).
+        let mut joined: Vec<Handle<Vertex>> = ctx.lanes_at_vertex[v.index()]
             .iter()
             .map(|&l| &b.lanes[l])
             .filter(|l| l.graph == graph)
             .flat_map(|l| [l.start, l.end])
             .collect();
+        joined.sort_unstable();
         let mut others = Vec::new();
         grid.near(
             pv,
@@ -84,7 +86,7 @@ fn spots(ctx: &Context, graph: i64, waypoints: &[Handle<Vertex>]) -> Vec<Spot> {
             |i| {
                 let w = waypoints[i as usize];
                 if w != v
-                    && !joined.contains(&w)
+                    && joined.binary_search(&w).is_err()
                     && b.vertices[w].pos.minus(pv).norm() < NEAR_TOLERANCE
                 {
                     others.push(w);
