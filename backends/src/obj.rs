@@ -346,14 +346,18 @@ fn floor_obj(mesh: &Mesh, offset: Vec2) -> String {
     let _ = writeln!(s, "mtllib {}.mtl", mesh.name);
     let _ = writeln!(s, "o {}", mesh.name);
     // Pushed piece by piece: `writeln!` of `py_float` texts was most of a floor's time.
+    // `x y ` of a top vertex and the bottom one below it, formatted once.
+    let mut xy = String::with_capacity(48);
     for i in 0..np {
         let (top, bottom) = (mesh.positions[i], mesh.positions[np + i]);
+        xy.clear();
+        push_py_float(&mut xy, top[0] - offset.x);
+        xy.push(' ');
+        push_py_float(&mut xy, top[1] - offset.y);
+        xy.push(' ');
         for z in [top[2], bottom[2]] {
             s.push_str("v ");
-            push_py_float(&mut s, top[0] - offset.x);
-            s.push(' ');
-            push_py_float(&mut s, top[1] - offset.y);
-            s.push(' ');
+            s.push_str(&xy);
             push_short(&mut s, z);
             s.push('\n');
         }
