@@ -281,23 +281,13 @@ fn walls_obj(mesh: &Mesh, offset: Vec2) -> String {
     for w in 0..walls {
         for (face, k) in CORNERS {
             let p = mesh.positions[20 * w + 4 * face + k];
-            s.push_str("v ");
-            f4(&mut s, p[0] - shift[0]);
-            s.push(' ');
-            f4(&mut s, p[1] - shift[1]);
-            s.push(' ');
-            fixed4(&mut s, p[2]);
-            s.push('\n');
+            v4(&mut s, p[0] - shift[0], p[1] - shift[1], p[2]);
         }
     }
     for w in 0..walls {
         for (face, k) in CORNERS {
             let t = mesh.uvs[20 * w + 4 * face + k];
-            s.push_str("vt ");
-            fixed4(&mut s, t[0]);
-            s.push(' ');
-            fixed4(&mut s, t[1]);
-            s.push('\n');
+            vt4(&mut s, t);
         }
     }
     s.push_str("vn 0.0000 0.0000 1.0000\n");
@@ -363,11 +353,7 @@ fn floor_obj(mesh: &Mesh, offset: Vec2) -> String {
         }
     }
     for t in &mesh.uvs[..np] {
-        s.push_str("vt ");
-        push_py_float(&mut s, t[0]);
-        s.push(' ');
-        push_py_float(&mut s, t[1]);
-        s.push_str(" 0\n");
+        vt_py(&mut s, *t);
     }
     s.push_str("vn 0 0 1\nvn 0 0 -1\n");
     let _ = writeln!(s, "usemtl {}", mesh.name);
@@ -407,13 +393,7 @@ fn generic_obj(mesh: &Mesh, offset: Vec2) -> String {
     for p in &mesh.positions {
         let (x, y) = (p[0] - shift[0], p[1] - shift[1]);
         if walls {
-            s.push_str("v ");
-            f4(&mut s, x);
-            s.push(' ');
-            f4(&mut s, y);
-            s.push(' ');
-            fixed4(&mut s, p[2]);
-            s.push('\n');
+            v4(&mut s, x, y, p[2]);
         } else {
             s.push_str("v ");
             push_py_float(&mut s, x);
@@ -426,17 +406,9 @@ fn generic_obj(mesh: &Mesh, offset: Vec2) -> String {
     }
     for t in &mesh.uvs {
         if walls {
-            s.push_str("vt ");
-            fixed4(&mut s, t[0]);
-            s.push(' ');
-            fixed4(&mut s, t[1]);
-            s.push('\n');
+            vt4(&mut s, *t);
         } else {
-            s.push_str("vt ");
-            push_py_float(&mut s, t[0]);
-            s.push(' ');
-            push_py_float(&mut s, t[1]);
-            s.push_str(" 0\n");
+            vt_py(&mut s, *t);
         }
     }
     // Distinct normals in order of first use.
@@ -465,6 +437,35 @@ fn generic_obj(mesh: &Mesh, offset: Vec2) -> String {
         face_same(&mut s, [a + 1, b + 1, c + 1], [vn[a], vn[b], vn[c]]);
     }
     s
+}
+
+/// `v x y z` of a wall: x and y as `f4`, z to four places.
+fn v4(out: &mut String, x: f64, y: f64, z: f64) {
+    out.push_str("v ");
+    f4(out, x);
+    out.push(' ');
+    f4(out, y);
+    out.push(' ');
+    fixed4(out, z);
+    out.push('\n');
+}
+
+/// `vt u v` of a wall, to four places.
+fn vt4(out: &mut String, t: [f64; 2]) {
+    out.push_str("vt ");
+    fixed4(out, t[0]);
+    out.push(' ');
+    fixed4(out, t[1]);
+    out.push('\n');
+}
+
+/// `vt u v 0` of a floor or another mesh, as Python prints floats.
+fn vt_py(out: &mut String, t: [f64; 2]) {
+    out.push_str("vt ");
+    push_py_float(out, t[0]);
+    out.push(' ');
+    push_py_float(out, t[1]);
+    out.push_str(" 0\n");
 }
 
 /// [`short`] appended to `out`.
