@@ -421,7 +421,12 @@ fn generic_obj(mesh: &Mesh, offset: Vec2) -> String {
             if walls {
                 vn4(&mut s, *n);
             } else {
-                let _ = writeln!(s, "vn {} {} {}", short(n[0]), short(n[1]), short(n[2]));
+                s.push_str("vn");
+                for c in n {
+                    s.push(' ');
+                    push_short(&mut s, *c);
+                }
+                s.push('\n');
             }
             next
         });
@@ -468,22 +473,13 @@ fn vt_py(out: &mut String, t: [f64; 2]) {
     out.push_str(" 0\n");
 }
 
-/// [`short`] appended to `out`.
+/// Integral values without a fraction (`0`, `-1`, as the reference writes z and normals of
+/// floors), others as Python `str`.
 fn push_short(out: &mut String, x: f64) {
     if x.fract() == 0.0 && x.abs() < 1e15 {
         out.push_str(itoa::Buffer::new().format(x as i64));
     } else {
         push_py_float(out, x);
-    }
-}
-
-/// Integral values without a fraction (`0`, `-1`, as the reference writes z and normals of
-/// floors), others as Python `str`.
-fn short(x: f64) -> String {
-    if x.fract() == 0.0 && x.abs() < 1e15 {
-        format!("{}", x as i64)
-    } else {
-        py_float(x)
     }
 }
 
