@@ -12,7 +12,7 @@ directory:
 - writer: a Python process writing 80 files of 40 KB without syncing them;
 - reference: the reference generator on the same map (../shared/tools/reference-gen).
 
-    scripts/after_other_work.py [--rounds 11] [--mapc target/<target>/release/mapc] [--work DIR] [MAP]
+    scripts/after_other_work.py [--rounds 11] [--mapc target/release/mapc] [--work DIR] [MAP]
 
 Prints the median wall time of mapc after each. Outputs stay in --work until the end (a
 fresh directory of the system's temporary directory by default). Needs ../shared.

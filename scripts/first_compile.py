@@ -7,7 +7,7 @@ directory (a first build, as in CI). Prints per map the median wall time of each
 median of the per-round ratios (reference / mapc), and both commands' median CPU time
 (user + system, from the children's rusage).
 
-    scripts/first_compile.py [--rounds 9] [--mapc target/<target>/release/mapc ...] [--work DIR] [MAP ...]
+    scripts/first_compile.py [--rounds 9] [--mapc target/release/mapc ...] [--work DIR] [MAP ...]
 
 --mapc may be given several times (an older build beside a newer one): every round then
 runs the reference and each build, the builds in a new random order per round, and each

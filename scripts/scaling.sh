@@ -6,9 +6,8 @@
 # The fleets keep the proportions of the scenario's `count`s.
 set -euo pipefail
 scenario=$1; shift
-# The release build (target/<target>/release/mapc: .cargo/config.toml names the target).
-mapc=${MAPC:-$(ls target/*/release/mapc 2>/dev/null | head -n 1)}
-mapc=${mapc:-target/release/mapc}
+# The release build.
+mapc=${MAPC:-target/release/mapc}
 dir=$(cd "$(dirname "$scenario")" && pwd)
 tmp=$(mktemp -d); trap 'rm -rf "$tmp"' EXIT
 mapfile -t counts < <(grep -o 'count: [0-9]*' "$scenario" | grep -o '[0-9]*')
