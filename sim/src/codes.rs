@@ -415,6 +415,58 @@ pub const IN_LIFT: Code = Code {
     summary: "a task waypoint lies inside a lift cabin",
 };
 
+/// # S0210 not-well-formed
+///
+/// **Severity:** warning
+///
+/// **What:** a task waypoint is the only way to another place the scenario uses (a robot
+/// standing there cuts the graph): the scenario is not *well-formed* in the sense of
+/// lifelong multi-robot planning.
+///
+/// **Why it matters:** while a robot works at that waypoint (a dwell, a workcell, a
+/// charge) every robot going past it waits. The run never deadlocks (robots only stand for
+/// good on parking vertices, which cut nothing), but throughput suffers.
+///
+/// **Fix:** add a lane around the waypoint, or move the task to a waypoint beside the
+/// corridor (a dead end off it).
+///
+/// **Example:**
+/// ```yaml
+/// tasks:
+///   - {go_to_place: {place: corridor_mid}}   # S0210: the only way to the rooms behind it
+/// ```
+pub const NOT_WELL_FORMED: Code = Code {
+    code: "S0210",
+    name: "not-well-formed",
+    summary: "a task waypoint is the only way to another place the scenario uses",
+};
+
+/// # S0211 no-room
+///
+/// **Severity:** warning
+///
+/// **What:** `spawn: auto` found room for fewer robots than the fleet's `count`: the
+/// building has fewer parking vertices (waypoints where a standing robot blocks no route to
+/// the rest of the graph, away from task waypoints, chargers and lift cabins, and from each
+/// other) than robots asked.
+///
+/// **Why it matters:** the robots without room stay out of the run (the report counts them
+/// as `reserve`); a robot with nowhere to stand but a corridor would block the others.
+///
+/// **Fix:** lower `count`, add parking spots (dead ends off the corridors), or name spawn
+/// waypoints for the fleet.
+///
+/// **Example:**
+/// ```yaml
+/// fleets:
+///   - {name: tiny, robot: TinyRobot, count: 64, spawn: auto}   # S0211 on a small floor
+/// ```
+pub const NO_ROOM: Code = Code {
+    code: "S0211",
+    name: "no-room",
+    summary: "the building has room for fewer robots than asked",
+};
+
 /// # S0301 unknown-robot-preset
 ///
 /// **What:** a fleet's `robot` (or `robot.preset`) names no known robot type. The presets
@@ -673,6 +725,8 @@ pub static CODES: &[Code] = &[
     NO_FLEET_ON_MAP,
     NO_WORKCELL,
     IN_LIFT,
+    NOT_WELL_FORMED,
+    NO_ROOM,
     UNKNOWN_PRESET,
     UNKNOWN_TASK_KIND,
     SEVERAL_TASK_KINDS,

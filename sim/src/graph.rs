@@ -323,6 +323,11 @@ impl Nav {
         Some((dist[to], edges))
     }
 
+    /// Whether `to` can be reached from `from` on graph slot `slot`.
+    pub fn times_reachable(&self, slot: usize, from: usize, to: usize) -> bool {
+        self.plan(slot, from, to, 1.0).is_some()
+    }
+
     /// Travel times from `from` to every vertex of slot `slot` (Dijkstra).
     pub fn times_from(&self, slot: usize, from: usize, speed: f64) -> Vec<f64> {
         self.tree_from(slot, from, speed).0
@@ -392,112 +397,6 @@ impl Ord for QItem {
 impl PartialOrd for QItem {
     fn partial_cmp(&self, o: &Self) -> Option<Ordering> {
         Some(self.cmp(o))
-    }
-}
-
-/// Lift lobbies of the graphs: for every bridge lane of a level (a lane whose removal
-/// splits its level's graph), the smaller side when it holds a lift cabin, entered over the
-/// bridge. Robots enter a lobby only while fewer than `capacity` robots are inside or
-/// committed to it (admission control, see fleet.rs), so robots queueing for a lift do not
-/// fill the lobby that riders must leave through. Plain dead ends are not limited: on the
-/// hotel benchmark that made more robots wait on through routes (they have no holding spot
-/// to wait at), and reservations already keep two robots from meeting in a corridor.
-#[derive(Debug, Clone, Default)]
-pub struct Regions {
-    /// Vertices of each region, ascending.
-    pub members: Vec<Vec<usize>>,
-    /// Robots a region admits at once: its leaves (dead ends, lift cabins, where a robot
-    /// stands off the others' way out), at least one.
-    pub capacity: Vec<usize>,
-    /// Per edge: the region it enters (its lane is the region's bridge, driven inwards).
-    pub entry: Vec<Option<usize>>,
-}
-
-impl Regions {
-    pub fn contains(&self, region: usize, v: usize) -> bool {
-        self.members
-            .get(region)
-            .is_some_and(|m| m.binary_search(&v).is_ok())
-    }
-}
-
-impl Nav {
-    /// The lift lobbies of every graph slot (see [`Regions`]).
-    pub fn regions(&self) -> Regions {
-        let nv = self.vertices.len();
-        let mut out = Regions {
-            entry: vec![None; self.edges.len()],
-            ..Regions::default()
-        };
-        for slot in 0..self.graphs.len() {
-            // Undirected lane multigraph of the slot (lift rides are not lanes); lanes
-            // driven both ways appear twice as edges, so count IR lanes.
-            let mut lanes: BTreeMap<(usize, usize), std::collections::BTreeSet<Option<usize>>> =
-                BTreeMap::new();
-            for e in self.edges.iter().filter(|e| e.graph == slot) {
-                if e.kind == EdgeKind::Lane && e.from != e.to {
-                    lanes
-                        .entry((e.from.min(e.to), e.from.max(e.to)))
-                        .or_default()
-                        .insert(e.lane);
-                }
-            }
-            let mut nbrs: Vec<Vec<usize>> = vec![Vec::new(); nv];
-            for &(a, b) in lanes.keys() {
-                nbrs[a].push(b);
-                nbrs[b].push(a);
-            }
-            let side = |start: usize, cut: (usize, usize)| -> Vec<usize> {
-                let mut seen = vec![false; nv];
-                let mut stack = vec![start];
-                seen[start] = true;
-                let mut comp = Vec::new();
-                while let Some(v) = stack.pop() {
-                    comp.push(v);
-                    for &w in &nbrs[v] {
-                        if (v.min(w), v.max(w)) == cut || seen[w] {
-                            continue;
-                        }
-                        seen[w] = true;
-                        stack.push(w);
-                    }
-                }
-                comp.sort_unstable();
-                comp
-            };
-            for (&(a, b), ls) in &lanes {
-                if ls.len() > 1 {
-                    continue;
-                }
-                let cb = side(b, (a, b));
-                if cb.binary_search(&a).is_ok() {
-                    continue;
-                }
-                let ca = side(a, (a, b));
-                let (outer, inner, members) = match ca.len().cmp(&cb.len()) {
-                    Ordering::Greater => (a, b, cb),
-                    Ordering::Less => (b, a, ca),
-                    Ordering::Equal => continue,
-                };
-                if !members.iter().any(|&v| self.vertices[v].lift.is_some()) {
-                    continue;
-                }
-                let leaves = members.iter().filter(|&&v| nbrs[v].len() == 1).count();
-                let id = out.members.len();
-                out.members.push(members);
-                out.capacity.push(leaves.max(1));
-                for (k, e) in self.edges.iter().enumerate() {
-                    if e.graph == slot
-                        && e.kind == EdgeKind::Lane
-                        && e.from == outer
-                        && e.to == inner
-                    {
-                        out.entry[k] = Some(id);
-                    }
-                }
-            }
-        }
-        out
     }
 }
 

@@ -8,9 +8,7 @@ impl Fleets {
     pub fn place(building: &Building, scenario: &Scenario) -> Result<Placement, Vec<Diagnostic>> {
         let graphs: Vec<i64> = scenario.fleets.iter().map(|f| f.graph).collect();
         let nav = Nav::build(building, &graphs);
-        // Homes: where an idle robot stands in nobody's way (off every task route, or a
-        // charger). Robots that auto spawn finds no home for wait in the depot.
-        let park = park_vertices(&nav, &conflicts(&nav, scenario), scenario);
+        let conf = conflicts(&nav, scenario);
         let mut diags = Vec::new();
         let mut robots: Vec<RobotSpawn> = Vec::new();
         let mut reserve: Vec<(String, usize)> = Vec::new();
@@ -102,7 +100,6 @@ impl Fleets {
                         fleet: fi,
                         slot,
                         count: f.count,
-                        footprint: f.robot.footprint,
                     });
                     continue;
                 }
@@ -112,25 +109,39 @@ impl Fleets {
             }
             explicit[fi] = Some(chosen);
         }
-        // No more robots than the task stream can keep busy.
-        let need = spawn::needed(&nav, scenario);
-        let mut needed = Vec::new();
-        for a in &mut auto {
-            a.count = a.count.min(need[a.fleet]);
-            if need[a.fleet] < usize::MAX {
-                needed.push((scenario.fleets[a.fleet].name.clone(), need[a.fleet]));
+        // Parking vertices for every robot asked (and spares), around the named spawns.
+        let mut per_slot = vec![0usize; nav.graphs.len()];
+        for f in &scenario.fleets {
+            if let Some(s) = nav.slot(f.graph) {
+                per_slot[s] += f.count;
             }
         }
-        let auto_chosen = spawn::auto_spawn(&nav, &park, &auto, &taken);
+        let spawned: Vec<usize> = taken.iter().map(|&(v, _)| v).collect();
+        let parks = choose_parks(&nav, &conf, scenario, &spawned, &per_slot);
+        let auto_chosen = spawn::auto_spawn(&nav, &conf, &parks, &auto, &spawned);
         for (a, vs) in auto.iter().zip(auto_chosen) {
             explicit[a.fleet] = Some(vs.into_iter().map(|v| (v, None)).collect());
         }
+        let mut warnings = well_formed_warnings(&nav, &conf, scenario);
         for (fi, f) in scenario.fleets.iter().enumerate() {
             let (Some(chosen), Some(slot)) = (explicit[fi].take(), nav.slot(f.graph)) else {
                 continue;
             };
             if f.spawn == SpawnSpec::Auto && !chosen.is_empty() && chosen.len() < f.count {
                 reserve.push((f.name.clone(), f.count - chosen.len()));
+                warnings.push(
+                    Diagnostic::warning(
+                        codes::NO_ROOM,
+                        f.span,
+                        format!(
+                            "fleet `{}`: {} robots asked, room for {}: the building has no more waypoints where a standing robot blocks no route (one is kept free for robots making room)",
+                            f.name,
+                            f.count,
+                            chosen.len()
+                        ),
+                    )
+                    .with_help("lower `count`, add parking spots off the corridors, or name spawn waypoints"),
+                );
             } else if chosen.len() < f.count
                 && !matches!(f.spawn, SpawnSpec::Waypoints(ref n) if n.len() >= f.count && chosen.len() + diags.len() >= f.count)
             {
@@ -213,7 +224,9 @@ impl Fleets {
             robots,
             workcells,
             reserve,
-            needed,
+            needed: Vec::new(),
+            warnings,
+            parks,
         })
     }
 
@@ -269,9 +282,8 @@ impl Fleets {
                     slot,
                     at,
                     state: None,
-                    route: VecDeque::new(),
-                    n_res: 0,
                     n_sent: 0,
+                    leg: None,
                     path_id: String::new(),
                     path_seq: 0,
                     gate: Gate::None,
@@ -283,15 +295,9 @@ impl Fleets {
                     queue: VecDeque::new(),
                     wake: f64::INFINITY,
                     dirty: true,
-                    wait_since: None,
-                    blockers: Vec::new(),
+                    waiting: None,
+                    replan_at: 0.0,
                     stuck_reported: false,
-                    prio: f64::INFINITY,
-                    prio_until: None,
-                    escape: None,
-                    made_room: None,
-                    stall_since: 0.0,
-                    last_detour: f64::NEG_INFINITY,
                     last_pos: (spawn.x, spawn.y),
                     last_moved: 0.0,
                     free_at: 0.0,
@@ -306,10 +312,6 @@ impl Fleets {
                 });
             }
             fleets.push(rt);
-        }
-        let mut res = Reservations::new(conf.n_res, robots.len());
-        for (i, r) in robots.iter().enumerate() {
-            res.set_held(i, conf.vertex[r.at].clone());
         }
 
         // Tasks: validate against the fleets, then order by request time (stable).
@@ -435,63 +437,24 @@ impl Fleets {
         for (i, l) in nav.lifts.iter().enumerate() {
             lift_index.entry(l.name.clone()).or_insert(i);
         }
-        let passing = (0..nav.graphs.len())
-            .map(|slot| {
-                let mut nbrs: Vec<Vec<usize>> = vec![Vec::new(); nav.vertices.len()];
-                // Vertices touching a lane driven both ways: only there can two robots
-                // meet head-on, so only there must a corridor be reserved whole. On
-                // one-way corridors robots just follow each other.
-                let mut two_way = vec![false; nav.vertices.len()];
-                let directed: std::collections::BTreeSet<(usize, usize)> = nav
-                    .edges
-                    .iter()
-                    .filter(|e| e.graph == slot && e.kind == EdgeKind::Lane)
-                    .map(|e| (e.from, e.to))
-                    .collect();
-                for &(a, b) in &directed {
-                    if directed.contains(&(b, a)) {
-                        two_way[a] = true;
-                        two_way[b] = true;
-                    }
-                }
-                for e in nav.edges.iter().filter(|e| e.graph == slot) {
-                    nbrs[e.from].push(e.to);
-                    nbrs[e.to].push(e.from);
-                }
-                nbrs.iter_mut()
-                    .enumerate()
-                    .map(|(v, n)| {
-                        n.sort_unstable();
-                        n.dedup();
-                        let x = &nav.vertices[v];
-                        n.len() != 2 || !two_way[v] || x.roles.is_holding_point || x.lift.is_some()
-                    })
-                    .collect()
-            })
-            .collect();
-        let park = park_vertices(&nav, &conf, scenario);
-        // A robot that starts on a waypoint of a loop, delivery or cleaning parks first.
+        // A robot that does not start on a parking vertex drives to one first.
+        let parks = placement.parks.clone();
         for r in robots.iter_mut() {
-            r.park_pending = scenario
-                .tasks
-                .iter()
-                .map(|t| &t.kind)
-                .chain(scenario.generators.iter().map(|g| &g.kind))
-                .filter(|k| parks_after(k))
-                .flat_map(|k| waypoint_names(k))
-                .any(|name| nav.find(r.slot, name) == Some(r.at));
+            r.park_pending = parks.per_slot[r.slot][r.at] == 0;
         }
-        let regions = nav.regions();
+        let starts: Vec<usize> = robots.iter().map(|r| r.at).collect();
+        let planner = Planner::new(&nav);
+        let sched = Schedule::new(conf, &starts, 0.0);
         Ok(Fleets {
-            park,
-            passing,
-            regions,
             doors: vec![DoorView::default(); nav.doors.len()],
             lifts: vec![LiftView::default(); nav.lifts.len()],
             nav,
-            conf,
-            res,
-            claims: Vec::new(),
+            sched,
+            planner,
+            parks,
+            retimed_at: f64::NAN,
+            cycles: 0,
+            decisions: Vec::new(),
             fleets,
             robots,
             by_name,

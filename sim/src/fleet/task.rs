@@ -15,8 +15,6 @@ impl Fleets {
         let Some(ti) = self.robots[i].task.take() else {
             return;
         };
-        // Like RMF's `finishing_request: park`, but a robot sent to a place stays there.
-        self.robots[i].park_pending = self.tasks.get(ti).is_some_and(|tk| parks_after(&tk.kind));
         if let Some(tk) = self.tasks.get_mut(ti) {
             tk.ended = true;
         }
@@ -42,9 +40,6 @@ impl Fleets {
         );
         r.steps.clear();
         r.cur = Cur::None;
-        r.prio_until = None;
-        r.escape = None;
-        r.made_room = None;
         if !ok {
             self.abandon_route(i, t, out);
             // A failed delivery still takes the item it carries to the ingestor, so that
@@ -75,18 +70,7 @@ impl Fleets {
                     continue;
                 }
                 Cur::GoTo { goal, planned } => match self.drive(i, goal, planned, t, out) {
-                    Some(true) => {
-                        let r = &mut self.robots[i];
-                        if r.prio_until == Some(goal) {
-                            r.prio_until = None;
-                        }
-                        if let Some((c, v)) = r.escape.take() {
-                            if v == goal {
-                                r.made_room = Some((c, t));
-                            }
-                        }
-                        true
-                    }
+                    Some(true) => true,
                     Some(false) => return,
                     None => {
                         self.end_task(i, t, false, "no route".into(), out);
@@ -233,20 +217,6 @@ impl Fleets {
                 since: t,
                 sent: false,
             };
-            if let Step::GoTo(goal) = step {
-                // The priority kept for a goal no step leads to any more (a spot to make
-                // room at, replaced by another) would be kept for ever: drop it.
-                let kept = r.prio_until.is_some_and(|u| {
-                    u == goal
-                        || r.steps
-                            .iter()
-                            .any(|s| matches!(s, Step::GoTo(v) if *v == u))
-                });
-                if !kept {
-                    r.prio_until = None;
-                    r.prio = t;
-                }
-            }
             r.cur = match step {
                 Step::GoTo(goal) => Cur::GoTo {
                     goal,
@@ -274,23 +244,24 @@ impl Fleets {
             return true;
         }
         let Some(ti) = self.robots[i].queue.pop_front() else {
-            // Once after a task: park off everybody's way rather than where the task ended
-            // (task waypoints and corridors are what the next tasks need).
-            if std::mem::take(&mut self.robots[i].park_pending) {
-                if let Some((v, dt)) = self.park_spot(i) {
-                    let r = &mut self.robots[i];
-                    // Nobody waits for a robot to park.
-                    r.prio = f64::INFINITY;
-                    r.prio_until = Some(v);
-                    r.steps.push_back(Step::GoTo(v));
-                    r.free_at = t + dt;
-                    r.end_vertex = v;
-                    return true;
+            // Nothing to do: to a parking vertex (a robot that did not start on one plans
+            // its way there first; every plan ends on one).
+            if self.robots[i].park_pending && t >= self.robots[i].replan_at {
+                match self.plan_to(i, &[], t) {
+                    Ok(_) => self.robots[i].park_pending = false,
+                    Err(_) => {
+                        let r = &mut self.robots[i];
+                        r.replan_at = t + 2.0;
+                        r.wake = r.replan_at;
+                    }
                 }
             }
+            let n = self.sched.itinerary(i).travs.len();
+            self.advance(i, n, t, out);
+            let end = self.sched.end_vertex(i);
             let r = &mut self.robots[i];
             r.free_at = t;
-            r.end_vertex = r.at;
+            r.end_vertex = end;
             return false;
         };
         let fi = self.robots[i].fleet;

@@ -28,7 +28,7 @@ impl Fleets {
                 Some((WaitCause::Workcell, Place::Workcell(target.clone())))
             }
             (_, Cur::Charge { .. }) => Some((WaitCause::Charging, Place::Charging)),
-            _ if r.wait_since.is_some() && r.n_sent == 0 => {
+            _ if r.waiting.is_some() && r.n_sent == 0 => {
                 Some((WaitCause::Traffic, Place::Vertex(r.at)))
             }
             _ => None,

@@ -1,5 +1,6 @@
-//! Traffic reservations: a robot drives an edge only while it holds the edge's conflict set
-//! (all-or-nothing), and always holds the set of the vertex it stands on. Conflict sets are
+//! Conflict sets: the resources a robot holds while it drives an edge or stands on a vertex.
+//! Two robots may hold the same resource only at different times (the schedule orders
+//! them, `schedule.rs`). Conflict sets are
 //! precomputed from geometry: standing sets with the largest footprint of all fleets (anyone
 //! may come close), edge sets with the stop zone of the fleets driving that graph (the
 //! slotcar only probes a disc of `stop_radius` around the point `stop_distance` ahead of
@@ -23,10 +24,11 @@ pub type Res = u32;
 
 #[derive(Debug, Clone, Default)]
 pub struct Conflicts {
-    /// Per edge: sorted resources needed to drive it.
-    pub edge: Vec<Vec<Res>>,
     /// Per vertex: sorted resources a robot standing there holds.
     pub vertex: Vec<Vec<Res>>,
+    /// Per edge: everything a robot holds while it drives the edge: the edge's set and the
+    /// standing sets of both ends (it leaves one and arrives at the other), sorted.
+    pub trav: Vec<Vec<Res>>,
     pub n_res: usize,
 }
 
@@ -57,7 +59,9 @@ impl Conflicts {
             }
         }
         let mutex_base = lift_base + nav.lifts.len();
-        let n_res = mutex_base + mutexes.len();
+        // One robot passes a door at a time: the door opens and closes for each.
+        let door_base = mutex_base + mutexes.len();
+        let n_res = door_base + nav.doors.len();
         let body = 2.0 * footprint + MARGIN;
         let same_level = |a: usize, b: usize| nav.vertices[a].level == nav.vertices[b].level;
 
@@ -134,6 +138,9 @@ impl Conflicts {
                     if let Some(m) = e.mutex.as_deref().and_then(|m| mutexes.get(m)) {
                         set.push((mutex_base + m) as Res);
                     }
+                    if let Some(d) = e.door.filter(|&d| nav.doors[d].controlled) {
+                        set.push((door_base + d) as Res);
+                    }
                 }
             }
             // A lift ride or a lane into a cabin needs the lift itself.
@@ -146,89 +153,21 @@ impl Conflicts {
             set.dedup();
             edge.push(set);
         }
+        let trav = nav
+            .edges
+            .iter()
+            .zip(&edge)
+            .map(|(e, set)| {
+                let mut t = [set.as_slice(), &vertex[e.from], &vertex[e.to]].concat();
+                t.sort_unstable();
+                t.dedup();
+                t
+            })
+            .collect();
         Conflicts {
-            edge,
             vertex,
+            trav,
             n_res,
         }
-    }
-}
-
-/// Who holds what. A resource normally has one holder; robots spawned close together may
-/// share their standing sets.
-#[derive(Debug, Clone, Default)]
-pub struct Reservations {
-    holders: Vec<Vec<u16>>,
-    /// Per robot: what it holds now (sorted).
-    held: Vec<Vec<Res>>,
-}
-
-impl Reservations {
-    pub fn new(n_res: usize, n_robots: usize) -> Reservations {
-        Reservations {
-            holders: vec![Vec::new(); n_res],
-            held: vec![Vec::new(); n_robots],
-        }
-    }
-
-    /// Robots other than `r` holding any of `set`, ascending, deduplicated.
-    pub fn blockers(&self, r: usize, set: &[Res]) -> Vec<usize> {
-        let mut b: Vec<usize> = set
-            .iter()
-            .filter_map(|&x| self.holders.get(x as usize))
-            .flatten()
-            .map(|&h| h as usize)
-            .filter(|&h| h != r)
-            .collect();
-        b.sort_unstable();
-        b.dedup();
-        b
-    }
-
-    pub fn is_free_for(&self, r: usize, set: &[Res]) -> bool {
-        set.iter().all(|&x| {
-            self.holders
-                .get(x as usize)
-                .is_none_or(|h| h.iter().all(|&o| o as usize == r))
-        })
-    }
-
-    /// Like [`Reservations::is_free_for`], not counting what `ignore` holds.
-    pub fn is_free_ignoring(&self, r: usize, set: &[Res], ignore: Option<usize>) -> bool {
-        set.iter().all(|&x| {
-            self.holders.get(x as usize).is_none_or(|h| {
-                h.iter()
-                    .all(|&o| o as usize == r || Some(o as usize) == ignore)
-            })
-        })
-    }
-
-    /// Replaces what `r` holds with `set` (sorted, deduplicated), unconditionally.
-    pub fn set_held(&mut self, r: usize, mut set: Vec<Res>) {
-        set.sort_unstable();
-        set.dedup();
-        let Some(old) = self.held.get_mut(r) else {
-            return;
-        };
-        for &x in old.iter() {
-            if let Some(h) = self.holders.get_mut(x as usize) {
-                h.retain(|&o| o as usize != r);
-            }
-        }
-        for &x in &set {
-            if let Some(h) = self.holders.get_mut(x as usize) {
-                h.push(r as u16);
-            }
-        }
-        *old = set;
-    }
-
-    /// The robots holding resource `x`.
-    pub fn holders(&self, x: Res) -> &[u16] {
-        self.holders.get(x as usize).map_or(&[], |v| v.as_slice())
-    }
-
-    pub fn held(&self, r: usize) -> &[Res] {
-        self.held.get(r).map_or(&[], |v| v.as_slice())
     }
 }

@@ -1,0 +1,380 @@
+//! Safe Interval Path Planning (Phillips & Likhachev, ICRA 2011) against the shared
+//! schedule: A* over (vertex, safe interval, goals reached) in continuous time, waiting only
+//! where another robot's span makes it necessary.
+//!
+//! A plan visits its goals in order (staying at each for its dwell) and ends where the
+//! robot may stay for good: a parking vertex whose standing set nobody needs after the
+//! robot arrives. So every plan leaves the robot where it blocks nobody's plan.
+//!
+//! Complete for the schedule as it is: if the robot can reach its goals and a free parking
+//! vertex by any timing of waits and moves that keeps clear of the others' spans, the search
+//! finds the earliest such arrival (within `MAX_EXPANSIONS`).
+
+use super::conflicts::Res;
+use super::parks::PARK_ON_PLACE;
+use super::schedule::{Schedule, Step};
+use crate::graph::Nav;
+use std::cmp::Ordering;
+use std::collections::{BinaryHeap, HashMap};
+
+/// Bound on the search (states expanded) of one plan.
+const MAX_EXPANSIONS: usize = 200_000;
+/// Extra cost (s) of ending on a parking vertex that is a task place: another robot's task
+/// may need it (and send the robot parked there away).
+const PLACE_PENALTY: f64 = 60.0;
+
+/// What to plan.
+pub struct Query<'a> {
+    pub robot: usize,
+    pub slot: usize,
+    pub speed: f64,
+    /// Where the robot is (or will be), and from when it may leave.
+    pub from: usize,
+    pub t0: f64,
+    /// Goals in order, each with how long the robot stays there (s).
+    pub goals: &'a [(usize, f64)],
+    /// Per vertex: where the robot may stay for good (`parks::PARK`, or `PARK_ON_PLACE`
+    /// at a cost of `PLACE_PENALTY`), 0 elsewhere.
+    pub parks: &'a [u8],
+}
+
+/// A plan: its steps, and after how many steps each goal is reached.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Plan {
+    pub steps: Vec<Step>,
+    pub goal_at: Vec<usize>,
+    /// When the robot is at its last vertex for good.
+    pub done: f64,
+    /// States expanded.
+    pub expanded: usize,
+}
+
+#[derive(Clone, Copy)]
+struct Node {
+    v: usize,
+    iv: usize,
+    label: usize,
+    /// When the robot is at `v` ready to leave (after a goal's dwell).
+    t: f64,
+    parent: usize,
+    /// The edge driven to get here (None: a goal reached at `v`), its start and end.
+    edge: Option<(usize, f64, f64)>,
+    /// The end: the robot stays at `v` for good (its cost counts the parking's penalty).
+    end: bool,
+}
+
+#[derive(PartialEq)]
+struct Open(f64, f64, usize);
+impl Eq for Open {}
+impl Ord for Open {
+    fn cmp(&self, o: &Self) -> Ordering {
+        // Smallest f, then largest g (deeper first), then oldest node.
+        o.0.total_cmp(&self.0)
+            .then(self.1.total_cmp(&o.1))
+            .then(o.2.cmp(&self.2))
+    }
+}
+impl PartialOrd for Open {
+    fn partial_cmp(&self, o: &Self) -> Option<Ordering> {
+        Some(self.cmp(o))
+    }
+}
+
+/// Reverse graphs and heuristic tables, reused across plans.
+pub struct Planner {
+    /// Per slot, per vertex: incoming edges.
+    inn: Vec<Vec<Vec<usize>>>,
+    /// Time to the nearest parking vertex, per (slot, speed bits).
+    park_dist: HashMap<(usize, u64), Vec<f64>>,
+    /// Plans made and states expanded, for the report.
+    pub plans: u64,
+    pub expanded: u64,
+}
+
+impl Planner {
+    pub fn new(nav: &Nav) -> Planner {
+        let inn = (0..nav.graphs.len())
+            .map(|slot| {
+                let mut inn = vec![Vec::new(); nav.vertices.len()];
+                for (i, e) in nav.edges.iter().enumerate() {
+                    if e.graph == slot {
+                        inn[e.to].push(i);
+                    }
+                }
+                inn
+            })
+            .collect();
+        Planner {
+            inn,
+            park_dist: HashMap::new(),
+            plans: 0,
+            expanded: 0,
+        }
+    }
+
+    /// Travel times to the nearest of `targets` from every vertex (reverse Dijkstra).
+    fn dist_to(&self, nav: &Nav, slot: usize, speed: f64, targets: &[usize]) -> Vec<f64> {
+        let mut d = vec![f64::INFINITY; nav.vertices.len()];
+        let mut heap = BinaryHeap::new();
+        for &g in targets {
+            d[g] = 0.0;
+            heap.push(Open(0.0, 0.0, g));
+        }
+        while let Some(Open(c, _, v)) = heap.pop() {
+            if c > d[v] {
+                continue;
+            }
+            for &e in &self.inn[slot][v] {
+                let u = nav.edges[e].from;
+                let nc = c + nav.edge_cost(e, speed);
+                if nc < d[u] {
+                    d[u] = nc;
+                    heap.push(Open(nc, 0.0, u));
+                }
+            }
+        }
+        d
+    }
+
+    /// The earliest plan for `q` against `sched` (ignoring the robot's own spans), or None.
+    pub fn plan(&mut self, nav: &Nav, sched: &Schedule, q: &Query) -> Option<Plan> {
+        self.plans += 1;
+        let conf = sched.conf();
+        let key = (q.slot, q.speed.to_bits());
+        if !self.park_dist.contains_key(&key) {
+            let parks: Vec<usize> = (0..nav.vertices.len()).filter(|&v| q.parks[v] != 0).collect();
+            let d = self.dist_to(nav, q.slot, q.speed, &parks);
+            self.park_dist.insert(key, d);
+        }
+        let park_dist = &self.park_dist[&key];
+        let nl = q.goals.len();
+        // h(v, label): to the goal of `label`, then through the rest, then to a park.
+        let mut dist: Vec<Vec<f64>> = Vec::with_capacity(nl);
+        for &(g, _) in q.goals {
+            dist.push(self.dist_to(nav, q.slot, q.speed, &[g]));
+        }
+        let mut rest = vec![0.0; nl + 1];
+        for l in (0..nl).rev() {
+            let (g, dwell) = q.goals[l];
+            let next = if l + 1 < nl {
+                dist[l + 1][g]
+            } else {
+                park_dist[g]
+            };
+            rest[l] = dwell + next + rest[l + 1];
+        }
+        let h = |v: usize, label: usize| -> f64 {
+            if label < nl {
+                dist[label][v] + rest[label]
+            } else {
+                park_dist[v]
+            }
+        };
+        if !h(q.from, 0).is_finite() {
+            return None;
+        }
+        let r = q.robot;
+        let mut safe: HashMap<usize, Vec<(f64, f64)>> = HashMap::new();
+        let mut intervals = |v: usize| -> Vec<(f64, f64)> {
+            safe.entry(v)
+                .or_insert_with(|| free_of(sched, &conf.vertex[v], r))
+                .clone()
+        };
+        let iv0 = intervals(q.from);
+        let i0 = iv0.iter().position(|&(a, b)| a <= q.t0 && q.t0 < b)?;
+        let mut nodes = vec![Node {
+            v: q.from,
+            iv: i0,
+            label: 0,
+            t: q.t0,
+            parent: usize::MAX,
+            edge: None,
+            end: false,
+        }];
+        let mut best: HashMap<(usize, usize, usize), f64> = HashMap::new();
+        let mut open = BinaryHeap::new();
+        open.push(Open(q.t0 + h(q.from, 0), q.t0, 0));
+        let mut expanded = 0usize;
+        let mut busy_cache: HashMap<usize, Vec<(f64, f64)>> = HashMap::new();
+        while let Some(Open(_, _, id)) = open.pop() {
+            let n = nodes[id];
+            if best
+                .get(&(n.v, n.iv, n.label))
+                .is_some_and(|&t| t < n.t)
+            {
+                continue;
+            }
+            if n.end {
+                self.expanded += expanded as u64;
+                return Some(unwind(nav, &nodes, n.parent, nl, expanded));
+            }
+            let ivs = intervals(n.v);
+            let (_, hi) = ivs[n.iv];
+            if n.label == nl && q.parks[n.v] != 0 && hi == f64::INFINITY {
+                // Staying here for good: a candidate end, ranked with its penalty.
+                let pen = if q.parks[n.v] == PARK_ON_PLACE { PLACE_PENALTY } else { 0.0 };
+                nodes.push(Node {
+                    parent: id,
+                    end: true,
+                    ..n
+                });
+                open.push(Open(n.t + pen, n.t, nodes.len() - 1));
+            }
+            expanded += 1;
+            if expanded > MAX_EXPANSIONS {
+                break;
+            }
+            let mut push = |node: Node, nodes: &mut Vec<Node>, open: &mut BinaryHeap<Open>| {
+                let k = (node.v, node.iv, node.label);
+                if best.get(&k).is_some_and(|&t| t <= node.t) {
+                    return;
+                }
+                let hv = h(node.v, node.label);
+                if !hv.is_finite() {
+                    return;
+                }
+                best.insert(k, node.t);
+                nodes.push(node);
+                open.push(Open(node.t + hv, node.t, nodes.len() - 1));
+            };
+            // A goal reached: stay for its dwell.
+            if n.label < nl && q.goals[n.label].0 == n.v {
+                let t = n.t + q.goals[n.label].1;
+                if t < hi {
+                    push(
+                        Node {
+                            label: n.label + 1,
+                            t,
+                            parent: id,
+                            edge: None,
+                            end: false,
+                            ..n
+                        },
+                        &mut nodes,
+                        &mut open,
+                    );
+                }
+            }
+            for &e in &nav.out[q.slot][n.v] {
+                let w = nav.edges[e].to;
+                let dur = nav.edge_cost(e, q.speed);
+                let busy = busy_cache
+                    .entry(e)
+                    .or_insert_with(|| merged(sched, &conf.trav[e], r));
+                let wivs = intervals(w);
+                // Each gap of the edge's resources wide enough, left while still in this
+                // vertex's safe interval; the first arrival in each of w's intervals.
+                let mut from = n.t;
+                let mut k = busy.partition_point(|&(_, b)| b <= from);
+                loop {
+                    let gap_end = busy.get(k).map_or(f64::INFINITY, |&(a, _)| a);
+                    let d = from;
+                    if d >= hi {
+                        break;
+                    }
+                    if gap_end - d >= dur {
+                        let a = d + dur;
+                        if let Some(wi) = wivs.iter().position(|&(lo, up)| lo <= a && a < up) {
+                            push(
+                                Node {
+                                    v: w,
+                                    iv: wi,
+                                    label: n.label,
+                                    t: a,
+                                    parent: id,
+                                    edge: Some((e, d, a)),
+                                    end: false,
+                                },
+                                &mut nodes,
+                                &mut open,
+                            );
+                        }
+                    }
+                    let Some(&(_, b)) = busy.get(k) else { break };
+                    from = b;
+                    k += 1;
+                }
+            }
+        }
+        self.expanded += expanded as u64;
+        None
+    }
+}
+
+/// The merged busy intervals of `set` for anybody but robot `r`, sorted.
+fn merged(sched: &Schedule, set: &[Res], r: usize) -> Vec<(f64, f64)> {
+    let mut all: Vec<(f64, f64)> = set.iter().flat_map(|&x| sched.busy(x, r)).collect();
+    all.sort_by(|a, b| a.0.total_cmp(&b.0));
+    let mut out: Vec<(f64, f64)> = Vec::with_capacity(all.len());
+    for (a, b) in all {
+        if b <= a {
+            continue;
+        }
+        match out.last_mut() {
+            Some(l) if a <= l.1 => l.1 = l.1.max(b),
+            _ => out.push((a, b)),
+        }
+    }
+    out
+}
+
+/// The safe intervals of `set` for robot `r`: the gaps between the others' spans.
+fn free_of(sched: &Schedule, set: &[Res], r: usize) -> Vec<(f64, f64)> {
+    let busy = merged(sched, set, r);
+    let mut out = Vec::with_capacity(busy.len() + 1);
+    let mut from = f64::NEG_INFINITY;
+    for (a, b) in busy {
+        if a > from {
+            out.push((from, a));
+        }
+        from = b;
+    }
+    if from < f64::INFINITY {
+        out.push((from, f64::INFINITY));
+    }
+    out
+}
+
+fn unwind(nav: &Nav, nodes: &[Node], mut id: usize, nl: usize, expanded: usize) -> Plan {
+    let done = nodes[id].t;
+    let mut chain = Vec::new();
+    while id != usize::MAX {
+        chain.push(id);
+        id = nodes[id].parent;
+    }
+    chain.reverse();
+    let mut steps: Vec<Step> = Vec::new();
+    let mut goal_at = Vec::with_capacity(nl);
+    let mut hold = 0.0;
+    for w in chain.windows(2) {
+        let (p, n) = (&nodes[w[0]], &nodes[w[1]]);
+        match n.edge {
+            None => {
+                goal_at.push(steps.len());
+                hold = n.t - p.t;
+            }
+            Some((e, d, a)) => {
+                let edge = &nav.edges[e];
+                steps.push(Step {
+                    edge: e,
+                    from: edge.from,
+                    to: edge.to,
+                    dur: a - d,
+                    hold,
+                    start: d,
+                    end: a,
+                });
+                hold = 0.0;
+            }
+        }
+    }
+    Plan {
+        steps,
+        goal_at,
+        done,
+        expanded,
+    }
+}
+
+#[cfg(test)]
+mod tests;
