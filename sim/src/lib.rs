@@ -26,8 +26,8 @@ mod world;
 pub use crowd::{compare_crowd, CrowdReport, FleetCompare, SpeedStats, Spread};
 pub use params::RobotParams;
 pub use report::{
-    DoorReport, Encounter, FleetReport, LiftReport, Report, RobotReport, StuckReport, TaskReport,
-    Waits,
+    DoorReport, Encounter, FleetReport, LiftReport, Report, RobotReport, ScenarioWarning,
+    StuckReport, TaskReport, TrafficReport, Waits,
 };
 pub use scenario::{
     parse as parse_scenario, parse_duration, CrowdOptions, FleetSpec, GeneratorSpec, Scenario,
@@ -178,6 +178,17 @@ pub fn simulate(
     let mut report = report.finish(world.time(), &world.robots());
     report.interrupted = interrupted;
     report.crowd = world.crowd().map(|c| c.report(world.time()));
+    report.traffic = fleets.traffic_report();
+    report.warnings = placement
+        .warnings
+        .iter()
+        .map(|d| report::ScenarioWarning {
+            code: d.code.to_string(),
+            message: d.message.clone(),
+            line: d.span.line,
+            column: d.span.col,
+        })
+        .collect();
     Ok(report)
 }
 

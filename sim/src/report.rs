@@ -53,6 +53,33 @@ pub struct Report {
     /// People (`crowd/`), when the map's crowd walked.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub crowd: Option<crate::crowd::CrowdReport>,
+    /// The traffic planner's work.
+    pub traffic: TrafficReport,
+    /// Warnings about the scenario on this map (codes S0210, S0211), located.
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub warnings: Vec<ScenarioWarning>,
+}
+
+/// What the traffic planner did (`crate::traffic`).
+#[derive(Debug, Clone, Default, PartialEq, Serialize)]
+pub struct TrafficReport {
+    /// Plans made (SIPP searches), and how many found no way at the time.
+    pub plans: u64,
+    pub plans_failed: u64,
+    /// States the planner expanded per successful plan: median and 99th percentile.
+    pub expanded_median: u64,
+    pub expanded_p99: u64,
+    /// Dependency cycles found in the schedule (the guarantee says 0).
+    pub cycles: u64,
+}
+
+/// A located warning about the scenario.
+#[derive(Debug, Clone, Default, PartialEq, Serialize)]
+pub struct ScenarioWarning {
+    pub code: String,
+    pub message: String,
+    pub line: u32,
+    pub column: u32,
 }
 
 #[derive(Debug, Clone, Default, PartialEq, Serialize)]
@@ -750,6 +777,8 @@ impl ReportBuilder {
             bottleneck,
             interrupted: false,
             crowd: None,
+            traffic: TrafficReport::default(),
+            warnings: Vec::new(),
         }
     }
 }
@@ -1017,6 +1046,8 @@ mod tests {
             workcells: Vec::new(),
             reserve: Vec::new(),
             needed: Vec::new(),
+            warnings: Vec::new(),
+            parks: Default::default(),
         };
         ReportBuilder::new(&building, &scenario, &placement)
     }
@@ -1475,6 +1506,8 @@ mod sweep_tests {
             workcells: Vec::new(),
             reserve: Vec::new(),
             needed: Vec::new(),
+            warnings: Vec::new(),
+            parks: Default::default(),
         };
         let mut b = ReportBuilder::new(&building, &scenario.unwrap(), &placement);
         let mut rng = fastrand::Rng::with_seed(11);

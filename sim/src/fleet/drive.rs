@@ -97,6 +97,12 @@ impl Fleets {
                 }
                 Err(NoPlan::Unreachable) => return None,
                 Err(NoPlan::Busy) => {
+                    // Not now: at least it goes to stand where it blocks nobody (a robot
+                    // spawned in a corridor may be what keeps the others from planning).
+                    let end = self.sched.end_vertex(i);
+                    if self.parks.per_slot[self.robots[i].slot][end] == 0 {
+                        let _ = self.plan_to(i, &[], t);
+                    }
                     let r = &mut self.robots[i];
                     r.wake = r.replan_at;
                     if r.waiting.is_none() {

@@ -217,6 +217,8 @@ struct FleetRt {
     name: String,
     slot: usize,
     speed: f64,
+    /// How its robots drive (traversal times in plans).
+    kin: crate::traffic::sipp::Kinematics,
     recharge_threshold: f64,
     recharge_soc: f64,
     /// Battery percent gained per second on a charger.
@@ -412,6 +414,26 @@ impl Fleets {
             next = next.min(r.wake);
         }
         self.next_wake = next;
+    }
+
+    /// The traffic planner's work so far.
+    pub fn traffic_report(&self) -> crate::report::TrafficReport {
+        let mut e = self.decisions.clone();
+        e.sort_unstable();
+        let pick = |q: f64| -> u64 {
+            if e.is_empty() {
+                0
+            } else {
+                e[((e.len() - 1) as f64 * q).round() as usize] as u64
+            }
+        };
+        crate::report::TrafficReport {
+            plans: self.planner.plans,
+            plans_failed: self.planner.plans - e.len() as u64,
+            expanded_median: pick(0.5),
+            expanded_p99: pick(0.99),
+            cycles: self.cycles,
+        }
     }
 
     /// True when every task has ended (completed or failed) and no generator is pending.

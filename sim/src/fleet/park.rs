@@ -11,7 +11,12 @@ fn task_kinds(scenario: &Scenario) -> impl Iterator<Item = (&TaskKind, &Option<S
         .tasks
         .iter()
         .map(|t| (&t.kind, &t.fleet, t.span))
-        .chain(scenario.generators.iter().map(|g| (&g.kind, &g.fleet, g.span)))
+        .chain(
+            scenario
+                .generators
+                .iter()
+                .map(|g| (&g.kind, &g.fleet, g.span)),
+        )
 }
 
 /// Per graph slot, per vertex: the waypoints tasks name, chargers, and `spawns`.
@@ -52,7 +57,8 @@ pub(super) fn choose_parks(
     robots: &[usize],
 ) -> Parks {
     let req = required(nav, scenario, spawns);
-    let places = required_of(nav, scenario, &[], true);
+    // Task places, chargers and named spawns may be parking vertices of the second kind.
+    let places = required_of(nav, scenario, spawns, true);
     let want: Vec<usize> = robots.iter().map(|&n| 2 * n + 4).collect();
     parks::choose(
         nav,
@@ -67,7 +73,11 @@ pub(super) fn choose_parks(
 
 /// Warnings for task waypoints that cut their graph (S0210): a robot working there holds
 /// up those going past. One per waypoint, at the first task naming it.
-pub(super) fn well_formed_warnings(nav: &Nav, conf: &Conflicts, scenario: &Scenario) -> Vec<Diagnostic> {
+pub(super) fn well_formed_warnings(
+    nav: &Nav,
+    conf: &Conflicts,
+    scenario: &Scenario,
+) -> Vec<Diagnostic> {
     let mut out = Vec::new();
     let mut seen: Vec<(usize, usize)> = Vec::new();
     for slot in 0..nav.graphs.len() {
@@ -79,7 +89,9 @@ pub(super) fn well_formed_warnings(nav: &Nav, conf: &Conflicts, scenario: &Scena
         places.dedup();
         for (kind, _, span) in task_kinds(scenario) {
             for name in waypoint_names(kind) {
-                let Some(v) = nav.find(slot, name) else { continue };
+                let Some(v) = nav.find(slot, name) else {
+                    continue;
+                };
                 if seen.contains(&(slot, v)) {
                     continue;
                 }

@@ -250,6 +250,11 @@ impl Fleets {
                 name: f.name.clone(),
                 slot,
                 speed: f.robot.nominal_drive_speed.max(0.05),
+                kin: crate::traffic::sipp::Kinematics {
+                    speed: f.robot.nominal_drive_speed.max(0.05),
+                    accel: f.robot.nominal_drive_acceleration.max(0.01),
+                    turn: f.robot.nominal_turn_speed.max(0.05),
+                },
                 recharge_threshold: f.recharge_threshold,
                 recharge_soc: f.recharge_soc,
                 charge_rate: 100.0 * f.robot.charging_current

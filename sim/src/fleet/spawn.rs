@@ -79,7 +79,12 @@ pub(super) fn auto_spawn(
                     2
                 };
                 let tier = parks.per_slot[slot][v];
-                (tier, on_level.get(&nav.vertices[v].level).copied().unwrap_or(0), class, v)
+                (
+                    tier,
+                    on_level.get(&nav.vertices[v].level).copied().unwrap_or(0),
+                    class,
+                    v,
+                )
             });
         match pick {
             Some(v) => {

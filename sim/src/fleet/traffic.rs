@@ -57,18 +57,38 @@ impl Fleets {
         d.min(4.0 * 3600.0)
     }
 
+    /// Where robot `i` stays after `goals` if it can: the place of a go-to-place task.
+    fn stays_at(&self, i: usize, goals: &[(usize, f64)]) -> Option<usize> {
+        let r = &self.robots[i];
+        let last = goals.last()?.0;
+        let go_to = r
+            .task
+            .and_then(|ti| self.tasks.get(ti))
+            .is_some_and(|tk| matches!(tk.kind, TaskKind::GoToPlace { .. }));
+        (go_to && r.steps.is_empty()).then_some(last)
+    }
+
     /// Plans robot `i` to `goals` (then a parking vertex) from where its committed
     /// traversals end, and installs the plan. Returns the traversals to the first goal.
-    pub(super) fn plan_to(&mut self, i: usize, goals: &[(usize, f64)], t: f64) -> Result<usize, NoPlan> {
+    pub(super) fn plan_to(
+        &mut self,
+        i: usize,
+        goals: &[(usize, f64)],
+        t: f64,
+    ) -> Result<usize, NoPlan> {
         match self.plan_with(i, goals, None, t) {
-            Err(NoPlan::Busy) if self.displace_for(i, goals, t) => self.plan_with(i, goals, None, t),
+            Err(NoPlan::Busy) if self.displace_for(i, goals, t) => {
+                self.plan_with(i, goals, None, t)
+            }
             r => r,
         }
     }
 
-    /// Idle robots parked where one of robot `i`'s `goals` is (a task place that is also a
-    /// parking vertex) are planned to other parking vertices, off those goals. True when
-    /// one was.
+    /// Robots whose itineraries end where one of robot `i`'s `goals` is (a task place that
+    /// is also a parking vertex), and idle robots that stay off the parking vertices, are
+    /// planned again to end on other parking vertices, keeping their own goal and its work:
+    /// their stay for good there may be what keeps robot `i` from planning. True when one
+    /// was.
     fn displace_for(&mut self, i: usize, goals: &[(usize, f64)], t: f64) -> bool {
         let conf = self.sched.conf();
         let mut near: Vec<Res> = goals
@@ -82,34 +102,43 @@ impl Fleets {
             .iter()
             .map(|set| set.iter().any(|x| near.binary_search(x).is_ok()))
             .collect();
-        let meets = |v: usize| off[v];
+        // Those whose stay for good is at a goal, and idle robots staying anywhere but on
+        // a parking vertex (where they were sent): such a stay may cut robot `i`'s way.
         let blockers: Vec<usize> = (0..self.robots.len())
-            .filter(|&o| o != i)
+            .filter(|&o| o != i && self.robots[o].gate == Gate::None)
             .filter(|&o| {
-                // At rest and not on a planned leg: idle, or its own plan failed (two robots
-                // that each want the other's place: one of them makes room).
                 let r = &self.robots[o];
-                let free = r.idle() || matches!(r.cur, Cur::GoTo { planned: false, .. });
-                free && r.n_sent == 0 && r.gate == Gate::None
+                let end = self.sched.end_vertex(o);
+                off[end] || (r.idle() && r.n_sent == 0 && self.parks.per_slot[r.slot][end] == 0)
             })
-            .filter(|&o| meets(self.sched.end_vertex(o)))
             .collect();
         let mut moved = false;
-        if std::env::var_os("MAPC_TRAFFIC_DEBUG").is_some() {
-            eprintln!("t={t:.1} displace for {} goals {:?}: blockers {:?}", self.robots[i].name, goals, blockers);
-        }
         for o in blockers {
-            let slot = self.robots[o].slot;
+            let r = &self.robots[o];
+            // What it is doing stays: its leg's goal, or the work at its place.
+            let (own, leg): (Vec<(usize, f64)>, bool) = match r.cur {
+                Cur::GoTo {
+                    goal,
+                    planned: true,
+                } => (vec![(goal, self.dwell_after(o))], true),
+                Cur::Dwell { until } => (vec![(r.at, (until - t).max(0.0))], false),
+                Cur::Workcell { .. } => (vec![(r.at, 5.0)], false),
+                Cur::Charge { .. } => (vec![(r.at, self.dwell_after(o).max(60.0))], false),
+                _ => (Vec::new(), false),
+            };
+            if r.n_sent > 0 && !leg {
+                continue;
+            }
+            let slot = r.slot;
             let mask: Vec<u8> = self.parks.per_slot[slot]
                 .iter()
                 .enumerate()
-                .map(|(v, &p)| if meets(v) { 0 } else { p })
+                .map(|(v, &p)| if off[v] { 0 } else { p })
                 .collect();
-            let ok = self.plan_with(o, &[], Some(&mask), t).is_ok();
-            if std::env::var_os("MAPC_TRAFFIC_DEBUG").is_some() {
-                eprintln!("   displace {} -> {ok}", self.robots[o].name);
-            }
-            if ok {
+            if let Ok(l) = self.plan_with(o, &own, Some(&mask), t) {
+                if leg {
+                    self.robots[o].leg = Some(l);
+                }
                 self.robots[o].dirty = true;
                 moved = true;
             }
@@ -128,7 +157,8 @@ impl Fleets {
         self.retime(t);
         let r = &self.robots[i];
         let f = &self.fleets[r.fleet];
-        let (slot, speed) = (f.slot, f.speed);
+        let slot = f.slot;
+        let kin = f.kin;
         let keep = r.n_sent;
         let it = self.sched.itinerary(i);
         let (from, t0) = match keep.checked_sub(1).and_then(|k| it.travs.get(k)) {
@@ -143,13 +173,31 @@ impl Fleets {
         let q = Query {
             robot: i,
             slot,
-            speed,
+            kin,
             from,
             t0,
             goals,
             parks: parks.unwrap_or(&self.parks.per_slot[slot]),
+            stay: self.stays_at(i, goals),
         };
-        let Some(plan) = self.planner.plan(&self.nav, &self.sched, &q) else {
+        let found = self.planner.plan(&self.nav, &self.sched, &q);
+        if found.is_none() && std::env::var_os("MAPC_TRAFFIC_DEBUG").is_some() {
+            let ends: Vec<&str> = (0..self.robots.len())
+                .map(|o| self.nav.vertices[self.sched.end_vertex(o)].name.as_str())
+                .collect();
+            eprintln!(
+                "t={t:.1} {} from {} goals {:?} stay {:?} failed ({}); ends {ends:?}",
+                self.robots[i].name,
+                self.nav.vertices[from].name,
+                goals
+                    .iter()
+                    .map(|g| &self.nav.vertices[g.0].name)
+                    .collect::<Vec<_>>(),
+                q.stay,
+                self.planner.why
+            );
+        }
+        let Some(plan) = found else {
             self.robots[i].replan_at = t + REPLAN_AFTER;
             return Err(NoPlan::Busy);
         };
@@ -201,7 +249,17 @@ impl Fleets {
         let edge = self.nav.edges[tr.edge].clone();
         if let EdgeKind::Lift(l) = edge.kind {
             let floor = self.nav.vertices[edge.to].level_name.clone();
-            if !self.gate(i, Gate::Lift { lift: l, floor, next_send: t, since: t }, t, out) {
+            if !self.gate(
+                i,
+                Gate::Lift {
+                    lift: l,
+                    floor,
+                    next_send: t,
+                    since: t,
+                },
+                t,
+                out,
+            ) {
                 return;
             }
             // The cabin is at the destination floor: the robot is on its other vertex.
@@ -217,13 +275,32 @@ impl Fleets {
         let mut n = 1;
         if let Some(l) = to_lift.filter(|&l| from_lift != Some(l)) {
             let floor = self.nav.vertices[edge.from].level_name.clone();
-            if !self.gate(i, Gate::Lift { lift: l, floor, next_send: t, since: t }, t, out) {
+            if !self.gate(
+                i,
+                Gate::Lift {
+                    lift: l,
+                    floor,
+                    next_send: t,
+                    since: t,
+                },
+                t,
+                out,
+            ) {
                 return;
             }
             self.robots[i].gate = Gate::None;
             self.robots[i].end_lift = Some(l);
         } else if let Some(d) = edge.door.filter(|&d| self.nav.doors[d].controlled) {
-            if !self.gate(i, Gate::Door { door: d, next_send: t, since: t }, t, out) {
+            if !self.gate(
+                i,
+                Gate::Door {
+                    door: d,
+                    next_send: t,
+                    since: t,
+                },
+                t,
+                out,
+            ) {
                 return;
             }
             self.robots[i].gate = Gate::None;
@@ -254,19 +331,6 @@ impl Fleets {
     /// Once a second while robots wait: a robot that has waited for the schedule for
     /// `STUCK_AFTER` s is reported once (a `stuck` task event naming whom it waits for).
     pub(super) fn watch_waits(&mut self, t: f64, out: &mut Vec<(Topic, Msg)>) {
-        if std::env::var_os("MAPC_TRAFFIC_DEBUG").is_some() && (t as u64) % 30 == 0 {
-            eprintln!("t={t:.0}");
-            for i in 0..self.robots.len() {
-                let r = &self.robots[i];
-                let it = self.sched.itinerary(i);
-                eprintln!(
-                    "  {} at {} cur {:?} leg {:?} sent {} waiting {:?} steps {} queue {} travs {:?} granted0 {} waits_for {:?} replan_at {:.0} gate {:?}",
-                    r.name, self.nav.vertices[r.at].name, r.cur, r.leg, r.n_sent, r.waiting, r.steps.len(), r.queue.len(),
-                    it.travs.iter().take(4).map(|x| (x.seq, self.nav.vertices[x.to].name.clone(), x.start as i64, x.begun)).collect::<Vec<_>>(),
-                    self.sched.granted(i, 0), self.sched.waits_for(i, 0), r.replan_at, r.gate
-                );
-            }
-        }
         for i in 0..self.robots.len() {
             let r = &self.robots[i];
             let Some(since) = r.waiting else { continue };

@@ -19,5 +19,7 @@ mod conflicts;
 pub mod parks;
 pub mod schedule;
 pub mod sipp;
+#[cfg(test)]
+mod test_map;
 
 pub use conflicts::{Clearance, Conflicts, Res};

@@ -81,13 +81,19 @@ pub fn choose(nav: &Nav, conf: &Conflicts, needs: &Needs) -> Parks {
             standers[x as usize].push(v);
         }
     }
-    let required = |s: usize, v: usize| needs.required.get(s).and_then(|r| r.get(v)).copied().unwrap_or(false);
-    // Per slot: the vertices mutually reachable with most of the graph (the main strongly
-    // connected part): what must stay connected.
+    let required = |s: usize, v: usize| {
+        needs
+            .required
+            .get(s)
+            .and_then(|r| r.get(v))
+            .copied()
+            .unwrap_or(false)
+    };
+    // Per slot: its strongly connected parts, which must stay connected.
     let full_block = vec![false; nav.edges.len()];
     let gone = vec![false; nv];
-    let main: Vec<Vec<bool>> = (0..slots.len())
-        .map(|s| main_part(nav, &slots[s], &full_block, &gone))
+    let main: Vec<Vec<usize>> = (0..slots.len())
+        .map(|s| parts(nav, &slots[s], &full_block, &gone))
         .collect();
 
     let mut parks = Parks {
@@ -97,13 +103,21 @@ pub fn choose(nav: &Nav, conf: &Conflicts, needs: &Needs) -> Parks {
     // Vertices that cannot be used while the parks are taken (in a park's standing set).
     let mut absorbed = vec![false; nv];
     let mut held: Vec<bool> = vec![false; conf.n_res];
+    let mut taken_parks: Vec<usize> = Vec::new();
     for s in 0..slots.len() {
         let want = needs.want.get(s).copied().unwrap_or(0);
-        let place = |v: usize| needs.places.get(s).and_then(|r| r.get(v)).copied().unwrap_or(false);
+        let place = |v: usize| {
+            needs
+                .places
+                .get(s)
+                .and_then(|r| r.get(v))
+                .copied()
+                .unwrap_or(false)
+        };
         let mut cands: Vec<usize> = nav.members[s]
             .iter()
             .copied()
-            .filter(|&v| main[s][v] && nav.vertices[v].lift.is_none())
+            .filter(|&v| main[s][v] != usize::MAX && nav.vertices[v].lift.is_none())
             .filter(|&v| !required(s, v) || place(v))
             .collect();
         let class = |v: usize| {
@@ -151,19 +165,37 @@ pub fn choose(nav: &Nav, conf: &Conflicts, needs: &Needs) -> Parks {
                 .collect();
             blk.sort_unstable();
             blk.dedup();
-            // Its own ways in and out must not be blocked by other parks.
-            let own_ok = (0..slots.len()).all(|t| {
-                let outs = nav.out[t][v].iter().any(|&e| !blocked[e] && !absorbed[nav.edges[e].to]);
-                let ins = slots[t].edges.iter().any(|&e| {
-                    nav.edges[e].to == v && !blocked[e] && !absorbed[nav.edges[e].from]
+            // Every park (this one too) keeps a way in and a way out that no park blocks.
+            let access = |p: usize, blocked: &[bool], absorbed: &[bool]| {
+                (0..slots.len()).all(|t| {
+                    let outs = nav.out[t][p]
+                        .iter()
+                        .any(|&e| !blocked[e] && !absorbed[nav.edges[e].to]);
+                    let ins = slots[t].edges.iter().any(|&e| {
+                        nav.edges[e].to == p && !blocked[e] && !absorbed[nav.edges[e].from]
+                    });
+                    nav.members[t].binary_search(&p).is_err() || (outs && ins)
+                })
+            };
+            let own_ok = access(v, &blocked, &absorbed) && {
+                // With v taken, the others keep theirs.
+                absorbed[v] = true;
+                let ok = taken_parks.iter().all(|&p| {
+                    absorbed[p] = false;
+                    let ok = access(p, &blocked, &absorbed);
+                    absorbed[p] = true;
+                    ok
                 });
-                nav.members[t].binary_search(&v).is_err() || (outs && ins)
-            });
+                absorbed[v] = false;
+                ok
+            };
             if !own_ok {
                 continue;
             }
             // A leaf that blocks only its own lanes cannot cut anything.
-            let own_only = blk.iter().all(|&e| nav.edges[e].from == v || nav.edges[e].to == v);
+            let own_only = blk
+                .iter()
+                .all(|&e| nav.edges[e].from == v || nav.edges[e].to == v);
             let leaf = own_only && slots[s].nbrs[v].len() <= 1;
             let ok = leaf || {
                 for &e in &blk {
@@ -174,9 +206,9 @@ pub fn choose(nav: &Nav, conf: &Conflicts, needs: &Needs) -> Parks {
                 }
                 absorbed[v] = true;
                 let ok = (0..slots.len()).all(|t| {
-                    let m = main_part(nav, &slots[t], &blocked, &absorbed);
-                    // Everything of the main part not taken by parks is still in it.
-                    (0..nv).all(|w| !main[t][w] || absorbed[w] || m[w])
+                    let m = parts(nav, &slots[t], &blocked, &absorbed);
+                    // Every part keeps what parks do not take together.
+                    kept_together(&main[t], &m, &absorbed)
                 });
                 for &e in &blk {
                     blocked[e] = false;
@@ -203,18 +235,19 @@ pub fn choose(nav: &Nav, conf: &Conflicts, needs: &Needs) -> Parks {
                 held[x as usize] = true;
             }
             parks.per_slot[s][v] = if place(v) { PARK_ON_PLACE } else { PARK };
+            taken_parks.push(v);
             taken += 1;
         }
     }
     parks
 }
 
-/// The vertices of slot `s` in the largest strongly connected part of its graph without
-/// the `blocked` edges and `gone` vertices (ties: the part with the smallest vertex).
-fn main_part(nav: &Nav, slot: &Slot, blocked: &[bool], gone: &[bool]) -> Vec<bool> {
+/// The strongly connected parts of slot `s` without the `blocked` edges and `gone`
+/// vertices: per vertex, its part's id (its smallest member), or `usize::MAX` when it is
+/// alone (it cannot be left and reached again).
+fn parts(nav: &Nav, slot: &Slot, blocked: &[bool], gone: &[bool]) -> Vec<usize> {
     let nv = nav.vertices.len();
-    let mut best = vec![false; nv];
-    let mut best_n = 0;
+    let mut id = vec![usize::MAX; nv];
     let mut seen = vec![false; nv];
     let usable = |e: usize| {
         let ed = &nav.edges[e];
@@ -229,24 +262,39 @@ fn main_part(nav: &Nav, slot: &Slot, blocked: &[bool], gone: &[bool]) -> Vec<boo
         let part: Vec<usize> = (0..nv).filter(|&v| fwd[v] && bwd[v]).collect();
         for &v in &part {
             seen[v] = true;
-        }
-        seen[root] = true;
-        if part.len() > best_n {
-            best_n = part.len();
-            best = vec![false; nv];
-            for v in part {
-                best[v] = true;
+            if part.len() > 1 {
+                id[v] = root;
             }
         }
-        // The main part holds more than half: no other can beat it.
-        if 2 * best_n > nav.members[slot.s].len() {
-            break;
-        }
+        seen[root] = true;
     }
-    best
+    id
 }
 
-fn reach(nav: &Nav, slot: &Slot, root: usize, forward: bool, usable: &dyn Fn(usize) -> bool) -> Vec<bool> {
+/// Whether every part of `before` keeps its members (those not `gone`) together in `after`.
+fn kept_together(before: &[usize], after: &[usize], gone: &[bool]) -> bool {
+    let mut to: std::collections::HashMap<usize, usize> = std::collections::HashMap::new();
+    for v in 0..before.len() {
+        if before[v] == usize::MAX || gone[v] {
+            continue;
+        }
+        if after[v] == usize::MAX {
+            return false;
+        }
+        if *to.entry(before[v]).or_insert(after[v]) != after[v] {
+            return false;
+        }
+    }
+    true
+}
+
+fn reach(
+    nav: &Nav,
+    slot: &Slot,
+    root: usize,
+    forward: bool,
+    usable: &dyn Fn(usize) -> bool,
+) -> Vec<bool> {
     let nv = nav.vertices.len();
     let mut seen = vec![false; nv];
     seen[root] = true;
@@ -269,7 +317,11 @@ fn reach(nav: &Nav, slot: &Slot, root: usize, forward: bool, usable: &dyn Fn(usi
             if !usable(e) {
                 continue;
             }
-            let w = if forward { nav.edges[e].to } else { nav.edges[e].from };
+            let w = if forward {
+                nav.edges[e].to
+            } else {
+                nav.edges[e].from
+            };
             if !seen[w] {
                 seen[w] = true;
                 stack.push(w);
@@ -284,7 +336,9 @@ fn reach(nav: &Nav, slot: &Slot, root: usize, forward: bool, usable: &dyn Fn(usi
 /// well-formedness warning).
 pub fn cut_by(nav: &Nav, conf: &Conflicts, s: usize, v: usize, of: &[usize]) -> Vec<usize> {
     let nv = nav.vertices.len();
-    let slot_edges: Vec<usize> = (0..nav.edges.len()).filter(|&e| nav.edges[e].graph == s).collect();
+    let slot_edges: Vec<usize> = (0..nav.edges.len())
+        .filter(|&e| nav.edges[e].graph == s)
+        .collect();
     let slot = Slot {
         s,
         nbrs: Vec::new(),

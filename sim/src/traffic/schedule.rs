@@ -189,10 +189,10 @@ impl Schedule {
         let Some(tr) = self.its[r].travs.pop_front() else {
             return;
         };
+
         for &x in &self.conf.trav[tr.edge] {
             let q = &mut self.queues[x as usize];
-            if q
-                .front()
+            if q.front()
                 .is_some_and(|s| s.robot as usize == r && s.last == tr.seq)
             {
                 q.pop_front();
@@ -274,7 +274,10 @@ impl Schedule {
         for (x, a, b) in runs {
             let forever = b + 1 == n && self.conf.vertex[end_v].binary_search(&x).is_ok();
             let last = if forever { FOREVER } else { s0 + b as u64 };
-            let (start, end) = (steps[a].start, if forever { f64::INFINITY } else { steps[b].end });
+            let (start, end) = (
+                steps[a].start,
+                if forever { f64::INFINITY } else { steps[b].end },
+            );
             let q = &mut self.queues[x as usize];
             // Straight on from what the robot holds now (the standing set, or a kept
             // traversal's set): the same span goes on.
@@ -429,10 +432,8 @@ impl Schedule {
             }
         }
         if done < total {
-            let mut robots: Vec<usize> = (0..total)
-                .filter(|&b| indeg[b] > 0)
-                .map(robot_of)
-                .collect();
+            let mut robots: Vec<usize> =
+                (0..total).filter(|&b| indeg[b] > 0).map(robot_of).collect();
             robots.dedup();
             return Err(Cycle { robots });
         }
@@ -470,7 +471,9 @@ impl Schedule {
                     return Err(format!("resource {x}: span {w} ends before it starts"));
                 }
                 if s.last == FOREVER && w + 1 != q.len() {
-                    return Err(format!("resource {x}: a span after one held for good: {q:?}"));
+                    return Err(format!(
+                        "resource {x}: a span after one held for good: {q:?}"
+                    ));
                 }
             }
         }
@@ -482,7 +485,15 @@ impl Schedule {
                 }
             }
             for (r, it) in self.its.iter().enumerate() {
-                dump.push_str(&format!("\n  robot {r} base {} at {}: {:?}", it.base, it.at, it.travs.iter().map(|t| (t.seq, t.edge, t.start, t.end)).collect::<Vec<_>>()));
+                dump.push_str(&format!(
+                    "\n  robot {r} base {} at {}: {:?}",
+                    it.base,
+                    it.at,
+                    it.travs
+                        .iter()
+                        .map(|t| (t.seq, t.edge, t.start, t.end))
+                        .collect::<Vec<_>>()
+                ));
             }
             format!("cycle among robots {:?}{dump}", c.robots)
         })

@@ -13,7 +13,7 @@
 use super::conflicts::Res;
 use super::parks::PARK_ON_PLACE;
 use super::schedule::{Schedule, Step};
-use crate::graph::Nav;
+use crate::graph::{EdgeKind, Nav, DOOR_COST};
 use std::cmp::Ordering;
 use std::collections::{BinaryHeap, HashMap};
 
@@ -23,11 +23,88 @@ const MAX_EXPANSIONS: usize = 200_000;
 /// may need it (and send the robot parked there away).
 const PLACE_PENALTY: f64 = 60.0;
 
+/// How a robot drives, for traversal times: the slotcar accelerates to its top speed,
+/// brakes to a stop at every waypoint, and turns in place towards the next one.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Kinematics {
+    /// Top speed (m/s) and acceleration (m/s²).
+    pub speed: f64,
+    pub accel: f64,
+    /// Turning speed (rad/s).
+    pub turn: f64,
+}
+
+impl Kinematics {
+    /// Time to drive `len` metres from rest to rest at top speed `v` (a trapezoid, or a
+    /// triangle on short lanes).
+    fn drive(&self, len: f64, v: f64) -> f64 {
+        let a = self.accel.max(1e-3);
+        if len >= v * v / a {
+            len / v + v / a
+        } else {
+            2.0 * (len / a).sqrt()
+        }
+    }
+
+    /// Time to drive edge `e` after arriving along `prev` (None: no turn counted).
+    pub fn edge_time(&self, nav: &Nav, e: usize, prev: Option<usize>) -> f64 {
+        let edge = &nav.edges[e];
+        match edge.kind {
+            EdgeKind::Lift(_) => nav.edge_cost(e, self.speed),
+            EdgeKind::Lane => {
+                let v = edge
+                    .speed_limit
+                    .map_or(self.speed, |l| l.min(self.speed))
+                    .max(0.05);
+                let door = if edge.door.is_some_and(|d| nav.doors[d].controlled) {
+                    DOOR_COST
+                } else {
+                    0.0
+                };
+                let turn = prev.map_or(0.0, |p| {
+                    let h = |e: usize| {
+                        let x = &nav.edges[e];
+                        let d = nav.vertices[x.to].pos.minus(nav.vertices[x.from].pos);
+                        d.y.atan2(d.x)
+                    };
+                    if nav.edges[p].kind != EdgeKind::Lane || edge.length < 1e-6 {
+                        return 0.0;
+                    }
+                    let mut a = (h(e) - h(p)).abs() % std::f64::consts::TAU;
+                    if a > std::f64::consts::PI {
+                        a = std::f64::consts::TAU - a;
+                    }
+                    a / self.turn.max(0.05)
+                });
+                self.drive(edge.length, v) + door + turn + STOP_S
+            }
+        }
+    }
+
+    /// A lower bound of [`Kinematics::edge_time`] (for the search's heuristic).
+    fn edge_bound(&self, nav: &Nav, e: usize) -> f64 {
+        let edge = &nav.edges[e];
+        match edge.kind {
+            EdgeKind::Lift(_) => nav.edge_cost(e, self.speed),
+            EdgeKind::Lane => {
+                let v = edge
+                    .speed_limit
+                    .map_or(self.speed, |l| l.min(self.speed))
+                    .max(0.05);
+                edge.length / v
+            }
+        }
+    }
+}
+
+/// Settling at a waypoint (s): the slotcar stops within its tolerance, then reports.
+const STOP_S: f64 = 0.5;
+
 /// What to plan.
 pub struct Query<'a> {
     pub robot: usize,
     pub slot: usize,
-    pub speed: f64,
+    pub kin: Kinematics,
     /// Where the robot is (or will be), and from when it may leave.
     pub from: usize,
     pub t0: f64,
@@ -36,6 +113,10 @@ pub struct Query<'a> {
     /// Per vertex: where the robot may stay for good (`parks::PARK`, or `PARK_ON_PLACE`
     /// at a cost of `PLACE_PENALTY`), 0 elsewhere.
     pub parks: &'a [u8],
+    /// A vertex where the plan may end, at no penalty, even if it is not a parking vertex:
+    /// the place a robot was sent to (it stays there, as after RMF's go-to-place; when it is
+    /// in somebody's way later, it is sent on to a parking vertex).
+    pub stay: Option<usize>,
 }
 
 /// A plan: its steps, and after how many steps each goal is reached.
@@ -89,6 +170,8 @@ pub struct Planner {
     /// Plans made and states expanded, for the report.
     pub plans: u64,
     pub expanded: u64,
+    /// Why the last plan failed (for debugging).
+    pub why: &'static str,
 }
 
 impl Planner {
@@ -109,11 +192,12 @@ impl Planner {
             park_dist: HashMap::new(),
             plans: 0,
             expanded: 0,
+            why: "",
         }
     }
 
     /// Travel times to the nearest of `targets` from every vertex (reverse Dijkstra).
-    fn dist_to(&self, nav: &Nav, slot: usize, speed: f64, targets: &[usize]) -> Vec<f64> {
+    fn dist_to(&self, nav: &Nav, slot: usize, kin: &Kinematics, targets: &[usize]) -> Vec<f64> {
         let mut d = vec![f64::INFINITY; nav.vertices.len()];
         let mut heap = BinaryHeap::new();
         for &g in targets {
@@ -126,7 +210,7 @@ impl Planner {
             }
             for &e in &self.inn[slot][v] {
                 let u = nav.edges[e].from;
-                let nc = c + nav.edge_cost(e, speed);
+                let nc = c + kin.edge_bound(nav, e);
                 if nc < d[u] {
                     d[u] = nc;
                     heap.push(Open(nc, 0.0, u));
@@ -140,10 +224,12 @@ impl Planner {
     pub fn plan(&mut self, nav: &Nav, sched: &Schedule, q: &Query) -> Option<Plan> {
         self.plans += 1;
         let conf = sched.conf();
-        let key = (q.slot, q.speed.to_bits());
+        let key = (q.slot, q.kin.speed.to_bits());
         if !self.park_dist.contains_key(&key) {
-            let parks: Vec<usize> = (0..nav.vertices.len()).filter(|&v| q.parks[v] != 0).collect();
-            let d = self.dist_to(nav, q.slot, q.speed, &parks);
+            let parks: Vec<usize> = (0..nav.vertices.len())
+                .filter(|&v| q.parks[v] != 0)
+                .collect();
+            let d = self.dist_to(nav, q.slot, &q.kin, &parks);
             self.park_dist.insert(key, d);
         }
         let park_dist = &self.park_dist[&key];
@@ -151,7 +237,7 @@ impl Planner {
         // h(v, label): to the goal of `label`, then through the rest, then to a park.
         let mut dist: Vec<Vec<f64>> = Vec::with_capacity(nl);
         for &(g, _) in q.goals {
-            dist.push(self.dist_to(nav, q.slot, q.speed, &[g]));
+            dist.push(self.dist_to(nav, q.slot, &q.kin, &[g]));
         }
         let mut rest = vec![0.0; nl + 1];
         for l in (0..nl).rev() {
@@ -171,6 +257,7 @@ impl Planner {
             }
         };
         if !h(q.from, 0).is_finite() {
+            self.why = "unreachable";
             return None;
         }
         let r = q.robot;
@@ -181,7 +268,10 @@ impl Planner {
                 .clone()
         };
         let iv0 = intervals(q.from);
-        let i0 = iv0.iter().position(|&(a, b)| a <= q.t0 && q.t0 < b)?;
+        let Some(i0) = iv0.iter().position(|&(a, b)| a <= q.t0 && q.t0 < b) else {
+            self.why = "start busy";
+            return None;
+        };
         let mut nodes = vec![Node {
             v: q.from,
             iv: i0,
@@ -198,10 +288,7 @@ impl Planner {
         let mut busy_cache: HashMap<usize, Vec<(f64, f64)>> = HashMap::new();
         while let Some(Open(_, _, id)) = open.pop() {
             let n = nodes[id];
-            if best
-                .get(&(n.v, n.iv, n.label))
-                .is_some_and(|&t| t < n.t)
-            {
+            if best.get(&(n.v, n.iv, n.label)).is_some_and(|&t| t < n.t) {
                 continue;
             }
             if n.end {
@@ -210,9 +297,14 @@ impl Planner {
             }
             let ivs = intervals(n.v);
             let (_, hi) = ivs[n.iv];
-            if n.label == nl && q.parks[n.v] != 0 && hi == f64::INFINITY {
+            let may_stay = q.parks[n.v] != 0 || q.stay == Some(n.v);
+            if n.label == nl && may_stay && hi == f64::INFINITY {
                 // Staying here for good: a candidate end, ranked with its penalty.
-                let pen = if q.parks[n.v] == PARK_ON_PLACE { PLACE_PENALTY } else { 0.0 };
+                let pen = if q.parks[n.v] == PARK_ON_PLACE && q.stay != Some(n.v) {
+                    PLACE_PENALTY
+                } else {
+                    0.0
+                };
                 nodes.push(Node {
                     parent: id,
                     end: true,
@@ -257,7 +349,9 @@ impl Planner {
             }
             for &e in &nav.out[q.slot][n.v] {
                 let w = nav.edges[e].to;
-                let dur = nav.edge_cost(e, q.speed);
+                let prev = n.edge.map(|(p, _, _)| p);
+                let dur = q.kin.edge_time(nav, e, prev);
+
                 let busy = busy_cache
                     .entry(e)
                     .or_insert_with(|| merged(sched, &conf.trav[e], r));
@@ -297,6 +391,11 @@ impl Planner {
             }
         }
         self.expanded += expanded as u64;
+        self.why = if expanded > MAX_EXPANSIONS {
+            "search bound"
+        } else {
+            "no way"
+        };
         None
     }
 }

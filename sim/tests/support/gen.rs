@@ -33,7 +33,8 @@ struct Level {
 
 impl Level {
     fn v(&mut self, x: f64, y: f64, name: &str, params: &str) -> usize {
-        self.verts.push((x, y, name.to_string(), params.to_string()));
+        self.verts
+            .push((x, y, name.to_string(), params.to_string()));
         self.verts.len() - 1
     }
 }
@@ -126,7 +127,12 @@ pub fn building_with(seed: u64, s: &Shape) -> Building {
             }
             // Parking bays: dead ends a little off the corridor, every other junction.
             if j % 2 == 1 || s.junctions <= 2 {
-                let p = lv.v(x + gap / 2.0, 2.0, &format!("park_{l}_{j}"), "{is_parking_spot: [4, true]}");
+                let p = lv.v(
+                    x + gap / 2.0,
+                    2.0,
+                    &format!("park_{l}_{j}"),
+                    "{is_parking_spot: [4, true]}",
+                );
                 let m = lv.v(x + gap / 2.0, 0.0, "", "");
                 lv.lanes.push((m, p, true));
                 // The next junction's lane will start from m.
@@ -148,7 +154,8 @@ pub fn building_with(seed: u64, s: &Shape) -> Building {
             let down_e = lv.v((s.junctions - 1) as f64 * gap + 1.5, -4.5, "", "");
             // last -> down_e -> chain east end -> ... -> chain west end -> down_w -> first
             lv.lanes.push((last, down_e, false));
-            lv.lanes.push((down_e, *chain.last().unwrap_or(&last), false));
+            lv.lanes
+                .push((down_e, *chain.last().unwrap_or(&last), false));
             for w in chain.windows(2).rev() {
                 lv.lanes.push((w[1], w[0], false));
             }
@@ -166,7 +173,12 @@ pub fn building_with(seed: u64, s: &Shape) -> Building {
     for (l, lv) in lvls.iter_mut().enumerate() {
         let lobby = 0;
         if s.levels > 1 {
-            let c = lv.v(cabin_x, 0.0, &format!("cabin_{l}"), "{lift_cabin: [1, lift_1]}");
+            let c = lv.v(
+                cabin_x,
+                0.0,
+                &format!("cabin_{l}"),
+                "{lift_cabin: [1, lift_1]}",
+            );
             lv.lanes.push((lobby, c, true));
         }
         waypoints += lv.verts.len();
@@ -200,7 +212,10 @@ pub fn building_with(seed: u64, s: &Shape) -> Building {
     if s.levels > 1 {
         let names: Vec<String> = (0..s.levels).map(|l| format!("L{}", l + 1)).collect();
         let _ = writeln!(out, "lifts:\n  lift_1:");
-        let _ = writeln!(out, "    depth: 1.6\n    width: 1.6\n    x: {cabin_x}\n    y: 0\n    yaw: 0");
+        let _ = writeln!(
+            out,
+            "    depth: 1.6\n    width: 1.6\n    x: {cabin_x}\n    y: 0\n    yaw: 0"
+        );
         let _ = writeln!(out, "    doors:\n      lift_1_door: {{door_type: 2, motion_axis_orientation: 1.5708, width: 1.2, x: 0.8, y: 0}}");
         let _ = writeln!(out, "    level_doors:");
         for n in &names {
