@@ -9,6 +9,7 @@
 //! schedule's order, and that order is acyclic: waits end.
 
 use super::*;
+use crate::traffic::parks::PARK_ON_PLACE;
 use crate::traffic::sipp::Query;
 use crate::traffic::Res;
 
@@ -76,12 +77,18 @@ impl Fleets {
         goals: &[(usize, f64)],
         t: f64,
     ) -> Result<usize, NoPlan> {
-        match self.plan_with(i, goals, None, t) {
+        let r = match self.plan_with(i, goals, None, t) {
             Err(NoPlan::Busy) if self.displace_for(i, goals, t) => {
                 self.plan_with(i, goals, None, t)
             }
             r => r,
+        };
+        if r.is_err() {
+            // Only the robot's own plans wait to be tried again (not the tries to make it
+            // make room for others, which would put its own off for ever).
+            self.robots[i].replan_at = t + REPLAN_AFTER;
         }
+        r
     }
 
     /// Robots whose itineraries end where one of robot `i`'s `goals` is (a task place that
@@ -102,6 +109,35 @@ impl Fleets {
             .iter()
             .map(|set| set.iter().any(|x| near.binary_search(x).is_ok()))
             .collect();
+        // The vertices robot `i`'s shortest way to its goals passes (and their neighbours
+        // in conflict): where a robot made to make room should not stay.
+        let mut on_way = off.clone();
+        {
+            let r = &self.robots[i];
+            let f = &self.fleets[r.fleet];
+            let mut at = self.sched.end_vertex(i);
+            if r.n_sent == 0 {
+                at = self.sched.itinerary(i).at;
+            }
+            let mut way: Vec<usize> = vec![at];
+            for &(g, _) in goals {
+                if let Some((_, es)) = self.nav.plan(f.slot, at, g, f.speed) {
+                    way.extend(es.iter().map(|&e| self.nav.edges[e].to));
+                }
+                at = g;
+            }
+            let mut res: Vec<Res> = way
+                .iter()
+                .flat_map(|&v| conf.vertex[v].iter().copied())
+                .collect();
+            res.sort_unstable();
+            res.dedup();
+            for (v, set) in conf.vertex.iter().enumerate() {
+                if set.iter().any(|x| res.binary_search(x).is_ok()) {
+                    on_way[v] = true;
+                }
+            }
+        }
         // Those whose stay for good is at a goal, and idle robots staying anywhere but on
         // a parking vertex (where they were sent): such a stay may cut robot `i`'s way.
         let blockers: Vec<usize> = (0..self.robots.len())
@@ -113,6 +149,21 @@ impl Fleets {
             })
             .collect();
         let mut moved = false;
+        if std::env::var_os("MAPC_TRAFFIC_DEBUG").is_some() {
+            eprintln!(
+                "  t={t:.1} displace for {}: {:?} cur {:?}",
+                self.robots[i].name,
+                blockers
+                    .iter()
+                    .map(|&o| (
+                        &self.robots[o].name,
+                        &self.robots[o].cur,
+                        self.robots[o].task
+                    ))
+                    .collect::<Vec<_>>(),
+                self.robots[i].cur
+            );
+        }
         for o in blockers {
             let r = &self.robots[o];
             // What it is doing stays: its leg's goal, or the work at its place.
@@ -135,7 +186,24 @@ impl Fleets {
                 .enumerate()
                 .map(|(v, &p)| if off[v] { 0 } else { p })
                 .collect();
-            if let Ok(l) = self.plan_with(o, &own, Some(&mask), t) {
+            // No parking vertex left for it: any vertex off robot `i`'s way will do for a
+            // while (a robot staying there is moved on again when it is in the way).
+            let anywhere: Vec<u8> = (0..mask.len())
+                .map(|v| {
+                    if mask[v] != 0 {
+                        mask[v]
+                    } else if off[v] || on_way[v] || self.nav.vertices[v].lift.is_some() {
+                        0
+                    } else {
+                        PARK_ON_PLACE
+                    }
+                })
+                .collect();
+            let res = match self.plan_with(o, &own, Some(&mask), t) {
+                Err(NoPlan::Busy) => self.plan_with(o, &own, Some(&anywhere), t),
+                r => r,
+            };
+            if let Ok(l) = res {
                 if leg {
                     self.robots[o].leg = Some(l);
                 }
@@ -198,7 +266,6 @@ impl Fleets {
             );
         }
         let Some(plan) = found else {
-            self.robots[i].replan_at = t + REPLAN_AFTER;
             return Err(NoPlan::Busy);
         };
         self.decisions.push(plan.expanded as u32);
