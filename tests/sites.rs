@@ -916,7 +916,9 @@ fn site_anchors_in_walls_floors_and_doors() {
         .map(|d| (d.code, d.span.line, d.span.col))
         .collect();
     let text = std::fs::read_to_string(shared_fixture()).unwrap();
-    let (line, col) = line_col(&text, r#"3]}, "#);
+    let lane = r#""42": {"anchors": [15, "#;
+    let (line, col) = line_col(&text, lane);
+    let col = col + lane.len() as u64;
     assert_eq!(d, vec![("W0123", line as u32, col as u32)], "lane 42's site anchor");
     let b = parsed.building.unwrap();
     let at = |v: Handle<Vertex>| mm2(b.vertices[v].pos.x, b.vertices[v].pos.y);
@@ -960,8 +962,9 @@ fn site_anchors_in_walls_floors_and_doors() {
         .collect::<Vec<_>>();
     assert_eq!(on_anchor_2, ["ground", "upper"]);
 
-    // The world: both lab doors (door models named after the doors, at the middle of
-    // their anchors), and a level model per level.
+    // The world: both lab doors (door models named after the doors, at the middle (12, 0)
+    // of their anchors, turned to their x = 12 line, at their level's elevation), and a
+    // level model per level.
     let tmp = tempfile::tempdir().unwrap();
     let files = world(&shared_fixture(), &tmp.path().join("w"));
     let sdf = String::from_utf8(
@@ -973,8 +976,11 @@ fn site_anchors_in_walls_floors_and_doors() {
             .clone(),
     )
     .unwrap();
-    for door in ["lab_door", "upper_lab_door"] {
-        assert!(sdf.contains(&format!("<model name='{door}'>")), "{door}");
+    for (door, z) in [("lab_door", "0.0"), ("upper_lab_door", "3.5")] {
+        let model = format!(
+            "<model name=\"{door}\">\n      <pose>12.0 0.0 {z} 0 0 1.5707963267948966</pose>"
+        );
+        assert!(sdf.contains(&model), "{door}");
     }
     let level_models = files
         .iter()
@@ -1057,4 +1063,94 @@ fn site_anchor_scoping_errors_are_located() {
         "W0123",
     );
     assert!(d.iter().all(|x| x.0.starts_with('W')), "{d:?}");
+}
+
+/// rmf_site's own demo sites (its `assets/demo_maps/*.site.json`, not kept in this
+/// repository), when `MAPC_RMF_SITE_DEMOS` names a directory holding them: each compiles
+/// with no error, and `mapc nav` equals rmf_site_format's `NavGraph::from_site` of it by
+/// meaning (lift waypoints and the lanes to them aside).
+#[test]
+fn rmf_site_demo_sites_when_given() {
+    let Some(dir) = std::env::var_os("MAPC_RMF_SITE_DEMOS") else {
+        println!("skipped: MAPC_RMF_SITE_DEMOS not set");
+        return;
+    };
+    let tmp = tempfile::tempdir().unwrap();
+    let mut sites: Vec<PathBuf> = std::fs::read_dir(&dir)
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .filter(|p| p.to_string_lossy().ends_with(".site.json"))
+        .collect();
+    sites.sort();
+    assert!(!sites.is_empty(), "no .site.json in {}", Path::new(&dir).display());
+    for (i, path) in sites.iter().enumerate() {
+        let errors: Vec<String> = mapc_frontend::load(path)
+            .unwrap()
+            .diagnostics
+            .iter()
+            .filter(|d| d.is_error())
+            .map(|d| format!("{}:{}: {}", d.span.line, d.span.col, d.message))
+            .collect();
+        assert!(errors.is_empty(), "{}: {errors:#?}", path.display());
+        let site = Site::from_bytes_json(&std::fs::read(path).unwrap()).unwrap();
+        let nav = nav_dir(path, &tmp.path().join(format!("nav{i}")));
+        assert_rmf_site_nav_equal(&site, &nav, &path.display().to_string());
+    }
+}
+
+/// A location in some graphs only (rmf_site's location `graphs`): rmf_site's export names
+/// the waypoint in those graphs and leaves it unnamed, with no tags, in the others; so
+/// does `mapc nav`. Converting to a `.building.yaml`, which names a waypoint in every
+/// graph, says so (W0122).
+#[test]
+fn a_location_names_its_waypoint_only_in_its_graphs() {
+    let tmp = tempfile::tempdir().unwrap();
+    let text = std::fs::read_to_string(shared_fixture())
+        .unwrap()
+        .replace(
+            r#""95": {"name": "patrol", "color": [0.2, 0.6, 1.0]}"#,
+            r#""95": {"name": "patrol", "color": [0.2, 0.6, 1.0]}, "96": {"name": "night", "color": [0.1, 0.1, 0.4]}"#,
+        )
+        .replace(
+            r#""name": "ground_charger", "graphs": "All""#,
+            r#""name": "ground_charger", "graphs": {"Only": [95]}"#,
+        );
+    let path = tmp.path().join("two_graphs.site.json");
+    std::fs::write(&path, &text).unwrap();
+    let nav = nav_dir(&path, &tmp.path().join("nav"));
+    let names: Vec<&str> = nav.iter().map(|(f, _)| f.as_str()).collect();
+    assert_eq!(names, ["night.yaml", "patrol.yaml"]);
+    let charger_at = |doc: &Value| -> Vec<Value> {
+        doc["levels"]["ground"]["vertices"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .filter(|v| mm2(v[0].as_f64().unwrap(), v[1].as_f64().unwrap()) == mm2(14.0, 3.0))
+            .map(|v| v[2].clone())
+            .collect()
+    };
+    let night = yaml_value(&nav[0].1);
+    let patrol = yaml_value(&nav[1].1);
+    assert_eq!(charger_at(&night), [serde_json::json!({"name": ""})]);
+    assert_eq!(
+        charger_at(&patrol),
+        [serde_json::json!({"name": "ground_charger", "is_charger": true})]
+    );
+    let site = Site::from_bytes_json(text.as_bytes()).unwrap();
+    for (name, graph) in NavGraph::from_site(&site) {
+        let theirs = serde_json::to_value(&graph).unwrap();
+        let ours = if name == "night" { &night } else { &patrol };
+        assert_eq!(meaning_off_lifts(&theirs, false), meaning_off_lifts(ours, false), "{name}");
+    }
+    let r = mapc(&[
+        "convert",
+        path.to_str().unwrap(),
+        tmp.path().join("x.building.yaml").to_str().unwrap(),
+    ]);
+    assert_eq!(r.code, 0);
+    let err = String::from_utf8_lossy(&r.stderr);
+    assert!(
+        err.contains("warning[W0122]: waypoint `ground_charger` is a named place in some graphs only"),
+        "{err}"
+    );
 }

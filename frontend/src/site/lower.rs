@@ -1132,6 +1132,7 @@ impl<'d, 'n, 's> SiteLower<'d, 'n, 's> {
                 index: self.graphs[&id],
                 name,
                 default_lane_width: 1.0,
+                unnamed: Vec::new(),
             });
         }
         b.graphs.sort_by_key(|g| g.index);
@@ -1609,7 +1610,7 @@ impl<'d, 'n, 's> SiteLower<'d, 'n, 's> {
             .and_then(ref_of)
             .and_then(|m| self.mutexes.get(&m).cloned())
             .filter(|m| !m.is_empty());
-        let graphs = self.lane_graphs(n, id);
+        let graphs = self.graph_set(n, &format!("lane {id}"));
         let lext = ext_lanes.and_then(|e| e.get(&id.to_string()));
         let ext_str = |k: &str| {
             lext.and_then(|e| e.get(k))
@@ -1676,8 +1677,8 @@ impl<'d, 'n, 's> SiteLower<'d, 'n, 's> {
         }
     }
 
-    /// The IR graph indices of a lane's `graphs` (`All`, `Only`, `AllExcept`).
-    fn lane_graphs(&mut self, n: &Node, id: u32) -> Vec<i64> {
+    /// The IR graph indices of a lane's or location's `graphs` (`what` names it).
+    fn graph_set(&mut self, n: &Node, what: &str) -> Vec<i64> {
         let all: Vec<(u32, i64)> = self.graphs.iter().map(|(k, v)| (*k, *v)).collect();
         let set = |s: &mut Self, v: Option<&Node>| -> Vec<u32> {
             let mut out = Vec::new();
@@ -1687,8 +1688,8 @@ impl<'d, 'n, 's> SiteLower<'d, 'n, 's> {
                     Some(gid) => s.l.err(
                         "E0121",
                         g.span,
-                        format!("lane {id} refers to graph {gid}, which the site does not have"),
-                        "point the lane at an existing graph",
+                        format!("{what} refers to graph {gid}, which the site does not have"),
+                        "point it at an existing graph",
                     ),
                     None => s.l.wrong_type(g, "a graph id", "an unsigned integer"),
                 }
@@ -1710,7 +1711,7 @@ impl<'d, 'n, 's> SiteLower<'d, 'n, 's> {
                 self.l.err(
                     "E0101",
                     span,
-                    format!("unknown lane graphs `{other}`"),
+                    format!("unknown graphs `{other}` of {what}"),
                     "use All, Only or AllExcept",
                 );
                 Vec::new()
@@ -1813,6 +1814,13 @@ impl<'d, 'n, 's> SiteLower<'d, 'n, 's> {
             .and_then(|m| self.mutexes.get(&m))
             .filter(|m| !m.is_empty())
             .cloned();
+        // The graphs the location is not in keep the waypoint, unnamed.
+        let graphs = self.graph_set(n, &format!("location `{name}`"));
+        for g in b.graphs.iter_mut().filter(|g| !graphs.contains(&g.index)) {
+            g.unnamed.extend(&targets);
+            g.unnamed.sort_unstable();
+            g.unnamed.dedup();
+        }
         for v in targets {
             let vx = &mut b.vertices[v];
             vx.name = name.clone();
