@@ -126,7 +126,8 @@ pub const UNKNOWN_FIELD: Code = Code {
 ///
 /// **What:** `mapc convert` met something the target format cannot say: a telescope lift
 /// door or a door model in a `.site.json`, a yaw orientation constraint, a lane that
-/// differs by direction in more than its dock, layers and features; or something only
+/// differs by direction in more than its dock, layers and features, a site location in
+/// some graphs only (a `.building.yaml` names a waypoint in every graph); or something only
 /// mapc's extension data in the site keeps (`crowd_sim`, human lanes, floor holes), which
 /// rmf_site neither shows nor edits. It names the element.
 ///
