@@ -576,12 +576,8 @@ pub(crate) fn ignored_codes(c: &Checked) -> Vec<&'static str> {
 pub(crate) fn ways_out(input: &Path, codes: &[&str]) -> String {
     let flags: Vec<String> = codes.iter().map(|c| format!("--allow {c}")).collect();
     let keys: Vec<String> = codes.iter().map(|c| format!("{c} = \"allow\"")).collect();
-    let toml = lints::discover(input).unwrap_or_else(|| {
-        input
-            .parent()
-            .unwrap_or(Path::new("."))
-            .join("mapc.toml")
-    });
+    let toml = lints::discover(input)
+        .unwrap_or_else(|| input.parent().unwrap_or(Path::new(".")).join("mapc.toml"));
     format!(
         "if those keys are meant to be ignored, pass `{}` on the command line, or add `{}` under `[lints]` in {}",
         flags.join(" "),

@@ -449,7 +449,11 @@ fn the_ignored_keys_refusal_names_the_flag_and_the_mapc_toml_setting() {
     // The first way: the flag as the message spells it.
     let o = mapc(&["nav", &m, &s(&out), "--allow", "W0103"]);
     assert_eq!(code(&o), 0, "{}", stderr(&o));
-    assert!(stderr(&o).contains("no nav graph written"), "{}", stderr(&o));
+    assert!(
+        stderr(&o).contains("no nav graph written"),
+        "{}",
+        stderr(&o)
+    );
 
     // The second way: the setting, in the file the message names; that file is then the
     // one found beside the map, and a second refusal would name it again.

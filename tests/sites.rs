@@ -4,9 +4,9 @@
 
 mod support;
 
+use mapc_ir::{Handle, Vertex};
 use rmf_site_format::legacy::building_map::BuildingMap;
 use rmf_site_format::legacy::nav_graph::NavGraph;
-use mapc_ir::{Handle, Vertex};
 use rmf_site_format::Site;
 use serde_json::Value;
 use std::collections::BTreeSet;
@@ -919,7 +919,11 @@ fn site_anchors_in_walls_floors_and_doors() {
     let lane = r#""42": {"anchors": [15, "#;
     let (line, col) = line_col(&text, lane);
     let col = col + lane.len() as u64;
-    assert_eq!(d, vec![("W0123", line as u32, col as u32)], "lane 42's site anchor");
+    assert_eq!(
+        d,
+        vec![("W0123", line as u32, col as u32)],
+        "lane 42's site anchor"
+    );
     let b = parsed.building.unwrap();
     let at = |v: Handle<Vertex>| mm2(b.vertices[v].pos.x, b.vertices[v].pos.y);
     for (lh, level) in b.levels.iter() {
@@ -929,7 +933,12 @@ fn site_anchors_in_walls_floors_and_doors() {
             .iter()
             .map(|w| at(b.walls[*w].start))
             .collect();
-        assert_eq!(starts, vec![mm2(8.0, 1.0), mm2(8.0, -1.0)], "{}", level.name);
+        assert_eq!(
+            starts,
+            vec![mm2(8.0, 1.0), mm2(8.0, -1.0)],
+            "{}",
+            level.name
+        );
         assert!(level
             .walls
             .iter()
@@ -943,8 +952,15 @@ fn site_anchors_in_walls_floors_and_doors() {
             .collect();
         assert_eq!(
             floor,
-            [(8.0, -1.0), (8.0, -4.0), (16.0, -4.0), (16.0, 4.0), (8.0, 4.0), (8.0, 1.0)]
-                .map(|(x, y)| mm2(x, y))
+            [
+                (8.0, -1.0),
+                (8.0, -4.0),
+                (16.0, -4.0),
+                (16.0, 4.0),
+                (8.0, 4.0),
+                (8.0, 1.0)
+            ]
+            .map(|(x, y)| mm2(x, y))
         );
         assert_eq!(level.doors.len(), 1);
         let door = &b.doors[level.doors[0]];
@@ -999,15 +1015,32 @@ fn site_anchors_in_walls_floors_and_doors() {
     let nav = nav_dir(&shared_fixture(), &tmp.path().join("nav"));
     let bpath = tmp.path().join("x.building.yaml");
     let spath = tmp.path().join("x.site.json");
-    ok(&["convert", shared_fixture().to_str().unwrap(), bpath.to_str().unwrap(), "-q"]);
-    ok(&["convert", bpath.to_str().unwrap(), spath.to_str().unwrap(), "-q"]);
+    ok(&[
+        "convert",
+        shared_fixture().to_str().unwrap(),
+        bpath.to_str().unwrap(),
+        "-q",
+    ]);
+    ok(&[
+        "convert",
+        bpath.to_str().unwrap(),
+        spath.to_str().unwrap(),
+        "-q",
+    ]);
     Site::from_bytes_json(&std::fs::read(&spath).unwrap()).expect("rmf_site_format reads it");
     for p in [&bpath, &spath] {
         let again = mapc_frontend::load(p).unwrap().building.unwrap();
         let walls: Vec<usize> = again.levels.iter().map(|(_, l)| l.walls.len()).collect();
         assert_eq!(walls, [9, 9], "{}", p.display());
-        let n = nav_dir(p, &tmp.path().join(format!("nav_{}", p.extension().unwrap().to_string_lossy())));
-        assert_eq!(meaning(&yaml_value(&n[0].1)), meaning(&yaml_value(&nav[0].1)));
+        let n = nav_dir(
+            p,
+            &tmp.path()
+                .join(format!("nav_{}", p.extension().unwrap().to_string_lossy())),
+        );
+        assert_eq!(
+            meaning(&yaml_value(&n[0].1)),
+            meaning(&yaml_value(&nav[0].1))
+        );
         assert_eq!(
             lanes_with_doors(&yaml_value(&n[0].1)["levels"]["ground"]),
             lanes_with_doors(&yaml_value(&nav[0].1)["levels"]["ground"])
@@ -1082,7 +1115,11 @@ fn rmf_site_demo_sites_when_given() {
         .filter(|p| p.to_string_lossy().ends_with(".site.json"))
         .collect();
     sites.sort();
-    assert!(!sites.is_empty(), "no .site.json in {}", Path::new(&dir).display());
+    assert!(
+        !sites.is_empty(),
+        "no .site.json in {}",
+        Path::new(&dir).display()
+    );
     for (i, path) in sites.iter().enumerate() {
         let errors: Vec<String> = mapc_frontend::load(path)
             .unwrap()
@@ -1140,7 +1177,11 @@ fn a_location_names_its_waypoint_only_in_its_graphs() {
     for (name, graph) in NavGraph::from_site(&site) {
         let theirs = serde_json::to_value(&graph).unwrap();
         let ours = if name == "night" { &night } else { &patrol };
-        assert_eq!(meaning_off_lifts(&theirs, false), meaning_off_lifts(ours, false), "{name}");
+        assert_eq!(
+            meaning_off_lifts(&theirs, false),
+            meaning_off_lifts(ours, false),
+            "{name}"
+        );
     }
     let r = mapc(&[
         "convert",
@@ -1150,7 +1191,9 @@ fn a_location_names_its_waypoint_only_in_its_graphs() {
     assert_eq!(r.code, 0);
     let err = String::from_utf8_lossy(&r.stderr);
     assert!(
-        err.contains("warning[W0122]: waypoint `ground_charger` is a named place in some graphs only"),
+        err.contains(
+            "warning[W0122]: waypoint `ground_charger` is a named place in some graphs only"
+        ),
         "{err}"
     );
 }
