@@ -784,8 +784,11 @@ fn mm2(x: f64, y: f64) -> (i64, i64) {
     ((x * 1000.0).round() as i64, (y * 1000.0).round() as i64)
 }
 
+/// A directed lane: start and end (mm) and its door name.
+type DoorLane = ((i64, i64), (i64, i64), String);
+
 /// A nav level's lanes as (start, end, door name), sorted.
-fn lanes_with_doors(level: &Value) -> Vec<((i64, i64), (i64, i64), String)> {
+fn lanes_with_doors(level: &Value) -> Vec<DoorLane> {
     let verts = level["vertices"].as_array().unwrap();
     let at = |i: &Value| {
         let v = &verts[i.as_u64().unwrap() as usize];

@@ -930,7 +930,9 @@ impl<'d, 'n, 's> SiteLower<'d, 'n, 's> {
     /// against the site's anchors and the level's own (site anchors first, then each
     /// level's anchors before its elements), so both are accepted; a site anchor is where
     /// the site says, on every level that uses it. Another level's anchor or a lift's cabin
-    /// anchor is an error: rmf_site's save refuses the first and its loader the second.
+    /// anchor is an error: rmf_site's loader finds the first only when that level's id is
+    /// lower (it reads levels in id order) and the second never (lifts come after levels),
+    /// so a site using them opens in rmf_site by accident of numbering, or not at all.
     fn level_anchor(
         &mut self,
         b: &mut Building,
