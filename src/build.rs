@@ -450,7 +450,7 @@ fn build_one(input: &Path, args: &BuildArgs, opts: &WorldOptions) -> MapResult {
             "{}: {}, but keys were ignored (see the warnings above); nothing written; {}",
             map,
             empty.join(" and "),
-            crate::ways_out(input, &ignored)
+            crate::ways_out(input, &args.diag.lints, &ignored)
         ));
         result.code = 1;
     } else if !files.is_empty() || result.blocked.is_empty() {

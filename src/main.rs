@@ -572,11 +572,15 @@ pub(crate) fn ignored_codes(c: &Checked) -> Vec<&'static str> {
 }
 
 /// How to go on when ignored keys (`codes`) are meant to be ignored (a fork's extension
-/// keys): the flag, or the mapc.toml setting in the file that applies to `input`.
-pub(crate) fn ways_out(input: &Path, codes: &[&str]) -> String {
+/// keys): the flag, or the mapc.toml setting in the file that applies to `input` (the
+/// `--config` file, else the one found beside the map or above it, else one beside it).
+pub(crate) fn ways_out(input: &Path, opts: &LintOpts, codes: &[&str]) -> String {
     let flags: Vec<String> = codes.iter().map(|c| format!("--allow {c}")).collect();
     let keys: Vec<String> = codes.iter().map(|c| format!("{c} = \"allow\"")).collect();
-    let toml = lints::discover(input)
+    let toml = opts
+        .config
+        .clone()
+        .or_else(|| lints::discover(input))
         .unwrap_or_else(|| input.parent().unwrap_or(Path::new(".")).join("mapc.toml"));
     format!(
         "if those keys are meant to be ignored, pass `{}` on the command line, or add `{}` under `[lints]` in {}",
@@ -664,7 +668,7 @@ fn run_command(
              nothing written; {}",
             cmd.kind,
             cmd.none,
-            ways_out(input, &ignored)
+            ways_out(input, &opts.lints, &ignored)
         );
         return ExitCode::from(1);
     }

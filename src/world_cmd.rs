@@ -202,7 +202,7 @@ pub(crate) fn run(flavour: Flavour, args: &WorldArgs) -> ExitCode {
         eprintln!(
             "error: {label}: no level mesh written: the map has no floors or walls, but keys \
              were ignored (see the warnings above); nothing written; {}",
-            crate::ways_out(&args.input, &ignored)
+            crate::ways_out(&args.input, &args.diag.lints, &ignored)
         );
         return ExitCode::from(1);
     }

@@ -465,4 +465,20 @@ fn the_ignored_keys_refusal_names_the_flag_and_the_mapc_toml_setting() {
     let o = mapc(&["nav", &m, &s(&dir.path().join("nav3"))]);
     assert_eq!(code(&o), 1, "{}", stderr(&o));
     assert!(stderr(&o).contains(&expected), "{}", stderr(&o));
+    // With `--config FILE`, that file is the one to edit.
+    let other = dir.path().join("team.toml");
+    std::fs::write(&other, "[lints]\nW0204 = \"allow\"\n").unwrap();
+    let o = mapc(&[
+        "nav",
+        &m,
+        &s(&dir.path().join("nav4")),
+        "--config",
+        &s(&other),
+    ]);
+    assert_eq!(code(&o), 1, "{}", stderr(&o));
+    assert!(
+        stderr(&o).contains(&format!("under `[lints]` in {}", other.display())),
+        "{}",
+        stderr(&o)
+    );
 }

@@ -1012,6 +1012,24 @@ fn site_anchors_in_walls_floors_and_doors() {
         &tmp.path().join("w/world.sdf"),
         &tmp.path().join("w/models"),
     );
+    // The other world flavours place the same doors.
+    for flavour in ["ignition", "classic"] {
+        let w = tmp.path().join(format!("{flavour}.world"));
+        let m = tmp.path().join(format!("{flavour}_models"));
+        let f = shared_fixture();
+        ok(&[
+            flavour,
+            f.to_str().unwrap(),
+            w.to_str().unwrap(),
+            m.to_str().unwrap(),
+            "-q",
+        ]);
+        let text = std::fs::read_to_string(&w).unwrap();
+        assert!(
+            text.contains("<pose>12.0 0.0 3.5 0 0 1.5707963267948966</pose>"),
+            "{flavour}"
+        );
+    }
 
     // Converted to a .building.yaml and back to a site: the same walls per level and the
     // same nav graph, and rmf_site_format reads the site.
