@@ -45,7 +45,7 @@ pub(crate) enum RmwArg {
 /// ROS 2's settings from the environment, the flags winning.
 #[cfg(any(feature = "dds", feature = "zenoh"))]
 fn ros_env(args: &Ros2Args) -> Result<mapc_ros2::ros_env::RosEnv, String> {
-    use mapc_ros2::ros_env::{RosEnv, Rmw};
+    use mapc_ros2::ros_env::{Rmw, RosEnv};
     let rmw = args.rmw.map(|r| match r {
         RmwArg::Dds => Rmw::Dds,
         RmwArg::Zenoh => Rmw::Zenoh,

@@ -147,7 +147,10 @@ fn assert_linked(r: &serde_json::Value) {
     assert!(r["clock_samples"].as_u64().is_some_and(|n| n >= 10), "{r}");
     assert!(r["clock_rate"].as_f64().is_some_and(|x| x > 1.0), "{r}");
     assert_eq!(r["clock_monotonic"], true);
-    assert!(r["door_open_after"].as_f64().is_some_and(|t| t > 0.0), "{r}");
+    assert!(
+        r["door_open_after"].as_f64().is_some_and(|t| t > 0.0),
+        "{r}"
+    );
 }
 
 #[test]
@@ -211,14 +214,19 @@ fn no_usable_interface_is_an_error_naming_the_settings() {
     for env in [None, Some(("ROS_AUTOMATIC_DISCOVERY_RANGE", "LOCALHOST"))] {
         // A fresh namespace's `lo` is down.
         let mut cmd = Command::new("unshare");
-        cmd.args(["-rn", "sh", "-c", r#""$MAPC" sim "$SCENARIO" --ros2 --until 10 -q"#])
-            .env("MAPC", env!("CARGO_BIN_EXE_mapc"))
-            .env(
-                "SCENARIO",
-                root.join("fixtures/two_level_clinic.scenario.yaml"),
-            )
-            .env_remove("ROS_AUTOMATIC_DISCOVERY_RANGE")
-            .env_remove("ROS_LOCALHOST_ONLY");
+        cmd.args([
+            "-rn",
+            "sh",
+            "-c",
+            r#""$MAPC" sim "$SCENARIO" --ros2 --until 10 -q"#,
+        ])
+        .env("MAPC", env!("CARGO_BIN_EXE_mapc"))
+        .env(
+            "SCENARIO",
+            root.join("fixtures/two_level_clinic.scenario.yaml"),
+        )
+        .env_remove("ROS_AUTOMATIC_DISCOVERY_RANGE")
+        .env_remove("ROS_LOCALHOST_ONLY");
         if let Some((k, v)) = env {
             cmd.env(k, v);
         }

@@ -137,8 +137,8 @@ fn rmf_side_drives_mapc_over_rmw_zenoh() {
     assert!(r["clock_rate"].as_f64().is_some_and(|x| x > 1.0), "{r}");
     assert_eq!(r["clock_monotonic"], true);
     assert_eq!(r["map"]["levels"], serde_json::json!(["L1", "L2"]));
-    let map_hash = mapc_ros2::type_hash::type_hash("rmf_building_map_msgs/msg/BuildingMap")
-        .expect("hash");
+    let map_hash =
+        mapc_ros2::type_hash::type_hash("rmf_building_map_msgs/msg/BuildingMap").expect("hash");
     assert_eq!(
         r["map"]["key"],
         format!("7/map/rmf_building_map_msgs::msg::dds_::BuildingMap_/{map_hash}")
@@ -149,7 +149,12 @@ fn rmf_side_drives_mapc_over_rmw_zenoh() {
     // (XXH3-128 of its liveliness token, computed by the xxhash package).
     let a = &r["attachment"];
     assert_eq!(a["sequence_increasing"], true, "{a}");
-    assert!(a["timestamp_age_s"].as_f64().is_some_and(|s| s.abs() < 60.0), "{a}");
+    assert!(
+        a["timestamp_age_s"]
+            .as_f64()
+            .is_some_and(|s| s.abs() < 60.0),
+        "{a}"
+    );
     assert_eq!(a["one_gid"], true, "{a}");
     assert_eq!(a["gid_is_xxh3_of_token"], true, "{a}");
 
@@ -173,9 +178,7 @@ fn rmf_side_drives_mapc_over_rmw_zenoh() {
     assert_eq!(&n[5..], ["NN", "%", "%", "mapc"]);
     let expect = |kind: &str, topic: &str, ros_type: &str, hash: &str, qos: &str| {
         let (pkg, name) = ros_type.split_once("/msg/").unwrap();
-        let tail = format!(
-            "/{kind}/%/%/mapc/%{topic}/{pkg}::msg::dds_::{name}_/{hash}/{qos}"
-        );
+        let tail = format!("/{kind}/%/%/mapc/%{topic}/{pkg}::msg::dds_::{name}_/{hash}/{qos}");
         let t = tokens
             .iter()
             .find(|t| t.ends_with(&tail))

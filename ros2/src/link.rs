@@ -26,10 +26,8 @@ impl Link {
             #[cfg(feature = "dds")]
             Rmw::Dds => crate::bridge::Bridge::new(env, plugins_only, building).map(Link::Dds),
             #[cfg(feature = "zenoh")]
-            Rmw::Zenoh => {
-                crate::zenoh_bridge::ZenohBridge::new(env, get, plugins_only, building)
-                    .map(Link::Zenoh)
-            }
+            Rmw::Zenoh => crate::zenoh_bridge::ZenohBridge::new(env, get, plugins_only, building)
+                .map(Link::Zenoh),
             #[allow(unreachable_patterns)]
             other => Err(format!(
                 "--ros2 over {other:?}: this mapc was built without it (cargo feature `{}`)",

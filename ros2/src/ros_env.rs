@@ -121,8 +121,11 @@ impl RosEnv {
             (
                 None,
                 Some(
-                    "rmw_cyclonedds_cpp" | "rmw_fastrtps_cpp" | "rmw_fastrtps_dynamic_cpp"
-                    | "rmw_connextdds" | "rmw_gurumdds_cpp",
+                    "rmw_cyclonedds_cpp"
+                    | "rmw_fastrtps_cpp"
+                    | "rmw_fastrtps_dynamic_cpp"
+                    | "rmw_connextdds"
+                    | "rmw_gurumdds_cpp",
                 ),
             ) => Rmw::Dds,
             (None, Some(v)) => {
@@ -215,9 +218,7 @@ pub fn choose_network(env: &RosEnv, interfaces: &[Interface]) -> Result<DdsNetwo
             list.join("; ")
         }
     };
-    let lo_up = interfaces
-        .iter()
-        .any(|i| i.loopback && i.up && i.has_ipv4);
+    let lo_up = interfaces.iter().any(|i| i.loopback && i.up && i.has_ipv4);
     let network = interfaces
         .iter()
         .any(|i| !i.loopback && i.up && i.has_ipv4 && i.multicast);
@@ -287,7 +288,10 @@ mod tests {
         assert_eq!(flag.domain_id, 3);
         for bad in ["233", "-1", "seven"] {
             let e = read(&[("ROS_DOMAIN_ID", bad)]).unwrap_err();
-            assert!(e.contains("ROS_DOMAIN_ID") && e.contains("--domain-id"), "{e}");
+            assert!(
+                e.contains("ROS_DOMAIN_ID") && e.contains("--domain-id"),
+                "{e}"
+            );
         }
     }
 
@@ -325,7 +329,10 @@ mod tests {
         let r = read(&vars).unwrap();
         assert_eq!(
             r.static_peer_addresses().unwrap(),
-            ["127.0.0.1".parse::<IpAddr>().unwrap(), "192.0.2.7".parse().unwrap()]
+            [
+                "127.0.0.1".parse::<IpAddr>().unwrap(),
+                "192.0.2.7".parse().unwrap()
+            ]
         );
     }
 
@@ -366,10 +373,17 @@ mod tests {
         assert!(!choose_network(&subnet, &both).unwrap().loopback_only);
         assert!(choose_network(&local, &both).unwrap().loopback_only);
         // Only loopback: loopback either way.
-        assert!(choose_network(&subnet, &[lo.clone()]).unwrap().loopback_only);
+        assert!(
+            choose_network(&subnet, &[lo.clone()])
+                .unwrap()
+                .loopback_only
+        );
         assert!(choose_network(&local, &[lo.clone()]).unwrap().loopback_only);
         // Nothing up: an error naming the settings.
-        let down = [iface("lo", false, true, false), iface("eth0", false, false, true)];
+        let down = [
+            iface("lo", false, true, false),
+            iface("eth0", false, false, true),
+        ];
         for e in [&subnet, &local] {
             let msg = choose_network(e, &down).unwrap_err();
             assert!(msg.contains("no network interface can carry DDS"), "{msg}");

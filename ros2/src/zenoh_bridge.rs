@@ -38,9 +38,7 @@ use zenoh::pubsub::Subscriber;
 use zenoh::qos::{CongestionControl, Reliability};
 use zenoh::sample::Sample;
 use zenoh::{Config, Session, Wait};
-use zenoh_ext::{
-    AdvancedPublisher, AdvancedPublisherBuilderExt, CacheConfig, MissDetectionConfig,
-};
+use zenoh_ext::{AdvancedPublisher, AdvancedPublisherBuilderExt, CacheConfig, MissDetectionConfig};
 
 /// The ROS node mapc is, in the root namespace and enclave.
 pub const NODE_NAME: &str = "mapc";
@@ -183,7 +181,10 @@ fn config(get: &dyn Fn(&str) -> Option<String>) -> Result<(Config, String), Stri
                 ("listen/endpoints", "[\"tcp/localhost:0\"]".into()),
                 ("scouting/multicast/enabled", "false".into()),
                 ("scouting/gossip/enabled", "true".into()),
-                ("timestamping/enabled", "{router: true, peer: true, client: false}".into()),
+                (
+                    "timestamping/enabled",
+                    "{router: true, peer: true, client: false}".into(),
+                ),
             ] {
                 c.insert_json5(k, &v)
                     .map_err(|e| format!("Zenoh: default configuration {k}: {e}"))?;
@@ -196,9 +197,9 @@ fn config(get: &dyn Fn(&str) -> Option<String>) -> Result<(Config, String), Stri
             let (k, v) = pair.split_once('=').ok_or_else(|| {
                 format!("ZENOH_CONFIG_OVERRIDE: `{pair}` is not key=value (e.g. mode=\"client\")")
             })?;
-            config.insert_json5(k.trim(), v.trim()).map_err(|e| {
-                format!("ZENOH_CONFIG_OVERRIDE: `{pair}`: {e}")
-            })?;
+            config
+                .insert_json5(k.trim(), v.trim())
+                .map_err(|e| format!("ZENOH_CONFIG_OVERRIDE: `{pair}`: {e}"))?;
         }
     }
     Ok((config, from))
@@ -283,14 +284,8 @@ impl ZenohBridge {
         )?)?;
 
         let mut writer = |name: &str, ros_type: &str, q: Qos| -> Result<Writer, String> {
-            let live = liveliness_keyexpr(
-                domain,
-                &zid,
-                node_id,
-                id(),
-                "MP",
-                Some((name, ros_type, q)),
-            )?;
+            let live =
+                liveliness_keyexpr(domain, &zid, node_id, id(), "MP", Some((name, ros_type, q)))?;
             let builder = session
                 .declare_publisher(topic_keyexpr(domain, name, ros_type)?)
                 .reliability(if q.reliable {
@@ -474,7 +469,9 @@ mod tests {
 
     #[test]
     fn router_check_attempts_as_rmw_zenoh() {
-        let env = |v: &'static str| move |k: &str| (k == "ZENOH_ROUTER_CHECK_ATTEMPTS").then(|| v.to_string());
+        let env = |v: &'static str| {
+            move |k: &str| (k == "ZENOH_ROUTER_CHECK_ATTEMPTS").then(|| v.to_string())
+        };
         assert_eq!(router_check_attempts(&|_| None).unwrap(), Some(1));
         assert_eq!(router_check_attempts(&env("3")).unwrap(), Some(3));
         assert_eq!(router_check_attempts(&env("0")).unwrap(), Some(u64::MAX));
