@@ -631,7 +631,8 @@ impl DPEventLoop {
           // writer sends data to the multicast list when there is one, and to
           // all of it.)
           if *reader_eid == EntityId::SPDP_BUILTIN_PARTICIPANT_READER
-            && discovered_participant.participant_guid.prefix == self.domain_info.domain_participant_guid.prefix
+            && discovered_participant.participant_guid.prefix
+              == self.domain_info.domain_participant_guid.prefix
           {
             for peer in &self.domain_info.spdp_peers {
               if !reader_proxy.multicast_locator_list.contains(peer)
