@@ -374,11 +374,15 @@ mod tests {
         assert!(choose_network(&local, &both).unwrap().loopback_only);
         // Only loopback: loopback either way.
         assert!(
-            choose_network(&subnet, &[lo.clone()])
+            choose_network(&subnet, std::slice::from_ref(&lo))
                 .unwrap()
                 .loopback_only
         );
-        assert!(choose_network(&local, &[lo.clone()]).unwrap().loopback_only);
+        assert!(
+            choose_network(&local, std::slice::from_ref(&lo))
+                .unwrap()
+                .loopback_only
+        );
         // Nothing up: an error naming the settings.
         let down = [
             iface("lo", false, true, false),

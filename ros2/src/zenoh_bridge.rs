@@ -333,7 +333,6 @@ impl ZenohBridge {
             BuildingMap::NAME,
             crate::mcap::MAP_QOS,
         )?;
-        drop(writer);
         map.put(cdr::encode(&building_map(building)));
 
         let mut readers = Vec::new();
