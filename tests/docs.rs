@@ -42,7 +42,7 @@ const CODE_LISTS: [&str; 5] = [
     "frontend/src/site/codes.rs",
     "backends/src/codes.rs",
     "sim/src/codes.rs",
-    "src/sweep/codes.rs",
+    "src/codes/sweep.rs",
 ];
 
 /// `E` codes are errors and `W` codes warnings; scenario (`S`) codes are errors unless
