@@ -2,6 +2,7 @@
 //! docs/diagnostics.md by tests/docs.rs. All are errors: a sweep with any of them runs
 //! nothing.
 
+use mapc_ir::lints::Group;
 pub use mapc_ir::Code;
 
 /// # S0401 sweep-invalid
@@ -25,6 +26,7 @@ pub use mapc_ir::Code;
 /// ```
 pub const SWEEP_INVALID: Code = Code {
     code: "S0401",
+    group: Group::Scenario,
     name: "sweep-invalid",
     summary: "the sweep file is not valid YAML or not shaped like a sweep",
 };
@@ -50,6 +52,7 @@ pub const SWEEP_INVALID: Code = Code {
 /// ```
 pub const UNKNOWN_AXIS: Code = Code {
     code: "S0402",
+    group: Group::Scenario,
     name: "unknown-axis",
     summary: "an axis path does not name a place in the base scenario",
 };
@@ -73,6 +76,7 @@ pub const UNKNOWN_AXIS: Code = Code {
 /// ```
 pub const AXIS_VALUE: Code = Code {
     code: "S0403",
+    group: Group::Scenario,
     name: "axis-value-invalid",
     summary: "an axis value makes the scenario invalid",
 };
@@ -95,6 +99,7 @@ pub const AXIS_VALUE: Code = Code {
 /// ```
 pub const OVERLAPPING_AXES: Code = Code {
     code: "S0404",
+    group: Group::Scenario,
     name: "overlapping-axes",
     summary: "two axes change the same place of the scenario",
 };
@@ -116,6 +121,7 @@ pub const OVERLAPPING_AXES: Code = Code {
 /// ```
 pub const ZIP_LENGTH: Code = Code {
     code: "S0405",
+    group: Group::Scenario,
     name: "zip-length-mismatch",
     summary: "the zipped axes have lists of different lengths",
 };

@@ -4,8 +4,10 @@
 use super::lints::{self, Lints};
 use super::opts::LintOpts;
 use super::sanity;
+use crate::codes;
 use crate::ui::shown;
-use mapc_ir::lints::{policy, Outputs};
+use mapc_frontend::codes as fc;
+use mapc_ir::lints::Outputs;
 use mapc_ir::{Building, Diagnostic};
 use std::path::Path;
 
@@ -50,7 +52,7 @@ impl Checked {
         };
         let mut blocked = Outputs::NONE;
         for d in self.diagnostics.iter().filter(|d| d.is_error()) {
-            let p = policy(d.code);
+            let p = codes::policy(d.code);
             let mut blocks = if p.can_allow { p.blocks } else { Outputs::ALL };
             if p.nav_only_with_lanes && b.lanes.is_empty() {
                 blocks = blocks.without(Outputs::NAV);
@@ -82,7 +84,7 @@ impl Checked {
     pub(crate) fn something_ignored(&self) -> bool {
         self.diagnostics
             .iter()
-            .any(|d| d.code == "W0103" || d.code == "E0112")
+            .any(|d| fc::UNKNOWN_KEY.is(d) || fc::LIKELY_TYPO.is(d))
     }
 
     pub(crate) fn errors(&self) -> usize {
@@ -104,16 +106,14 @@ pub(crate) fn lints_for(input: &Path, opts: &LintOpts) -> Result<Lints, String> 
     Ok(Lints::new(cli, file))
 }
 
-/// Validation rules that compare positions with thresholds in metres (a door's width, how
-/// close two waypoints are, a lift cabin's extent): meaningless when the frontend could not
-/// tell the map's units.
-const METRIC_RULES: &[&str] = &[
-    "W0202", "W0204", "W0205", "W0206", "W0207", "W0305", "W0402", "W0404", "E0407",
-];
-
 /// Frontend errors after which positions are in unknown units: an unknown coordinate
 /// system, an unknown reference level, a wgs84 map without a CRS, a zero-length measurement.
-const UNITS_UNKNOWN: &[&str] = &["E0106", "E0107", "E0108", "E0109"];
+const UNITS_UNKNOWN: [&mapc_ir::Code; 4] = [
+    &fc::UNKNOWN_COORDINATE_SYSTEM,
+    &fc::UNKNOWN_LEVEL,
+    &fc::CRS,
+    &fc::DEGENERATE_ALIGNMENT,
+];
 
 /// The frontend's diagnostics plus those of every validation pass (before lint levels).
 pub(crate) fn all_diagnostics(parsed: &mapc_frontend::Parsed) -> Vec<Diagnostic> {
@@ -121,12 +121,16 @@ pub(crate) fn all_diagnostics(parsed: &mapc_frontend::Parsed) -> Vec<Diagnostic>
     // Passes run even after frontend errors so one run reports everything it can, except
     // those whose inputs the errors left unknown: they would only report consequences
     // (a 224 m wide door in a map whose pixels were taken for metres).
-    let units_unknown = diagnostics.iter().any(|d| UNITS_UNKNOWN.contains(&d.code));
+    let units_unknown = diagnostics
+        .iter()
+        .any(|d| UNITS_UNKNOWN.iter().any(|c| c.is(d)));
+    // The rules that compare positions with thresholds in metres (`Rule::metric`).
+    let metric = |d: &Diagnostic| codes::find(d.code).is_some_and(|e| e.metric);
     if let Some(b) = &parsed.building {
         diagnostics.extend(
             mapc_ir::validate(b)
                 .into_iter()
-                .filter(|d| !(units_unknown && METRIC_RULES.contains(&d.code))),
+                .filter(|d| !(units_unknown && metric(d))),
         );
     }
     diagnostics

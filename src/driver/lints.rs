@@ -7,7 +7,7 @@
 //! the `warnings` group (command line, else file; `--deny-warnings` is `--deny warnings`):
 //! an allowed code stays allowed under `--deny warnings`, as with rustc's `-D warnings`.
 
-use mapc_ir::lints::policy;
+use crate::codes::{self, Source};
 use mapc_ir::{Diagnostic, Severity};
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
@@ -47,11 +47,10 @@ pub(crate) struct LevelSet {
 
 /// Every code a map can get, with its name: frontend, validation rules, backends.
 fn known_codes() -> impl Iterator<Item = (&'static str, &'static str)> {
-    mapc_frontend::CODES
+    codes::all()
         .iter()
-        .map(|c| (c.code, c.name))
-        .chain(mapc_ir::rules().map(|r| (r.code, r.name)))
-        .chain(mapc_backends::CODES.iter().map(|c| (c.code, c.name)))
+        .filter(|e| e.source == Source::Map)
+        .map(|e| (e.code.code, e.code.name))
 }
 
 impl LevelSet {
@@ -75,7 +74,7 @@ impl LevelSet {
                 "{origin}: unknown diagnostic `{what}` (use a code such as E0302 or a name such as duplicate-door-name; docs/diagnostics.md lists them)"
             ));
         };
-        if level != Level::Deny && code.starts_with('E') && !policy(code).can_allow {
+        if level != Level::Deny && code.starts_with('E') && !codes::policy(code).can_allow {
             return Err(format!(
                 "{origin}: {code} {name} cannot be {}: no correct output can be written after it (docs/diagnostics.md marks the codes that can)",
                 if level == Level::Allow { "allowed" } else { "lowered to a warning" }

@@ -5,8 +5,9 @@ use super::check::{load_and_check, Checked};
 use super::opts::{DiagOpts, LintOpts};
 use super::output::Written;
 use super::CliError;
+use crate::codes::policy;
 use crate::ui::{self, json, limit, report, say, shown, Format};
-use mapc_ir::lints::{policy, Outputs};
+use mapc_ir::lints::Outputs;
 use std::path::Path;
 
 /// Prints the diagnostics of `c` in the chosen format, at most `--max-diagnostics` per

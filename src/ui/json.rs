@@ -116,7 +116,7 @@ pub(crate) fn help_uri(code: &str) -> String {
     // The heading's anchor: `## W0213 demo-mock-lift-without-floor`.
     let anchor = match crate::codes::code_name(code) {
         "" => code.to_ascii_lowercase(),
-        name => format!("{}-{name}", code.to_ascii_lowercase()),
+        name => mapc_ir::doc_anchor(code, name),
     };
     match option_env!("CARGO_PKG_REPOSITORY").filter(|r| !r.is_empty()) {
         Some(repo) => format!("{repo}/blob/main/docs/diagnostics.md#{anchor}"),

@@ -1,6 +1,7 @@
 //! Diagnostic codes of rmf_site `.site.json` input and of conversions between the two map
 //! formats. Gathered into docs/diagnostics.md like the other code lists (tests/docs.rs).
 
+use mapc_ir::lints::Group;
 pub use mapc_ir::Code;
 
 /// # E0120 site-format-version
@@ -19,6 +20,7 @@ pub use mapc_ir::Code;
 /// ```
 pub const FORMAT_VERSION: Code = Code {
     code: "E0120",
+    group: Group::Reading,
     name: "site-format-version",
     summary: "the site's format_version is missing or newer than mapc reads",
 };
@@ -39,6 +41,7 @@ pub const FORMAT_VERSION: Code = Code {
 /// ```
 pub const DANGLING_ID: Code = Code {
     code: "E0121",
+    group: Group::Reading,
     name: "site-dangling-id",
     summary: "a reference to an anchor, level or graph id that does not exist",
 };
@@ -57,6 +60,7 @@ pub const DANGLING_ID: Code = Code {
 /// **Example:** a lane from an anchor of `L1` to an anchor of `L2`.
 pub const LANE_BETWEEN_LEVELS: Code = Code {
     code: "E0122",
+    group: Group::Reading,
     name: "site-lane-between-levels",
     summary: "a lane joins anchors of different levels or a site anchor",
 };
@@ -76,6 +80,7 @@ pub const LANE_BETWEEN_LEVELS: Code = Code {
 /// ```
 pub const LOCATION_ANCHOR: Code = Code {
     code: "E0123",
+    group: Group::Reading,
     name: "site-location-missing-anchor",
     summary: "a location is on an anchor that does not exist or is not on a level",
 };
@@ -92,6 +97,7 @@ pub const LOCATION_ANCHOR: Code = Code {
 /// **Example:** a 1.5 × 1.65 m cabin with a cabin anchor at `[3.0, 0.0]`.
 pub const CABIN_ANCHOR_OUTSIDE: Code = Code {
     code: "W0120",
+    group: Group::Frontend,
     name: "site-cabin-anchor-outside",
     summary: "a lift cabin anchor lies outside the cabin",
 };
@@ -114,6 +120,7 @@ pub const CABIN_ANCHOR_OUTSIDE: Code = Code {
 /// ```
 pub const UNKNOWN_FIELD: Code = Code {
     code: "W0121",
+    group: Group::Frontend,
     name: "site-unknown-field",
     summary: "a site field mapc does not know or does not use",
 };
@@ -134,6 +141,7 @@ pub const UNKNOWN_FIELD: Code = Code {
 /// **Example:** converting a map with `crowd_sim` to `.site.json`.
 pub const NOT_CONVERTIBLE: Code = Code {
     code: "W0122",
+    group: Group::Frontend,
     name: "not-convertible",
     summary: "the target format of `mapc convert` cannot say this",
 };

@@ -56,7 +56,7 @@ fn check_project(doc: &Document, lints: &Lints) -> Vec<Diagnostic> {
     };
     let Some(target) = root.get("building").and_then(|b| b.get("filename")) else {
         return vec![Diagnostic::error(
-            "E0111",
+            mapc_frontend::codes::BAD_PROJECT.code,
             root.span,
             "project file has no `building: {filename: ...}`",
         )
@@ -69,8 +69,12 @@ fn check_project(doc: &Document, lints: &Lints) -> Vec<Diagnostic> {
     let parsed = match mapc_frontend::load(&bpath) {
         Ok(p) => p,
         Err(e) => {
-            return vec![Diagnostic::error("E0111", span, e.to_string())
-                .with_help("`building.filename` is read relative to the project file")]
+            return vec![Diagnostic::error(
+                mapc_frontend::codes::BAD_PROJECT.code,
+                span,
+                e.to_string(),
+            )
+            .with_help("`building.filename` is read relative to the project file")]
         }
     };
     let mut diags = crate::driver::all_diagnostics(&parsed);
