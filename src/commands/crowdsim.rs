@@ -4,7 +4,7 @@
 //! `mapc gazebo` puts in `config_resource/`) into CONFIG_DIR, and makes WORLD hold the
 //! `crowd_simulation` plugin: a world mapc wrote already does (from the same map), any
 //! other gets the block inserted before `</world>`, replacing an older one, as upstream
-//! does. A map whose crowd_sim is absent or disabled writes nothing and succeeds, like
+//! does. The world is read as XML (quick-xml) to find both places; only those bytes change. A map whose crowd_sim is absent or disabled writes nothing and succeeds, like
 //! upstream ("crowdsim unable to parse, not attempting to proceed").
 
 use crate::driver::{self, output, CliError, DiagOpts, Outcome, Product, Spec};
@@ -87,23 +87,68 @@ pub(crate) fn run(args: &CrowdsimArgs) -> Result<Outcome, CliError> {
     Ok(Outcome::Done)
 }
 
+/// Where the world's XML holds what matters: the `crowd_simulation` plugin element (byte
+/// range, if any) and the start of `</world>`.
+struct Places {
+    plugin: Option<std::ops::Range<usize>>,
+    world_end: usize,
+}
+
+/// Reads the world as XML (not by searching its text, which a comment or an attribute
+/// order would fool). `None`: not XML, or no `<world>` element.
+fn places(world: &str) -> Option<Places> {
+    use quick_xml::events::Event;
+    let mut reader = quick_xml::Reader::from_str(world);
+    let mut plugin = None;
+    loop {
+        let before = usize::try_from(reader.buffer_position()).ok()?;
+        match reader.read_event().ok()? {
+            Event::Start(e) if e.name().as_ref() == b"plugin" && is_crowd(&e) => {
+                reader.read_to_end(e.name()).ok()?;
+                let after = usize::try_from(reader.buffer_position()).ok()?;
+                plugin.get_or_insert(before..after);
+            }
+            Event::Empty(e) if e.name().as_ref() == b"plugin" && is_crowd(&e) => {
+                let after = usize::try_from(reader.buffer_position()).ok()?;
+                plugin.get_or_insert(before..after);
+            }
+            Event::End(e) if e.name().as_ref() == b"world" => {
+                return Some(Places {
+                    plugin,
+                    world_end: before,
+                });
+            }
+            Event::Eof => return None,
+            _ => {}
+        }
+    }
+}
+
+/// The crowd simulator's plugin: `filename="libcrowd_simulator.so"`.
+fn is_crowd(e: &quick_xml::events::BytesStart) -> bool {
+    e.attributes()
+        .flatten()
+        .any(|a| a.key.as_ref() == b"filename" && a.value.as_ref() == b"libcrowd_simulator.so")
+}
+
+/// `world` holding exactly `block` as its crowd plugin: kept when equal (but for
+/// indentation), replaced when different, inserted before `</world>` when absent.
 fn with_plugin(world: &str, block: &str) -> Option<String> {
-    let end = world.rfind("</world>")?;
+    let at = places(world)?;
     let block = block.trim_end();
-    if let Some(start) = world.find("<plugin filename=\"libcrowd_simulator.so\"") {
-        let close = world[start..].find("</plugin>")? + start + "</plugin>".len();
-        let old = &world[start..close];
+    if let Some(old) = at.plugin {
         // Compare ignoring indentation (mapc indents the block inside the world).
         let norm = |s: &str| s.lines().map(str::trim).collect::<Vec<_>>().join("\n");
-        if norm(old) == norm(block) {
+        if norm(&world[old.clone()]) == norm(block) {
             return Some(world.to_string());
         }
         let mut out = String::with_capacity(world.len() + block.len());
-        out.push_str(&world[..start]);
+        out.push_str(&world[..old.start]);
         out.push_str(block);
-        out.push_str(&world[close..]);
+        out.push_str(&world[old.end..]);
         return Some(out);
     }
+    let end = at.world_end;
     let line_start = world[..end].rfind('\n').map_or(0, |i| i + 1);
     let indent = &world[line_start..end];
     let mut out = String::with_capacity(world.len() + block.len() + 64);
@@ -134,5 +179,20 @@ mod tests {
         assert_eq!(twice.matches("libcrowd_simulator").count(), 1);
         assert!(twice.contains("<a>2</a>"));
         assert!(with_plugin("<sdf/>", block).is_none());
+        // XML, not text: a commented-out plugin is not the plugin, attributes may come in
+        // any order.
+        let commented = world.replace(
+            "<x/>",
+            "<!-- <plugin filename=\"libcrowd_simulator.so\"> -->",
+        );
+        let inserted = with_plugin(&commented, block).unwrap();
+        assert_eq!(inserted.matches("<a>1</a>").count(), 1);
+        let reordered = once.replace(
+            "filename=\"libcrowd_simulator.so\" name=\"crowd_simulation\"",
+            "name=\"crowd_simulation\" filename=\"libcrowd_simulator.so\"",
+        );
+        let replaced = with_plugin(&reordered, &other).unwrap();
+        assert_eq!(replaced.matches("libcrowd_simulator").count(), 1);
+        assert!(replaced.contains("<a>2</a>"));
     }
 }
