@@ -177,7 +177,7 @@ fn main() -> ExitCode {
         Command::Convert(args) => convert::run(args),
     };
     if let Some(message) = result.as_ref().err().and_then(CliError::message) {
-        ui::say(format!("error: {message}"));
+        ui::error(message);
     }
     ExitCode::from(driver::exit_code(&result))
 }

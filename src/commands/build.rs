@@ -435,7 +435,7 @@ fn report(r: &MapResult, args: &BuildArgs) {
         }
     }
     match (&r.error, &r.checked) {
-        (Some(e), _) => eprintln!("error: {e}"),
+        (Some(e), _) => crate::ui::error(e),
         (None, Some(c)) if !r.blocked.is_empty() => {
             // Partially blocked: what was written still gets its line.
             if r.blocked != r.wanted && !args.diag.quiet {

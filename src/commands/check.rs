@@ -38,7 +38,7 @@ pub(crate) fn run(args: &CheckArgs) -> Result<Outcome, CliError> {
             }
             Err(e) => {
                 // Said now, in order; the other maps are still checked.
-                eprintln!("error: {e}");
+                crate::ui::error(e);
                 result = Err(CliError::UsageReported);
             }
         }

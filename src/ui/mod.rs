@@ -34,6 +34,12 @@ pub(crate) fn say(mut line: String) {
     let _ = std::io::stderr().write_all(line.as_bytes());
 }
 
+/// `error: MESSAGE` on stderr: how every failure is said, by `main` for the one that ends
+/// a command, by a command for one it reports and carries on after (one map of several).
+pub(crate) fn error(message: impl std::fmt::Display) {
+    say(format!("error: {message}"));
+}
+
 /// `n thing` or `n things`.
 pub(crate) fn plural(n: usize, thing: &str) -> String {
     if n == 1 {

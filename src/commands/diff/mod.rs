@@ -88,7 +88,7 @@ pub(crate) fn run(args: &DiffArgs) -> Result<Outcome, CliError> {
         (Ok(a), Ok(b)) => (a, b),
         (a, b) => {
             for e in [a.err(), b.err()].into_iter().flatten() {
-                eprintln!("error: {e}");
+                crate::ui::error(e);
             }
             return Err(CliError::UsageReported);
         }

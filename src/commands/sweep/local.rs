@@ -38,7 +38,7 @@ pub(crate) fn execute(
         drop(tx);
         for (n, (i, result)) in rx.into_iter().enumerate() {
             if let Err(e) = result {
-                bar.suspend(|| eprintln!("error: {e}"));
+                bar.suspend(|| crate::ui::error(&e));
                 failures.push((todo[i].name.clone(), e));
             }
             bar.set(n as u64 + 1, format!("{} failed", failures.len()));

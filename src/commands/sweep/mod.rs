@@ -234,7 +234,7 @@ pub(crate) fn run(args: &SweepArgs) -> Result<Outcome, CliError> {
             // Failed runs (said as they failed) make the exit 1 whatever the collection
             // found; what it could not do is still said.
             if let Some(m) = collected.as_ref().err().and_then(CliError::message) {
-                eprintln!("error: {m}");
+                crate::ui::error(m);
             }
             Err(CliError::InvalidReported)
         }

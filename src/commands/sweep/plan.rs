@@ -269,7 +269,7 @@ pub(crate) fn plan(
         let checked = match load_and_check(&path, lints) {
             Ok(c) => c,
             Err(e) => {
-                eprintln!("error: {e}");
+                crate::ui::error(e);
                 return Err(Failed(2));
             }
         };
