@@ -202,6 +202,32 @@ mod cli_tests {
         }
     }
 
+    /// One argument convention: an output positional (the drop-ins' form) or `-o`, never
+    /// both and never neither.
+    #[test]
+    fn outputs_positional_or_dash_o() {
+        for line in [
+            "nav m.building.yaml out",
+            "nav m.building.yaml -o out",
+            "nav m.building.yaml --output out",
+            "gltf m.building.yaml -o out --per-level",
+            "meshes m.building.yaml -o out",
+            "render m.building.yaml out",
+            "render m.building.yaml -o out",
+            "convert m.building.yaml -o m.site.json",
+            "convert m.building.yaml m.site.json",
+        ] {
+            assert!(Cli::try_parse_from(argv(line)).is_ok(), "{line}");
+        }
+        for line in [
+            "nav m.building.yaml",
+            "nav m.building.yaml out -o other",
+            "render m.building.yaml",
+        ] {
+            assert!(Cli::try_parse_from(argv(line)).is_err(), "{line}");
+        }
+    }
+
     /// The world commands' shortcut gives what the whole parser gives, and leaves help,
     /// versions, mistakes and other commands to it.
     #[test]
