@@ -365,12 +365,14 @@ fn build_one(input: &Path, args: &BuildArgs, opts: &WorldOptions) -> MapResult {
         }
         result.what = what.join(", ");
     }
-    if !empty.is_empty() && checked.something_ignored() {
+    let ignored = checked.ignored_codes();
+    if !empty.is_empty() && !ignored.is_empty() {
         // Zero outputs of a kind asked for, while keys were ignored: probably a typo.
         result.error = Some(format!(
-            "{}: {}, but keys were ignored (see the warnings above); nothing written",
+            "{}: {}, but keys were ignored (see the warnings above); nothing written; {}",
             map,
-            empty.join(" and ")
+            empty.join(" and "),
+            driver::ways_out(input, &args.diag.lints, &ignored)
         ));
         result.code = 1;
     } else if !files.is_empty() || result.blocked.is_empty() {

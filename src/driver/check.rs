@@ -79,12 +79,14 @@ impl Checked {
         self.diagnostics.extend(diags);
     }
 
-    /// Whether the frontend ignored anything that could have held missing outputs: an
-    /// unknown key (W0103), a likely typo (E0112).
-    pub(crate) fn something_ignored(&self) -> bool {
-        self.diagnostics
-            .iter()
-            .any(|d| fc::UNKNOWN_KEY.is(d) || fc::LIKELY_TYPO.is(d))
+    /// The codes of what the frontend ignored that could have held missing outputs: an
+    /// unknown key (W0103), a likely typo (E0112); empty when nothing was.
+    pub(crate) fn ignored_codes(&self) -> Vec<&'static str> {
+        [&fc::UNKNOWN_KEY, &fc::LIKELY_TYPO]
+            .into_iter()
+            .filter(|c| self.diagnostics.iter().any(|d| c.is(d)))
+            .map(|c| c.code)
+            .collect()
     }
 
     pub(crate) fn errors(&self) -> usize {

@@ -81,11 +81,13 @@ pub(crate) fn compile<F>(
     };
     let label = map_name(input);
     if let Some(none) = spec.none {
-        if count == 0 && checked.something_ignored() {
+        let ignored = checked.ignored_codes();
+        if count == 0 && !ignored.is_empty() {
             return Err(CliError::Invalid(format!(
                 "{label}: no {} written: {none}, but keys were ignored (see the warnings \
-                 above); nothing written",
-                spec.kind
+                 above); nothing written; {}",
+                spec.kind,
+                super::ways_out(input, &opts.lints, &ignored)
             )));
         }
     }

@@ -45,11 +45,11 @@ pub(crate) struct LevelSet {
     warnings: Option<Level>,
 }
 
-/// Every code a map can get, with its name: frontend, validation rules, backends.
+/// Every code a map can get, with its name: frontends, validation rules, backends.
 fn known_codes() -> impl Iterator<Item = (&'static str, &'static str)> {
     codes::all()
         .iter()
-        .filter(|e| e.source == Source::Map)
+        .filter(|e| e.source != Source::Scenario)
         .map(|e| (e.code.code, e.code.name))
 }
 

@@ -28,5 +28,5 @@ pub(crate) use produce::{
     mesh_texture_names, nav_files, read_template, textures_for,
 };
 pub(crate) use report::{
-    emit, load_readable, not_written, print_sarif, success_line, summary_line,
+    emit, load_readable, not_written, print_sarif, success_line, summary_line, ways_out,
 };

@@ -114,6 +114,25 @@ pub(crate) fn print_sarif<'a>(
     print!("{}", json::sarif(&sources, &shown, &cut));
 }
 
+/// How to go on when ignored keys (`codes`) are meant to be ignored (a fork's extension
+/// keys): the flag, or the mapc.toml setting in the file that applies to `input` (the
+/// `--config` file, else the one found beside the map or above it, else one beside it).
+pub(crate) fn ways_out(input: &Path, opts: &LintOpts, codes: &[&str]) -> String {
+    let flags: Vec<String> = codes.iter().map(|c| format!("--allow {c}")).collect();
+    let keys: Vec<String> = codes.iter().map(|c| format!("{c} = \"allow\"")).collect();
+    let toml = opts
+        .config
+        .clone()
+        .or_else(|| super::lints::discover(input))
+        .unwrap_or_else(|| input.parent().unwrap_or(Path::new(".")).join("mapc.toml"));
+    format!(
+        "if those keys are meant to be ignored, pass `{}` on the command line, or add `{}` under `[lints]` in {}",
+        flags.join(" "),
+        keys.join("` and `"),
+        toml.display()
+    )
+}
+
 /// For commands that only read a map (`info`, `models`): loads and checks it, prints its
 /// errors (warnings are `mapc check`'s business), and gives the checked map when a
 /// building could be read.
