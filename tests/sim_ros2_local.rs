@@ -15,32 +15,10 @@
 //!
 //! Prints `skipped: ...` without unshare, ip or the venv.
 
-use std::path::{Path, PathBuf};
+mod support;
+use std::path::Path;
 use std::process::Command;
-
-fn python() -> Option<PathBuf> {
-    if let Some(p) = std::env::var_os("MAPC_ROS2_PYTHON") {
-        return Some(p.into());
-    }
-    let p = Path::new(env!("CARGO_MANIFEST_DIR")).join("target/ros2-venv/bin/python");
-    let ok = Command::new(&p)
-        .args(["-c", "import cyclonedds.domain"])
-        .output()
-        .is_ok_and(|o| o.status.success());
-    ok.then_some(p)
-}
-
-fn namespace_works() -> bool {
-    Command::new("unshare")
-        .args([
-            "-rn",
-            "sh",
-            "-c",
-            "ip link set lo up multicast on && ip route add 224.0.0.0/4 dev lo",
-        ])
-        .output()
-        .is_ok_and(|o| o.status.success())
-}
+use support::ros2::{namespace_works, python};
 
 /// The namespace: `lo` up with multicast and the multicast route, nothing else; then mapc
 /// and the peer, mapc stopped with SIGINT when the peer is done.
@@ -71,7 +49,7 @@ fn run(
     peer_domain: u16,
     peer_uri: &str,
 ) -> Option<(serde_json::Value, String)> {
-    let Some(py) = python() else {
+    let Some(py) = python("cyclonedds.domain") else {
         println!("skipped: cyclonedds (Python) not found; .ci/run makes target/ros2-venv");
         return None;
     };
