@@ -9,32 +9,10 @@
 //! with a TEST-NET-1 address (RFC 5737); both ends stay in the namespace and the 224.0.0.0/4
 //! route points at it. Prints `skipped: ...` without unshare, ip or the venv.
 
-use std::path::{Path, PathBuf};
+mod support;
+use std::path::Path;
 use std::process::Command;
-
-fn python() -> Option<PathBuf> {
-    if let Some(p) = std::env::var_os("MAPC_ROS2_PYTHON") {
-        return Some(p.into());
-    }
-    let p = Path::new(env!("CARGO_MANIFEST_DIR")).join("target/ros2-venv/bin/python");
-    let ok = Command::new(&p)
-        .args(["-c", "import cyclonedds.domain"])
-        .output()
-        .is_ok_and(|o| o.status.success());
-    ok.then_some(p)
-}
-
-fn namespace_works() -> bool {
-    Command::new("unshare")
-        .args([
-            "-rn",
-            "sh",
-            "-c",
-            "ip link set lo up && ip link add t0 type veth peer name t1",
-        ])
-        .output()
-        .is_ok_and(|o| o.status.success())
-}
+use support::ros2::{namespace_works, python};
 
 const RATE: f64 = 10.0;
 
@@ -101,7 +79,7 @@ fn in_namespace<'a>(
 
 #[test]
 fn rmf_side_drives_mapc_over_cyclone_dds() {
-    let Some(py) = python() else {
+    let Some(py) = python("cyclonedds.domain") else {
         println!("skipped: cyclonedds (Python) not found; .ci/run makes target/ros2-venv");
         return;
     };
@@ -214,7 +192,7 @@ fn watch_full_run(
     fixture: &str,
     domain: u16,
 ) -> Option<(serde_json::Value, Vec<serde_json::Value>)> {
-    let Some(py) = python() else {
+    let Some(py) = python("cyclonedds.domain") else {
         println!("skipped: cyclonedds (Python) not found; .ci/run makes target/ros2-venv");
         return None;
     };

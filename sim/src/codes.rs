@@ -3,6 +3,7 @@
 //! own consistency. Each `///` block is gathered into docs/diagnostics.md by tests/docs.rs;
 //! a `**Severity:** warning` line marks the warnings (the `S` prefix alone does not say).
 
+use mapc_ir::lints::Group;
 pub use mapc_ir::Code;
 
 /// # S0001 scenario-invalid-yaml
@@ -22,6 +23,7 @@ pub use mapc_ir::Code;
 /// ```
 pub const INVALID_YAML: Code = Code {
     code: "S0001",
+    group: Group::Scenario,
     name: "scenario-invalid-yaml",
     summary: "the scenario file is not well-formed YAML",
 };
@@ -47,6 +49,7 @@ pub const INVALID_YAML: Code = Code {
 /// ```
 pub const INPUT_LIMIT: Code = Code {
     code: "S0002",
+    group: Group::Scenario,
     name: "scenario-input-limit-exceeded",
     summary: "the scenario file is too large, nests too deep or expands to too many nodes",
 };
@@ -63,6 +66,7 @@ pub const INPUT_LIMIT: Code = Code {
 /// **Example:** a fleet name typed in Latin-1, such as the byte `0xE9` for `é`.
 pub const NOT_UTF8: Code = Code {
     code: "S0003",
+    group: Group::Scenario,
     name: "scenario-not-utf8",
     summary: "the scenario file is not valid UTF-8",
 };
@@ -84,6 +88,7 @@ pub const NOT_UTF8: Code = Code {
 /// ```
 pub const WRONG_TYPE: Code = Code {
     code: "S0101",
+    group: Group::Scenario,
     name: "scenario-wrong-type",
     summary: "a scenario value has the wrong type",
 };
@@ -106,6 +111,7 @@ pub const WRONG_TYPE: Code = Code {
 /// ```
 pub const MISSING_KEY: Code = Code {
     code: "S0102",
+    group: Group::Scenario,
     name: "scenario-missing-key",
     summary: "a required scenario key is missing",
 };
@@ -129,6 +135,7 @@ pub const MISSING_KEY: Code = Code {
 /// ```
 pub const UNKNOWN_KEY: Code = Code {
     code: "S0103",
+    group: Group::Scenario,
     name: "scenario-unknown-key",
     summary: "a scenario key is not part of the format and is ignored",
 };
@@ -151,6 +158,7 @@ pub const UNKNOWN_KEY: Code = Code {
 /// ```
 pub const DUPLICATE_KEY: Code = Code {
     code: "S0104",
+    group: Group::Scenario,
     name: "scenario-duplicate-key",
     summary: "a scenario key is defined twice; the last value is used",
 };
@@ -172,6 +180,7 @@ pub const DUPLICATE_KEY: Code = Code {
 /// ```
 pub const BAD_DURATION: Code = Code {
     code: "S0105",
+    group: Group::Scenario,
     name: "bad-duration",
     summary: "a time value is not a number of seconds or a duration like 1h30min",
 };
@@ -193,6 +202,7 @@ pub const BAD_DURATION: Code = Code {
 /// ```
 pub const NOT_POSITIVE: Code = Code {
     code: "S0106",
+    group: Group::Scenario,
     name: "not-positive",
     summary: "a value that must be positive is zero or negative",
 };
@@ -214,6 +224,7 @@ pub const NOT_POSITIVE: Code = Code {
 /// ```
 pub const STEP_TOO_LARGE: Code = Code {
     code: "S0107",
+    group: Group::Scenario,
     name: "step-too-large",
     summary: "the simulation step is larger than 0.1 s",
 };
@@ -238,6 +249,7 @@ pub const STEP_TOO_LARGE: Code = Code {
 /// ```
 pub const OUT_OF_RANGE: Code = Code {
     code: "S0108",
+    group: Group::Scenario,
     name: "out-of-range",
     summary: "a scenario value is outside its allowed range",
 };
@@ -260,6 +272,7 @@ pub const OUT_OF_RANGE: Code = Code {
 /// ```
 pub const TOO_LARGE: Code = Code {
     code: "S0109",
+    group: Group::Scenario,
     name: "scenario-too-large",
     summary: "the scenario asks for an absurd number of robots, tasks or time",
 };
@@ -285,6 +298,7 @@ pub const TOO_LARGE: Code = Code {
 /// ```
 pub const UNKNOWN_WAYPOINT: Code = Code {
     code: "S0201",
+    group: Group::Scenario,
     name: "unknown-waypoint",
     summary: "a waypoint named by the scenario is not on the fleet's nav graph",
 };
@@ -307,6 +321,7 @@ pub const UNKNOWN_WAYPOINT: Code = Code {
 /// ```
 pub const NOT_ENOUGH_SPAWNS: Code = Code {
     code: "S0202",
+    group: Group::Scenario,
     name: "not-enough-spawns",
     summary: "a fleet has more robots than free start waypoints",
 };
@@ -326,6 +341,7 @@ pub const NOT_ENOUGH_SPAWNS: Code = Code {
 /// ```
 pub const EMPTY_GRAPH: Code = Code {
     code: "S0203",
+    group: Group::Scenario,
     name: "empty-graph",
     summary: "a fleet drives on a nav graph that has no lanes",
 };
@@ -348,6 +364,7 @@ pub const EMPTY_GRAPH: Code = Code {
 /// ```
 pub const SPAWN_CLASH: Code = Code {
     code: "S0204",
+    group: Group::Scenario,
     name: "spawn-clash",
     summary: "two robots would start on one waypoint or share a name",
 };
@@ -369,6 +386,7 @@ pub const SPAWN_CLASH: Code = Code {
 /// ```
 pub const NO_FLEET_ON_MAP: Code = Code {
     code: "S0205",
+    group: Group::Scenario,
     name: "no-fleet-on-map",
     summary: "no placed fleet can take the task",
 };
@@ -391,6 +409,7 @@ pub const NO_FLEET_ON_MAP: Code = Code {
 /// ```
 pub const NO_WORKCELL: Code = Code {
     code: "S0206",
+    group: Group::Scenario,
     name: "no-workcell",
     summary: "a delivery has no dispenser or ingestor",
 };
@@ -411,6 +430,7 @@ pub const NO_WORKCELL: Code = Code {
 /// ```
 pub const IN_LIFT: Code = Code {
     code: "S0207",
+    group: Group::Scenario,
     name: "waypoint-in-lift",
     summary: "a task waypoint lies inside a lift cabin",
 };
@@ -485,6 +505,7 @@ pub const NO_ROOM: Code = Code {
 /// ```
 pub const UNKNOWN_PRESET: Code = Code {
     code: "S0301",
+    group: Group::Scenario,
     name: "unknown-robot-preset",
     summary: "a fleet names a robot preset that does not exist",
 };
@@ -506,6 +527,7 @@ pub const UNKNOWN_PRESET: Code = Code {
 /// ```
 pub const UNKNOWN_TASK_KIND: Code = Code {
     code: "S0302",
+    group: Group::Scenario,
     name: "unknown-task-kind",
     summary: "a task kind or category is not loop, delivery, clean or go_to_place",
 };
@@ -526,6 +548,7 @@ pub const UNKNOWN_TASK_KIND: Code = Code {
 /// ```
 pub const SEVERAL_TASK_KINDS: Code = Code {
     code: "S0303",
+    group: Group::Scenario,
     name: "several-task-kinds",
     summary: "a task has more than one kind",
 };
@@ -547,6 +570,7 @@ pub const SEVERAL_TASK_KINDS: Code = Code {
 /// ```
 pub const DUPLICATE_FLEET: Code = Code {
     code: "S0304",
+    group: Group::Scenario,
     name: "duplicate-fleet",
     summary: "two fleets have the same name",
 };
@@ -567,6 +591,7 @@ pub const DUPLICATE_FLEET: Code = Code {
 /// ```
 pub const UNKNOWN_FLEET: Code = Code {
     code: "S0305",
+    group: Group::Scenario,
     name: "unknown-fleet",
     summary: "a task names a fleet that the scenario does not define",
 };
@@ -589,6 +614,7 @@ pub const UNKNOWN_FLEET: Code = Code {
 /// ```
 pub const NO_FLEET_FOR_TASK: Code = Code {
     code: "S0306",
+    group: Group::Scenario,
     name: "no-fleet-for-task",
     summary: "no fleet accepts the task's category",
 };
@@ -611,6 +637,7 @@ pub const NO_FLEET_FOR_TASK: Code = Code {
 /// ```
 pub const UNKNOWN_OPTION: Code = Code {
     code: "S0307",
+    group: Group::Scenario,
     name: "unknown-option",
     summary: "an option is not known and is ignored",
 };
@@ -632,6 +659,7 @@ pub const UNKNOWN_OPTION: Code = Code {
 /// ```
 pub const DUPLICATE_WORKCELL: Code = Code {
     code: "S0308",
+    group: Group::Scenario,
     name: "duplicate-workcell",
     summary: "two workcells have the same name",
 };
@@ -654,6 +682,7 @@ pub const DUPLICATE_WORKCELL: Code = Code {
 /// ```
 pub const SPAWN_COUNT: Code = Code {
     code: "S0309",
+    group: Group::Scenario,
     name: "spawn-count-mismatch",
     summary: "a fleet's spawn list does not name one distinct waypoint per robot",
 };
@@ -677,6 +706,7 @@ pub const SPAWN_COUNT: Code = Code {
 /// ```
 pub const TASK_AFTER_END: Code = Code {
     code: "S0310",
+    group: Group::Scenario,
     name: "task-after-end",
     summary: "a task or generator starts after the end of the run",
 };
@@ -700,6 +730,7 @@ pub const TASK_AFTER_END: Code = Code {
 /// ```
 pub const CROWD: Code = Code {
     code: "S0208",
+    group: Group::Scenario,
     name: "crowd-cannot-walk",
     summary: "the map's crowd cannot be placed on its navmesh",
 };
