@@ -459,6 +459,7 @@ pub const NOT_WELL_FORMED: Code = Code {
     code: "S0210",
     name: "not-well-formed",
     summary: "a task waypoint is the only way to another place the scenario uses",
+    group: Group::Scenario,
 };
 
 /// # S0211 no-room
@@ -485,6 +486,7 @@ pub const NO_ROOM: Code = Code {
     code: "S0211",
     name: "no-room",
     summary: "the building has room for fewer robots than asked",
+    group: Group::Scenario,
 };
 
 /// # S0301 unknown-robot-preset
