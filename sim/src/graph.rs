@@ -55,6 +55,9 @@ pub struct NavEdge {
 #[derive(Debug, Clone)]
 pub struct NavLift {
     pub name: String,
+    /// Longest ride between two of its floors (s, as `edge_cost` counts it): how long a
+    /// call may take for the cabin to come.
+    pub call: f64,
 }
 
 #[derive(Debug, Clone)]
@@ -92,6 +95,7 @@ impl Nav {
         for (_, l) in b.lifts.iter() {
             nav.lifts.push(NavLift {
                 name: l.name.clone(),
+                call: 0.0,
             });
         }
         for (_, d) in b.doors.iter() {
@@ -203,6 +207,12 @@ impl Nav {
         nav.out = vec![vec![Vec::new(); nav.vertices.len()]; graphs.len()];
         for (i, e) in nav.edges.iter().enumerate() {
             nav.out[e.graph][e.from].push(i);
+        }
+        for e in 0..nav.edges.len() {
+            if let EdgeKind::Lift(l) = nav.edges[e].kind {
+                let c = nav.edge_cost(e, 1.0);
+                nav.lifts[l].call = nav.lifts[l].call.max(c);
+            }
         }
         nav
     }

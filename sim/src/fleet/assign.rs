@@ -1,6 +1,37 @@
-//! Task assignment: a task goes to the robot that can start it soonest.
+//! The dispatcher: a task goes to the robot that, planned against the schedule, gets to
+//! its first place first.
+//!
+//! Tasks wait in one queue, oldest first, until a robot that stands idle takes one, as in
+//! Token Passing (Ma et al. 2017): the robot's whole task (every place, the work there,
+//! then a parking vertex) is planned when it is assigned, so a robot holding a task
+//! always has a plan. The nearest idle robots (free-flow time) are planned for, and the
+//! one whose plan arrives first takes the task. A plan that would wait long for traffic
+//! is not taken while the task is young: robots stay parked rather than queue in the
+//! corridors, so a bigger fleet does not jam a building that a smaller one serves.
 
 use super::*;
+use crate::traffic::sipp::{Plan, Query};
+
+/// Robots planned for per task (the nearest by free-flow time).
+const CANDIDATES: usize = 3;
+/// Plans tried per dispatch round (bounds the work of a round).
+const PLANS_PER_ROUND: usize = 32;
+/// A plan waiting longer than this for traffic (s, summed up to its last place) is not
+/// taken, unless younger tasks have gone before the task for `PATIENCE`.
+const MAX_PLANNED_WAIT: f64 = 60.0;
+/// A task passed over this long (s) by younger ones takes the soonest plan that waits at
+/// most `PATIENT_WAIT`: robots with a task never plan to stand for longer.
+const PATIENCE: f64 = 600.0;
+const PATIENT_WAIT: f64 = 200.0;
+/// Dispatch is tried again this often (s) while tasks wait.
+const DISPATCH_EVERY: f64 = 1.0;
+
+/// A task in the queue.
+pub(super) struct Pending {
+    pub task: usize,
+    /// Since when younger tasks have been taken while this one was not.
+    pub passed_over: Option<f64>,
+}
 
 impl Fleets {
     pub(super) fn request_task(
@@ -23,106 +54,200 @@ impl Fleets {
             ended: false,
         });
         self.event(t, ti, "queued", None, String::new(), out);
-        self.assign(ti, t, out);
+        if self.eligible(ti).next().is_none() {
+            self.tasks[ti].ended = true;
+            self.event(
+                t,
+                ti,
+                "failed",
+                None,
+                "no robot can reach the task".into(),
+                out,
+            );
+            return;
+        }
+        self.pending.push_back(Pending {
+            task: ti,
+            passed_over: None,
+        });
+        self.next_dispatch = self.next_dispatch.min(t);
     }
 
-    /// Gives task `ti` to the robot that can start it soonest, or fails it when no robot
-    /// can reach it.
-    pub(super) fn assign(&mut self, ti: usize, t: f64, out: &mut Vec<(Topic, Msg)>) {
-        let category = self.tasks[ti].category;
-        // Pick the robot that can start soonest: (ready time + travel to the first
-        // waypoint, robot index).
-        let mut best: Option<(f64, usize, f64)> = None;
-        for (fi, f) in self.fleets.iter().enumerate() {
-            let task = &self.tasks[ti];
-            if task.fleet.as_ref().is_some_and(|n| *n != f.name)
-                || !(f.kinds.is_empty() || f.kinds.contains(&category))
-            {
-                continue;
+    /// (robot, its steps for the task) of every robot that could ever do task `ti`: of a
+    /// fleet the task allows, with the task's places on its graph and reachable.
+    fn eligible(&self, ti: usize) -> impl Iterator<Item = (usize, Vec<Step>)> + '_ {
+        let task = &self.tasks[ti];
+        self.fleets
+            .iter()
+            .enumerate()
+            .filter(move |(_, f)| {
+                task.fleet.as_ref().is_none_or(|n| *n == f.name)
+                    && (f.kinds.is_empty() || f.kinds.contains(&task.category))
+            })
+            .filter_map(move |(fi, f)| self.expand(fi, &task.kind).map(|s| (f, s)))
+            .flat_map(move |(f, steps)| {
+                f.robots.iter().map(move |&ri| (ri, steps.clone()))
+            })
+            .filter(move |(ri, steps)| {
+                let r = &self.robots[*ri];
+                let mut at = self.sched.itinerary(*ri).at;
+                steps.iter().all(|s| match s {
+                    Step::GoTo(v) => {
+                        let ok = self.nav.times_reachable(r.slot, at, *v);
+                        at = *v;
+                        ok
+                    }
+                    _ => true,
+                })
+            })
+    }
+
+    /// Whether robot `i` may take a task now: idle and standing.
+    fn free(&self, i: usize) -> bool {
+        let r = &self.robots[i];
+        r.idle() && r.n_sent == 0 && r.gate == Gate::None
+    }
+
+    /// One dispatch round: tasks oldest first, each to the free robot whose plan gets
+    /// there first. Tasks no robot can take now stay queued.
+    pub(super) fn dispatch(&mut self, t: f64, out: &mut Vec<(Topic, Msg)>) {
+        if t < self.next_dispatch || self.pending.is_empty() {
+            return;
+        }
+        self.next_dispatch = f64::INFINITY;
+        self.retime(t);
+        let mut budget = PLANS_PER_ROUND;
+        let mut k = 0;
+        while k < self.pending.len() && budget > 0 {
+            if !(0..self.robots.len()).any(|i| self.free(i)) {
+                break;
             }
-            let Some(steps) = self.expand(fi, &task.kind) else {
-                continue;
-            };
-            let Some(first) = steps.iter().find_map(|s| match s {
-                Step::GoTo(v) => Some(*v),
-                _ => None,
-            }) else {
-                continue;
-            };
-            let dur = self.estimate(f.slot, f.speed, first, &steps);
-            for &ri in &f.robots {
-                let r = &self.robots[ri];
-                let (ready, from) = if r.idle() {
-                    (t, r.at)
-                } else {
-                    (r.free_at.max(t), r.end_vertex)
+            let ti = self.pending[k].task;
+            let patient = self.pending[k]
+                .passed_over
+                .is_some_and(|p| t - p >= PATIENCE);
+            // The nearest free robots by free-flow time to the task's first place.
+            let mut near: Vec<(f64, usize, Vec<Step>)> = self
+                .eligible(ti)
+                .filter(|(ri, _)| self.free(*ri))
+                .filter_map(|(ri, steps)| {
+                    let first = first_goal(&steps)?;
+                    let f = &self.fleets[self.robots[ri].fleet];
+                    let at = self.sched.itinerary(ri).at;
+                    let (d, _) = self.nav.plan(f.slot, at, first, f.speed)?;
+                    Some((d, ri, steps))
+                })
+                .collect();
+            near.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
+            near.truncate(CANDIDATES);
+            let mut best: Option<(f64, usize, Vec<Step>, Plan, Vec<(usize, f64)>)> = None;
+            let mut blocked_by_stay = false;
+            for (_, ri, steps) in near {
+                budget = budget.saturating_sub(1);
+                let goals = self.goals_of(ri, &steps);
+                let stay = matches!(self.tasks[ti].kind, TaskKind::GoToPlace { .. })
+                    .then(|| goals.last().map(|g| g.0))
+                    .flatten();
+                let f = &self.fleets[self.robots[ri].fleet];
+                let q = Query {
+                    robot: ri,
+                    slot: f.slot,
+                    kin: f.kin,
+                    from: self.sched.itinerary(ri).at,
+                    t0: t,
+                    goals: &goals,
+                    parks: &self.parks.per_slot[f.slot],
+                    stay,
                 };
-                let Some((travel, _)) = self.nav.plan(f.slot, from, first, f.speed) else {
+                let Some(plan) = self.planner.plan(&self.nav, &self.sched, &q) else {
+                    blocked_by_stay = true;
                     continue;
                 };
-                // An idle robot standing on one of the task's waypoints would have to be
-                // moved aside for it anyway: it takes the task unless another robot is much
-                // sooner.
-                let on_task = r.idle()
-                    && steps
-                        .iter()
-                        .any(|s| matches!(s, Step::GoTo(v) if *v == r.at));
-                let bonus = if on_task { ON_TASK_BONUS } else { 0.0 };
-                let score = ready + travel - bonus;
-                if best.is_none_or(|b| score < b.0) {
-                    best = Some((score, ri, dur));
+                let arrive = match plan.goal_at.first() {
+                    Some(&0) | None => t,
+                    Some(&n) => plan.steps[n - 1].end,
+                };
+                let most = if patient {
+                    PATIENT_WAIT
+                } else {
+                    MAX_PLANNED_WAIT
+                };
+                if planned_wait(&plan, t) > most {
+                    continue;
+                }
+                if best.as_ref().is_none_or(|b| arrive < b.0) {
+                    best = Some((arrive, ri, steps, plan, goals));
                 }
             }
+            let Some((_, ri, steps, plan, goals)) = best else {
+                if blocked_by_stay {
+                    // Maybe a robot stays for good where the task must go: it makes room.
+                    let found = self.eligible(ti).find(|e| self.free(e.0));
+                    if let Some((ri, steps)) = found {
+                        let goals = self.goals_of(ri, &steps);
+                        self.displace_for(ri, &goals, t);
+                    }
+                }
+                k += 1;
+                continue;
+            };
+            self.pending.remove(k);
+            for p in self.pending.iter_mut().take(k) {
+                p.passed_over.get_or_insert(t);
+            }
+            self.start_task(ri, ti, steps, &goals, plan, t, out);
         }
-        match best {
-            None => {
-                self.tasks[ti].ended = true;
-                self.event(
-                    t,
-                    ti,
-                    "failed",
-                    None,
-                    "no robot can reach the task".into(),
-                    out,
-                );
-            }
-            Some((score, ri, dur)) => {
-                let end = self
-                    .expand(self.robots[ri].fleet, &self.tasks[ti].kind)
-                    .and_then(|s| {
-                        s.iter().rev().find_map(|s| match s {
-                            Step::GoTo(v) => Some(*v),
-                            _ => None,
-                        })
-                    });
-                let r = &mut self.robots[ri];
-                r.free_at = score.max(t) + dur;
-                if let Some(e) = end {
-                    r.end_vertex = e;
-                }
-                r.queue.push_back(ti);
-                r.dirty = true;
-                self.event(t, ti, "assigned", Some(ri), String::new(), out);
-            }
+        if !self.pending.is_empty() {
+            self.next_dispatch = t + DISPATCH_EVERY;
         }
     }
 
-    /// Rough duration of `steps` after arriving at `first`.
-    pub(super) fn estimate(&self, slot: usize, speed: f64, first: usize, steps: &[Step]) -> f64 {
-        let mut at = first;
-        let mut d = 0.0;
+    /// Robot `ri` takes task `ti` with its plan (against the schedule as it is now).
+    #[allow(clippy::too_many_arguments)]
+    fn start_task(
+        &mut self,
+        ri: usize,
+        ti: usize,
+        steps: Vec<Step>,
+        goals: &[(usize, f64)],
+        plan: Plan,
+        t: f64,
+        out: &mut Vec<(Topic, Msg)>,
+    ) {
+        self.install(ri, 0, plan, t);
+        let r = &mut self.robots[ri];
+        r.task = Some(ti);
+        r.task_started = t;
+        r.steps = steps.into();
+        r.park_pending = false;
+        r.dirty = true;
+        r.wake = t;
+        debug_assert_eq!(goals.len(), r.legs.len());
+        self.event(t, ti, "assigned", Some(ri), String::new(), out);
+        self.event(t, ti, "started", Some(ri), String::new(), out);
+    }
+
+    /// The places of `steps` in order, each with how long robot `i` stays there (the
+    /// work of the steps up to the next place).
+    pub(super) fn goals_of(&self, i: usize, steps: &[Step]) -> Vec<(usize, f64)> {
+        let r = &self.robots[i];
+        let f = &self.fleets[r.fleet];
+        let mut goals: Vec<(usize, f64)> = Vec::new();
         for s in steps {
-            match s {
+            let dwell = match s {
                 Step::GoTo(v) => {
-                    d += self.nav.plan(slot, at, *v, speed).map_or(0.0, |p| p.0);
-                    at = *v;
+                    goals.push((*v, 0.0));
+                    continue;
                 }
-                Step::Dwell(x) => d += x,
-                Step::Dispense(_) | Step::Ingest(_) => d += 5.0,
-                Step::Charge(_) => {}
+                Step::Dwell(x) => *x,
+                Step::Dispense(_) | Step::Ingest(_) => WORKCELL_ESTIMATE,
+                Step::Charge(pct) => (pct - r.battery()).max(0.0) / f.charge_rate.max(1e-9),
+            };
+            if let Some(g) = goals.last_mut() {
+                g.1 = (g.1 + dwell).min(4.0 * 3600.0);
             }
         }
-        d
+        goals
     }
 
     /// The steps of a task for fleet `fi`, or None if its waypoints are not on the graph.
@@ -181,4 +306,25 @@ impl Fleets {
             TaskKind::GoToPlace { place } => vec![Step::GoTo(v(place)?)],
         })
     }
+}
+
+/// The first place of `steps`.
+fn first_goal(steps: &[Step]) -> Option<usize> {
+    steps.iter().find_map(|s| match s {
+        Step::GoTo(v) => Some(*v),
+        _ => None,
+    })
+}
+
+/// How long `plan` waits for traffic up to its last place (s): time between its steps
+/// beyond the work it holds for.
+fn planned_wait(plan: &Plan, t0: f64) -> f64 {
+    let last = plan.goal_at.last().copied().unwrap_or(0);
+    let mut prev = t0;
+    let mut w = 0.0;
+    for s in &plan.steps[..last] {
+        w += (s.start - prev - s.hold).max(0.0);
+        prev = s.end;
+    }
+    w
 }

@@ -9,6 +9,7 @@ impl Fleets {
     pub(super) fn abandon_route(&mut self, i: usize, t: f64, out: &mut Vec<(Topic, Msg)>) {
         let r = &mut self.robots[i];
         r.leg = None;
+        r.legs.clear();
         r.waiting = None;
         match std::mem::replace(&mut r.gate, Gate::None) {
             Gate::Door { door, .. } => self.door_request(i, door, false, t, out),
@@ -47,6 +48,11 @@ impl Fleets {
         let Some(to) = self.sched.itinerary(i).travs.front().map(|tr| tr.to) else {
             return;
         };
+        if std::env::var_os("MAPC_TRAFFIC_DEBUG2").is_some() {
+            let tr = self.sched.itinerary(i).travs.front().unwrap();
+            let e = &self.nav.edges[tr.edge];
+            eprintln!("TRAV {:?} lift_to {:?} door {:?} est {:.1} actual {:.1} (planned start {:.1})", e.kind, self.nav.vertices[e.to].lift, e.door, tr.dur, t - tr.start, tr.start);
+        }
         self.sched.complete_front(i, t);
         self.released = true;
         let r = &mut self.robots[i];
@@ -85,8 +91,8 @@ impl Fleets {
                 self.advance(i, n, t, out);
                 return Some(false);
             }
-            let dwell = self.dwell_after(i);
-            match self.plan_to(i, &[(goal, dwell)], t) {
+            let goals = self.remaining_goals(i, goal);
+            match self.plan_to(i, &goals, t) {
                 Ok(leg) => {
                     let r = &mut self.robots[i];
                     r.leg = Some(leg);

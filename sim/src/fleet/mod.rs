@@ -78,9 +78,8 @@ const ITEM_WAIT: f64 = 1200.0;
 const ITEM_HOME: f64 = 30.0;
 /// A robot waiting for traffic this long is reported stuck.
 const STUCK_AFTER: f64 = 120.0;
-/// Head start (s) in task assignment of an idle robot standing on one of the task's
-/// waypoints.
-const ON_TASK_BONUS: f64 = 180.0;
+/// What a dispenser's or ingestor's work takes in plans (s); the plugins take 5 s.
+const WORKCELL_ESTIMATE: f64 = 5.0;
 /// Traversals sent at once along plain lanes.
 const LOOKAHEAD: usize = 3;
 
@@ -165,6 +164,9 @@ struct Robot {
     n_sent: usize,
     /// Leading traversals of the itinerary up to the current GoTo's goal (None: no leg).
     leg: Option<usize>,
+    /// The legs of the task's next GoTos, planned with it: traversals from one place to
+    /// the next.
+    legs: VecDeque<usize>,
     path_id: String,
     path_seq: u64,
     gate: Gate,
@@ -174,7 +176,6 @@ struct Robot {
     steps: VecDeque<Step>,
     cur: Cur,
     task: Option<usize>,
-    queue: VecDeque<usize>,
     wake: f64,
     dirty: bool,
     /// Waiting for the schedule to grant its next traversal (or for a plan) since.
@@ -185,8 +186,6 @@ struct Robot {
     /// Last reported position that differed by more than 5 cm, and when.
     last_pos: (f64, f64),
     last_moved: f64,
-    free_at: f64,
-    end_vertex: usize,
     charger: Option<usize>,
     /// (drop-off vertex, ingestor) of the item the robot carries.
     carrying: Option<(usize, String)>,
@@ -204,7 +203,6 @@ struct Robot {
 impl Robot {
     fn idle(&self) -> bool {
         self.task.is_none()
-            && self.queue.is_empty()
             && self.steps.is_empty()
             && self.cur == Cur::None
     }
@@ -267,6 +265,10 @@ pub struct Fleets {
     robots: Vec<Robot>,
     by_name: BTreeMap<String, usize>,
     tasks: Vec<Task>,
+    /// Tasks no robot has taken yet, oldest first.
+    pending: VecDeque<assign::Pending>,
+    /// When the dispatcher runs next.
+    next_dispatch: f64,
     /// (request time, source order, kind, fleet) of tasks not yet requested, sorted.
     upcoming: VecDeque<(f64, usize, TaskKind, Option<String>)>,
     doors: Vec<DoorView>,
@@ -357,6 +359,7 @@ impl Fleets {
                 self.request_task(t, kind, fleet, out);
             }
         }
+        self.dispatch(t, out);
         // Robots with news or an expired timer; repeat while reservations were released
         // (a release can unblock robots that are waiting).
         for pass in 0..4 {
@@ -373,8 +376,11 @@ impl Fleets {
                 break;
             }
         }
+        // Robots that became free in this update take waiting tasks.
+        self.dispatch(t, out);
         if t >= self.next_traffic {
             self.next_traffic = t + 1.0;
+            self.replan_delayed(t);
             self.watch_waits(t, out);
         }
         if t >= self.next_fleet_state {
@@ -406,7 +412,10 @@ impl Fleets {
         if self.next_traffic <= t {
             self.next_traffic = t + 1.0;
         }
-        let mut next = self.next_fleet_state.min(self.next_traffic);
+        let mut next = self
+            .next_fleet_state
+            .min(self.next_traffic)
+            .min(self.next_dispatch);
         if let Some(u) = self.upcoming.front() {
             next = next.min(u.0);
         }

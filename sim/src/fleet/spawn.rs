@@ -3,16 +3,16 @@
 //! Every robot asked is put on the floor, each on a parking vertex of its fleet's graph
 //! (`crate::traffic::parks`: a waypoint where a standing robot blocks no route, away from
 //! task waypoints, chargers and lift cabins), so that a robot without work never stands in
-//! the way of one with work. One parking vertex per graph stays free, so that a robot
-//! parked where a task goes always has somewhere to make room to. Fewer robots only when the
-//! building has too few parking vertices; the report says so (S0211) and counts the others
-//! as `reserve`.
+//! the way of one with work, and every robot has a parking vertex of its own to end its
+//! plans on (Token Passing's condition). Fewer robots only when the building has too few
+//! parking vertices; the report says so (S0211) and counts the others as `reserve`.
 //!
 //! Fleets share the parking vertices in proportion to their sizes: robots are placed one at
 //! a time, always for the fleet with the smallest share placed so far, on the level with
 //! the fewest robots so far.
 
 use super::*;
+use crate::traffic::parks::PARK;
 
 /// A fleet to place: its index in the scenario, graph slot and robot count.
 pub(super) struct AutoFleet {
@@ -41,16 +41,6 @@ pub(super) fn auto_spawn(
     }
     let mut chosen: Vec<Vec<usize>> = vec![Vec::new(); fleets.len()];
     let mut full = vec![false; fleets.len()];
-    // One parking vertex per graph stays free: a robot parked where another robot's task
-    // goes must have somewhere to make room to.
-    let mut spare: BTreeMap<usize, usize> = BTreeMap::new();
-    for f in fleets {
-        let free = nav.members[f.slot]
-            .iter()
-            .filter(|&&v| parks.per_slot[f.slot][v] != 0)
-            .count();
-        spare.insert(f.slot, free.saturating_sub(1));
-    }
     loop {
         let next = (0..fleets.len())
             .filter(|&k| !full[k] && chosen[k].len() < fleets[k].count)
@@ -60,14 +50,10 @@ pub(super) fn auto_spawn(
             });
         let Some(k) = next else { break };
         let slot = fleets[k].slot;
-        if spare.get(&slot).copied().unwrap_or(0) == 0 {
-            full[k] = true;
-            continue;
-        }
         let pick = nav.members[slot]
             .iter()
             .copied()
-            .filter(|&v| parks.per_slot[slot][v] != 0)
+            .filter(|&v| parks.per_slot[slot][v] == PARK)
             .filter(|&v| conf.vertex[v].iter().all(|&x| !held[x as usize]))
             .min_by_key(|&v| {
                 let ro = &nav.vertices[v].roles;
@@ -92,9 +78,6 @@ pub(super) fn auto_spawn(
                     held[x as usize] = true;
                 }
                 *on_level.entry(nav.vertices[v].level).or_default() += 1;
-                if let Some(n) = spare.get_mut(&slot) {
-                    *n -= 1;
-                }
                 chosen[k].push(v);
             }
             None => full[k] = true,

@@ -39,6 +39,7 @@ impl Fleets {
             }
         );
         r.steps.clear();
+        r.legs.clear();
         r.cur = Cur::None;
         if !ok {
             self.abandon_route(i, t, out);
@@ -218,9 +219,19 @@ impl Fleets {
                 sent: false,
             };
             r.cur = match step {
-                Step::GoTo(goal) => Cur::GoTo {
-                    goal,
-                    planned: false,
+                // Planned with the task (or the leg before): its leg is known.
+                Step::GoTo(goal) => match r.legs.pop_front() {
+                    Some(n) => {
+                        r.leg = Some(n);
+                        Cur::GoTo {
+                            goal,
+                            planned: true,
+                        }
+                    }
+                    None => Cur::GoTo {
+                        goal,
+                        planned: false,
+                    },
                 },
                 Step::Dwell(d) => Cur::Dwell { until: t + d },
                 Step::Charge(pct) => Cur::Charge {
@@ -240,73 +251,26 @@ impl Fleets {
         if self.robots[i].charger.is_none() && self.maybe_charge(i) {
             // The charger is where it stays afterwards.
             self.robots[i].park_pending = false;
-            self.hand_back_for_charging(i, t, out);
             return true;
         }
-        let Some(ti) = self.robots[i].queue.pop_front() else {
-            // Nothing to do: to a parking vertex (a robot that did not start on one plans
-            // its way there first; every plan ends on one).
-            if self.robots[i].park_pending && t >= self.robots[i].replan_at {
-                match self.plan_to(i, &[], t) {
-                    Ok(_) => self.robots[i].park_pending = false,
-                    Err(_) => {
-                        let r = &mut self.robots[i];
-                        r.replan_at = t + 2.0;
-                        r.wake = r.replan_at;
-                    }
+        // Nothing to do: to a parking vertex (a robot that did not start on one plans its
+        // way there first; every plan ends on one), and free for the dispatcher.
+        if self.robots[i].park_pending && t >= self.robots[i].replan_at {
+            match self.plan_to(i, &[], t) {
+                Ok(_) => self.robots[i].park_pending = false,
+                Err(_) => {
+                    let r = &mut self.robots[i];
+                    r.replan_at = t + 2.0;
+                    r.wake = r.replan_at;
                 }
             }
-            let n = self.sched.itinerary(i).travs.len();
-            self.advance(i, n, t, out);
-            let end = self.sched.end_vertex(i);
-            let r = &mut self.robots[i];
-            r.free_at = t;
-            r.end_vertex = end;
-            return false;
-        };
-        let fi = self.robots[i].fleet;
-        match self.expand(fi, &self.tasks[ti].kind.clone()) {
-            Some(steps) => {
-                let r = &mut self.robots[i];
-                r.task = Some(ti);
-                r.task_started = t;
-                r.steps = steps.into();
-                self.event(t, ti, "started", Some(i), String::new(), out);
-            }
-            None => {
-                self.tasks[ti].ended = true;
-                self.event(
-                    t,
-                    ti,
-                    "failed",
-                    Some(i),
-                    "waypoints not on the fleet's graph".into(),
-                    out,
-                );
-            }
         }
-        true
-    }
-
-    /// Robot `i` goes to charge, which takes long (CleanerBotA: 72 s a percent): it
-    /// counts as busy until charged, and the tasks queued behind go to whoever is then
-    /// soonest (RMF's task planner likewise puts the charge into the robot's estimates).
-    fn hand_back_for_charging(&mut self, i: usize, t: f64, out: &mut Vec<(Topic, Msg)>) {
-        let r = &self.robots[i];
-        let f = &self.fleets[r.fleet];
-        let to = r.charger.unwrap_or(r.at);
-        let drive = self
-            .nav
-            .plan(f.slot, r.at, to, f.speed)
-            .map_or(0.0, |p| p.0);
-        let charge = (f.recharge_soc * 100.0 - r.battery()).max(0.0) / f.charge_rate.max(1e-9);
-        let r = &mut self.robots[i];
-        r.free_at = t + drive + charge;
-        r.end_vertex = to;
-        let back: Vec<usize> = r.queue.drain(..).collect();
-        for ti in back {
-            self.assign(ti, t, out);
+        let n = self.sched.itinerary(i).travs.len();
+        self.advance(i, n, t, out);
+        if !self.pending.is_empty() {
+            self.next_dispatch = self.next_dispatch.min(t);
         }
+        false
     }
 
     pub(super) fn maybe_charge(&mut self, i: usize) -> bool {

@@ -10,11 +10,13 @@
 
 use super::*;
 use crate::traffic::parks::PARK_ON_PLACE;
-use crate::traffic::sipp::Query;
+use crate::traffic::sipp::{Plan, Query};
 use crate::traffic::Res;
 
 /// A failed plan is tried again after this long (s).
 const REPLAN_AFTER: f64 = 2.0;
+/// A waiting robot whose turn is put off by more than this (s) plans again.
+const REPLAN_DELAY: f64 = 30.0;
 
 /// Why a leg could not be planned.
 pub(super) enum NoPlan {
@@ -39,23 +41,20 @@ impl Fleets {
         }
     }
 
-    /// How long robot `i` will stay at the goal of its current GoTo: the work of the steps
-    /// up to its next GoTo.
-    pub(super) fn dwell_after(&self, i: usize) -> f64 {
-        let r = &self.robots[i];
-        let f = &self.fleets[r.fleet];
-        let mut d = 0.0;
-        for s in &r.steps {
-            match s {
-                Step::GoTo(_) => break,
-                Step::Dwell(x) => d += x,
-                Step::Dispense(_) | Step::Ingest(_) => d += 5.0,
-                Step::Charge(pct) => {
-                    d += (pct - r.battery()).max(0.0) / f.charge_rate.max(1e-9);
-                }
-            }
-        }
-        d.min(4.0 * 3600.0)
+    /// The places robot `i` goes to from its current GoTo's `goal` on (its task's
+    /// remaining places), each with the work there.
+    pub(super) fn remaining_goals(&self, i: usize, goal: usize) -> Vec<(usize, f64)> {
+        let mut steps = vec![Step::GoTo(goal)];
+        steps.extend(self.robots[i].steps.iter().cloned());
+        self.goals_of(i, &steps)
+    }
+
+    /// The places of robot `i`, working where it stands for `rest` s more, and then its
+    /// task's remaining places.
+    fn working_goals(&self, i: usize, rest: f64) -> Vec<(usize, f64)> {
+        let mut steps = vec![Step::GoTo(self.robots[i].at), Step::Dwell(rest)];
+        steps.extend(self.robots[i].steps.iter().cloned());
+        self.goals_of(i, &steps)
     }
 
     /// Where robot `i` stays after `goals` if it can: the place of a go-to-place task.
@@ -66,7 +65,32 @@ impl Fleets {
             .task
             .and_then(|ti| self.tasks.get(ti))
             .is_some_and(|tk| matches!(tk.kind, TaskKind::GoToPlace { .. }));
-        (go_to && r.steps.is_empty()).then_some(last)
+        (go_to && r.steps.iter().all(|s| !matches!(s, Step::GoTo(_)))).then_some(last)
+    }
+
+    /// Installs `plan` as robot `i`'s itinerary after its first `keep` traversals, and
+    /// remembers where each of its places is reached (`Robot::legs`).
+    pub(super) fn install(&mut self, i: usize, keep: usize, plan: Plan, t0: f64) {
+        self.decisions.push(plan.expanded as u32);
+        self.sched.install(i, keep, &plan.steps, t0);
+        if cfg!(debug_assertions) {
+            if let Err(e) = self.sched.check(t0) {
+                self.cycles += 1;
+                debug_assert!(false, "schedule broken after planning robot {i}: {e}");
+            }
+        }
+        let mut prev = 0;
+        let r = &mut self.robots[i];
+        r.legs = plan
+            .goal_at
+            .iter()
+            .enumerate()
+            .map(|(k, &at)| {
+                let n = if k == 0 { keep + at } else { at - prev };
+                prev = at;
+                n
+            })
+            .collect();
     }
 
     /// Plans robot `i` to `goals` (then a parking vertex) from where its committed
@@ -96,7 +120,7 @@ impl Fleets {
     /// planned again to end on other parking vertices, keeping their own goal and its work:
     /// their stay for good there may be what keeps robot `i` from planning. True when one
     /// was.
-    fn displace_for(&mut self, i: usize, goals: &[(usize, f64)], t: f64) -> bool {
+    pub(super) fn displace_for(&mut self, i: usize, goals: &[(usize, f64)], t: f64) -> bool {
         let conf = self.sched.conf();
         let mut near: Vec<Res> = goals
             .iter()
@@ -171,10 +195,10 @@ impl Fleets {
                 Cur::GoTo {
                     goal,
                     planned: true,
-                } => (vec![(goal, self.dwell_after(o))], true),
-                Cur::Dwell { until } => (vec![(r.at, (until - t).max(0.0))], false),
-                Cur::Workcell { .. } => (vec![(r.at, 5.0)], false),
-                Cur::Charge { .. } => (vec![(r.at, self.dwell_after(o).max(60.0))], false),
+                } => (self.remaining_goals(o, goal), true),
+                Cur::Dwell { until } => (self.working_goals(o, (until - t).max(0.0)), false),
+                Cur::Workcell { .. } => (self.working_goals(o, WORKCELL_ESTIMATE), false),
+                Cur::Charge { .. } => (self.working_goals(o, 60.0), false),
                 _ => (Vec::new(), false),
             };
             if r.n_sent > 0 && !leg {
@@ -250,8 +274,8 @@ impl Fleets {
         };
         let found = self.planner.plan(&self.nav, &self.sched, &q);
         if found.is_none() && std::env::var_os("MAPC_TRAFFIC_DEBUG").is_some() {
-            let ends: Vec<&str> = (0..self.robots.len())
-                .map(|o| self.nav.vertices[self.sched.end_vertex(o)].name.as_str())
+            let ends: Vec<String> = (0..self.robots.len())
+                .map(|o| format!("{}@{}->{}({}/{})", self.robots[o].name, self.nav.vertices[self.sched.itinerary(o).at].name, self.nav.vertices[self.sched.end_vertex(o)].name, self.robots[o].n_sent, self.sched.itinerary(o).travs.len()))
                 .collect();
             eprintln!(
                 "t={t:.1} {} from {} goals {:?} stay {:?} failed ({}); ends {ends:?}",
@@ -268,15 +292,13 @@ impl Fleets {
         let Some(plan) = found else {
             return Err(NoPlan::Busy);
         };
-        self.decisions.push(plan.expanded as u32);
-        self.sched.install(i, keep, &plan.steps, t0);
-        if cfg!(debug_assertions) {
-            if let Err(e) = self.sched.check(t) {
-                self.cycles += 1;
-                debug_assert!(false, "schedule broken after planning robot {i}: {e}");
-            }
-        }
-        Ok(keep + plan.goal_at.first().copied().unwrap_or(plan.steps.len()))
+        let all = keep + plan.steps.len();
+        self.install(i, keep, plan, t0);
+        // The first place's leg is the current GoTo's; the others wait in `legs`.
+        Ok(match self.robots[i].legs.pop_front() {
+            Some(n) => n,
+            None => all,
+        })
     }
 
     /// Sends robot `i` along what the schedule grants it, up to `limit` traversals from
@@ -395,6 +417,75 @@ impl Fleets {
             && self.nav.vertices[edge.to].lift.is_none()
     }
 
+    /// Once a second while robots wait: a robot that stands waiting for its turn, whose
+    /// turn the delays of those before it have put off by more than `REPLAN_DELAY`, plans
+    /// again from where it stands (its old itinerary stays if no better one is found).
+    /// The new plan fits the schedule as it is, so the order stays acyclic.
+    pub(super) fn replan_delayed(&mut self, t: f64) {
+        self.retime(t);
+        for i in 0..self.robots.len() {
+            let r = &self.robots[i];
+            let Some(since) = r.waiting else { continue };
+            if r.n_sent > 0 || r.gate != Gate::None || t - since < REPLAN_DELAY || t < r.replan_at
+            {
+                continue;
+            }
+            let Some(front) = self.sched.itinerary(i).travs.front() else {
+                continue;
+            };
+            if front.start - t < REPLAN_DELAY {
+                continue;
+            }
+            let before = self.sched.end_vertex(i);
+            let goals = match r.cur {
+                Cur::GoTo {
+                    goal,
+                    planned: true,
+                } => self.remaining_goals(i, goal),
+                Cur::None if r.idle() => Vec::new(),
+                _ => continue,
+            };
+            let old_arrival = self.arrival(i, goals.len());
+            let snapshot = (
+                self.sched.clone(),
+                self.robots[i].legs.clone(),
+                self.robots[i].leg,
+            );
+            let better = match self.plan_with(i, &goals, None, t) {
+                Ok(leg) => {
+                    if !goals.is_empty() {
+                        self.robots[i].leg = Some(leg);
+                    }
+                    self.arrival(i, goals.len()) + 1.0 < old_arrival
+                }
+                Err(_) => false,
+            };
+            if std::env::var_os("MAPC_TRAFFIC_DEBUG").is_some() {
+                eprintln!("REPLAN t={t:.1} {} better {better} old {old_arrival:.1} new {:.1} goals {goals:?}", self.robots[i].name, self.arrival(i, goals.len()));
+            }
+            if better {
+                self.robots[i].dirty = true;
+            } else {
+                // Not better: the old itinerary stays.
+                (self.sched, self.robots[i].legs, self.robots[i].leg) = snapshot;
+                debug_assert_eq!(before, self.sched.end_vertex(i));
+            }
+            self.robots[i].replan_at = t + REPLAN_DELAY;
+        }
+    }
+
+    /// When robot `i`'s itinerary estimates it at its last place (of `n` goals), or at its
+    /// end when it has none.
+    fn arrival(&self, i: usize, n: usize) -> f64 {
+        let it = self.sched.itinerary(i);
+        let legs: usize = self.robots[i].leg.unwrap_or(0) + self.robots[i].legs.iter().sum::<usize>();
+        let k = if n == 0 { it.travs.len() } else { legs.min(it.travs.len()) };
+        match k.checked_sub(1).and_then(|k| it.travs.get(k)) {
+            Some(tr) => tr.end,
+            None => it.ready,
+        }
+    }
+
     /// Once a second while robots wait: a robot that has waited for the schedule for
     /// `STUCK_AFTER` s is reported once (a `stuck` task event naming whom it waits for).
     pub(super) fn watch_waits(&mut self, t: f64, out: &mut Vec<(Topic, Msg)>) {
@@ -411,6 +502,15 @@ impl Fleets {
                 .into_iter()
                 .map(|b| format!("{} ({})", self.robots[b].name, self.status(b)))
                 .collect();
+            if std::env::var_os("MAPC_TRAFFIC_DEBUG").is_some() {
+                eprintln!("STUCK t={t:.1} {} waits for {who:?}; travs {:?}", self.robots[i].name,
+                    self.sched.itinerary(i).travs.iter().take(3).map(|x| (x.edge, x.start, x.end)).collect::<Vec<_>>());
+                for o in 0..self.robots.len() {
+                    let it = self.sched.itinerary(o);
+                    eprintln!("   {} {} cur {:?} gate {:?} at {} sent {} granted0 {} waits {:?} travs {:?}", self.robots[o].name, self.status(o), self.robots[o].cur, self.robots[o].gate, self.nav.vertices[it.at].name, self.robots[o].n_sent, self.sched.granted(o, 0), self.sched.waits_for(o, 0),
+                        it.travs.iter().take(2).map(|x| (x.edge, x.begun, x.start as i64, x.end as i64)).collect::<Vec<_>>());
+                }
+            }
             if let Some(ti) = self.robots[i].task {
                 let detail = format!("waiting for {}", who.join(","));
                 self.event(t, ti, "stuck", Some(i), detail, out);

@@ -18,7 +18,7 @@ impl Fleets {
     /// it stands on), a door, a lift, a workcell, or charging while a task waits for it.
     fn wait_cause(&self, i: usize) -> Option<(WaitCause, Place)> {
         let r = &self.robots[i];
-        if r.task.is_none() && r.queue.is_empty() {
+        if r.task.is_none() {
             return None;
         }
         match (&r.gate, &r.cur) {

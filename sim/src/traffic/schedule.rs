@@ -173,13 +173,16 @@ impl Schedule {
     }
 
     /// Robot `r` starts driving its first `n` remaining traversals (they are granted).
+    /// Traversals sent together are driven one after the other.
     pub fn begin(&mut self, r: usize, n: usize, t: f64) {
+        let mut prev = t;
         for tr in self.its[r].travs.iter_mut().take(n) {
             if !tr.begun {
                 tr.begun = true;
-                tr.start = t;
-                tr.end = t + tr.dur;
+                tr.start = prev.max(t);
+                tr.end = tr.start + tr.dur;
             }
+            prev = tr.end;
         }
     }
 
@@ -449,6 +452,13 @@ impl Schedule {
                 let r = s.robot as usize;
                 if let Some(b) = node(its, r, s.first) {
                     s.start = start[b];
+                    // A robot ready to go on and waiting for its turn holds its next
+                    // traversal's resources from now: nobody planned later goes before
+                    // it (else a waiting robot could be overtaken for ever).
+                    let it = &its[r];
+                    if b == offs[r] && !it.travs[0].begun && it.ready <= now {
+                        s.start = s.start.min(now);
+                    }
                 }
                 s.end = if s.last == FOREVER {
                     f64::INFINITY

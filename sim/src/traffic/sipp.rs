@@ -11,7 +11,7 @@
 //! finds the earliest such arrival (within `MAX_EXPANSIONS`).
 
 use super::conflicts::Res;
-use super::parks::PARK_ON_PLACE;
+use super::parks::{PARK, PARK_ON_PLACE};
 use super::schedule::{Schedule, Step};
 use crate::graph::{EdgeKind, Nav, DOOR_COST};
 use std::cmp::Ordering;
@@ -61,6 +61,11 @@ impl Kinematics {
                 } else {
                     0.0
                 };
+                // Into a cabin: the cabin may first have to come from another floor.
+                let call = match (nav.vertices[edge.to].lift, nav.vertices[edge.from].lift) {
+                    (Some(l), from) if from != Some(l) => nav.lifts[l].call,
+                    _ => 0.0,
+                };
                 let turn = prev.map_or(0.0, |p| {
                     let h = |e: usize| {
                         let x = &nav.edges[e];
@@ -76,7 +81,7 @@ impl Kinematics {
                     }
                     a / self.turn.max(0.05)
                 });
-                self.drive(edge.length, v) + door + turn + STOP_S
+                self.drive(edge.length, v) + door + call + turn + STOP_S
             }
         }
     }
@@ -221,8 +226,22 @@ impl Planner {
     }
 
     /// The earliest plan for `q` against `sched` (ignoring the robot's own spans), or None.
+    /// It ends on a parking vertex off the task places if it can, else on a place that may
+    /// be parked on (a robot there blocks the tasks going there until it is sent away).
     pub fn plan(&mut self, nav: &Nav, sched: &Schedule, q: &Query) -> Option<Plan> {
         self.plans += 1;
+        self.search(nav, sched, q, false).or_else(|| {
+            let any_place = q.parks.contains(&PARK_ON_PLACE);
+            if any_place {
+                self.search(nav, sched, q, true)
+            } else {
+                None
+            }
+        })
+    }
+
+    /// [`Planner::plan`], ending on places only when `places`.
+    fn search(&mut self, nav: &Nav, sched: &Schedule, q: &Query, places: bool) -> Option<Plan> {
         let conf = sched.conf();
         let key = (q.slot, q.kin.speed.to_bits());
         if !self.park_dist.contains_key(&key) {
@@ -297,7 +316,9 @@ impl Planner {
             }
             let ivs = intervals(n.v);
             let (_, hi) = ivs[n.iv];
-            let may_stay = q.parks[n.v] != 0 || q.stay == Some(n.v);
+            let may_stay = q.stay == Some(n.v)
+                || q.parks[n.v] == PARK
+                || (places && q.parks[n.v] == PARK_ON_PLACE);
             if n.label == nl && may_stay && hi == f64::INFINITY {
                 // Staying here for good: a candidate end, ranked with its penalty.
                 let pen = if q.parks[n.v] == PARK_ON_PLACE && q.stay != Some(n.v) {
