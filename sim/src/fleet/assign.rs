@@ -85,9 +85,7 @@ impl Fleets {
                     && (f.kinds.is_empty() || f.kinds.contains(&task.category))
             })
             .filter_map(move |(fi, f)| self.expand(fi, &task.kind).map(|s| (f, s)))
-            .flat_map(move |(f, steps)| {
-                f.robots.iter().map(move |&ri| (ri, steps.clone()))
-            })
+            .flat_map(move |(f, steps)| f.robots.iter().map(move |&ri| (ri, steps.clone())))
             .filter(move |(ri, steps)| {
                 let r = &self.robots[*ri];
                 let mut at = self.sched.itinerary(*ri).at;
@@ -102,10 +100,21 @@ impl Fleets {
             })
     }
 
-    /// Whether robot `i` may take a task now: idle and standing.
+    /// Whether robot `i` may take a task now: idle, and not at a door or lift.
     fn free(&self, i: usize) -> bool {
         let r = &self.robots[i];
-        r.idle() && r.n_sent == 0 && r.gate == Gate::None
+        r.idle() && r.gate == Gate::None
+    }
+
+    /// Where robot `i` plans from: where the traversals it was sent along end, and when
+    /// (its first traversals still to be kept).
+    fn plan_start(&self, i: usize, t: f64) -> (usize, usize, f64) {
+        let keep = self.robots[i].n_sent;
+        let it = self.sched.itinerary(i);
+        match keep.checked_sub(1).and_then(|k| it.travs.get(k)) {
+            Some(tr) => (keep, tr.to, tr.end.max(t)),
+            None => (0, it.at, t),
+        }
     }
 
     /// One dispatch round: tasks oldest first, each to the free robot whose plan gets
@@ -133,14 +142,14 @@ impl Fleets {
                 .filter_map(|(ri, steps)| {
                     let first = first_goal(&steps)?;
                     let f = &self.fleets[self.robots[ri].fleet];
-                    let at = self.sched.itinerary(ri).at;
+                    let (_, at, t0) = self.plan_start(ri, t);
                     let (d, _) = self.nav.plan(f.slot, at, first, f.speed)?;
-                    Some((d, ri, steps))
+                    Some((t0 - t + d, ri, steps))
                 })
                 .collect();
             near.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
             near.truncate(CANDIDATES);
-            let mut best: Option<(f64, usize, Vec<Step>, Plan, Vec<(usize, f64)>)> = None;
+            let mut best: Option<(f64, usize, Vec<Step>, Plan, usize, f64)> = None;
             let mut blocked_by_stay = false;
             for (_, ri, steps) in near {
                 budget = budget.saturating_sub(1);
@@ -149,22 +158,44 @@ impl Fleets {
                     .then(|| goals.last().map(|g| g.0))
                     .flatten();
                 let f = &self.fleets[self.robots[ri].fleet];
+                let (keep, from, t0) = self.plan_start(ri, t);
                 let q = Query {
                     robot: ri,
                     slot: f.slot,
                     kin: f.kin,
-                    from: self.sched.itinerary(ri).at,
-                    t0: t,
+                    from,
+                    t0,
                     goals: &goals,
                     parks: &self.parks.per_slot[f.slot],
                     stay,
                 };
                 let Some(plan) = self.planner.plan(&self.nav, &self.sched, &q) else {
+                    if std::env::var_os("MAPC_TRAFFIC_DEBUG").is_some() {
+                        let ends: Vec<String> = (0..self.robots.len())
+                            .map(|o| {
+                                format!(
+                                    "{}@{}->{}",
+                                    self.robots[o].name,
+                                    self.nav.vertices[self.sched.itinerary(o).at].name,
+                                    self.nav.vertices[self.sched.end_vertex(o)].name
+                                )
+                            })
+                            .collect();
+                        eprintln!(
+                            "DISPATCH t={t:.1} {} for {:?} failed ({}): {ends:?}",
+                            self.robots[ri].name,
+                            goals
+                                .iter()
+                                .map(|g| &self.nav.vertices[g.0].name)
+                                .collect::<Vec<_>>(),
+                            self.planner.why
+                        );
+                    }
                     blocked_by_stay = true;
                     continue;
                 };
                 let arrive = match plan.goal_at.first() {
-                    Some(&0) | None => t,
+                    Some(&0) | None => t0,
                     Some(&n) => plan.steps[n - 1].end,
                 };
                 let most = if patient {
@@ -172,14 +203,14 @@ impl Fleets {
                 } else {
                     MAX_PLANNED_WAIT
                 };
-                if planned_wait(&plan, t) > most {
+                if planned_wait(&plan, t0) > most {
                     continue;
                 }
                 if best.as_ref().is_none_or(|b| arrive < b.0) {
-                    best = Some((arrive, ri, steps, plan, goals));
+                    best = Some((arrive, ri, steps, plan, keep, t0));
                 }
             }
-            let Some((_, ri, steps, plan, goals)) = best else {
+            let Some((_, ri, steps, plan, keep, t0)) = best else {
                 if blocked_by_stay {
                     // Maybe a robot stays for good where the task must go: it makes room.
                     let found = self.eligible(ti).find(|e| self.free(e.0));
@@ -195,7 +226,7 @@ impl Fleets {
             for p in self.pending.iter_mut().take(k) {
                 p.passed_over.get_or_insert(t);
             }
-            self.start_task(ri, ti, steps, &goals, plan, t, out);
+            self.start_task(ri, ti, steps, plan, (keep, t0), t, out);
         }
         if !self.pending.is_empty() {
             self.next_dispatch = t + DISPATCH_EVERY;
@@ -209,12 +240,12 @@ impl Fleets {
         ri: usize,
         ti: usize,
         steps: Vec<Step>,
-        goals: &[(usize, f64)],
         plan: Plan,
+        (keep, t0): (usize, f64),
         t: f64,
         out: &mut Vec<(Topic, Msg)>,
     ) {
-        self.install(ri, 0, plan, t);
+        self.install(ri, keep, plan, t0);
         let r = &mut self.robots[ri];
         r.task = Some(ti);
         r.task_started = t;
@@ -222,7 +253,6 @@ impl Fleets {
         r.park_pending = false;
         r.dirty = true;
         r.wake = t;
-        debug_assert_eq!(goals.len(), r.legs.len());
         self.event(t, ti, "assigned", Some(ri), String::new(), out);
         self.event(t, ti, "started", Some(ri), String::new(), out);
     }

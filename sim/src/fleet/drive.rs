@@ -51,7 +51,15 @@ impl Fleets {
         if std::env::var_os("MAPC_TRAFFIC_DEBUG2").is_some() {
             let tr = self.sched.itinerary(i).travs.front().unwrap();
             let e = &self.nav.edges[tr.edge];
-            eprintln!("TRAV {:?} lift_to {:?} door {:?} est {:.1} actual {:.1} (planned start {:.1})", e.kind, self.nav.vertices[e.to].lift, e.door, tr.dur, t - tr.start, tr.start);
+            eprintln!(
+                "TRAV {:?} lift_to {:?} door {:?} est {:.1} actual {:.1} (planned start {:.1})",
+                e.kind,
+                self.nav.vertices[e.to].lift,
+                e.door,
+                tr.dur,
+                t - tr.start,
+                tr.start
+            );
         }
         self.sched.complete_front(i, t);
         self.released = true;

@@ -202,9 +202,7 @@ struct Robot {
 
 impl Robot {
     fn idle(&self) -> bool {
-        self.task.is_none()
-            && self.steps.is_empty()
-            && self.cur == Cur::None
+        self.task.is_none() && self.steps.is_empty() && self.cur == Cur::None
     }
     fn battery(&self) -> f64 {
         self.state.as_ref().map_or(100.0, |s| s.battery_percent)

@@ -235,7 +235,8 @@ fn spawn_placement() {
     .err()
     .expect("error");
     assert_eq!(e[0].code, codes::UNKNOWN_WAYPOINT);
-    // Auto: chargers first, never closer than the footprints + 0.5 m.
+    // Auto: on parking vertices off the chargers and task places (where a standing robot
+    // blocks nobody), never closer than the footprints + 0.5 m.
     let p = Fleets::place(
         &b,
         &scenario(vec![fleet("tiny", 3, SpawnSpec::Auto)], vec![]),
@@ -244,13 +245,21 @@ fn spawn_placement() {
     assert_eq!(p.robots.len(), 3);
     assert_eq!(p.robots[0].name, "tiny_0");
     let nav = Nav::build(&b, &[0]);
-    assert_eq!(
-        (p.robots[0].x, p.robots[0].y),
-        (
-            nav.vertices[vertex(&nav, "tinyRobot1_charger")].pos.x,
-            nav.vertices[vertex(&nav, "tinyRobot1_charger")].pos.y
-        )
-    );
+    for r in &p.robots {
+        let v = (0..nav.vertices.len())
+            .find(|&v| {
+                let q = nav.vertices[v].pos;
+                nav.vertices[v].level == r.level && (q.x - r.x).hypot(q.y - r.y) < 1e-9
+            })
+            .expect("on a waypoint");
+        assert_eq!(
+            p.parks.per_slot[0][v],
+            crate::traffic::parks::PARK,
+            "{}",
+            r.name
+        );
+        assert!(!nav.vertices[v].roles.is_charger, "{}", r.name);
+    }
     for (i, a) in p.robots.iter().enumerate() {
         for c in &p.robots[i + 1..] {
             if a.level == c.level {
@@ -627,6 +636,26 @@ fn run(b: &Building, s: &Scenario, seconds: f64) -> (Vec<TaskEvent>, Mock, Fleet
     (events, mock, fleets)
 }
 
+/// Goes on for `seconds` more after `run` (robots drive to park); returns the events.
+fn settle(fleets: &mut Fleets, mock: &mut Mock, s: &Scenario, seconds: f64) -> Vec<TaskEvent> {
+    let (mut inbox, mut out, mut events) = (Vec::new(), Vec::new(), Vec::new());
+    let end = mock.t + seconds;
+    while mock.t < end {
+        out.clear();
+        fleets.update(mock.t, &inbox, &mut out);
+        inbox.clear();
+        for (topic, msg) in out.drain(..) {
+            if let Msg::TaskEvent(e) = &msg {
+                events.push(e.clone());
+            } else {
+                mock.deliver(topic, msg);
+            }
+        }
+        mock.step(s.step, &mut inbox);
+    }
+    events
+}
+
 fn ended(events: &[TaskEvent]) -> Vec<(String, String)> {
     events
         .iter()
@@ -656,28 +685,23 @@ fn delivery_through_doors_and_lift_completes() {
         waypoint: "ward_a".into(),
         span: Span::UNKNOWN,
     });
-    let (events, mock, _) = run(&b, &s, 600.0);
-    for e in &events {
-        eprintln!(
-            "{:.1} {} {} {} {}",
-            e.time.as_secs(),
-            e.task_id,
-            e.event,
-            e.robot,
-            e.detail
-        );
-    }
-    eprintln!("{:?}", mock.door_open_log);
+    let (events, mut mock, mut f) = run(&b, &s, 600.0);
     assert_eq!(
         ended(&events),
         vec![("delivery_0".to_string(), "completed".to_string())],
         "{events:#?}"
     );
+    // It ended the task at the drop-off, on L2.
     let r = &mock.robots[0];
     assert_eq!(r.level, "L2");
     let nav = Nav::build(&b, &[0]);
     let goal = nav.vertices[vertex(&nav, "ward_a")].pos;
     assert!(r.pos.minus(goal).norm() < 1e-6);
+    // Then it parks off the task places (its itinerary ends on a parking vertex).
+    settle(&mut f, &mut mock, &s, 300.0);
+    let end = f.sched.end_vertex(0);
+    assert_eq!(f.parks.per_slot[0][end], crate::traffic::parks::PARK);
+    assert_eq!(f.robots[0].at, end);
     // Every door that was opened was opened for the robot, and all are closed again.
     assert!(mock
         .door_open_log
@@ -788,20 +812,18 @@ fn clean_without_dock_waits_clean_duration() {
     let (events, _, f) = run(&b, &s, 300.0);
     let done: Vec<&TaskEvent> = events.iter().filter(|e| e.event == "completed").collect();
     assert_eq!(done.len(), 1, "{events:#?}");
-    // 10 m at 0.5 m/s, then 30 s of cleaning; the fleet sees arrival through RobotState
-    // (2 Hz) and acts on the next update.
+    // w is no parking vertex: at t = 0 the robot is sent to park_w (3 m at 0.5 m/s). The
+    // task (t = 0.5) is planned from where that traversal ends: back to w and on to e
+    // (3 + 10 m), then 30 s of cleaning; the fleet sees arrival through RobotState (2 Hz)
+    // and acts on the next update.
     let t = done[0].time.as_secs();
-    let expect = 0.5 + 10.0 / 0.5 + 30.0;
+    let expect = 3.0 / 0.5 + 13.0 / 0.5 + 30.0;
     assert!(t >= expect - 1e-6 && t <= expect + 1.0, "{t} vs {expect}");
-    // Then it parks at park_w, the one parking vertex that is not a pocket's entrance
-    // (w and park_w make a pocket entered at w; park_e stands alone).
-    let r = &f.robots[0];
-    let park_w = vertex(&f.nav, "park_w");
-    assert!(
-        r.at == park_w || matches!(r.cur, Cur::GoTo { goal, .. } if goal == park_w),
-        "{:?} at {}",
-        r.cur,
-        r.at
+    // Then it parks on the nearest parking vertex off the task places: park_e, beside e.
+    assert_eq!(f.sched.end_vertex(0), vertex(&f.nav, "park_e"));
+    assert_eq!(
+        f.parks.per_slot[0][vertex(&f.nav, "park_e")],
+        crate::traffic::parks::PARK
     );
 }
 

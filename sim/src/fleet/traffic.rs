@@ -162,14 +162,14 @@ impl Fleets {
                 }
             }
         }
-        // Those whose stay for good is at a goal, and idle robots staying anywhere but on
-        // a parking vertex (where they were sent): such a stay may cut robot `i`'s way.
+        // Those whose stay for good is at a goal, and standing robots staying anywhere but
+        // on a parking vertex: such a stay may cut robot `i`'s way.
         let blockers: Vec<usize> = (0..self.robots.len())
             .filter(|&o| o != i && self.robots[o].gate == Gate::None)
             .filter(|&o| {
                 let r = &self.robots[o];
                 let end = self.sched.end_vertex(o);
-                off[end] || (r.idle() && r.n_sent == 0 && self.parks.per_slot[r.slot][end] == 0)
+                off[end] || (r.n_sent == 0 && self.parks.per_slot[r.slot][end] == 0)
             })
             .collect();
         let mut moved = false;
@@ -275,7 +275,16 @@ impl Fleets {
         let found = self.planner.plan(&self.nav, &self.sched, &q);
         if found.is_none() && std::env::var_os("MAPC_TRAFFIC_DEBUG").is_some() {
             let ends: Vec<String> = (0..self.robots.len())
-                .map(|o| format!("{}@{}->{}({}/{})", self.robots[o].name, self.nav.vertices[self.sched.itinerary(o).at].name, self.nav.vertices[self.sched.end_vertex(o)].name, self.robots[o].n_sent, self.sched.itinerary(o).travs.len()))
+                .map(|o| {
+                    format!(
+                        "{}@{}->{}({}/{})",
+                        self.robots[o].name,
+                        self.nav.vertices[self.sched.itinerary(o).at].name,
+                        self.nav.vertices[self.sched.end_vertex(o)].name,
+                        self.robots[o].n_sent,
+                        self.sched.itinerary(o).travs.len()
+                    )
+                })
                 .collect();
             eprintln!(
                 "t={t:.1} {} from {} goals {:?} stay {:?} failed ({}); ends {ends:?}",
@@ -426,8 +435,7 @@ impl Fleets {
         for i in 0..self.robots.len() {
             let r = &self.robots[i];
             let Some(since) = r.waiting else { continue };
-            if r.n_sent > 0 || r.gate != Gate::None || t - since < REPLAN_DELAY || t < r.replan_at
-            {
+            if r.n_sent > 0 || r.gate != Gate::None || t - since < REPLAN_DELAY || t < r.replan_at {
                 continue;
             }
             let Some(front) = self.sched.itinerary(i).travs.front() else {
@@ -478,8 +486,13 @@ impl Fleets {
     /// end when it has none.
     fn arrival(&self, i: usize, n: usize) -> f64 {
         let it = self.sched.itinerary(i);
-        let legs: usize = self.robots[i].leg.unwrap_or(0) + self.robots[i].legs.iter().sum::<usize>();
-        let k = if n == 0 { it.travs.len() } else { legs.min(it.travs.len()) };
+        let legs: usize =
+            self.robots[i].leg.unwrap_or(0) + self.robots[i].legs.iter().sum::<usize>();
+        let k = if n == 0 {
+            it.travs.len()
+        } else {
+            legs.min(it.travs.len())
+        };
         match k.checked_sub(1).and_then(|k| it.travs.get(k)) {
             Some(tr) => tr.end,
             None => it.ready,
@@ -503,8 +516,17 @@ impl Fleets {
                 .map(|b| format!("{} ({})", self.robots[b].name, self.status(b)))
                 .collect();
             if std::env::var_os("MAPC_TRAFFIC_DEBUG").is_some() {
-                eprintln!("STUCK t={t:.1} {} waits for {who:?}; travs {:?}", self.robots[i].name,
-                    self.sched.itinerary(i).travs.iter().take(3).map(|x| (x.edge, x.start, x.end)).collect::<Vec<_>>());
+                eprintln!(
+                    "STUCK t={t:.1} {} waits for {who:?}; travs {:?}",
+                    self.robots[i].name,
+                    self.sched
+                        .itinerary(i)
+                        .travs
+                        .iter()
+                        .take(3)
+                        .map(|x| (x.edge, x.start, x.end))
+                        .collect::<Vec<_>>()
+                );
                 for o in 0..self.robots.len() {
                     let it = self.sched.itinerary(o);
                     eprintln!("   {} {} cur {:?} gate {:?} at {} sent {} granted0 {} waits {:?} travs {:?}", self.robots[o].name, self.status(o), self.robots[o].cur, self.robots[o].gate, self.nav.vertices[it.at].name, self.robots[o].n_sent, self.sched.granted(o, 0), self.sched.waits_for(o, 0),

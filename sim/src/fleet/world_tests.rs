@@ -488,12 +488,12 @@ fn world_low_battery_goes_charging() {
 }
 
 #[test]
-fn world_a_robot_going_to_charge_hands_its_queued_task_to_another() {
+fn world_a_robot_going_to_charge_leaves_the_next_task_to_another() {
     // a_0 starts on the L1 charger, b_0 on L2. The first task (the lobby, next to the
-    // charger) goes to a_0; the second (the corridor) too, queued behind it: it will be
-    // there long before b_0 rides down. a_0's battery drains fast (20 kW), so after its
-    // first task it is below its 90 % threshold and must charge for about an hour: the
-    // corridor goes to b_0.
+    // charger) goes to a_0. Tasks wait in the dispatcher's queue until a robot is free
+    // (none is queued behind a busy robot): the second (the corridor) goes to b_0, free
+    // at once, and a_0, whose battery drains fast (20 kW), goes back to charge after its
+    // task.
     let b = load("two_level_clinic", None);
     let mut a = fleet(
         "a",
@@ -517,11 +517,7 @@ fn world_a_robot_going_to_charge_hands_its_queued_task_to_another() {
         .collect();
     assert_eq!(
         assigned,
-        [
-            ("go_to_place_0", "a_0"),
-            ("go_to_place_1", "a_0"),
-            ("go_to_place_1", "b_0"),
-        ],
+        [("go_to_place_0", "a_0"), ("go_to_place_1", "b_0")],
         "{}",
         dump(&r.events)
     );
@@ -1214,9 +1210,10 @@ fn guarantee_two_robots_need_the_lift_in_opposite_directions() {
     );
     let r = run(&b, &s, 1800.0);
     assert_all_completed(&r, 2);
+    // Each reached the other's start (the completions); "up" stays at ward_a. "down"
+    // stays at the corridor only until "up" needs its way through: then it makes room.
     let robots = r.world.robots();
     assert!((robots[0].z - 4.0).abs() < 0.05, "{:?}", robots[0]);
-    assert!(robots[1].z.abs() < 0.05, "{:?}", robots[1]);
 }
 
 #[test]
