@@ -14,8 +14,9 @@ use crate::traffic::sipp::{Plan, Query};
 
 /// Robots planned for per task (the nearest by free-flow time).
 const CANDIDATES: usize = 3;
-/// Plans tried per dispatch round (bounds the work of a round).
+/// Plans tried per dispatch round, and tasks looked at (bound the work of a round).
 const PLANS_PER_ROUND: usize = 32;
+const SCAN_PER_ROUND: usize = 64;
 /// A plan waiting longer than this for traffic (s, summed up to its last place) is not
 /// taken, unless younger tasks have gone before the task for `PATIENCE`.
 const MAX_PLANNED_WAIT: f64 = 60.0;
@@ -29,6 +30,8 @@ const DISPATCH_EVERY: f64 = 1.0;
 /// A task in the queue.
 pub(super) struct Pending {
     pub task: usize,
+    /// (fleet, the task's steps for it) of every fleet that may do the task.
+    pub steps: Vec<(usize, Vec<Step>)>,
     /// Since when younger tasks have been taken while this one was not.
     pub passed_over: Option<f64>,
 }
@@ -54,7 +57,8 @@ impl Fleets {
             ended: false,
         });
         self.event(t, ti, "queued", None, String::new(), out);
-        if self.eligible(ti).next().is_none() {
+        let steps = self.fleets_for(ti);
+        if steps.is_empty() {
             self.tasks[ti].ended = true;
             self.event(
                 t,
@@ -68,36 +72,58 @@ impl Fleets {
         }
         self.pending.push_back(Pending {
             task: ti,
+            steps,
             passed_over: None,
         });
         self.next_dispatch = self.next_dispatch.min(t);
     }
 
-    /// (robot, its steps for the task) of every robot that could ever do task `ti`: of a
-    /// fleet the task allows, with the task's places on its graph and reachable.
-    fn eligible(&self, ti: usize) -> impl Iterator<Item = (usize, Vec<Step>)> + '_ {
+    /// (fleet, its steps for the task) of every fleet that may do task `ti` and has a
+    /// robot that can reach the task's places in order.
+    fn fleets_for(&self, ti: usize) -> Vec<(usize, Vec<Step>)> {
         let task = &self.tasks[ti];
-        self.fleets
-            .iter()
-            .enumerate()
-            .filter(move |(_, f)| {
-                task.fleet.as_ref().is_none_or(|n| *n == f.name)
-                    && (f.kinds.is_empty() || f.kinds.contains(&task.category))
-            })
-            .filter_map(move |(fi, f)| self.expand(fi, &task.kind).map(|s| (f, s)))
-            .flat_map(move |(f, steps)| f.robots.iter().map(move |&ri| (ri, steps.clone())))
-            .filter(move |(ri, steps)| {
-                let r = &self.robots[*ri];
-                let mut at = self.sched.itinerary(*ri).at;
-                steps.iter().all(|s| match s {
-                    Step::GoTo(v) => {
-                        let ok = self.nav.times_reachable(r.slot, at, *v);
-                        at = *v;
-                        ok
-                    }
-                    _ => true,
+        let mut out = Vec::new();
+        for (fi, f) in self.fleets.iter().enumerate() {
+            if task.fleet.as_ref().is_some_and(|n| *n != f.name)
+                || !(f.kinds.is_empty() || f.kinds.contains(&task.category))
+            {
+                continue;
+            }
+            let Some(steps) = self.expand(fi, &task.kind) else {
+                continue;
+            };
+            // The first place from some robot (one search from all of them), then each
+            // place from the one before.
+            let mut seen = vec![false; self.nav.vertices.len()];
+            let mut stack: Vec<usize> = f
+                .robots
+                .iter()
+                .map(|&ri| self.sched.itinerary(ri).at)
+                .collect();
+            while let Some(v) = stack.pop() {
+                if std::mem::replace(&mut seen[v], true) {
+                    continue;
+                }
+                for &e in &self.nav.out[f.slot][v] {
+                    stack.push(self.nav.edges[e].to);
+                }
+            }
+            let goals: Vec<usize> = steps
+                .iter()
+                .filter_map(|s| match s {
+                    Step::GoTo(v) => Some(*v),
+                    _ => None,
                 })
-            })
+                .collect();
+            let reaches = goals.first().is_some_and(|&g| seen[g])
+                && goals
+                    .windows(2)
+                    .all(|w| self.nav.times_reachable(f.slot, w[0], w[1]));
+            if reaches {
+                out.push((fi, steps));
+            }
+        }
+        out
     }
 
     /// Whether robot `i` may take a task now: idle, and not at a door or lift.
@@ -118,39 +144,53 @@ impl Fleets {
     }
 
     /// One dispatch round: tasks oldest first, each to the free robot whose plan gets
-    /// there first. Tasks no robot can take now stay queued.
+    /// there first. Tasks no robot can take now stay queued. A round looks at no more
+    /// than `SCAN_PER_ROUND` tasks and makes no more than `PLANS_PER_ROUND` plans.
     pub(super) fn dispatch(&mut self, t: f64, out: &mut Vec<(Topic, Msg)>) {
         if t < self.next_dispatch || self.pending.is_empty() {
             return;
         }
         self.next_dispatch = f64::INFINITY;
         self.retime(t);
+        // Free robots, with their free-flow times to every vertex (once per round).
+        let mut free: Vec<(usize, Vec<f64>)> = (0..self.robots.len())
+            .filter(|&i| self.free(i))
+            .map(|i| {
+                let f = &self.fleets[self.robots[i].fleet];
+                let (_, at, t0) = self.plan_start(i, t);
+                let mut times = self.nav.times_from(f.slot, at, f.speed);
+                for x in &mut times {
+                    *x += t0 - t;
+                }
+                (i, times)
+            })
+            .collect();
         let mut budget = PLANS_PER_ROUND;
         let mut k = 0;
-        while k < self.pending.len() && budget > 0 {
-            if !(0..self.robots.len()).any(|i| self.free(i)) {
-                break;
-            }
+        let mut scanned = 0;
+        while k < self.pending.len() && budget > 0 && !free.is_empty() && scanned < SCAN_PER_ROUND
+        {
+            scanned += 1;
             let ti = self.pending[k].task;
             let patient = self.pending[k]
                 .passed_over
                 .is_some_and(|p| t - p >= PATIENCE);
             // The nearest free robots by free-flow time to the task's first place.
-            let mut near: Vec<(f64, usize, Vec<Step>)> = self
-                .eligible(ti)
-                .filter(|(ri, _)| self.free(*ri))
-                .filter_map(|(ri, steps)| {
-                    let first = first_goal(&steps)?;
-                    let f = &self.fleets[self.robots[ri].fleet];
-                    let (_, at, t0) = self.plan_start(ri, t);
-                    let (d, _) = self.nav.plan(f.slot, at, first, f.speed)?;
-                    Some((t0 - t + d, ri, steps))
-                })
-                .collect();
+            let mut near: Vec<(f64, usize, Vec<Step>)> = Vec::new();
+            for (fi, steps) in &self.pending[k].steps {
+                let Some(first) = first_goal(steps) else {
+                    continue;
+                };
+                for (ri, times) in &free {
+                    if self.robots[*ri].fleet == *fi && times[first].is_finite() {
+                        near.push((times[first], *ri, steps.clone()));
+                    }
+                }
+            }
             near.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
             near.truncate(CANDIDATES);
             let mut best: Option<(f64, usize, Vec<Step>, Plan, usize, f64)> = None;
-            let mut blocked_by_stay = false;
+            let mut failed = false;
             for (_, ri, steps) in near {
                 budget = budget.saturating_sub(1);
                 let goals = self.goals_of(ri, &steps);
@@ -170,28 +210,7 @@ impl Fleets {
                     stay,
                 };
                 let Some(plan) = self.planner.plan(&self.nav, &self.sched, &q) else {
-                    if std::env::var_os("MAPC_TRAFFIC_DEBUG").is_some() {
-                        let ends: Vec<String> = (0..self.robots.len())
-                            .map(|o| {
-                                format!(
-                                    "{}@{}->{}",
-                                    self.robots[o].name,
-                                    self.nav.vertices[self.sched.itinerary(o).at].name,
-                                    self.nav.vertices[self.sched.end_vertex(o)].name
-                                )
-                            })
-                            .collect();
-                        eprintln!(
-                            "DISPATCH t={t:.1} {} for {:?} failed ({}): {ends:?}",
-                            self.robots[ri].name,
-                            goals
-                                .iter()
-                                .map(|g| &self.nav.vertices[g.0].name)
-                                .collect::<Vec<_>>(),
-                            self.planner.why
-                        );
-                    }
-                    blocked_by_stay = true;
+                    failed = true;
                     continue;
                 };
                 let arrive = match plan.goal_at.first() {
@@ -211,9 +230,16 @@ impl Fleets {
                 }
             }
             let Some((_, ri, steps, plan, keep, t0)) = best else {
-                if blocked_by_stay {
+                if failed {
                     // Maybe a robot stays for good where the task must go: it makes room.
-                    let found = self.eligible(ti).find(|e| self.free(e.0));
+                    let found = self.pending[k]
+                        .steps
+                        .iter()
+                        .find_map(|(fi, st)| {
+                            free.iter()
+                                .find(|(ri, _)| self.robots[*ri].fleet == *fi)
+                                .map(|(ri, _)| (*ri, st.clone()))
+                        });
                     if let Some((ri, steps)) = found {
                         let goals = self.goals_of(ri, &steps);
                         self.displace_for(ri, &goals, t);
@@ -226,6 +252,7 @@ impl Fleets {
             for p in self.pending.iter_mut().take(k) {
                 p.passed_over.get_or_insert(t);
             }
+            free.retain(|(i, _)| *i != ri);
             self.start_task(ri, ti, steps, plan, (keep, t0), t, out);
         }
         if !self.pending.is_empty() {

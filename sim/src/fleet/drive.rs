@@ -48,19 +48,6 @@ impl Fleets {
         let Some(to) = self.sched.itinerary(i).travs.front().map(|tr| tr.to) else {
             return;
         };
-        if std::env::var_os("MAPC_TRAFFIC_DEBUG2").is_some() {
-            let tr = self.sched.itinerary(i).travs.front().unwrap();
-            let e = &self.nav.edges[tr.edge];
-            eprintln!(
-                "TRAV {:?} lift_to {:?} door {:?} est {:.1} actual {:.1} (planned start {:.1})",
-                e.kind,
-                self.nav.vertices[e.to].lift,
-                e.door,
-                tr.dur,
-                t - tr.start,
-                tr.start
-            );
-        }
         self.sched.complete_front(i, t);
         self.released = true;
         let r = &mut self.robots[i];

@@ -173,21 +173,6 @@ impl Fleets {
             })
             .collect();
         let mut moved = false;
-        if std::env::var_os("MAPC_TRAFFIC_DEBUG").is_some() {
-            eprintln!(
-                "  t={t:.1} displace for {}: {:?} cur {:?}",
-                self.robots[i].name,
-                blockers
-                    .iter()
-                    .map(|&o| (
-                        &self.robots[o].name,
-                        &self.robots[o].cur,
-                        self.robots[o].task
-                    ))
-                    .collect::<Vec<_>>(),
-                self.robots[i].cur
-            );
-        }
         for o in blockers {
             let r = &self.robots[o];
             // What it is doing stays: its leg's goal, or the work at its place.
@@ -273,31 +258,6 @@ impl Fleets {
             stay: self.stays_at(i, goals),
         };
         let found = self.planner.plan(&self.nav, &self.sched, &q);
-        if found.is_none() && std::env::var_os("MAPC_TRAFFIC_DEBUG").is_some() {
-            let ends: Vec<String> = (0..self.robots.len())
-                .map(|o| {
-                    format!(
-                        "{}@{}->{}({}/{})",
-                        self.robots[o].name,
-                        self.nav.vertices[self.sched.itinerary(o).at].name,
-                        self.nav.vertices[self.sched.end_vertex(o)].name,
-                        self.robots[o].n_sent,
-                        self.sched.itinerary(o).travs.len()
-                    )
-                })
-                .collect();
-            eprintln!(
-                "t={t:.1} {} from {} goals {:?} stay {:?} failed ({}); ends {ends:?}",
-                self.robots[i].name,
-                self.nav.vertices[from].name,
-                goals
-                    .iter()
-                    .map(|g| &self.nav.vertices[g.0].name)
-                    .collect::<Vec<_>>(),
-                q.stay,
-                self.planner.why
-            );
-        }
         let Some(plan) = found else {
             return Err(NoPlan::Busy);
         };
@@ -468,9 +428,6 @@ impl Fleets {
                 }
                 Err(_) => false,
             };
-            if std::env::var_os("MAPC_TRAFFIC_DEBUG").is_some() {
-                eprintln!("REPLAN t={t:.1} {} better {better} old {old_arrival:.1} new {:.1} goals {goals:?}", self.robots[i].name, self.arrival(i, goals.len()));
-            }
             if better {
                 self.robots[i].dirty = true;
             } else {
@@ -515,24 +472,6 @@ impl Fleets {
                 .into_iter()
                 .map(|b| format!("{} ({})", self.robots[b].name, self.status(b)))
                 .collect();
-            if std::env::var_os("MAPC_TRAFFIC_DEBUG").is_some() {
-                eprintln!(
-                    "STUCK t={t:.1} {} waits for {who:?}; travs {:?}",
-                    self.robots[i].name,
-                    self.sched
-                        .itinerary(i)
-                        .travs
-                        .iter()
-                        .take(3)
-                        .map(|x| (x.edge, x.start, x.end))
-                        .collect::<Vec<_>>()
-                );
-                for o in 0..self.robots.len() {
-                    let it = self.sched.itinerary(o);
-                    eprintln!("   {} {} cur {:?} gate {:?} at {} sent {} granted0 {} waits {:?} travs {:?}", self.robots[o].name, self.status(o), self.robots[o].cur, self.robots[o].gate, self.nav.vertices[it.at].name, self.robots[o].n_sent, self.sched.granted(o, 0), self.sched.waits_for(o, 0),
-                        it.travs.iter().take(2).map(|x| (x.edge, x.begun, x.start as i64, x.end as i64)).collect::<Vec<_>>());
-                }
-            }
             if let Some(ti) = self.robots[i].task {
                 let detail = format!("waiting for {}", who.join(","));
                 self.event(t, ti, "stuck", Some(i), detail, out);
