@@ -15,17 +15,22 @@ use crate::traffic::sipp::{Plan, Query};
 /// Robots planned for per task (the nearest by free-flow time).
 const CANDIDATES: usize = 3;
 /// Plans tried per dispatch round, and tasks looked at (bound the work of a round).
-const PLANS_PER_ROUND: usize = 32;
+const PLANS_PER_ROUND: usize = 8;
 const SCAN_PER_ROUND: usize = 64;
 /// A plan waiting longer than this for traffic (s, summed up to its last place) is not
 /// taken, unless younger tasks have gone before the task for `PATIENCE`.
 const MAX_PLANNED_WAIT: f64 = 60.0;
+/// The share of a plan's length (to its last place) it may wait on top of that.
+const WAIT_SHARE: f64 = 0.25;
 /// A task passed over this long (s) by younger ones takes the soonest plan that waits at
 /// most `PATIENT_WAIT`: robots with a task never plan to stand for longer.
 const PATIENCE: f64 = 600.0;
 const PATIENT_WAIT: f64 = 200.0;
-/// Dispatch is tried again this often (s) while tasks wait.
-const DISPATCH_EVERY: f64 = 1.0;
+/// Dispatch is tried again this often (s) while tasks wait (and at once when a robot
+/// becomes free or a task comes).
+const DISPATCH_EVERY: f64 = 5.0;
+/// Robots in a waiting task's way are asked to make room at most this often (s).
+const DISPLACE_EVERY: f64 = 5.0;
 
 /// A task in the queue.
 pub(super) struct Pending {
@@ -34,6 +39,8 @@ pub(super) struct Pending {
     pub steps: Vec<(usize, Vec<Step>)>,
     /// Since when younger tasks have been taken while this one was not.
     pub passed_over: Option<f64>,
+    /// When robots were last asked to make room for it.
+    pub displaced_at: f64,
 }
 
 impl Fleets {
@@ -74,6 +81,7 @@ impl Fleets {
             task: ti,
             steps,
             passed_over: None,
+            displaced_at: f64::NEG_INFINITY,
         });
         self.next_dispatch = self.next_dispatch.min(t);
     }
@@ -199,6 +207,17 @@ impl Fleets {
                     .flatten();
                 let f = &self.fleets[self.robots[ri].fleet];
                 let (keep, from, t0) = self.plan_start(ri, t);
+                // A place where another robot stays for good: no plan can get there (a
+                // search would only prove it, at length), that robot must make room.
+                let conf = self.sched.conf();
+                if goals.iter().any(|&(g, _)| {
+                    conf.vertex[g]
+                        .iter()
+                        .any(|&x| self.sched.held_for_good(x, ri).is_some())
+                }) {
+                    failed = true;
+                    continue;
+                }
                 let q = Query {
                     robot: ri,
                     slot: f.slot,
@@ -222,7 +241,12 @@ impl Fleets {
                 } else {
                     MAX_PLANNED_WAIT
                 };
-                if planned_wait(&plan, t0) > most {
+                // Long tasks may wait longer in all: a share of their length.
+                let last = plan.goal_at.last().copied().unwrap_or(0);
+                let length = last
+                    .checked_sub(1)
+                    .map_or(0.0, |k| plan.steps[k].end - t0);
+                if planned_wait(&plan, t0) > most + WAIT_SHARE * length {
                     continue;
                 }
                 if best.as_ref().is_none_or(|b| arrive < b.0) {
@@ -230,7 +254,8 @@ impl Fleets {
                 }
             }
             let Some((_, ri, steps, plan, keep, t0)) = best else {
-                if failed {
+                if failed && t >= self.pending[k].displaced_at + DISPLACE_EVERY {
+                    self.pending[k].displaced_at = t;
                     // Maybe a robot stays for good where the task must go: it makes room.
                     let found = self.pending[k]
                         .steps

@@ -15,6 +15,8 @@ impl Fleets {
         let Some(ti) = self.robots[i].task.take() else {
             return;
         };
+        // The robot is free (once its steps are done): waiting tasks may go to it.
+        self.next_dispatch = self.next_dispatch.min(t);
         if let Some(tk) = self.tasks.get_mut(ti) {
             tk.ended = true;
         }
@@ -254,7 +256,7 @@ impl Fleets {
             return true;
         }
         // Nothing to do: to a parking vertex (a robot that did not start on one plans its
-        // way there first; every plan ends on one), and free for the dispatcher.
+        // way there first; every plan ends on one).
         if self.robots[i].park_pending && t >= self.robots[i].replan_at {
             match self.plan_to(i, &[], t) {
                 Ok(_) => self.robots[i].park_pending = false,
@@ -267,9 +269,6 @@ impl Fleets {
         }
         let n = self.sched.itinerary(i).travs.len();
         self.advance(i, n, t, out);
-        if !self.pending.is_empty() {
-            self.next_dispatch = self.next_dispatch.min(t);
-        }
         false
     }
 

@@ -336,6 +336,14 @@ impl Schedule {
         }
     }
 
+    /// The robot other than `r` that holds resource `x` for good (stays there), if any.
+    pub fn held_for_good(&self, x: Res, r: usize) -> Option<usize> {
+        self.queues[x as usize]
+            .back()
+            .filter(|s| s.last == FOREVER && s.robot as usize != r)
+            .map(|s| s.robot as usize)
+    }
+
     /// Busy intervals `[start, end)` of resource `x` for anybody but robot `r`.
     pub fn busy(&self, x: Res, r: usize) -> impl Iterator<Item = (f64, f64)> + '_ {
         self.queues[x as usize]
