@@ -15,7 +15,7 @@ use crate::traffic::sipp::{Plan, Query};
 /// Robots planned for per task (the nearest by free-flow time).
 const CANDIDATES: usize = 3;
 /// Plans tried per dispatch round, and tasks looked at (bound the work of a round).
-const PLANS_PER_ROUND: usize = 8;
+const PLANS_PER_ROUND: usize = 32;
 const SCAN_PER_ROUND: usize = 64;
 /// A plan waiting longer than this for traffic (s, summed up to its last place) is not
 /// taken, unless younger tasks have gone before the task for `PATIENCE`.
@@ -176,8 +176,7 @@ impl Fleets {
         let mut budget = PLANS_PER_ROUND;
         let mut k = 0;
         let mut scanned = 0;
-        while k < self.pending.len() && budget > 0 && !free.is_empty() && scanned < SCAN_PER_ROUND
-        {
+        while k < self.pending.len() && budget > 0 && !free.is_empty() && scanned < SCAN_PER_ROUND {
             scanned += 1;
             let ti = self.pending[k].task;
             let patient = self.pending[k]
@@ -243,9 +242,7 @@ impl Fleets {
                 };
                 // Long tasks may wait longer in all: a share of their length.
                 let last = plan.goal_at.last().copied().unwrap_or(0);
-                let length = last
-                    .checked_sub(1)
-                    .map_or(0.0, |k| plan.steps[k].end - t0);
+                let length = last.checked_sub(1).map_or(0.0, |k| plan.steps[k].end - t0);
                 if planned_wait(&plan, t0) > most + WAIT_SHARE * length {
                     continue;
                 }
@@ -257,14 +254,11 @@ impl Fleets {
                 if failed && t >= self.pending[k].displaced_at + DISPLACE_EVERY {
                     self.pending[k].displaced_at = t;
                     // Maybe a robot stays for good where the task must go: it makes room.
-                    let found = self.pending[k]
-                        .steps
-                        .iter()
-                        .find_map(|(fi, st)| {
-                            free.iter()
-                                .find(|(ri, _)| self.robots[*ri].fleet == *fi)
-                                .map(|(ri, _)| (*ri, st.clone()))
-                        });
+                    let found = self.pending[k].steps.iter().find_map(|(fi, st)| {
+                        free.iter()
+                            .find(|(ri, _)| self.robots[*ri].fleet == *fi)
+                            .map(|(ri, _)| (*ri, st.clone()))
+                    });
                     if let Some((ri, steps)) = found {
                         let goals = self.goals_of(ri, &steps);
                         self.displace_for(ri, &goals, t);

@@ -4,9 +4,9 @@
 //! (`crate::traffic::parks`: a waypoint where a standing robot blocks no route, away from
 //! task waypoints, chargers and lift cabins), so that a robot without work never stands in
 //! the way of one with work, and every robot has a parking vertex of its own to end its
-//! plans on (Token Passing's condition). Parking vertices off the task places come first;
-//! task places that cut nothing only when those run out (a robot parked there is sent
-//! away when a task needs the place). Fewer robots only when the building has too few
+//! plans on (Token Passing's condition). Only on a graph with no parking vertex off the
+//! task places do robots start on task places that cut nothing (a robot parked there is
+//! sent away when a task needs the place). Fewer robots only when the building has too few
 //! parking vertices; the report says so (S0211) and counts the others as `reserve`.
 //!
 //! Fleets share the parking vertices in proportion to their sizes: robots are placed one at
@@ -14,6 +14,7 @@
 //! the fewest robots so far.
 
 use super::*;
+use crate::traffic::parks::{PARK, PARK_ON_PLACE};
 
 /// A fleet to place: its index in the scenario, graph slot and robot count.
 pub(super) struct AutoFleet {
@@ -51,10 +52,20 @@ pub(super) fn auto_spawn(
             });
         let Some(k) = next else { break };
         let slot = fleets[k].slot;
+        // Task places only on a graph without any other parking vertex: a robot parked
+        // on a place holds up the tasks going there.
+        let tier = if nav.members[slot]
+            .iter()
+            .any(|&v| parks.per_slot[slot][v] == PARK)
+        {
+            PARK
+        } else {
+            PARK_ON_PLACE
+        };
         let pick = nav.members[slot]
             .iter()
             .copied()
-            .filter(|&v| parks.per_slot[slot][v] != 0)
+            .filter(|&v| parks.per_slot[slot][v] == tier)
             .filter(|&v| conf.vertex[v].iter().all(|&x| !held[x as usize]))
             .min_by_key(|&v| {
                 let ro = &nav.vertices[v].roles;

@@ -18,9 +18,7 @@ impl Fleets {
     /// it stands on), a door, a lift, a workcell, or charging while a task waits for it.
     fn wait_cause(&self, i: usize) -> Option<(WaitCause, Place)> {
         let r = &self.robots[i];
-        if r.task.is_none() {
-            return None;
-        }
+        r.task?;
         match (&r.gate, &r.cur) {
             (Gate::Door { door, .. }, _) => Some((WaitCause::Door, Place::Door(*door))),
             (Gate::Lift { lift, .. }, _) => Some((WaitCause::Lift, Place::Lift(*lift))),

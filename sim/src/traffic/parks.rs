@@ -367,7 +367,7 @@ pub fn cut_by(nav: &Nav, conf: &Conflicts, s: usize, v: usize, of: &[usize]) -> 
     let bwd = reach(nav, &slot, root, false, &usable);
     of.iter()
         .copied()
-        .filter(|&w| !gone[w] && !(fwd[w] && bwd[w]))
+        .filter(|&w| !(gone[w] || fwd[w] && bwd[w]))
         .collect()
 }
 
