@@ -25,6 +25,10 @@ pub struct NavVertex {
     pub elevation: f64,
     /// Index into `Nav::lifts` when the vertex lies in a lift cabin.
     pub lift: Option<usize>,
+    /// The lift whose plugin would carry a robot standing here (its payload box holds the
+    /// vertex, `mapc_ir::Lift::payload_box`): the cabin's vertices, and around a rotated
+    /// cabin some just outside it.
+    pub carried_by: Option<usize>,
     pub roles: WaypointRoles,
 }
 
@@ -50,6 +54,9 @@ pub struct NavEdge {
     pub door: Option<usize>,
     pub mutex: Option<String>,
     pub orientation: Orientation,
+    /// The lift whose plugin would carry a robot driving this lane (it crosses the lift's
+    /// payload box on a floor the lift serves).
+    pub carried_by: Option<usize>,
 }
 
 #[derive(Debug, Clone)]
@@ -116,6 +123,14 @@ impl Nav {
                         l.shaft_contains(v.pos) || v.roles.lift_cabin.as_deref() == Some(&l.name)
                     })
                     .map(|lh| lh.index());
+                let carried_by = lift.or_else(|| {
+                    b.lifts_on_level(v.level)
+                        .find(|&lh| {
+                            let [x0, x1, y0, y1] = b.lifts[lh].payload_box();
+                            (x0..=x1).contains(&v.pos.x) && (y0..=y1).contains(&v.pos.y)
+                        })
+                        .map(|lh| lh.index())
+                });
                 nav.vertices.push(NavVertex {
                     name: v.name.clone(),
                     pos: v.pos,
@@ -123,6 +138,7 @@ impl Nav {
                     level_name: level.name.clone(),
                     elevation: level.elevation,
                     lift,
+                    carried_by,
                     roles: (*v.roles).clone(),
                 });
                 nav.vertices.len() - 1
@@ -147,6 +163,10 @@ impl Nav {
                     let (from, to) = if rev { (e, s) } else { (s, e) };
                     let (a, z) = (nav.vertices[from].pos, nav.vertices[to].pos);
                     let door = b.crossed_door(lane.level, a, z).map(|d| d.index());
+                    let carried_by = b
+                        .lifts_on_level(lane.level)
+                        .find(|&lh| segment_crosses_box(a, z, b.lifts[lh].payload_box()))
+                        .map(|lh| lh.index());
                     nav.edges.push(NavEdge {
                         graph: slot,
                         from,
@@ -162,6 +182,7 @@ impl Nav {
                         } else {
                             lane.orientation.clone()
                         },
+                        carried_by,
                     });
                 }
             }
@@ -200,6 +221,7 @@ impl Nav {
                         door: None,
                         mutex: None,
                         orientation: Orientation::Any,
+                        carried_by: Some(l),
                     });
                 }
             }
@@ -411,6 +433,23 @@ impl PartialOrd for QItem {
 }
 
 /// Distance from `p` to segment `a→b`.
+/// Whether segment `a`–`z` meets the box `[x_min, x_max, y_min, y_max]` (slab clipping).
+fn segment_crosses_box(a: Vec2, z: Vec2, [x0, x1, y0, y1]: [f64; 4]) -> bool {
+    let (mut lo, mut hi) = (0.0f64, 1.0f64);
+    for (p, d, min, max) in [(a.x, z.x - a.x, x0, x1), (a.y, z.y - a.y, y0, y1)] {
+        if d.abs() < 1e-12 {
+            if p < min || p > max {
+                return false;
+            }
+        } else {
+            let (t0, t1) = ((min - p) / d, (max - p) / d);
+            lo = lo.max(t0.min(t1));
+            hi = hi.min(t0.max(t1));
+        }
+    }
+    lo <= hi
+}
+
 pub fn point_segment(p: Vec2, a: Vec2, b: Vec2) -> f64 {
     let ab = b.minus(a);
     let l2 = ab.dot(ab);

@@ -224,12 +224,7 @@ impl World {
             } else {
                 0.0
             };
-            // Axis-aligned hull of the rotated cabin footprint.
-            let (s, c) = l.yaw.sin_cos();
-            let hx = (c * l.width / 2.0).abs() + (s * l.depth / 2.0).abs();
-            let hy = (s * l.width / 2.0).abs() + (c * l.depth / 2.0).abs();
-            let aabb = [l.pos.x - hx, l.pos.x + hx, l.pos.y - hy, l.pos.y + hy];
-            let mut lift = LiftSim::new(l.name.clone(), floors, initial, z, aabb);
+            let mut lift = LiftSim::new(l.name.clone(), floors, initial, z, l.payload_box());
             lift.set_phase(rng.f64());
             lift_index.entry(l.name.clone()).or_insert(lifts.len());
             lifts.push(lift);

@@ -76,8 +76,9 @@ impl Conflicts {
             if let Some(m) = v.roles.mutex.as_deref().and_then(|m| mutexes.get(m)) {
                 set.push((mutex_base + m) as Res);
             }
-            // Standing in a cabin owns the lift: nobody else may call it meanwhile.
-            if let Some(l) = v.lift {
+            // Standing where the lift would carry the robot (in the cabin, or close to a
+            // rotated one) owns the lift: nobody else may move it meanwhile.
+            if let Some(l) = v.carried_by {
                 set.push((lift_base + l) as Res);
             }
             set.sort_unstable();
@@ -143,11 +144,9 @@ impl Conflicts {
                     }
                 }
             }
-            // A lift ride or a lane into a cabin needs the lift itself.
-            for v in [e.from, e.to] {
-                if let Some(l) = nav.vertices[v].lift {
-                    set.push((lift_base + l) as Res);
-                }
+            // A lift ride, or a lane where the lift would carry the robot, needs the lift.
+            if let Some(l) = e.carried_by {
+                set.push((lift_base + l) as Res);
             }
             set.sort_unstable();
             set.dedup();

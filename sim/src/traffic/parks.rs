@@ -5,7 +5,8 @@
 //! still be left and reached. Then a robot can always wait at its parking vertex until the
 //! others' finite plans are done and drive on: planning never fails for want of room.
 //!
-//! Not parking vertices: lift cabins, and vertices whose standing set reaches a task
+//! Not parking vertices: where a lift would carry a robot (its cabins, and around a rotated
+//! cabin some vertices just outside), and vertices whose standing set reaches a task
 //! waypoint, a charger or a spawn point (a robot there would be in their way). Task
 //! waypoints and chargers themselves are parking vertices of a second kind, taken only when
 //! the others are too few: a robot parked there is sent elsewhere when another needs it.
@@ -117,7 +118,7 @@ pub fn choose(nav: &Nav, conf: &Conflicts, needs: &Needs) -> Parks {
         let mut cands: Vec<usize> = nav.members[s]
             .iter()
             .copied()
-            .filter(|&v| main[s][v] != usize::MAX && nav.vertices[v].lift.is_none())
+            .filter(|&v| main[s][v] != usize::MAX && nav.vertices[v].carried_by.is_none())
             .filter(|&v| !required(s, v) || place(v))
             .collect();
         let class = |v: usize| {
@@ -152,7 +153,7 @@ pub fn choose(nav: &Nav, conf: &Conflicts, needs: &Needs) -> Parks {
             abs.sort_unstable();
             abs.dedup();
             let touches_need = abs.iter().any(|&w| {
-                nav.vertices[w].lift.is_some()
+                nav.vertices[w].carried_by.is_some()
                     || (0..slots.len()).any(|t| required(t, w) || parks.per_slot[t][w] != 0)
             });
             if touches_need {

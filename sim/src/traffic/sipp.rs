@@ -170,8 +170,8 @@ impl PartialOrd for Open {
 pub struct Planner {
     /// Per slot, per vertex: incoming edges.
     inn: Vec<Vec<Vec<usize>>>,
-    /// Time to the nearest parking vertex, per (slot, speed bits).
-    park_dist: HashMap<(usize, u64), Vec<f64>>,
+    /// Time to the nearest parking vertex, per (slot, speed bits, parking vertices' hash).
+    park_dist: HashMap<(usize, u64, u64), Vec<f64>>,
     /// Plans made and states expanded, for the report.
     pub plans: u64,
     pub expanded: u64,
@@ -243,8 +243,17 @@ impl Planner {
     /// [`Planner::plan`], ending on places only when `places`.
     fn search(&mut self, nav: &Nav, sched: &Schedule, q: &Query, places: bool) -> Option<Plan> {
         let conf = sched.conf();
-        let key = (q.slot, q.kin.speed.to_bits());
+        // Keyed by the parking vertices too: making room plans with other sets of them.
+        let key = (q.slot, q.kin.speed.to_bits(), {
+            use std::hash::{Hash, Hasher};
+            let mut h = std::collections::hash_map::DefaultHasher::new();
+            q.parks.hash(&mut h);
+            h.finish()
+        });
         if !self.park_dist.contains_key(&key) {
+            if self.park_dist.len() >= 64 {
+                self.park_dist.clear();
+            }
             let parks: Vec<usize> = (0..nav.vertices.len())
                 .filter(|&v| q.parks[v] != 0)
                 .collect();
@@ -258,13 +267,25 @@ impl Planner {
         for &(g, _) in q.goals {
             dist.push(self.dist_to(nav, q.slot, &q.kin, &[g]));
         }
+        // After the last goal: to a parking vertex, or back to where the robot may stay.
+        let end_dist: Vec<f64> = match q.stay {
+            Some(st) => {
+                let to_stay = self.dist_to(nav, q.slot, &q.kin, &[st]);
+                park_dist
+                    .iter()
+                    .zip(&to_stay)
+                    .map(|(a, b)| a.min(*b))
+                    .collect()
+            }
+            None => park_dist.clone(),
+        };
         let mut rest = vec![0.0; nl + 1];
         for l in (0..nl).rev() {
             let (g, dwell) = q.goals[l];
             let next = if l + 1 < nl {
                 dist[l + 1][g]
             } else {
-                park_dist[g]
+                end_dist[g]
             };
             rest[l] = dwell + next + rest[l + 1];
         }
@@ -272,7 +293,7 @@ impl Planner {
             if label < nl {
                 dist[label][v] + rest[label]
             } else {
-                park_dist[v]
+                end_dist[v]
             }
         };
         if !h(q.from, 0).is_finite() {
