@@ -138,6 +138,7 @@ fn generator_makes_what_it_says() {
             one_way_loop: false,
             doors: false,
             well_formed: true,
+            yaw: 1.0,
         },
     );
     assert_eq!(b.levels, 2);
@@ -145,6 +146,21 @@ fn generator_makes_what_it_says() {
     let building = parsed.valid_building().expect("loads");
     assert_eq!(building.levels.len(), 2);
     assert_eq!(building.lifts.len(), 1);
+    // Turned as a whole: the cabin waypoints stay in the (turned) cabin, the lobby 2.5 m
+    // away along the building's x axis.
+    let lift = building.lifts.iter().next().unwrap().1;
+    assert!((lift.yaw.abs() - 1.0).abs() < 1e-9, "{}", lift.yaw);
+    let find = |name: &str| {
+        let (_, v) = building
+            .vertices
+            .iter()
+            .find(|(_, v)| v.level.index() == 0 && v.name == name)
+            .unwrap();
+        v.pos
+    };
+    assert!(lift.shaft_contains(find("cabin_0")));
+    assert!((find("lobby_0").minus(find("cabin_0")).norm() - 2.5).abs() < 1e-9);
+    assert!(!lift.shaft_contains(find("lobby_0")));
     // Rooms: every junction has its side corridor (j = 0 always; others 3 in 4), one room each.
     assert!(b.places.iter().all(|p| p.starts_with("room_")));
     assert!(b.places.len() >= 2 && b.places.len() <= 6, "{:?}", b.places);

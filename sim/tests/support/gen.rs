@@ -51,6 +51,9 @@ pub struct Shape {
     pub one_way_loop: bool,
     pub doors: bool,
     pub well_formed: bool,
+    /// The whole building turned by this angle (rad) about the origin: lanes, doors and the
+    /// lift cabin off the axes (a rotated cabin's payload box reaches past it).
+    pub yaw: f64,
 }
 
 /// A random building from `seed`.
@@ -65,6 +68,11 @@ pub fn building(seed: u64) -> Building {
         one_way_loop: rng.bool(),
         doors: rng.bool(),
         well_formed: rng.usize(0..3) != 0,
+        yaw: if rng.bool() {
+            0.0
+        } else {
+            rng.f64() * std::f64::consts::TAU
+        },
     };
     building_with(seed, &shape)
 }
@@ -201,7 +209,9 @@ pub fn building_with(seed: u64, s: &Shape) -> Building {
             );
         }
         let _ = writeln!(out, "    vertices:");
+        let (sin, cos) = s.yaw.sin_cos();
         for (x, y, name, params) in &lv.verts {
+            let (x, y) = (x * cos - y * sin, x * sin + y * cos);
             if params.is_empty() {
                 let _ = writeln!(out, "      - [{x}, {y}, 0, \"{name}\"]");
             } else {
@@ -212,9 +222,13 @@ pub fn building_with(seed: u64, s: &Shape) -> Building {
     if s.levels > 1 {
         let names: Vec<String> = (0..s.levels).map(|l| format!("L{}", l + 1)).collect();
         let _ = writeln!(out, "lifts:\n  lift_1:");
+        let (sin, cos) = s.yaw.sin_cos();
         let _ = writeln!(
             out,
-            "    depth: 1.6\n    width: 1.6\n    x: {cabin_x}\n    y: 0\n    yaw: 0"
+            "    depth: 1.6\n    width: 1.6\n    x: {}\n    y: {}\n    yaw: {}",
+            cabin_x * cos,
+            cabin_x * sin,
+            s.yaw
         );
         let _ = writeln!(out, "    doors:\n      lift_1_door: {{door_type: 2, motion_axis_orientation: 1.5708, width: 1.2, x: 0.8, y: 0}}");
         let _ = writeln!(out, "    level_doors:");
@@ -243,18 +257,28 @@ fn a_x_towards(x: f64, rx: f64) -> f64 {
 }
 
 /// A saturating stream of loops between random places of `b`: a task every `every` s for
-/// the whole run, each between two places drawn from the seed, all for one fleet of
-/// `robots` TinyRobots placed by `spawn: auto`. `faults`: extra scenario lines.
+/// the whole run, each between two places drawn from the seed, for `robots` robots placed
+/// by `spawn: auto`: TinyRobots, and in one building in three half of them DeliveryRobots.
 pub fn scenario(b: &Building, robots: usize, duration_s: f64, every: f64, seed: u64) -> String {
     let mut rng = fastrand::Rng::with_seed(seed);
     let mut out = String::new();
     let _ = writeln!(out, "seed: {seed}");
     let _ = writeln!(out, "duration: {duration_s}s");
     let _ = writeln!(out, "crowd: {{enabled: false}}");
+    // One building in three has a second fleet of bigger, slower robots on the same lanes
+    // (footprints and kinematics differ; the tasks go to whichever fleet is there first).
+    let big = if seed % 3 == 2 { robots / 2 } else { 0 };
     let _ = writeln!(
         out,
-        "fleets:\n  - {{name: fleet, graph: 0, robot: TinyRobot, count: {robots}, spawn: auto, tasks: [loop]}}"
+        "fleets:\n  - {{name: fleet, graph: 0, robot: TinyRobot, count: {}, spawn: auto, tasks: [loop]}}",
+        robots - big
     );
+    if big > 0 {
+        let _ = writeln!(
+            out,
+            "  - {{name: big, graph: 0, robot: DeliveryRobot, count: {big}, spawn: auto, tasks: [loop]}}"
+        );
+    }
     let _ = writeln!(out, "tasks:");
     let n = (duration_s / every) as usize;
     for k in 0..n {
