@@ -49,6 +49,12 @@ impl Fleets {
             return;
         };
         self.sched.complete_front(i, t);
+        if cfg!(debug_assertions) {
+            if let Err(e) = self.sched.check(t) {
+                self.cycles += 1;
+                debug_assert!(false, "schedule broken after robot {i} arrived: {e}");
+            }
+        }
         self.released = true;
         let r = &mut self.robots[i];
         r.n_sent = r.n_sent.saturating_sub(1);

@@ -29,7 +29,7 @@ pub(super) enum NoPlan {
 impl Fleets {
     /// Brings the schedule's time estimates up to `t` (once per update).
     pub(super) fn retime(&mut self, t: f64) {
-        if self.retimed_at == t {
+        if self.retimed_at == t && !self.sched.stale() {
             return;
         }
         self.retimed_at = t;

@@ -61,9 +61,49 @@ impl Conflicts {
         let mutex_base = lift_base + nav.lifts.len();
         // One robot passes a door at a time: the door opens and closes for each.
         let door_base = mutex_base + mutexes.len();
-        let n_res = door_base + nav.doors.len();
+        let pair_base = door_base + nav.doors.len();
         let body = 2.0 * footprint + MARGIN;
         let same_level = |a: usize, b: usize| nav.vertices[a].level == nav.vertices[b].level;
+        let clearance = |graph: usize| {
+            per_slot.get(graph).copied().unwrap_or(Clearance {
+                footprint,
+                stop_distance: 0.0,
+                stop_radius: 0.0,
+            })
+        };
+        // Lanes closer than this interact (contact, or a stop zone reaching the other's
+        // centre), per IR lane: (one end, the other, its gap).
+        let mut lanes: BTreeMap<usize, (usize, usize, f64)> = BTreeMap::new();
+        for e in &nav.edges {
+            if let (Some(l), EdgeKind::Lane) = (e.lane, e.kind) {
+                let c = clearance(e.graph);
+                let gap = (footprint + c.footprint.min(footprint) + MARGIN).max(c.stop_radius);
+                lanes.entry(l).or_insert((e.from, e.to, gap));
+            }
+        }
+        // Two lanes that interact share a resource of their own, so that two lanes near a
+        // third do not exclude each other through it (on a corridor of short lanes, a robot
+        // would otherwise keep the lanes two junctions away free).
+        let lane_list: Vec<(usize, (usize, usize, f64))> =
+            lanes.iter().map(|(&l, &g)| (l, g)).collect();
+        let mut near: BTreeMap<usize, Vec<Res>> = BTreeMap::new();
+        let mut n_pairs = 0;
+        for (i, &(li, (a, z, gi))) in lane_list.iter().enumerate() {
+            for &(lj, (p, q, gj)) in &lane_list[i + 1..] {
+                if !same_level(a, p) {
+                    continue;
+                }
+                let (pa, pz) = (nav.vertices[a].pos, nav.vertices[z].pos);
+                let (pp, pq) = (nav.vertices[p].pos, nav.vertices[q].pos);
+                if segment_segment(pa, pz, pp, pq) < gi.max(gj) {
+                    let x = (pair_base + n_pairs) as Res;
+                    n_pairs += 1;
+                    near.entry(li).or_default().push(x);
+                    near.entry(lj).or_default().push(x);
+                }
+            }
+        }
+        let n_res = pair_base + n_pairs;
 
         let mut vertex = Vec::with_capacity(nv);
         for (i, v) in nav.vertices.iter().enumerate() {
@@ -93,15 +133,8 @@ impl Conflicts {
             match e.kind {
                 EdgeKind::Lift(l) => set.push((lift_base + l) as Res),
                 EdgeKind::Lane => {
-                    let c = per_slot.get(e.graph).copied().unwrap_or(Clearance {
-                        footprint,
-                        stop_distance: 0.0,
-                        stop_radius: 0.0,
-                    });
+                    let c = clearance(e.graph);
                     let body = footprint + c.footprint.min(footprint) + MARGIN;
-                    // Lanes closer than this interact (contact, or our stop zone reaching
-                    // the other's centre; the other lane's own set covers its stop zone).
-                    let lane_gap = body.max(c.stop_radius);
                     let (a, z) = (nav.vertices[e.from].pos, nav.vertices[e.to].pos);
                     let d = z.minus(a);
                     let len = d.norm();
@@ -123,18 +156,7 @@ impl Conflicts {
                     }
                     if let Some(lane) = e.lane {
                         set.push((lane_base + lane) as Res);
-                    }
-                    for o in &nav.edges {
-                        let (Some(ol), EdgeKind::Lane) = (o.lane, o.kind) else {
-                            continue;
-                        };
-                        if !same_level(o.from, e.from) {
-                            continue;
-                        }
-                        let (p, q) = (nav.vertices[o.from].pos, nav.vertices[o.to].pos);
-                        if segment_segment(a, z, p, q) < lane_gap {
-                            set.push((lane_base + ol) as Res);
-                        }
+                        set.extend(near.get(&lane).into_iter().flatten().copied());
                     }
                     if let Some(m) = e.mutex.as_deref().and_then(|m| mutexes.get(m)) {
                         set.push((mutex_base + m) as Res);
@@ -168,5 +190,30 @@ impl Conflicts {
             trav,
             n_res,
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use crate::traffic::test_map::{conflicts, e, nav};
+
+    #[test]
+    fn lanes_conflict_with_their_neighbours_only() {
+        let nav = nav();
+        let conf = conflicts(&nav);
+        let shared = |x: usize, y: usize| {
+            conf.trav[x]
+                .iter()
+                .any(|r| conf.trav[y].binary_search(r).is_ok())
+        };
+        // The corridor a - b - c - d, 4 m lanes: lanes that meet conflict (head-on, or at
+        // the junction); a-b and c-d, 4 m apart, do not, though both meet b-c.
+        assert!(shared(e(&nav, "a", "b"), e(&nav, "b", "a")));
+        assert!(shared(e(&nav, "a", "b"), e(&nav, "c", "b")));
+        assert!(shared(e(&nav, "a", "b"), e(&nav, "b", "c")));
+        assert!(!shared(e(&nav, "a", "b"), e(&nav, "c", "d")));
+        assert!(!shared(e(&nav, "a", "b"), e(&nav, "d", "c")));
+        // The parking bays off b and c, 4 m apart, are as independent.
+        assert!(!shared(e(&nav, "b", "p1"), e(&nav, "c", "p2")));
     }
 }

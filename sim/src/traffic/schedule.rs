@@ -88,6 +88,8 @@ pub struct Schedule {
     conf: Conflicts,
     queues: Vec<VecDeque<Span>>,
     its: Vec<Itinerary>,
+    /// A traversal began or ended since the last retime: the estimates are stale.
+    stale: bool,
 }
 
 impl Schedule {
@@ -117,7 +119,12 @@ impl Schedule {
                 base: 1,
             });
         }
-        Schedule { conf, queues, its }
+        Schedule {
+            conf,
+            queues,
+            its,
+            stale: true,
+        }
     }
 
     pub fn conf(&self) -> &Conflicts {
@@ -175,6 +182,7 @@ impl Schedule {
     /// Robot `r` starts driving its first `n` remaining traversals (they are granted).
     /// Traversals sent together are driven one after the other.
     pub fn begin(&mut self, r: usize, n: usize, t: f64) {
+        self.stale = true;
         let mut prev = t;
         for tr in self.its[r].travs.iter_mut().take(n) {
             if !tr.begun {
@@ -192,6 +200,7 @@ impl Schedule {
         let Some(tr) = self.its[r].travs.pop_front() else {
             return;
         };
+        self.stale = true;
 
         for &x in &self.conf.trav[tr.edge] {
             let q = &mut self.queues[x as usize];
@@ -298,10 +307,20 @@ impl Schedule {
                 }
             }
             // Elsewhere: before the first span of another robot that starts after it ends
-            // (queues are in time order; the planner kept clear of the others' spans).
+            // (queues are in time order; the planner kept clear of the others' spans), but
+            // never before a span whose robot holds the resource now.
+            let its = &self.its;
+            let held = |s: &Span| {
+                let it = &its[s.robot as usize];
+                s.first < it.base
+                    || it
+                        .travs
+                        .front()
+                        .is_some_and(|t| t.begun && s.first <= t.seq)
+            };
             let pos = q
                 .iter()
-                .position(|s| s.robot as usize != r && s.start >= end)
+                .position(|s| s.robot as usize != r && s.start >= end && !held(s))
                 .unwrap_or(q.len());
             q.insert(
                 pos,
@@ -352,10 +371,16 @@ impl Schedule {
             .map(|s| (s.start, s.end))
     }
 
+    /// Whether a traversal began or ended since the last [`Schedule::retime`].
+    pub fn stale(&self) -> bool {
+        self.stale
+    }
+
     /// Re-estimates every traversal's times from `now` on, keeping every queue's order:
     /// a traversal starts when its robot is ready and every span before its own in the
     /// queues it needs has ended. Fails when the dependencies form a cycle.
     pub fn retime(&mut self, now: f64) -> Result<(), Cycle> {
+        self.stale = false;
         // Dependencies of each traversal on the last traversal of the span before its own.
         let nr = self.its.len();
         let offs: Vec<usize> = {
@@ -487,6 +512,15 @@ impl Schedule {
             for (w, s) in q.iter().enumerate() {
                 if s.last != FOREVER && s.last < s.first {
                     return Err(format!("resource {x}: span {w} ends before it starts"));
+                }
+                // A span whose traversals are all done was not released: nobody behind it
+                // would ever be granted the resource.
+                let it = &self.its[s.robot as usize];
+                if s.last != FOREVER && s.last < it.base {
+                    return Err(format!(
+                        "resource {x}: span {w} of robot {} ends at traversal {}, done before {}: {q:?}",
+                        s.robot, s.last, it.base
+                    ));
                 }
                 if s.last == FOREVER && w + 1 != q.len() {
                     return Err(format!(

@@ -333,7 +333,9 @@ impl Planner {
             }
             if n.end {
                 self.expanded += expanded as u64;
-                return Some(unwind(nav, &nodes, n.parent, nl, expanded));
+                let mut plan = unwind(nav, &nodes, n.parent, nl, expanded);
+                wait_early(sched, q.robot, &mut plan);
+                return Some(plan);
             }
             let ivs = intervals(n.v);
             let (_, hi) = ivs[n.iv];
@@ -474,6 +476,40 @@ fn free_of(sched: &Schedule, set: &[Res], r: usize) -> Vec<(f64, f64)> {
         out.push((from, f64::INFINITY));
     }
     out
+}
+
+/// Moves each leg's waits (from a place to the next, and to the parking vertex) to its
+/// start, where they keep the same arrival: the robot waits where it stands or works (a
+/// parking vertex, a task place) rather than in a corridor, and leaves when its way is
+/// clear. A traversal is only delayed into a gap of the others' spans that fits it, while
+/// the robot may still stand where it starts.
+fn wait_early(sched: &Schedule, r: usize, plan: &mut Plan) {
+    let conf = sched.conf();
+    let mut bounds = plan.goal_at.clone();
+    bounds.push(plan.steps.len());
+    let mut l0 = 0;
+    for &l1 in &bounds {
+        for k in (l0..l1.saturating_sub(1)).rev() {
+            let latest_end = plan.steps[k + 1].start;
+            let st = &plan.steps[k];
+            if latest_end <= st.end + 1e-9 {
+                continue;
+            }
+            let start = latest_end - st.dur;
+            let clear = merged(sched, &conf.trav[st.edge], r)
+                .iter()
+                .all(|&(a, b)| b <= start || a >= latest_end);
+            let stays = free_of(sched, &conf.vertex[st.from], r)
+                .iter()
+                .any(|&(a, b)| a <= st.start && start <= b);
+            if clear && stays {
+                let st = &mut plan.steps[k];
+                st.start = start;
+                st.end = latest_end;
+            }
+        }
+        l0 = l1;
+    }
 }
 
 fn unwind(nav: &Nav, nodes: &[Node], mut id: usize, nl: usize, expanded: usize) -> Plan {

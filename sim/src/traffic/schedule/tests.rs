@@ -47,8 +47,12 @@ fn grants_follow_the_planned_order() {
     let (_, mut s) = two_robots();
     assert!(s.check(0.0).is_ok(), "{:?}", s.check(0.0));
     assert!(s.granted(0, 0));
-    // Robot 1's p2→c ends on the lane b-c, which robot 0 holds while it passes b (planned
-    // first): robot 1 waits for it.
+    // Robot 1's p2→c is 4 m from anything robot 0 drives: it goes at once (lanes conflict
+    // only with the lanes near them, not with those near a lane near them).
+    assert!(s.granted(1, 0));
+    s.begin(1, 1, 0.0);
+    s.complete_front(1, 5.0);
+    // Its c→b needs b, which robot 0 passes first: it waits for it.
     assert!(!s.granted(1, 0));
     assert_eq!(s.waits_for(1, 0), vec![0]);
     s.begin(0, 1, 0.0);
@@ -57,9 +61,6 @@ fn grants_follow_the_planned_order() {
     s.begin(0, 1, 12.0);
     s.complete_front(0, 23.0);
     assert!(s.granted(1, 0), "free once robot 0 is in p1");
-    s.begin(1, 1, 23.0);
-    s.complete_front(1, 28.0);
-    assert!(s.granted(1, 0));
     assert_eq!(s.end_vertex(0), s.itinerary(0).at);
 }
 
@@ -73,10 +74,11 @@ fn retiming_pushes_the_later_robot_back_by_the_delay() {
     let it0 = s.itinerary(0);
     assert_eq!((it0.travs[0].start, it0.travs[0].end), (0.0, 25.0));
     assert_eq!((it0.travs[1].start, it0.travs[1].end), (25.0, 35.0));
-    // Robot 1 (p2→c ends on the lane b-c, c→b needs b) follows: 35-40, 40-50, 50-60.
+    // Robot 1: p2→c depends on nobody (from now: 25-30), c→b waits for b (35-45), then
+    // b→a (45-55).
     let it1 = s.itinerary(1);
     let times: Vec<(f64, f64)> = it1.travs.iter().map(|t| (t.start, t.end)).collect();
-    assert_eq!(times, [(35.0, 40.0), (40.0, 50.0), (50.0, 60.0)]);
+    assert_eq!(times, [(25.0, 30.0), (35.0, 45.0), (45.0, 55.0)]);
     let _ = nav;
 }
 
@@ -109,4 +111,43 @@ fn a_broken_order_is_reported_as_a_cycle() {
     let err = s.check(0.0).expect_err("a cycle");
     assert!(err.contains("cycle"), "{err}");
     assert!(s.clone().retime(0.0).is_err());
+}
+
+#[test]
+fn a_robot_that_sets_off_early_makes_the_estimates_stale_until_retimed() {
+    let nav = nav();
+    let conf = conflicts(&nav);
+    let mut s = Schedule::new(conf, &[v(&nav, "a"), v(&nav, "d")], 0.0);
+    s.retime(0.0).expect("acyclic");
+    assert!(!s.stale());
+    // Robot 0 was planned to drive a→b→p1 from 100 s, but it is granted now and sets off
+    // at once (execution keeps the order, not the times).
+    s.install(
+        0,
+        0,
+        &[
+            step(&nav, e(&nav, "a", "b"), 100.0, 10.0),
+            step(&nav, e(&nav, "b", "p1"), 110.0, 10.0),
+        ],
+        0.0,
+    );
+    assert!(!s.stale(), "a plan alone changes no estimate");
+    assert!(s.granted(0, 0));
+    s.begin(0, 1, 0.0);
+    // Its spans still say 100 s: a plan made now would fit another robot through b
+    // before it. The schedule says so, and retiming puts b's spans at now.
+    assert!(s.stale());
+    let b = v(&nav, "b");
+    let first_busy = |s: &Schedule| {
+        s.conf().vertex[b]
+            .iter()
+            .flat_map(|&x| s.busy(x, 1).map(|(a, _)| a).collect::<Vec<_>>())
+            .fold(f64::INFINITY, f64::min)
+    };
+    assert_eq!(first_busy(&s), 100.0);
+    s.retime(0.0).expect("acyclic");
+    assert!(!s.stale());
+    assert_eq!(first_busy(&s), 0.0);
+    let it0 = s.itinerary(0);
+    assert_eq!((it0.travs[1].start, it0.travs[1].end), (10.0, 20.0));
 }

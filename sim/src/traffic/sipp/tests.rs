@@ -140,3 +140,60 @@ fn no_way_back_over_a_one_way_lane_means_no_plan() {
     };
     assert!(planner.plan(&nav, &sched, &q).is_none());
 }
+
+#[test]
+fn waits_are_taken_where_the_robot_stands_not_in_the_corridor() {
+    let nav = nav();
+    let conf = conflicts(&nav);
+    let (a, c, d) = (v(&nav, "a"), v(&nav, "c"), v(&nav, "d"));
+    let mut sched = Schedule::new(conf, &[a, c], 0.0);
+    let mut planner = Planner::new(&nav);
+    let p = parks(&nav, &["p1", "p2", "a", "d"]);
+    // Robot 1 works at c for 20 s, then parks at p2.
+    let q1 = Query {
+        robot: 1,
+        slot: 0,
+        kin: KIN,
+        from: c,
+        t0: 0.0,
+        goals: &[(c, 20.0)],
+        parks: &p,
+        stay: None,
+    };
+    let plan1 = planner.plan(&nav, &sched, &q1).expect("robot 1 plans");
+    sched.install(1, 0, &plan1.steps, 0.0);
+    let c_free = plan1.steps[0].end;
+    assert!(c_free > 20.0, "{plan1:?}");
+    // Robot 0 goes a → b → c → d: it cannot pass c before robot 1 has left it. The search
+    // finds the earliest arrival by driving to b and waiting there; the plan waits at a
+    // instead, and arrives as early.
+    let q0 = Query {
+        robot: 0,
+        slot: 0,
+        kin: KIN,
+        from: a,
+        t0: 0.0,
+        goals: &[(d, 0.0)],
+        parks: &p,
+        stay: None,
+    };
+    let plan0 = planner.plan(&nav, &sched, &q0).expect("robot 0 plans");
+    let to: Vec<&str> = plan0
+        .steps
+        .iter()
+        .map(|s| nav.vertices[s.to].name.as_str())
+        .collect();
+    assert_eq!(to, ["b", "c", "d"]);
+    let b_to_c = &plan0.steps[1];
+    assert!(b_to_c.start >= c_free - 1e-9, "{plan0:?}");
+    // Leaves a late, then drives on without a stop: a→b ends as b→c starts.
+    let a_to_b = &plan0.steps[0];
+    assert!(a_to_b.start > 5.0, "{plan0:?}");
+    assert!((b_to_c.start - a_to_b.end).abs() < 1e-9, "{plan0:?}");
+    assert!(
+        (plan0.steps[2].start - b_to_c.end).abs() < 1e-9,
+        "{plan0:?}"
+    );
+    sched.install(0, 0, &plan0.steps, 0.0);
+    assert!(sched.check(0.0).is_ok());
+}
