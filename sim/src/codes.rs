@@ -737,6 +737,51 @@ pub const CROWD: Code = Code {
     summary: "the map's crowd cannot be placed on its navmesh",
 };
 
+/// # S0311 fault-target
+///
+/// **What:** a fault names no `robot`, `door` or `lift`, or more than one of them.
+///
+/// **Why it matters:** a fault puts one thing out of service for a while; without exactly
+/// one target it is not clear what stops.
+///
+/// **Fix:** give the fault one of `robot: <robot name>`, `door: <door name>` or
+/// `lift: <lift name>`; write several faults for several things.
+///
+/// **Example:**
+/// ```yaml
+/// faults:
+///   - {at: 10min, for: 10min}   # S0311: what is out of service?
+/// ```
+pub const FAULT_TARGET: Code = Code {
+    code: "S0311",
+    group: Group::Scenario,
+    name: "fault-target",
+    summary: "a fault names no robot, door or lift, or several",
+};
+
+/// # S0212 unknown-fault-target
+///
+/// **What:** a fault names a robot, door or lift that this run does not have (robots are
+/// named by their fleet and number, `tinyRobot_0`, or by the map's spawn points).
+///
+/// **Why it matters:** the fault would change nothing, and the study would answer a
+/// question nobody asked.
+///
+/// **Fix:** use a name from the map (`mapc check --format json` lists doors and lifts) or
+/// from the run's report (`robots`).
+///
+/// **Example:**
+/// ```yaml
+/// faults:
+///   - {at: 10min, for: 10min, lift: LIFT1}   # S0212 when the map's lift is `lift_1`
+/// ```
+pub const UNKNOWN_FAULT_TARGET: Code = Code {
+    code: "S0212",
+    group: Group::Scenario,
+    name: "unknown-fault-target",
+    summary: "a fault names a robot, door or lift the run does not have",
+};
+
 /// Every scenario code.
 pub static CODES: &[Code] = &[
     INVALID_YAML,
@@ -771,4 +816,6 @@ pub static CODES: &[Code] = &[
     SPAWN_COUNT,
     TASK_AFTER_END,
     CROWD,
+    FAULT_TARGET,
+    UNKNOWN_FAULT_TARGET,
 ];

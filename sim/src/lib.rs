@@ -30,9 +30,9 @@ pub use report::{
     StuckReport, TaskReport, TrafficReport, Waits,
 };
 pub use scenario::{
-    parse as parse_scenario, parse_duration, CrowdOptions, FleetSpec, GeneratorSpec, Scenario,
-    SimOptions, SpawnSpec, TaskCategory, TaskKind, TaskSpec, WorkcellKind, WorkcellSpec,
-    MAX_DURATION,
+    parse as parse_scenario, parse_duration, CrowdOptions, FaultSpec, FaultTarget, FleetSpec,
+    GeneratorSpec, Scenario, SimOptions, SpawnSpec, TaskCategory, TaskKind, TaskSpec, WorkcellKind,
+    WorkcellSpec, MAX_DURATION,
 };
 pub use trace::TraceFilter;
 
@@ -95,6 +95,26 @@ pub fn simulate(
         lifts_start_at_initial_floor: scenario.options.lifts_start_at_initial_floor,
     };
     let mut world = world::World::new(building, &setup);
+    let unknown = world.set_faults(&scenario.faults);
+    if !unknown.is_empty() {
+        return Err(SimError::Invalid(
+            unknown
+                .into_iter()
+                .map(|k| {
+                    let f = &scenario.faults[k];
+                    Diagnostic::error(
+                        codes::UNKNOWN_FAULT_TARGET.code,
+                        f.span,
+                        format!(
+                            "the fault names {} `{}`, which this run does not have",
+                            f.target.kind(),
+                            f.target.name()
+                        ),
+                    )
+                })
+                .collect(),
+        ));
+    }
     let o = &scenario.options;
     if o.crowd.enabled {
         let crowd = crowd::Crowd::new(building, o.crowd.scale, scenario.seed, scenario.step)

@@ -8,6 +8,9 @@ use mapc_ir::{Diagnostic, FileId, Span};
 use std::collections::{BTreeMap, BTreeSet};
 use std::path::{Path, PathBuf};
 
+mod faults;
+pub use faults::{FaultSpec, FaultTarget};
+
 #[derive(Debug, Clone, PartialEq)]
 pub struct Scenario {
     /// The map, resolved against the scenario file's directory (None if the scenario does
@@ -22,6 +25,8 @@ pub struct Scenario {
     pub workcells: Vec<WorkcellSpec>,
     pub tasks: Vec<TaskSpec>,
     pub generators: Vec<GeneratorSpec>,
+    /// Things out of service for a while (`faults.rs`).
+    pub faults: Vec<FaultSpec>,
     pub options: SimOptions,
 }
 
@@ -215,6 +220,7 @@ const TOP_KEYS: &[&str] = &[
     "workcells",
     "tasks",
     "generators",
+    "faults",
     "options",
     "crowd",
     "description",
@@ -695,6 +701,10 @@ impl P<'_> {
             Some(v) if !v.is_null() => self.seq(v, "`generators`", |p, n| p.generator(n, duration)),
             _ => Some(Vec::new()),
         };
+        let faults = match top.get("faults") {
+            Some(v) if !v.is_null() => self.seq(v, "`faults`", |p, n| p.fault(n, duration)),
+            _ => Some(Vec::new()),
+        };
         let mut options = match top.get("options") {
             Some(v) if !v.is_null() => self.options(v),
             _ => Some(SimOptions::default()),
@@ -724,6 +734,7 @@ impl P<'_> {
             workcells: workcells?,
             tasks: tasks?,
             generators: generators?,
+            faults: faults?,
             options: options?,
         })
     }

@@ -50,6 +50,7 @@ fn scenario(fleets: Vec<FleetSpec>, tasks: Vec<TaskSpec>) -> Scenario {
         workcells: Vec::new(),
         tasks,
         generators: Vec::new(),
+        faults: Vec::new(),
         options: SimOptions::default(),
     }
 }

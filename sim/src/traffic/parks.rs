@@ -115,10 +115,22 @@ pub fn choose(nav: &Nav, conf: &Conflicts, needs: &Needs) -> Parks {
                 .copied()
                 .unwrap_or(false)
         };
+        // Only in the largest strongly connected part: a robot parked past a one-way lane
+        // could never come back to the places it is sent to.
+        let mut size: std::collections::BTreeMap<usize, usize> = Default::default();
+        for &v in &nav.members[s] {
+            if main[s][v] != usize::MAX {
+                *size.entry(main[s][v]).or_insert(0) += 1;
+            }
+        }
+        let biggest = size
+            .iter()
+            .max_by(|a, b| a.1.cmp(b.1).then(b.0.cmp(a.0)))
+            .map(|(&id, _)| id);
         let mut cands: Vec<usize> = nav.members[s]
             .iter()
             .copied()
-            .filter(|&v| main[s][v] != usize::MAX && nav.vertices[v].carried_by.is_none())
+            .filter(|&v| Some(main[s][v]) == biggest && nav.vertices[v].carried_by.is_none())
             .filter(|&v| !required(s, v) || place(v))
             .collect();
         let class = |v: usize| {
@@ -274,9 +286,17 @@ fn parts(nav: &Nav, slot: &Slot, blocked: &[bool], gone: &[bool]) -> Vec<usize> 
 
 /// Whether every part of `before` keeps its members (those not `gone`) together in `after`.
 fn kept_together(before: &[usize], after: &[usize], gone: &[bool]) -> bool {
+    // A part left with one member has nothing to keep together (`parts` gives a lone
+    // vertex no part).
+    let mut left: std::collections::HashMap<usize, usize> = std::collections::HashMap::new();
+    for v in 0..before.len() {
+        if before[v] != usize::MAX && !gone[v] {
+            *left.entry(before[v]).or_insert(0) += 1;
+        }
+    }
     let mut to: std::collections::HashMap<usize, usize> = std::collections::HashMap::new();
     for v in 0..before.len() {
-        if before[v] == usize::MAX || gone[v] {
+        if before[v] == usize::MAX || gone[v] || left[&before[v]] < 2 {
             continue;
         }
         if after[v] == usize::MAX {

@@ -22,6 +22,9 @@ pub struct Building {
     pub well_formed: bool,
     /// Waypoints in all.
     pub waypoints: usize,
+    /// Its doors and lifts, by name.
+    pub doors: Vec<String>,
+    pub lifts: Vec<String>,
 }
 
 struct Level {
@@ -242,6 +245,15 @@ pub fn building_with(seed: u64, s: &Shape) -> Building {
         );
     }
     let _ = writeln!(out, "reference_level_name: L1");
+    let doors = lvls
+        .iter()
+        .flat_map(|lv| lv.doors.iter().map(|d| d.2.clone()))
+        .collect();
+    let lifts = if s.levels > 1 {
+        vec!["lift_1".to_string()]
+    } else {
+        Vec::new()
+    };
     Building {
         seed,
         yaml: out,
@@ -249,6 +261,8 @@ pub fn building_with(seed: u64, s: &Shape) -> Building {
         levels: s.levels,
         well_formed: s.well_formed,
         waypoints,
+        doors,
+        lifts,
     }
 }
 
@@ -295,6 +309,28 @@ pub fn scenario(b: &Building, robots: usize, duration_s: f64, every: f64, seed: 
             "  - {{at: {}s, loop: {{start: {a}, finish: {c}, loops: 1}}}}",
             k as f64 * every
         );
+    }
+    out
+}
+
+/// Random faults for `b`'s runs with `robots` robots (of [`scenario`]): each a robot
+/// paused, a door or the lift out of service, for 30 to 200 s, all starting in
+/// `[0, before)`. Scenario lines to append to [`scenario`]'s text.
+pub fn faults(b: &Building, robots: usize, before: f64, n: usize, seed: u64) -> String {
+    let mut rng = fastrand::Rng::with_seed(seed ^ 0x5eed_fa17);
+    let mut out = String::from("faults:\n");
+    let big = if seed % 3 == 2 { robots / 2 } else { 0 };
+    for _ in 0..n {
+        let at = (rng.f64() * before).floor();
+        let len = 30.0 + (rng.f64() * 170.0).floor();
+        let target = match rng.usize(0..3) {
+            1 if !b.doors.is_empty() => format!("door: {}", b.doors[rng.usize(0..b.doors.len())]),
+            2 if !b.lifts.is_empty() => format!("lift: {}", b.lifts[0]),
+            // The first robot of a fleet: `spawn: auto` may keep the others off the floor.
+            _ if big > 0 && rng.bool() => "robot: big_0".to_string(),
+            _ => "robot: fleet_0".to_string(),
+        };
+        let _ = writeln!(out, "  - {{at: {at}s, for: {len}s, {target}}}");
     }
     out
 }
