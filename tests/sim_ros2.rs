@@ -12,7 +12,7 @@
 mod support;
 use std::path::Path;
 use std::process::Command;
-use support::ros2::{namespace_works, python};
+use support::ros2::peer;
 
 const RATE: f64 = 10.0;
 
@@ -79,14 +79,9 @@ fn in_namespace<'a>(
 
 #[test]
 fn rmf_side_drives_mapc_over_cyclone_dds() {
-    let Some(py) = python("cyclonedds.domain") else {
-        println!("skipped: cyclonedds (Python) not found; .ci/run makes target/ros2-venv");
+    let Some(py) = peer("cyclonedds.domain") else {
         return;
     };
-    if !namespace_works() {
-        println!("skipped: no private network namespace (unshare -rn, ip, veth) here");
-        return;
-    }
     let root = Path::new(env!("CARGO_MANIFEST_DIR"));
     let dir = test_dir();
     let defs: serde_json::Map<String, serde_json::Value> = mapc_ros2::msgs::definitions()
@@ -192,14 +187,7 @@ fn watch_full_run(
     fixture: &str,
     domain: u16,
 ) -> Option<(serde_json::Value, Vec<serde_json::Value>)> {
-    let Some(py) = python("cyclonedds.domain") else {
-        println!("skipped: cyclonedds (Python) not found; .ci/run makes target/ros2-venv");
-        return None;
-    };
-    if !namespace_works() {
-        println!("skipped: no private network namespace (unshare -rn, ip, veth) here");
-        return None;
-    }
+    let py = peer("cyclonedds.domain")?;
     let root = Path::new(env!("CARGO_MANIFEST_DIR"));
     let dir = test_dir();
     let defs: serde_json::Map<String, serde_json::Value> = mapc_ros2::msgs::definitions()

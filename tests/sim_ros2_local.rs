@@ -18,7 +18,7 @@
 mod support;
 use std::path::Path;
 use std::process::Command;
-use support::ros2::{namespace_works, python};
+use support::ros2::{namespace, peer};
 
 /// The namespace: `lo` up with multicast and the multicast route, nothing else; then mapc
 /// and the peer, mapc stopped with SIGINT when the peer is done.
@@ -49,14 +49,7 @@ fn run(
     peer_domain: u16,
     peer_uri: &str,
 ) -> Option<(serde_json::Value, String)> {
-    let Some(py) = python("cyclonedds.domain") else {
-        println!("skipped: cyclonedds (Python) not found; .ci/run makes target/ros2-venv");
-        return None;
-    };
-    if !namespace_works() {
-        println!("skipped: no private network namespace (unshare -rn, ip) here");
-        return None;
-    }
+    let py = peer("cyclonedds.domain")?;
     let root = Path::new(env!("CARGO_MANIFEST_DIR"));
     let dir = tempfile::tempdir().expect("tempdir");
     let defs: serde_json::Map<String, serde_json::Value> = mapc_ros2::msgs::definitions()
@@ -184,8 +177,7 @@ fn loopback_alone_is_used_without_settings() {
 
 #[test]
 fn no_usable_interface_is_an_error_naming_the_settings() {
-    if !namespace_works() {
-        println!("skipped: no private network namespace (unshare -rn, ip) here");
+    if !namespace() {
         return;
     }
     let root = Path::new(env!("CARGO_MANIFEST_DIR"));

@@ -12,7 +12,7 @@
 mod support;
 use std::path::Path;
 use std::process::Command;
-use support::ros2::{namespace_works, python};
+use support::ros2::{namespace, peer};
 
 const SCRIPT: &str = r#"set -e
 ip link set lo up multicast on
@@ -36,17 +36,9 @@ wait $router
 
 #[test]
 fn rmf_side_drives_mapc_over_rmw_zenoh() {
-    let Some(py) = python("zenoh.ext, xxhash, cyclonedds.idl") else {
-        println!(
-            "skipped: eclipse-zenoh, xxhash or cyclonedds (Python) not found; .ci/run makes \
-             target/ros2-venv"
-        );
+    let Some(py) = peer("zenoh.ext, xxhash, cyclonedds.idl") else {
         return;
     };
-    if !namespace_works() {
-        println!("skipped: no private network namespace (unshare -rn, ip) here");
-        return;
-    }
     let root = Path::new(env!("CARGO_MANIFEST_DIR"));
     let dir = tempfile::tempdir().expect("tempdir");
     let defs: serde_json::Map<String, serde_json::Value> = mapc_ros2::msgs::definitions()
@@ -204,8 +196,7 @@ fn rmf_side_drives_mapc_over_rmw_zenoh() {
 /// runs; a bad `ZENOH_ROUTER_CHECK_ATTEMPTS` or `ZENOH_SESSION_CONFIG_URI` is a usage error.
 #[test]
 fn zenoh_settings_without_a_router() {
-    if !namespace_works() {
-        println!("skipped: no private network namespace (unshare -rn, ip) here");
+    if !namespace() {
         return;
     }
     let root = Path::new(env!("CARGO_MANIFEST_DIR"));

@@ -31,3 +31,22 @@ pub fn namespace_works() -> bool {
         .output()
         .is_ok_and(|o| o.status.success())
 }
+
+/// What a test with a Python transport peer needs: the venv's Python that imports
+/// `modules`, and a private network namespace. Prints why the test is skipped otherwise.
+pub fn peer(modules: &str) -> Option<PathBuf> {
+    let Some(py) = python(modules) else {
+        println!("skipped: Python modules {modules} not found; .ci/run makes target/ros2-venv");
+        return None;
+    };
+    namespace().then_some(py)
+}
+
+/// [`namespace_works`], printing why the test is skipped when it does not.
+pub fn namespace() -> bool {
+    let ok = namespace_works();
+    if !ok {
+        println!("skipped: no private network namespace (unshare -rn, ip) here");
+    }
+    ok
+}
