@@ -2133,6 +2133,7 @@ tasks:
         assert_eq!(keys(&defs["crowd"]), want(CROWD_KEYS, &[]));
         assert_eq!(keys(&defs["task"]), want(TASK_KEYS, KINDS));
         assert_eq!(keys(&defs["generator"]), want(GENERATOR_KEYS, KINDS));
+        assert_eq!(keys(&defs["fault"]), want(faults::FAULT_KEYS, &[]));
         let robot: Vec<&str> = ROBOT_NUMBERS.iter().map(|r| r.0).collect();
         assert_eq!(
             keys(&defs["robot"]["oneOf"][1]),

@@ -105,7 +105,7 @@ fn a_fault_naming_nothing_is_an_error() {
 #[test]
 fn a_fault_needs_exactly_one_target() {
     let dir = Path::new(".");
-    let base = "duration: 1h\nfleets:\n  - {name: f, robot: TinyRobot}\n";
+    let base = "duration: 1h\nfleets:\n  - {name: f, robot: TinyRobot, count: 1}\n";
     for (faults, code) in [
         ("faults:\n  - {at: 0, for: 1min}", "S0311"),
         ("faults:\n  - {for: 1min, lift: a, door: b}", "S0311"),

@@ -67,6 +67,14 @@ fn completed(r: &Report) -> usize {
     r.tasks.iter().filter(|t| t.result == "completed").count()
 }
 
+/// No failed task, no contact, no dependency cycle.
+fn check_safe(r: &Report, what: &str) {
+    let failed: Vec<_> = r.tasks.iter().filter(|t| t.result == "failed").collect();
+    assert!(failed.is_empty(), "{what}: failed tasks {failed:?}");
+    assert!(r.contacts.is_empty(), "{what}: contacts {:?}", r.contacts);
+    assert_eq!(r.traffic.cycles, 0, "{what}: dependency cycles");
+}
+
 /// Checks one building at every size; returns the completed counts.
 fn check_building(seed: u64, sizes: &[usize], minutes: f64) -> Vec<usize> {
     let b = gen::building(seed);
@@ -74,24 +82,11 @@ fn check_building(seed: u64, sizes: &[usize], minutes: f64) -> Vec<usize> {
     let mut robots_on_floor: Vec<usize> = Vec::new();
     for &n in sizes {
         let r = run(&b, n, minutes, 10.0);
-        let failed: Vec<_> = r.tasks.iter().filter(|t| t.result == "failed").collect();
-        assert!(
-            failed.is_empty(),
-            "building {seed}, {n} robots: failed tasks {failed:?}"
-        );
-        assert!(
-            r.contacts.is_empty(),
-            "building {seed}, {n} robots: contacts {:?}",
-            r.contacts
-        );
+        check_safe(&r, &format!("building {seed}, {n} robots"));
         let still: Vec<_> = r.stuck.iter().filter(|s| s.reason == "no_motion").collect();
         assert!(
             still.is_empty(),
             "building {seed}, {n} robots: robots stood still {still:?}"
-        );
-        assert_eq!(
-            r.traffic.cycles, 0,
-            "building {seed}, {n} robots: dependency cycles"
         );
         done.push(completed(&r));
         robots_on_floor.push(r.robots.len());
@@ -158,17 +153,7 @@ fn faults_delay_robots_but_never_deadlock() {
         let faults = gen::faults(&b, robots, end / 3.0, 4, seed);
         let clean = run(&b, robots, minutes, 10.0);
         let r = run_with(&b, robots, minutes, 10.0, &faults);
-        let failed: Vec<_> = r.tasks.iter().filter(|t| t.result == "failed").collect();
-        assert!(
-            failed.is_empty(),
-            "building {seed}: failed {failed:?}\n{faults}"
-        );
-        assert!(
-            r.contacts.is_empty(),
-            "building {seed}: contacts {:?}",
-            r.contacts
-        );
-        assert_eq!(r.traffic.cycles, 0, "building {seed}: dependency cycles");
+        check_safe(&r, &format!("building {seed} with\n{faults}"));
         // The faults all end by a third of the run plus 200 s.
         let over = end / 3.0 + 200.0;
         let still: Vec<_> = r

@@ -6,7 +6,7 @@ use super::{codes, Scenario, P};
 use mapc_frontend::yaml_tree::Node;
 use mapc_ir::Span;
 
-const FAULT_KEYS: &[&str] = &["at", "for", "robot", "door", "lift"];
+pub(super) const FAULT_KEYS: &[&str] = &["at", "for", "robot", "door", "lift"];
 
 /// One thing out of service from `at` for `duration` seconds.
 #[derive(Debug, Clone, PartialEq)]

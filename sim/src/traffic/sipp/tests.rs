@@ -11,6 +11,20 @@ const KIN: Kinematics = Kinematics {
     turn: 0.5,
 };
 
+/// A query of robot `robot` from `from` at 0 s, staying nowhere but on `parks`.
+fn query<'a>(robot: usize, from: usize, goals: &'a [(usize, f64)], parks: &'a [u8]) -> Query<'a> {
+    Query {
+        robot,
+        slot: 0,
+        kin: KIN,
+        from,
+        t0: 0.0,
+        goals,
+        parks,
+        stay: None,
+    }
+}
+
 fn parks(nav: &Nav, names: &[&str]) -> Vec<u8> {
     let mut p = vec![0; nav.vertices.len()];
     for n in names {
@@ -40,16 +54,7 @@ fn alone_it_drives_straight_to_the_goal_and_parks() {
         .plan(
             &nav,
             &sched,
-            &Query {
-                robot: 0,
-                slot: 0,
-                kin: KIN,
-                from: v(&nav, "a"),
-                t0: 0.0,
-                goals: &[(v(&nav, "c"), 5.0)],
-                parks: &p,
-                stay: None,
-            },
+            &query(0, v(&nav, "a"), &[(v(&nav, "c"), 5.0)], &p),
         )
         .expect("a plan");
     let to: Vec<&str> = plan
@@ -75,30 +80,14 @@ fn it_waits_for_a_robot_planned_through_first() {
     // Robot 1 drives d→c→b→p1 from 0 s, 10.5 s a lane (no turns counted here).
     let mut planner = Planner::new(&nav);
     let p = parks(&nav, &["p1", "p2", "a", "d"]);
-    let q1 = Query {
-        robot: 1,
-        slot: 0,
-        kin: KIN,
-        from: v(&nav, "d"),
-        t0: 0.0,
-        goals: &[(v(&nav, "p1"), 0.0)],
-        parks: &p,
-        stay: None,
-    };
+    let goals_q1 = [(v(&nav, "p1"), 0.0)];
+    let q1 = query(1, v(&nav, "d"), &goals_q1, &p);
     let plan1 = planner.plan(&nav, &sched, &q1).expect("robot 1 plans");
     sched.install(1, 0, &plan1.steps, 0.0);
     let arrive_p1 = plan1.done;
     // Robot 0 wants d: it cannot be in the corridor while robot 1 comes down it.
-    let q0 = Query {
-        robot: 0,
-        slot: 0,
-        kin: KIN,
-        from: v(&nav, "a"),
-        t0: 0.0,
-        goals: &[(v(&nav, "d"), 0.0)],
-        parks: &p,
-        stay: None,
-    };
+    let goals_q0 = [(v(&nav, "d"), 0.0)];
+    let q0 = query(0, v(&nav, "a"), &goals_q0, &p);
     let plan0 = planner.plan(&nav, &sched, &q0).expect("robot 0 plans");
     sched.install(0, 0, &plan0.steps, 0.0);
     assert!(sched.check(0.0).is_ok());
@@ -128,16 +117,8 @@ fn no_way_back_over_a_one_way_lane_means_no_plan() {
     let mut planner = Planner::new(&nav);
     let p = parks(&nav, &["p1"]);
     // e is reached one way only: no parking vertex after it.
-    let q = Query {
-        robot: 0,
-        slot: 0,
-        kin: KIN,
-        from: v(&nav, "a"),
-        t0: 0.0,
-        goals: &[(v(&nav, "e"), 0.0)],
-        parks: &p,
-        stay: None,
-    };
+    let goals_q = [(v(&nav, "e"), 0.0)];
+    let q = query(0, v(&nav, "a"), &goals_q, &p);
     assert!(planner.plan(&nav, &sched, &q).is_none());
 }
 
@@ -150,16 +131,8 @@ fn waits_are_taken_where_the_robot_stands_not_in_the_corridor() {
     let mut planner = Planner::new(&nav);
     let p = parks(&nav, &["p1", "p2", "a", "d"]);
     // Robot 1 works at c for 20 s, then parks at p2.
-    let q1 = Query {
-        robot: 1,
-        slot: 0,
-        kin: KIN,
-        from: c,
-        t0: 0.0,
-        goals: &[(c, 20.0)],
-        parks: &p,
-        stay: None,
-    };
+    let goals_q1 = [(c, 20.0)];
+    let q1 = query(1, c, &goals_q1, &p);
     let plan1 = planner.plan(&nav, &sched, &q1).expect("robot 1 plans");
     sched.install(1, 0, &plan1.steps, 0.0);
     let c_free = plan1.steps[0].end;
@@ -167,16 +140,8 @@ fn waits_are_taken_where_the_robot_stands_not_in_the_corridor() {
     // Robot 0 goes a → b → c → d: it cannot pass c before robot 1 has left it. The search
     // finds the earliest arrival by driving to b and waiting there; the plan waits at a
     // instead, and arrives as early.
-    let q0 = Query {
-        robot: 0,
-        slot: 0,
-        kin: KIN,
-        from: a,
-        t0: 0.0,
-        goals: &[(d, 0.0)],
-        parks: &p,
-        stay: None,
-    };
+    let goals_q0 = [(d, 0.0)];
+    let q0 = query(0, a, &goals_q0, &p);
     let plan0 = planner.plan(&nav, &sched, &q0).expect("robot 0 plans");
     let to: Vec<&str> = plan0
         .steps
