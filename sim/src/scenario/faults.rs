@@ -2,7 +2,7 @@
 //! lift stops for ten minutes?"). The world applies them (`crate::world`): a paused robot
 //! stops where it is, a door or a lift answers no request and stays as it is.
 
-use super::{codes, Scenario, P};
+use super::{codes, P};
 use mapc_frontend::yaml_tree::Node;
 use mapc_ir::Span;
 
@@ -40,26 +40,6 @@ impl FaultTarget {
             FaultTarget::Door(_) => "door",
             FaultTarget::Lift(_) => "lift",
         }
-    }
-}
-
-impl FaultSpec {
-    /// Whether the fault holds its target at time `t`.
-    pub fn active(&self, t: f64) -> bool {
-        self.at <= t && t < self.at + self.duration
-    }
-}
-
-impl Scenario {
-    /// The faults of kind `kind` (`robot`, `door`, `lift`) naming `name`.
-    pub fn faults_on<'s>(
-        &'s self,
-        kind: &'s str,
-        name: &'s str,
-    ) -> impl Iterator<Item = &'s FaultSpec> + 's {
-        self.faults
-            .iter()
-            .filter(move |f| f.target.kind() == kind && f.target.name() == name)
     }
 }
 
