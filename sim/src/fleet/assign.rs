@@ -8,6 +8,9 @@
 //! one whose plan arrives first takes the task. A plan that would wait long for traffic
 //! is not taken while the task is young: robots stay parked rather than queue in the
 //! corridors, so a bigger fleet does not jam a building that a smaller one serves.
+//! Such a task is not planned again for the same robots until one of their plans could
+//! first fit (the least excess wait, at most `MAX_BACKOFF`): with a saturating stream hundreds of tasks
+//! wait, and planning each again at every round cost 95 % of a run.
 
 use super::*;
 use crate::traffic::sipp::{Plan, Query};
@@ -31,6 +34,10 @@ const PATIENT_WAIT: f64 = 200.0;
 const DISPATCH_EVERY: f64 = 5.0;
 /// Robots in a waiting task's way are asked to make room at most this often (s).
 const DISPLACE_EVERY: f64 = 5.0;
+/// A task whose plans all waited too long is planned for the same robots again after at
+/// most this long (s), even if their excess wait was longer (the others may have got
+/// ahead of their plans meanwhile).
+const MAX_BACKOFF: f64 = 60.0;
 
 /// A task in the queue.
 pub(super) struct Pending {
@@ -41,6 +48,9 @@ pub(super) struct Pending {
     pub passed_over: Option<f64>,
     /// When robots were last asked to make room for it.
     pub displaced_at: f64,
+    /// The robots last planned for it, whose plans all waited too long, and when planning for the same robots again may first succeed (see
+    /// [`Fleets::dispatch`]).
+    pub backoff: Option<(Vec<usize>, f64)>,
 }
 
 impl Fleets {
@@ -82,6 +92,7 @@ impl Fleets {
             steps,
             passed_over: None,
             displaced_at: f64::NEG_INFINITY,
+            backoff: None,
         });
         self.next_dispatch = self.next_dispatch.min(t);
     }
@@ -196,8 +207,26 @@ impl Fleets {
             }
             near.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
             near.truncate(CANDIDATES);
+            // Planning again for the same robots before the backoff ends cannot succeed
+            // unless the others got ahead of their plans: a later start shortens a plan's
+            // waits by at most the delay, and the plans installed since only add spans.
+            let tried: Vec<usize> = near.iter().map(|n| n.1).collect();
+            if let Some((robots, until)) = &self.pending[k].backoff {
+                if *robots == tried && t < *until {
+                    k += 1;
+                    continue;
+                }
+            }
+            // Not past the moment the task turns patient (its plans may then wait longer).
+            let turns_patient = self.pending[k]
+                .passed_over
+                .map(|p| p + PATIENCE)
+                .filter(|&p| t < p)
+                .unwrap_or(f64::INFINITY);
             let mut best: Option<(f64, usize, Vec<Step>, Plan, usize, f64)> = None;
             let mut failed = false;
+            // When the first of the plans that waited too long could fit.
+            let mut retry = f64::INFINITY;
             for (_, ri, steps) in near {
                 budget = budget.saturating_sub(1);
                 let goals = self.goals_of(ri, &steps);
@@ -243,7 +272,9 @@ impl Fleets {
                 // Long tasks may wait longer in all: a share of their length.
                 let last = plan.goal_at.last().copied().unwrap_or(0);
                 let length = last.checked_sub(1).map_or(0.0, |k| plan.steps[k].end - t0);
-                if planned_wait(&plan, t0) > most + WAIT_SHARE * length {
+                let over = planned_wait(&plan, t0) - (most + WAIT_SHARE * length);
+                if over > 0.0 {
+                    retry = retry.min(t + over.clamp(DISPATCH_EVERY, MAX_BACKOFF));
                     continue;
                 }
                 if best.as_ref().is_none_or(|b| arrive < b.0) {
@@ -251,6 +282,10 @@ impl Fleets {
                 }
             }
             let Some((_, ri, steps, plan, keep, t0)) = best else {
+                // A robot that found no way may find one as soon as others make room.
+                if !failed && retry.is_finite() {
+                    self.pending[k].backoff = Some((tried, retry.min(turns_patient)));
+                }
                 if failed && t >= self.pending[k].displaced_at + DISPLACE_EVERY {
                     self.pending[k].displaced_at = t;
                     // Maybe a robot stays for good where the task must go: it makes room.

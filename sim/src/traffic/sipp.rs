@@ -15,10 +15,16 @@ use super::parks::{PARK, PARK_ON_PLACE};
 use super::schedule::{Schedule, Step};
 use crate::graph::{EdgeKind, Nav, DOOR_COST};
 use std::cmp::Ordering;
-use std::collections::{BinaryHeap, HashMap};
+use std::collections::BinaryHeap;
+
+/// The search's maps are keyed by small integers and never iterated: a fast fixed hasher
+/// keeps them deterministic and cheap.
+type Map<K, V> = std::collections::HashMap<K, V, foldhash::fast::FixedState>;
 
 /// Bound on the search (states expanded) of one plan.
 const MAX_EXPANSIONS: usize = 200_000;
+/// Distance tables to goals kept between plans (each a float per vertex).
+const GOAL_TABLES: usize = 512;
 /// Extra cost (s) of ending on a parking vertex that is a task place: another robot's task
 /// may need it (and send the robot parked there away).
 const PLACE_PENALTY: f64 = 60.0;
@@ -47,7 +53,19 @@ impl Kinematics {
     }
 
     /// Time to drive edge `e` after arriving along `prev` (None: no turn counted).
+    #[cfg(test)]
     pub fn edge_time(&self, nav: &Nav, e: usize, prev: Option<usize>) -> f64 {
+        self.edge_time_with(nav, e, prev, |x| heading(nav, x))
+    }
+
+    /// [`Kinematics::edge_time`] with the edges' headings from `h` (the planner keeps them).
+    fn edge_time_with(
+        &self,
+        nav: &Nav,
+        e: usize,
+        prev: Option<usize>,
+        h: impl Fn(usize) -> f64,
+    ) -> f64 {
         let edge = &nav.edges[e];
         match edge.kind {
             EdgeKind::Lift(_) => nav.edge_cost(e, self.speed),
@@ -67,11 +85,6 @@ impl Kinematics {
                     _ => 0.0,
                 };
                 let turn = prev.map_or(0.0, |p| {
-                    let h = |e: usize| {
-                        let x = &nav.edges[e];
-                        let d = nav.vertices[x.to].pos.minus(nav.vertices[x.from].pos);
-                        d.y.atan2(d.x)
-                    };
                     if nav.edges[p].kind != EdgeKind::Lane || edge.length < 1e-6 {
                         return 0.0;
                     }
@@ -100,6 +113,13 @@ impl Kinematics {
             }
         }
     }
+}
+
+/// The heading of edge `e` (rad).
+fn heading(nav: &Nav, e: usize) -> f64 {
+    let x = &nav.edges[e];
+    let d = nav.vertices[x.to].pos.minus(nav.vertices[x.from].pos);
+    d.y.atan2(d.x)
 }
 
 /// Settling at a waypoint (s): the slotcar stops within its tolerance, then reports.
@@ -170,8 +190,13 @@ impl PartialOrd for Open {
 pub struct Planner {
     /// Per slot, per vertex: incoming edges.
     inn: Vec<Vec<Vec<usize>>>,
+    /// Per edge: its heading (rad), for turning times.
+    heading: Vec<f64>,
     /// Time to the nearest parking vertex, per (slot, speed bits, parking vertices' hash).
-    park_dist: HashMap<(usize, u64, u64), Vec<f64>>,
+    park_dist: Map<(usize, u64, u64), Vec<f64>>,
+    /// Time to a goal, per (slot, speed bits, goal vertex): tasks go to the same places
+    /// again and again.
+    goal_dist: Map<(usize, u64, usize), Vec<f64>>,
     /// Plans made and states expanded, for the report.
     pub plans: u64,
     pub expanded: u64,
@@ -194,7 +219,9 @@ impl Planner {
             .collect();
         Planner {
             inn,
-            park_dist: HashMap::new(),
+            heading: (0..nav.edges.len()).map(|e| heading(nav, e)).collect(),
+            park_dist: Map::default(),
+            goal_dist: Map::default(),
             plans: 0,
             expanded: 0,
             why: "",
@@ -260,24 +287,30 @@ impl Planner {
             let d = self.dist_to(nav, q.slot, &q.kin, &parks);
             self.park_dist.insert(key, d);
         }
-        let park_dist = &self.park_dist[&key];
         let nl = q.goals.len();
-        // h(v, label): to the goal of `label`, then through the rest, then to a park.
-        let mut dist: Vec<Vec<f64>> = Vec::with_capacity(nl);
-        for &(g, _) in q.goals {
-            dist.push(self.dist_to(nav, q.slot, &q.kin, &[g]));
+        // Bounded memory: a few hundred places' tables (each a float per vertex).
+        if self.goal_dist.len() + nl + 1 > GOAL_TABLES {
+            self.goal_dist.clear();
         }
-        // After the last goal: to a parking vertex, or back to where the robot may stay.
-        let end_dist: Vec<f64> = match q.stay {
-            Some(st) => {
-                let to_stay = self.dist_to(nav, q.slot, &q.kin, &[st]);
-                park_dist
-                    .iter()
-                    .zip(&to_stay)
-                    .map(|(a, b)| a.min(*b))
-                    .collect()
+        for g in q.goals.iter().map(|g| g.0).chain(q.stay) {
+            let gk = (q.slot, q.kin.speed.to_bits(), g);
+            if !self.goal_dist.contains_key(&gk) {
+                let d = self.dist_to(nav, q.slot, &q.kin, &[g]);
+                self.goal_dist.insert(gk, d);
             }
-            None => park_dist.clone(),
+        }
+        let park_dist = &self.park_dist[&key];
+        let table = |g: usize| &self.goal_dist[&(q.slot, q.kin.speed.to_bits(), g)];
+        // h(v, label): to the goal of `label`, then through the rest, then to a park.
+        let dist: Vec<&Vec<f64>> = q.goals.iter().map(|&(g, _)| table(g)).collect();
+        // After the last goal: to a parking vertex, or back to where the robot may stay.
+        let end_dist: std::borrow::Cow<[f64]> = match q.stay {
+            Some(st) => park_dist
+                .iter()
+                .zip(table(st))
+                .map(|(a, b)| a.min(*b))
+                .collect(),
+            None => std::borrow::Cow::Borrowed(park_dist),
         };
         let mut rest = vec![0.0; nl + 1];
         for l in (0..nl).rev() {
@@ -301,14 +334,17 @@ impl Planner {
             return None;
         }
         let r = q.robot;
-        let mut safe: HashMap<usize, Vec<(f64, f64)>> = HashMap::new();
-        let mut intervals = |v: usize| -> Vec<(f64, f64)> {
-            safe.entry(v)
-                .or_insert_with(|| free_of(sched, &conf.vertex[v], r))
-                .clone()
+        // Safe intervals per vertex, computed when first needed.
+        let mut safe_at: Map<usize, usize> = Map::default();
+        let mut safe: Vec<Vec<(f64, f64)>> = Vec::new();
+        let mut intervals = |v: usize, safe: &mut Vec<Vec<(f64, f64)>>| -> usize {
+            *safe_at.entry(v).or_insert_with(|| {
+                safe.push(free_of(sched, &conf.vertex[v], r));
+                safe.len() - 1
+            })
         };
-        let iv0 = intervals(q.from);
-        let Some(i0) = iv0.iter().position(|&(a, b)| a <= q.t0 && q.t0 < b) else {
+        let iv0 = intervals(q.from, &mut safe);
+        let Some(i0) = safe[iv0].iter().position(|&(a, b)| a <= q.t0 && q.t0 < b) else {
             self.why = "start busy";
             return None;
         };
@@ -321,11 +357,11 @@ impl Planner {
             edge: None,
             end: false,
         }];
-        let mut best: HashMap<(usize, usize, usize), f64> = HashMap::new();
+        let mut best: Map<(usize, usize, usize), f64> = Map::default();
         let mut open = BinaryHeap::new();
         open.push(Open(q.t0 + h(q.from, 0), q.t0, 0));
         let mut expanded = 0usize;
-        let mut busy_cache: HashMap<usize, Vec<(f64, f64)>> = HashMap::new();
+        let mut busy_cache: Map<usize, Vec<(f64, f64)>> = Map::default();
         while let Some(Open(_, _, id)) = open.pop() {
             let n = nodes[id];
             if best.get(&(n.v, n.iv, n.label)).is_some_and(|&t| t < n.t) {
@@ -337,8 +373,8 @@ impl Planner {
                 wait_early(sched, q.robot, &mut plan);
                 return Some(plan);
             }
-            let ivs = intervals(n.v);
-            let (_, hi) = ivs[n.iv];
+            let at = intervals(n.v, &mut safe);
+            let (_, hi) = safe[at][n.iv];
             let may_stay = q.stay == Some(n.v)
                 || q.parks[n.v] == PARK
                 || (places && q.parks[n.v] == PARK_ON_PLACE);
@@ -394,12 +430,13 @@ impl Planner {
             for &e in &nav.out[q.slot][n.v] {
                 let w = nav.edges[e].to;
                 let prev = n.edge.map(|(p, _, _)| p);
-                let dur = q.kin.edge_time(nav, e, prev);
+                let dur = q.kin.edge_time_with(nav, e, prev, |x| self.heading[x]);
 
                 let busy = busy_cache
                     .entry(e)
                     .or_insert_with(|| merged(sched, &conf.trav[e], r));
-                let wivs = intervals(w);
+                let wi_at = intervals(w, &mut safe);
+                let wivs = &safe[wi_at];
                 // Each gap of the edge's resources wide enough, left while still in this
                 // vertex's safe interval; the first arrival in each of w's intervals.
                 let mut from = n.t;
