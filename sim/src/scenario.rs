@@ -862,7 +862,11 @@ impl P<'_> {
                     from,
                     format!("{what} `{}` cannot be read: {e}", path.display()),
                 );
-                self.help("the path is relative to the scenario file");
+                self.help(if what == "`--requests`" {
+                    "the path is relative to the current directory"
+                } else {
+                    "the path is relative to the scenario file"
+                });
                 return None;
             }
         };

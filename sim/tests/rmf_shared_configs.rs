@@ -1,5 +1,6 @@
 //! Every RMF fleet adapter config of rmf_demos (../shared/fleet_configs) on its demo map:
-//! the fleet runs an hour of generated tasks, its robots start at their chargers with the
+//! the fleet runs an hour of a generated requests file (RMF task API, checked against
+//! rmf_api_msgs' schemas), its robots start at their chargers with the
 //! config's names, and drive within its limits with its footprint (issue 38).
 
 use mapc_sim::{parse_scenario, simulate, RunOptions, SimError};
@@ -93,6 +94,42 @@ fn motion(trace: &[u8]) -> BTreeMap<String, Motion> {
     out
 }
 
+/// Finds a referenced schema among the shared ones by its file name (never the network).
+struct Local(PathBuf);
+
+impl jsonschema::Retrieve for Local {
+    fn retrieve(
+        &self,
+        uri: &jsonschema::Uri<String>,
+    ) -> Result<Value, Box<dyn std::error::Error + Send + Sync>> {
+        let name = uri
+            .path()
+            .as_str()
+            .rsplit('/')
+            .next()
+            .unwrap_or("")
+            .to_string();
+        for sub in ["schemas", "task_descriptions"] {
+            let p = self.0.join(sub).join(&name);
+            if p.is_file() {
+                return Ok(serde_json::from_str(&std::fs::read_to_string(p)?)?);
+            }
+        }
+        Err(format!("no shared schema {uri}").into())
+    }
+}
+
+fn validator(name: &str) -> Option<jsonschema::Validator> {
+    let root = shared()?.join("rmf_api_msgs");
+    let v: Value =
+        serde_json::from_str(&std::fs::read_to_string(root.join("schemas").join(name)).ok()?)
+            .ok()?;
+    jsonschema::options()
+        .with_retriever(Local(root))
+        .build(&v)
+        .ok()
+}
+
 #[test]
 fn every_demo_config_runs_an_hour_on_its_map() {
     let Some(shared) = shared() else {
@@ -105,6 +142,9 @@ fn every_demo_config_runs_an_hour_on_its_map() {
         .filter(|p| p.is_dir())
         .collect();
     dirs.sort();
+    // rmf_api_msgs' request schemas, when they are there.
+    let validators =
+        validator("dispatch_task_request.json").zip(validator("robot_task_request.json"));
     let mut ran = 0;
     for dir in dirs {
         let dname = dir.file_name().unwrap().to_str().unwrap().to_string();
@@ -132,32 +172,58 @@ fn every_demo_config_runs_an_hour_on_its_map() {
             let rmf = f.rmf.as_ref().expect("from a config");
             let starts: Vec<String> = rmf.robots.iter().map(|r| r.start.clone()).collect();
             let g = graph_of(b, &starts).unwrap_or_else(|| panic!("{what}: no graph"));
-            // Generated tasks: to the graph's named places in turn, every 3 minutes, and
-            // loops between two chargers when the fleet patrols.
+            // A generated requests file, as rmf_demos_tasks would send: go_to_place
+            // (compose) to the graph's named places in turn every 3 minutes, and patrols
+            // between two chargers when the fleet patrols.
             let others: Vec<String> = places(b, g)
                 .into_iter()
                 .filter(|p| !starts.contains(p))
                 .collect();
-            let mut gens = String::new();
-            for (k, p) in others
-                .iter()
-                .step_by((others.len() / 5).max(1))
-                .take(5)
-                .enumerate()
-            {
-                gens.push_str(&format!(
-                    "  - {{every: 15min, start: {}s, go_to_place: {{place: \"{p}\"}}}}\n",
-                    30 + 180 * k
-                ));
+            let step = (others.len() / 20).max(1);
+            let mut lines = String::new();
+            for (k, p) in others.iter().step_by(step).cycle().take(20).enumerate() {
+                let go = serde_json::json!({"at": format!("{}s", 30 + 180 * k), "request": {
+                    "type": "dispatch_task_request",
+                    "request": {"category": "compose", "description": {
+                        "category": "go_to_place",
+                        "phases": [{"activity": {"category": "go_to_place", "description": p}}]
+                    }}
+                }});
+                lines.push_str(&format!("{go}\n"));
             }
             if f.task_kinds.contains(&mapc_sim::TaskCategory::Loop) && starts.len() >= 2 {
-                gens.push_str(&format!(
-                    "  - {{every: 20min, start: 5min, loop: {{start: \"{}\", finish: \"{}\"}}}}\n",
-                    starts[0], starts[1]
-                ));
+                for k in 0..3 {
+                    let patrol = serde_json::json!({"at": format!("{}min", 5 + 20 * k), "request": {
+                        "type": "robot_task_request", "robot": rmf.robots[1].name, "fleet": f.name,
+                        "request": {"category": "patrol", "description": {
+                            "places": [starts[0], starts[1]], "rounds": 1
+                        }}
+                    }});
+                    lines.push_str(&format!("{patrol}\n"));
+                }
             }
+            if let Some(v) = &validators {
+                for l in lines.lines() {
+                    let r: Value = serde_json::from_str(l).unwrap();
+                    let which = if r["request"]["type"] == "robot_task_request" {
+                        &v.1
+                    } else {
+                        &v.0
+                    };
+                    let errs: Vec<String> = which
+                        .iter_errors(&r["request"])
+                        .map(|e| e.to_string())
+                        .collect();
+                    assert!(errs.is_empty(), "{what}: {errs:?} in {l}");
+                }
+            }
+            let tmp = std::env::temp_dir().join(format!("mapc-rmf-shared-{}", std::process::id()));
+            std::fs::create_dir_all(&tmp).unwrap();
+            let req = tmp.join(format!("{dname}_{cname}.jsonl"));
+            std::fs::write(&req, &lines).unwrap();
             let text = format!(
-                "duration: 1h\nseed: 1\nfleets:\n  - {{config: {cname}, graph: {g}}}\ngenerators:\n{gens}"
+                "duration: 1h\nseed: 1\nfleets:\n  - {{config: {cname}, graph: {g}}}\nrequests: '{}'\n",
+                req.display()
             );
             let (s, d) = parse_scenario(mapc_ir::FileId(0), &text, &dir);
             let s = s.unwrap_or_else(|| panic!("{what}: {d:#?}\n{text}"));
