@@ -152,7 +152,10 @@ fn requests_and_states_follow_rmf_api_schemas() {
         return;
     };
     let descriptions = |cat: &str| validator(&format!("task_description__{cat}.json"));
-    let text = std::fs::read_to_string(fixtures().join("rmf/warehouse_requests.jsonl")).unwrap();
+    // The warehouse's requests and the office example's (docs/sim.md).
+    let text = ["warehouse_requests.jsonl", "office_requests.jsonl"]
+        .map(|f| std::fs::read_to_string(fixtures().join("rmf").join(f)).unwrap())
+        .concat();
     for (i, line) in text.lines().enumerate() {
         let v: Value = serde_json::from_str(line).unwrap();
         let req = &v["request"];
