@@ -782,6 +782,76 @@ pub const UNKNOWN_FAULT_TARGET: Code = Code {
     summary: "a fault names a robot, door or lift the run does not have",
 };
 
+/// # S0004 included-file-unreadable
+///
+/// **What:** a file the scenario names (a fleet's `config:`, the `requests:` file) cannot
+/// be read: it does not exist, is not a file, is larger than the input limit or is not
+/// UTF-8.
+///
+/// **Why it matters:** the fleet or the tasks it describes would be missing from the run.
+///
+/// **Fix:** correct the path; it is relative to the scenario file.
+///
+/// **Example:**
+/// ```yaml
+/// fleets:
+///   - {config: tinyRobot_config.yml}   # S0004: the file is tinyRobot_config.yaml
+/// ```
+pub const INCLUDED_FILE: Code = Code {
+    code: "S0004",
+    group: Group::Scenario,
+    name: "included-file-unreadable",
+    summary: "a file the scenario names cannot be read",
+};
+
+/// # S0312 rmf-config-no-fleet
+///
+/// **What:** an RMF fleet adapter config (a fleet's `config:`) has no `rmf_fleet` block, or
+/// lists no robots (neither under `rmf_fleet.robots` nor as the older template's top-level
+/// `robots`).
+///
+/// **Why it matters:** the fleet's name, limits, footprint and battery come from
+/// `rmf_fleet`, and its robots from `robots`; without them there is no fleet to simulate.
+///
+/// **Fix:** pass the fleet adapter's `config.yaml` (the file with `rmf_fleet:`), or add
+/// the missing block.
+///
+/// **Example:**
+/// ```yaml
+/// # fleet_config.yaml
+/// fleet_manager: {ip: 127.0.0.1, port: 22011}   # S0312: no `rmf_fleet`
+/// ```
+pub const RMF_CONFIG_NO_FLEET: Code = Code {
+    code: "S0312",
+    group: Group::Scenario,
+    name: "rmf-config-no-fleet",
+    summary: "a fleet adapter config has no rmf_fleet or no robots",
+};
+
+/// # S0313 request-invalid
+///
+/// **What:** a line of the `requests:` file is not an RMF task API request mapc can read:
+/// not JSON (a truncated line), not `{"at": TIME, "request": {...}}`, a request that breaks
+/// rmf_api_msgs' schema (a missing `category` or `description`, a wrong type), or a task
+/// description mapc cannot simulate (a patrol of more than two places, a composition other
+/// than go_to_place, two places, a pickup then a dropoff, or a clean action).
+///
+/// **Why it matters:** the task would be missing from the study.
+///
+/// **Fix:** write one JSON object a line, with the request as RMF's API server takes it
+/// (docs/sim.md, "RMF task requests").
+///
+/// **Example:**
+/// ```json
+/// {"at": "5min", "request": {"type": "dispatch_task_request", "request": {"category": "patrol"   <- S0313: the line ends
+/// ```
+pub const BAD_REQUEST: Code = Code {
+    code: "S0313",
+    group: Group::Scenario,
+    name: "request-invalid",
+    summary: "a line of the requests file is not a task request mapc can read",
+};
+
 /// Every scenario code.
 pub static CODES: &[Code] = &[
     INVALID_YAML,
@@ -818,4 +888,7 @@ pub static CODES: &[Code] = &[
     CROWD,
     FAULT_TARGET,
     UNKNOWN_FAULT_TARGET,
+    INCLUDED_FILE,
+    RMF_CONFIG_NO_FLEET,
+    BAD_REQUEST,
 ];

@@ -25,13 +25,16 @@ mod world;
 
 pub use crowd::{compare_crowd, CrowdReport, FleetCompare, SpeedStats, Spread};
 pub use params::RobotParams;
+pub use report::rmf_states;
 pub use report::{
-    DoorReport, Encounter, FleetReport, LiftReport, Report, RobotReport, ScenarioWarning,
-    StuckReport, TaskReport, TrafficReport, Waits,
+    DoorReport, Encounter, FleetReport, LiftReport, Report, RequestReport, RobotReport,
+    ScenarioWarning, StuckReport, TaskReport, TrafficReport, Waits,
 };
 pub use scenario::{
-    parse as parse_scenario, parse_duration, CrowdOptions, FaultSpec, FaultTarget, FleetSpec,
-    GeneratorSpec, Scenario, SimOptions, SpawnSpec, TaskCategory, TaskKind, TaskSpec, WorkcellKind,
+    parse as parse_scenario, parse_duration, parse_files as parse_scenario_files,
+    parse_files_with as parse_scenario_files_with, CrowdOptions, FaultSpec, FaultTarget, Finishing,
+    FleetSpec, GeneratorSpec, Included, Parsed, RequestKind, RequestSpec, RequestedTask, RmfFleet,
+    RmfRobot, Scenario, SimOptions, SpawnSpec, TaskCategory, TaskKind, TaskSpec, WorkcellKind,
     WorkcellSpec, MAX_DURATION,
 };
 pub use trace::TraceFilter;
@@ -84,6 +87,17 @@ pub fn simulate(
     scenario: &Scenario,
     mut opts: RunOptions<'_>,
 ) -> Result<Report, SimError> {
+    // RMF task requests become tasks (or are refused) on this map.
+    let accepted;
+    let mut outcomes = Vec::new();
+    let scenario = if scenario.requests.is_empty() {
+        scenario
+    } else {
+        let (s, o) = scenario::accept_requests(building, scenario).map_err(SimError::Invalid)?;
+        accepted = s;
+        outcomes = o;
+        &accepted
+    };
     let placement = fleet::Fleets::place(building, scenario).map_err(SimError::Invalid)?;
     let mut fleets =
         fleet::Fleets::new(building, scenario, &placement).map_err(SimError::Invalid)?;
@@ -197,6 +211,32 @@ pub fn simulate(
     }
     let mut report = report.finish(world.time(), &world.robots());
     report.interrupted = interrupted;
+    if !outcomes.is_empty() {
+        let ids = scenario::task_ids(scenario);
+        report.requests = scenario
+            .requests
+            .iter()
+            .zip(outcomes)
+            .map(|(r, o)| match o {
+                scenario::RequestOutcome::Task(i) => report::RequestReport {
+                    line: r.line,
+                    at: r.at,
+                    task_id: ids.get(i).cloned(),
+                    refused: None,
+                },
+                scenario::RequestOutcome::Refused(why) => report::RequestReport {
+                    line: r.line,
+                    at: r.at,
+                    task_id: None,
+                    refused: Some(why),
+                },
+            })
+            .collect();
+    }
+    // Robots are listed in spawn order, as the world has them.
+    for (i, r) in report.robots.iter_mut().enumerate() {
+        r.battery_soc = world.soc(i).unwrap_or(1.0);
+    }
     report.crowd = world.crowd().map(|c| c.report(world.time()));
     report.traffic = fleets.traffic_report();
     report.warnings = placement

@@ -593,7 +593,6 @@ impl World {
     }
 
     /// State of charge (0..1) of robot `i` (spawn order).
-    #[allow(dead_code)] // for the report and tests
     pub fn soc(&self, i: usize) -> Option<f64> {
         self.robots.get(i).map(|r| r.soc)
     }

@@ -75,7 +75,13 @@ impl Fleets {
                     }
                 }
                 SpawnSpec::Waypoints(names) => {
-                    for name in names.iter().take(f.count) {
+                    for (k, name) in names.iter().take(f.count).enumerate() {
+                        // A fleet config's robots: located at their waypoint in the config.
+                        let span = f
+                            .rmf
+                            .as_ref()
+                            .and_then(|r| r.robots.get(k))
+                            .map_or(f.span, |r| r.span);
                         match nav.find(slot, name) {
                             Some(v)
                                 if taken.iter().any(|&(w, _)| w == v)
@@ -91,7 +97,7 @@ impl Fleets {
                                 );
                             }
                             Some(v) => chosen.push((v, None)),
-                            None => diags.push(unknown_waypoint(&nav, slot, name, f.span, &f.name)),
+                            None => diags.push(unknown_waypoint(&nav, slot, name, span, &f.name)),
                         }
                     }
                 }
@@ -169,7 +175,13 @@ impl Fleets {
             }
             for (i, (v, name)) in chosen.into_iter().enumerate() {
                 let nv = &nav.vertices[v];
-                let name = name.unwrap_or_else(|| format!("{}_{i}", f.name));
+                // A fleet config's robots are named as in the config.
+                let own = f
+                    .rmf
+                    .as_ref()
+                    .and_then(|r| r.robots.get(i))
+                    .map(|r| r.name.clone());
+                let name = own.or(name).unwrap_or_else(|| format!("{}_{i}", f.name));
                 if robots.iter().any(|r| r.name == name) {
                     diags.push(Diagnostic::error(
                         codes::SPAWN_CLASH,

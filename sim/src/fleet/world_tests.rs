@@ -37,6 +37,7 @@ fn fleet(name: &str, count: usize, spawn: SpawnSpec) -> FleetSpec {
         recharge_soc: 0.9,
         task_kinds: Vec::new(),
         span: Span::UNKNOWN,
+        rmf: None,
     }
 }
 
@@ -52,6 +53,7 @@ fn scenario(fleets: Vec<FleetSpec>, tasks: Vec<TaskSpec>) -> Scenario {
         generators: Vec::new(),
         faults: Vec::new(),
         options: SimOptions::default(),
+        requests: Vec::new(),
     }
 }
 

@@ -48,6 +48,16 @@ pub(crate) struct SimArgs {
     /// Write the run report here (JSON).
     #[arg(long, value_name = "FILE")]
     report: Option<PathBuf>,
+    /// RMF task API requests (JSON Lines, `{"at": TIME, "request": {...}}` a line), read
+    /// instead of the scenario's `requests:`.
+    #[arg(long, value_name = "FILE")]
+    requests: Option<PathBuf>,
+    /// Write each task's final state as RMF's API `task_state`, one JSON object a line.
+    #[arg(long, value_name = "FILE")]
+    task_states: Option<PathBuf>,
+    /// Write the fleets' states as RMF's API `fleet_state_update`s, one JSON object a line.
+    #[arg(long, value_name = "FILE")]
+    fleet_states: Option<PathBuf>,
     /// Write a self-contained HTML page that replays the run (levels, robots, doors, lifts,
     /// tasks, charts; no network needed).
     #[arg(long, value_name = "FILE")]
@@ -188,6 +198,18 @@ fn read_scenario(path: &Path, file: FileId) -> Result<(String, Option<Diagnostic
     }
 }
 
+/// The files a scenario names, as sources for diagnostics (their ids follow the
+/// scenario's).
+fn included_sources(included: &[mapc_sim::Included]) -> Vec<SourceFile> {
+    included
+        .iter()
+        .map(|i| SourceFile {
+            name: crate::ui::shown(&i.path),
+            text: i.text.clone(),
+        })
+        .collect()
+}
+
 fn emit(sources: &[SourceFile], diags: &[Diagnostic], format: SimFormat) {
     // A scenario's diagnostics are few (it is small and hand-written): all are shown.
     let all: Vec<&Diagnostic> = diags.iter().collect();
@@ -219,6 +241,8 @@ pub(crate) fn run(args: &SimArgs) -> Result<Outcome, CliError> {
         (&args.trace, "--trace"),
         (&args.html, "--html"),
         (&args.ros2.mcap, "--mcap"),
+        (&args.task_states, "--task-states"),
+        (&args.fleet_states, "--fleet-states"),
     ] {
         if let Some(p) = path {
             if let Err(e) = check_writable(p, what) {
@@ -232,13 +256,24 @@ pub(crate) fn run(args: &SimArgs) -> Result<Outcome, CliError> {
         .parent()
         .filter(|p| !p.as_os_str().is_empty())
         .unwrap_or(Path::new("."));
-    let scenario_only = [SourceFile {
+    let mut scenario_only = vec![SourceFile {
         name: name.clone(),
         text: text.clone(),
     }];
     let (scenario, diags) = match bad_bytes {
         Some(d) => (None, vec![d]),
-        None => mapc_sim::parse_scenario(FileId(0), &text, base),
+        None => {
+            // With the files it names (fleet configs), so that their problems are shown
+            // where they are.
+            let p = mapc_sim::parse_scenario_files_with(
+                FileId(0),
+                &text,
+                base,
+                args.requests.as_deref(),
+            );
+            scenario_only.extend(included_sources(&p.included));
+            (p.scenario, p.diagnostics)
+        }
     };
     emit(&scenario_only, &diags, args.format);
     let Some(scenario) = scenario else {
@@ -298,8 +333,14 @@ pub(crate) fn run(args: &SimArgs) -> Result<Outcome, CliError> {
     let mut sources = checked.parsed.sources.clone();
     let sid = FileId(sources.len() as u32);
     sources.push(SourceFile { name, text });
-    let (Some(scenario), _) = mapc_sim::parse_scenario(sid, &sources[sid.0 as usize].text, base)
-    else {
+    let parsed = mapc_sim::parse_scenario_files_with(
+        sid,
+        &sources[sid.0 as usize].text,
+        base,
+        args.requests.as_deref(),
+    );
+    sources.extend(included_sources(&parsed.included));
+    let Some(scenario) = parsed.scenario else {
         // Same text, same result; never reached.
         return failed("the scenario could not be read twice".into());
     };
@@ -326,14 +367,22 @@ pub(crate) fn run(args: &SimArgs) -> Result<Outcome, CliError> {
         Ok(r) => r,
         Err(e) => return failed(e),
     };
-    let observing = args.html.is_some() || ros2.active();
+    let observing = args.html.is_some() || ros2.active() || args.fleet_states.is_some();
     let injecting = ros2.injects();
     let ros2 = std::cell::RefCell::new(ros2);
+    let start_ms = mapc_sim::rmf_states::start_unix_millis(&scenario);
+    let mut fleet_states: Vec<u8> = Vec::new();
     let mut observe = |p: &mapc_sim::msgs::Published| {
         if let Some(r) = recorder.as_mut() {
             r.observe(p);
         }
         ros2.borrow_mut().observe(p);
+        if let (Some(_), mapc_sim::msgs::Msg::FleetState(f)) = (&args.fleet_states, &p.msg) {
+            let u = mapc_sim::rmf_states::fleet_state_update(f, p.t, start_ms);
+            // A `Value` always serialises.
+            let _ = serde_json::to_writer(&mut fleet_states, &u);
+            fleet_states.push(b'\n');
+        }
     };
     let mut inject = |t: f64, out: &mut Vec<_>| ros2.borrow_mut().inject(t, out);
     let opts = mapc_sim::RunOptions {
@@ -393,6 +442,21 @@ pub(crate) fn run(args: &SimArgs) -> Result<Outcome, CliError> {
             return failed(format!("{}: {e}", path.display()));
         }
     }
+    if let Some(path) = &args.fleet_states {
+        if let Err(e) = output::write_atomic(path, &fleet_states) {
+            return failed(format!("{}: {e}", path.display()));
+        }
+    }
+    if let Some(path) = &args.task_states {
+        let mut lines = Vec::new();
+        for st in mapc_sim::rmf_states::task_states(&scenario, &run_report) {
+            let _ = serde_json::to_writer(&mut lines, &st);
+            lines.push(b'\n');
+        }
+        if let Err(e) = output::write_atomic(path, &lines) {
+            return failed(format!("{}: {e}", path.display()));
+        }
+    }
     if let Some(path) = &args.report {
         let mut json = match serde_json::to_vec_pretty(&run_report) {
             Ok(j) => j,
@@ -421,6 +485,12 @@ pub(crate) fn run(args: &SimArgs) -> Result<Outcome, CliError> {
         }
         if let Some(p) = &args.trace {
             written.push(format!("trace {}", crate::ui::shown(p)));
+        }
+        if let Some(p) = &args.task_states {
+            written.push(format!("task states {}", crate::ui::shown(p)));
+        }
+        if let Some(p) = &args.fleet_states {
+            written.push(format!("fleet states {}", crate::ui::shown(p)));
         }
         if let Some(p) = &args.ros2.mcap {
             written.push(format!("mcap {}", crate::ui::shown(p)));

@@ -223,6 +223,42 @@ pub(crate) fn plan(
     // path relative to them is the same for every run on that map.
     let count = spec.run_count();
     let runs_dir = absolute(&out.join("runs").join(run_name(0, count)));
+    // Files the scenario names relative to itself (fleets' `config`, `requests`), re-pointed
+    // from the run directories, unless an axis sets them.
+    let mut file_paths: Vec<String> = Vec::new();
+    if let Some(fleets) = root.get("fleets").and_then(Node::as_seq) {
+        for (i, f) in fleets.iter().enumerate() {
+            if f.get("config").and_then(Node::key_text).is_some() {
+                file_paths.push(format!("fleets.{i}.config"));
+            }
+        }
+    }
+    match root.get("requests") {
+        Some(r) if r.as_map().is_some() => file_paths.push("requests.file".into()),
+        Some(r) if r.key_text().is_some() => file_paths.push("requests".into()),
+        _ => {}
+    }
+    let mut file_targets: Vec<(Target, String)> = Vec::new();
+    for path in file_paths {
+        let set_by_axis = spec.axes.iter().any(|a| {
+            a.path == path
+                || (path.starts_with("fleets.")
+                    && a.path.starts_with("fleets.")
+                    && a.path.ends_with(".config"))
+        });
+        let value = path
+            .split('.')
+            .try_fold(&root, |n, seg| match seg.parse::<usize>() {
+                Ok(k) => n.as_seq().and_then(|s| s.get(k)),
+                Err(_) => n.get(seg),
+            })
+            .and_then(Node::key_text)
+            .map(str::to_string);
+        if let (false, Some(v), Ok(t)) = (set_by_axis, value, resolve(&root, &base_text, &path)) {
+            let rel = relative(&runs_dir, &absolute(&scen_dir.join(v)));
+            file_targets.push((t, yaml_string(&rel)));
+        }
+    }
     let mut map_index: BTreeMap<PathBuf, usize> = BTreeMap::new();
     let mut map_paths: Vec<PathBuf> = Vec::new();
     let mut runs = Vec::with_capacity(count);
@@ -251,6 +287,9 @@ pub(crate) fn plan(
             }
         }
         edits.push((usize::MAX, &map_target, yaml_string(&rel)));
+        for (t, v) in &file_targets {
+            edits.push((usize::MAX, t, v.clone()));
+        }
         let (text, placed) = splice(&base_text, &mut edits);
         runs.push(Run {
             index,
@@ -293,8 +332,18 @@ pub(crate) fn plan(
         }
         maps.push(LoadedMap { checked });
     }
+    // The files the scenario names (fleet configs, requests) are inputs too: a changed
+    // config reruns the runs.
+    let named: String = mapc_sim::parse_scenario_files(FileId(0), &base_text, &scen_dir)
+        .included
+        .iter()
+        .map(|i| i.text.as_str())
+        .collect();
     for r in &mut runs {
-        r.inputs = inputs_hash(&r.text, &maps[r.map].checked.parsed.sources);
+        r.inputs = inputs_hash(
+            &format!("{}{named}", r.text),
+            &maps[r.map].checked.parsed.sources,
+        );
     }
 
     // Every run (or the one asked for) checked: the scenario parser, then placement.
@@ -378,7 +427,8 @@ fn remap(spec: &Spec, r: &Run, sid: FileId, d: &Diagnostic) -> Option<Diagnostic
         .placed
         .iter()
         .find(|&&(_, ps, pe, _)| s >= ps && e <= pe && s < pe.max(ps + 1))?;
-    let axis = &spec.axes[ai];
+    // (Edits of no axis, such as re-pointed file paths, are left as they are.)
+    let axis = spec.axes.get(ai)?;
     let value = &axis.values[r.choice[ai]];
     let unknown_key = d.code == mapc_sim::codes::UNKNOWN_KEY.code;
     if !d.is_error() && !unknown_key {
