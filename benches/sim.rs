@@ -56,12 +56,8 @@ fn load(map_text: &str, scenario_text: &str) -> (mapc_ir::Building, mapc_sim::Sc
     (building, scenario)
 }
 
-#[divan::bench(sample_count = 3, sample_size = 1)]
-fn hotel_8h(bencher: Bencher) {
-    let Ok(map) = std::fs::read_to_string(HOTEL) else {
-        return;
-    };
-    let (building, scenario) = load(&map, HOTEL_SCENARIO);
+/// Times whole runs of `scenario` (to its duration).
+fn run_whole(bencher: Bencher, building: &mapc_ir::Building, scenario: &mapc_sim::Scenario) {
     bencher.bench_local(|| {
         let opts = RunOptions {
             until: None,
@@ -69,8 +65,17 @@ fn hotel_8h(bencher: Bencher) {
             progress: None,
             ..Default::default()
         };
-        simulate(&building, &scenario, opts).expect("runs")
+        simulate(building, scenario, opts).expect("runs")
     });
+}
+
+#[divan::bench(sample_count = 3, sample_size = 1)]
+fn hotel_8h(bencher: Bencher) {
+    let Ok(map) = std::fs::read_to_string(HOTEL) else {
+        return;
+    };
+    let (building, scenario) = load(&map, HOTEL_SCENARIO);
+    run_whole(bencher, &building, &scenario);
 }
 
 /// The hotel scenario with its fleets scaled together to 64 robots (32 / 19 / 13): the
@@ -86,15 +91,7 @@ fn hotel_8h_64(bencher: Bencher) {
         .replace("count: 4,", "count: 13,");
     let (building, scenario) = load(&map, &scenario);
     assert_eq!(scenario.fleets.iter().map(|f| f.count).sum::<usize>(), 64);
-    bencher.bench_local(|| {
-        let opts = RunOptions {
-            until: None,
-            trace: None,
-            progress: None,
-            ..Default::default()
-        };
-        simulate(&building, &scenario, opts).expect("runs")
-    });
+    run_whole(bencher, &building, &scenario);
 }
 
 #[divan::bench(sample_count = 2, sample_size = 1)]
@@ -103,15 +100,7 @@ fn airport_8h_64(bencher: Bencher) {
         return;
     };
     let (building, scenario) = load(&map, AIRPORT_SCENARIO);
-    bencher.bench_local(|| {
-        let opts = RunOptions {
-            until: None,
-            trace: None,
-            progress: None,
-            ..Default::default()
-        };
-        simulate(&building, &scenario, opts).expect("runs")
-    });
+    run_whole(bencher, &building, &scenario);
 }
 
 /// `rings` one-way rings of 8 vertices 3 m apart (a 9 m × 3 m rectangle), 20 m apart, in
@@ -166,13 +155,5 @@ fn rings_scenario(n: usize) -> String {
 #[divan::bench(args = [5, 20, 80], sample_count = 3, sample_size = 1)]
 fn rings_10min(bencher: Bencher, n: usize) {
     let (building, scenario) = load(&rings_map(n.div_ceil(2)), &rings_scenario(n));
-    bencher.bench_local(|| {
-        let opts = RunOptions {
-            until: None,
-            trace: None,
-            progress: None,
-            ..Default::default()
-        };
-        simulate(&building, &scenario, opts).expect("runs")
-    });
+    run_whole(bencher, &building, &scenario);
 }
