@@ -162,6 +162,11 @@ pub struct TaskSpec {
     pub kind: TaskKind,
     /// Restrict to one fleet (default: any fleet that accepts the category).
     pub fleet: Option<String>,
+    /// Only this robot (of `fleet`) may do it: an RMF `robot_task_request`.
+    pub robot: Option<String>,
+    /// RMF's binary priority: a task of priority 1 goes before every task of priority 0
+    /// still waiting.
+    pub priority: u64,
     pub span: Span,
 }
 
@@ -1502,6 +1507,8 @@ impl P<'_> {
             at: at?,
             kind: kind?,
             fleet: fleet?,
+            robot: None,
+            priority: 0,
             span: v.span,
         })
     }

@@ -44,6 +44,10 @@ pub(super) struct Pending {
     pub task: usize,
     /// (fleet, the task's steps for it) of every fleet that may do the task.
     pub steps: Vec<(usize, Vec<Step>)>,
+    /// The only robot that may do it (a robot task).
+    pub robot: Option<usize>,
+    /// RMF's priority: the queue keeps higher ones first.
+    pub priority: u64,
     /// Since when younger tasks have been taken while this one was not.
     pub passed_over: Option<f64>,
     /// When robots were last asked to make room for it.
@@ -54,13 +58,13 @@ pub(super) struct Pending {
 }
 
 impl Fleets {
-    pub(super) fn request_task(
-        &mut self,
-        t: f64,
-        kind: TaskKind,
-        fleet: Option<String>,
-        out: &mut Vec<(Topic, Msg)>,
-    ) {
+    pub(super) fn request_task(&mut self, t: f64, new: NewTask, out: &mut Vec<(Topic, Msg)>) {
+        let NewTask {
+            kind,
+            fleet,
+            robot,
+            priority,
+        } = new;
         let category = kind.category();
         let n = self.counters.entry(category).or_insert(0);
         let id = format!("{}_{}", category.as_str(), *n);
@@ -70,11 +74,29 @@ impl Fleets {
             id,
             category,
             kind,
-            fleet,
+            fleet: fleet.clone(),
             ended: false,
         });
         self.event(t, ti, "queued", None, String::new(), out);
-        let steps = self.fleets_for(ti);
+        // A robot task: that robot of the task's fleet, or nobody.
+        let only = robot.as_ref().map(|name| {
+            self.by_name.get(name).copied().filter(|&i| {
+                fleet
+                    .as_ref()
+                    .is_none_or(|f| self.fleets[self.robots[i].fleet].name == *f)
+            })
+        });
+        if let (Some(None), Some(name)) = (only, &robot) {
+            self.tasks[ti].ended = true;
+            let detail = format!("no robot named `{name}` in the task's fleet");
+            self.event(t, ti, "failed", None, detail, out);
+            return;
+        }
+        let steps: Vec<(usize, Vec<Step>)> = self
+            .fleets_for(ti)
+            .into_iter()
+            .filter(|(fi, _)| only.flatten().is_none_or(|i| self.robots[i].fleet == *fi))
+            .collect();
         if steps.is_empty() {
             self.tasks[ti].ended = true;
             self.event(
@@ -87,13 +109,22 @@ impl Fleets {
             );
             return;
         }
-        self.pending.push_back(Pending {
+        let p = Pending {
             task: ti,
             steps,
+            robot: only.flatten(),
+            priority,
             passed_over: None,
             displaced_at: f64::NEG_INFINITY,
             backoff: None,
-        });
+        };
+        // Oldest first within a priority; a higher priority before every lower one.
+        let at = self
+            .pending
+            .iter()
+            .position(|q| q.priority < priority)
+            .unwrap_or(self.pending.len());
+        self.pending.insert(at, p);
         self.next_dispatch = self.next_dispatch.min(t);
     }
 
@@ -199,8 +230,12 @@ impl Fleets {
                 let Some(first) = first_goal(steps) else {
                     continue;
                 };
+                let only = self.pending[k].robot;
                 for (ri, times) in &free {
-                    if self.robots[*ri].fleet == *fi && times[first].is_finite() {
+                    if self.robots[*ri].fleet == *fi
+                        && only.is_none_or(|o| o == *ri)
+                        && times[first].is_finite()
+                    {
                         near.push((times[first], *ri, steps.clone()));
                     }
                 }

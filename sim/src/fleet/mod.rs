@@ -223,6 +223,16 @@ struct FleetRt {
     robots: Vec<usize>,
 }
 
+/// A task as requested (from the scenario's tasks, generators or RMF requests), before it
+/// is queued.
+struct NewTask {
+    kind: TaskKind,
+    fleet: Option<String>,
+    /// A robot task's robot, by name.
+    robot: Option<String>,
+    priority: u64,
+}
+
 struct Task {
     id: String,
     category: TaskCategory,
@@ -268,7 +278,7 @@ pub struct Fleets {
     /// When the dispatcher runs next.
     next_dispatch: f64,
     /// (request time, source order, kind, fleet) of tasks not yet requested, sorted.
-    upcoming: VecDeque<(f64, usize, TaskKind, Option<String>)>,
+    upcoming: VecDeque<(f64, usize, NewTask)>,
     doors: Vec<DoorView>,
     door_index: BTreeMap<String, usize>,
     lifts: Vec<LiftView>,
@@ -353,8 +363,8 @@ impl Fleets {
         }
         // New tasks.
         while self.upcoming.front().is_some_and(|u| u.0 <= t) {
-            if let Some((_, _, kind, fleet)) = self.upcoming.pop_front() {
-                self.request_task(t, kind, fleet, out);
+            if let Some((_, _, new)) = self.upcoming.pop_front() {
+                self.request_task(t, new, out);
             }
         }
         self.dispatch(t, out);

@@ -421,7 +421,16 @@ impl Fleets {
         };
         for (i, t) in scenario.tasks.iter().enumerate() {
             check(&t.kind, &t.fleet, t.span, &mut diags);
-            upcoming.push((t.at, i, t.kind.clone(), t.fleet.clone()));
+            upcoming.push((
+                t.at,
+                i,
+                NewTask {
+                    kind: t.kind.clone(),
+                    fleet: t.fleet.clone(),
+                    robot: t.robot.clone(),
+                    priority: t.priority,
+                },
+            ));
         }
         let base = scenario.tasks.len();
         for (g, gen) in scenario.generators.iter().enumerate() {
@@ -436,7 +445,16 @@ impl Fleets {
                 if at > end || k > 1_000_000 {
                     break;
                 }
-                upcoming.push((at, base + g, gen.kind.clone(), gen.fleet.clone()));
+                upcoming.push((
+                    at,
+                    base + g,
+                    NewTask {
+                        kind: gen.kind.clone(),
+                        fleet: gen.fleet.clone(),
+                        robot: None,
+                        priority: 0,
+                    },
+                ));
                 k += 1;
             }
         }

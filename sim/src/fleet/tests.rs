@@ -57,6 +57,8 @@ fn task(at: f64, kind: TaskKind) -> TaskSpec {
         at,
         kind,
         fleet: None,
+        robot: None,
+        priority: 0,
         span: Span::UNKNOWN,
     }
 }
@@ -946,6 +948,76 @@ fn assignment_by_category_and_soonest_start() {
     assert_eq!(
         detail("go_to_place_1").as_deref(),
         Some("no robot can reach the task")
+    );
+}
+
+/// Who was assigned which task, in order.
+fn assignments(events: &[TaskEvent]) -> Vec<(&str, &str)> {
+    events
+        .iter()
+        .filter(|e| e.event == "assigned")
+        .map(|e| (e.task_id.as_str(), e.robot.as_str()))
+        .collect()
+}
+
+#[test]
+fn a_robot_task_goes_to_its_robot_only() {
+    let b = cross();
+    let c = fleet(
+        "c",
+        2,
+        SpawnSpec::Waypoints(vec!["park_w".into(), "park_e".into()]),
+    );
+    let go = |at: f64, place: &str, robot: Option<&str>| TaskSpec {
+        robot: robot.map(str::to_string),
+        ..task(
+            at,
+            TaskKind::GoToPlace {
+                place: place.into(),
+            },
+        )
+    };
+    // c_1 stands 3 m from e, c_0 13 m: without its robot named, c_1 would take it.
+    let s = scenario(
+        vec![c],
+        vec![go(0.5, "e", Some("c_0")), go(0.6, "w", Some("nobody"))],
+    );
+    let (events, _, _) = run(&b, &s, 120.0);
+    assert_eq!(assignments(&events), [("go_to_place_0", "c_0")]);
+    let mut done = ended(&events);
+    done.sort();
+    let expect = [("go_to_place_0", "completed"), ("go_to_place_1", "failed")];
+    assert_eq!(done, expect.map(|(a, b)| (a.to_string(), b.to_string())));
+    let failed = events.iter().find(|e| e.event == "failed").expect("failed");
+    assert_eq!(failed.detail, "no robot named `nobody` in the task's fleet");
+}
+
+#[test]
+fn a_higher_priority_task_goes_before_older_ones() {
+    let b = cross();
+    let c = fleet("c", 1, SpawnSpec::Waypoints(vec!["park_w".into()]));
+    let go = |at: f64, place: &str, priority: u64| TaskSpec {
+        priority,
+        ..task(
+            at,
+            TaskKind::GoToPlace {
+                place: place.into(),
+            },
+        )
+    };
+    // The robot drives to e; meanwhile w (priority 0), then park_e (priority 1) come.
+    let s = scenario(
+        vec![c],
+        vec![go(0.5, "e", 0), go(0.6, "w", 0), go(0.7, "park_e", 1)],
+    );
+    let (events, _, _) = run(&b, &s, 300.0);
+    assert_eq!(
+        assignments(&events),
+        [
+            ("go_to_place_0", "c_0"),
+            ("go_to_place_2", "c_0"),
+            ("go_to_place_1", "c_0")
+        ]
     );
 }
 

@@ -73,6 +73,8 @@ fn task(at: f64, fleet: Option<&str>, kind: TaskKind) -> TaskSpec {
         at,
         kind,
         fleet: fleet.map(str::to_string),
+        robot: None,
+        priority: 0,
         span: Span::UNKNOWN,
     }
 }

@@ -49,7 +49,7 @@ pub struct RequestedTask {
     pub places: Vec<(String, Span)>,
     /// `fleet_name` of the request, or the fleet of a robot task.
     pub fleet: Option<String>,
-    /// The robot of a `robot_task_request` (mapc's fleet assigns its own robots).
+    /// The robot of a `robot_task_request` (the only robot that may do it).
     pub robot: Option<String>,
     /// `unix_millis_earliest_start_time` (ms).
     pub earliest_start_ms: Option<i64>,
@@ -685,6 +685,8 @@ pub(crate) fn accept_requests(
                     at: r.at,
                     kind: t.kind.clone(),
                     fleet: t.fleet.clone(),
+                    robot: t.robot.clone(),
+                    priority: t.priority,
                     span: t.places.first().map_or(r.span, |p| p.1),
                 });
             }
