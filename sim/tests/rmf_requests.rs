@@ -3,6 +3,9 @@
 //! validated against rmf_api_msgs' schemas (../shared) with the `jsonschema` crate.
 
 use mapc_sim::{parse_scenario, parse_scenario_files, rmf_states, simulate, Report, RunOptions};
+#[path = "support/rmf_schemas.rs"]
+mod rmf_schemas;
+use rmf_schemas::validator;
 use serde_json::Value;
 use std::path::{Path, PathBuf};
 
@@ -80,55 +83,6 @@ fn requests_become_tasks_or_are_refused() {
     let g = r.tasks.iter().find(|t| t.id == "go_to_place_1").unwrap();
     assert_eq!(g.fleet, "movers");
     assert!(!fleet_states.is_empty());
-}
-
-/// ../shared/rmf_api_msgs: the schemas `$ref` each other by file name.
-fn api_root() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("../../shared/rmf_api_msgs")
-}
-
-/// Finds a referenced schema among the shared ones by its file name (never the network).
-struct Local;
-
-impl jsonschema::Retrieve for Local {
-    fn retrieve(
-        &self,
-        uri: &jsonschema::Uri<String>,
-    ) -> Result<Value, Box<dyn std::error::Error + Send + Sync>> {
-        let name = uri
-            .path()
-            .as_str()
-            .rsplit('/')
-            .next()
-            .unwrap_or("")
-            .to_string();
-        for sub in ["schemas", "task_descriptions"] {
-            let p = api_root().join(sub).join(&name);
-            if p.is_file() {
-                return Ok(serde_json::from_str(&std::fs::read_to_string(p)?)?);
-            }
-        }
-        Err(format!("no shared schema {uri}").into())
-    }
-}
-
-fn validator(name: &str) -> Option<jsonschema::Validator> {
-    let root = api_root();
-    if !root.is_dir() {
-        return None;
-    }
-    let path = ["schemas", "task_descriptions"]
-        .iter()
-        .map(|s| root.join(s).join(name))
-        .find(|p| p.is_file())
-        .expect("schema");
-    let v: Value = serde_json::from_str(&std::fs::read_to_string(path).unwrap()).unwrap();
-    Some(
-        jsonschema::options()
-            .with_retriever(Local)
-            .build(&v)
-            .expect("valid schema"),
-    )
 }
 
 fn check(v: &jsonschema::Validator, x: &Value, what: &str) {

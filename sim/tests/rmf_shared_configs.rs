@@ -4,6 +4,9 @@
 //! config's names, and drive within its limits with its footprint (issue 38).
 
 use mapc_sim::{parse_scenario, simulate, RunOptions, SimError};
+#[path = "support/rmf_schemas.rs"]
+mod rmf_schemas;
+use rmf_schemas::validator;
 use serde_json::Value;
 use std::collections::{BTreeMap, BTreeSet};
 use std::path::{Path, PathBuf};
@@ -92,42 +95,6 @@ fn motion(trace: &[u8]) -> BTreeMap<String, Motion> {
         last.insert(name, next);
     }
     out
-}
-
-/// Finds a referenced schema among the shared ones by its file name (never the network).
-struct Local(PathBuf);
-
-impl jsonschema::Retrieve for Local {
-    fn retrieve(
-        &self,
-        uri: &jsonschema::Uri<String>,
-    ) -> Result<Value, Box<dyn std::error::Error + Send + Sync>> {
-        let name = uri
-            .path()
-            .as_str()
-            .rsplit('/')
-            .next()
-            .unwrap_or("")
-            .to_string();
-        for sub in ["schemas", "task_descriptions"] {
-            let p = self.0.join(sub).join(&name);
-            if p.is_file() {
-                return Ok(serde_json::from_str(&std::fs::read_to_string(p)?)?);
-            }
-        }
-        Err(format!("no shared schema {uri}").into())
-    }
-}
-
-fn validator(name: &str) -> Option<jsonschema::Validator> {
-    let root = shared()?.join("rmf_api_msgs");
-    let v: Value =
-        serde_json::from_str(&std::fs::read_to_string(root.join("schemas").join(name)).ok()?)
-            .ok()?;
-    jsonschema::options()
-        .with_retriever(Local(root))
-        .build(&v)
-        .ok()
 }
 
 #[test]
