@@ -469,10 +469,12 @@ pub const NOT_WELL_FORMED: Code = Code {
 /// **What:** `spawn: auto` found room for fewer robots than the fleet's `count`: the
 /// building has fewer parking vertices (waypoints where a standing robot blocks no route to
 /// the rest of the graph, away from task waypoints, chargers and lift cabins, and from each
-/// other) than robots asked.
+/// other) than robots asked. Where the only such waypoints are task places (every dead
+/// end is a place tasks go to), robots park on at most half of them.
 ///
 /// **Why it matters:** the robots without room stay out of the run (the report counts them
-/// as `reserve`); a robot with nowhere to stand but a corridor would block the others.
+/// as `reserve`); a robot with nowhere to stand but a corridor would block the others, and
+/// robots standing on every task place would leave no task a place to end.
 ///
 /// **Fix:** lower `count`, add parking spots (dead ends off the corridors), or name spawn
 /// waypoints for the fleet.

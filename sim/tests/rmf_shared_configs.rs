@@ -4,17 +4,15 @@
 //! config's names, and drive within its limits with its footprint (issue 38).
 
 use mapc_sim::{parse_scenario, simulate, RunOptions, SimError};
+#[path = "support/places.rs"]
+mod places;
 #[path = "support/rmf_schemas.rs"]
 mod rmf_schemas;
+use places::places;
 use rmf_schemas::validator;
 use serde_json::Value;
-use std::collections::{BTreeMap, BTreeSet};
-use std::path::{Path, PathBuf};
-
-fn shared() -> Option<PathBuf> {
-    let p = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../shared");
-    p.join("fleet_configs").is_dir().then_some(p)
-}
+use std::collections::BTreeMap;
+use std::path::PathBuf;
 
 /// The demo map a config directory goes with.
 fn map_of(dir: &str) -> &str {
@@ -33,20 +31,6 @@ fn graph_of(b: &mapc_ir::Building, starts: &[String]) -> Option<i64> {
             })
         })
     })
-}
-
-/// Named waypoints of graph `g`, sorted.
-fn places(b: &mapc_ir::Building, g: i64) -> Vec<String> {
-    let mut out = BTreeSet::new();
-    for (_, l) in b.lanes.iter().filter(|(_, l)| l.graph == g) {
-        for v in [l.start, l.end] {
-            let n = &b.vertices[v].name;
-            if !n.is_empty() {
-                out.insert(n.clone());
-            }
-        }
-    }
-    out.into_iter().collect()
 }
 
 struct Motion {
@@ -99,7 +83,7 @@ fn motion(trace: &[u8]) -> BTreeMap<String, Motion> {
 
 #[test]
 fn every_demo_config_runs_an_hour_on_its_map() {
-    let Some(shared) = shared() else {
+    let Some(shared) = places::shared("fleet_configs") else {
         eprintln!("skipped: ../shared not found");
         return;
     };

@@ -29,6 +29,9 @@ const WAIT_SHARE: f64 = 0.25;
 /// most `PATIENT_WAIT`: robots with a task never plan to stand for longer.
 const PATIENCE: f64 = 600.0;
 const PATIENT_WAIT: f64 = 200.0;
+/// No plan a task takes stands still for longer than this in one place (s), well under
+/// the 300 s after which a robot with a task counts as stuck (`report::STUCK_AFTER`).
+const LONGEST_WAIT: f64 = 180.0;
 /// Dispatch is tried again this often (s) while tasks wait (and at once when a robot
 /// becomes free or a task comes).
 const DISPATCH_EVERY: f64 = 5.0;
@@ -241,7 +244,17 @@ impl Fleets {
                 }
             }
             near.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
-            near.truncate(CANDIDATES);
+            // Free robots that stay for good on one of the task's places are candidates
+            // too, however far: no other robot can get there while they stay, and doing
+            // the task moves them off (as in Token Passing, a robot whose endpoint a task
+            // needs takes the task or makes room).
+            let holders = self.holders(k, &free);
+            let near: Vec<_> = near
+                .into_iter()
+                .enumerate()
+                .filter(|(n, c)| *n < CANDIDATES || holders.contains(&c.1))
+                .map(|(_, c)| c)
+                .collect();
             // Planning again for the same robots before the backoff ends cannot succeed
             // unless the others got ahead of their plans: a later start shortens a plan's
             // waits by at most the delay, and the plans installed since only add spans.
@@ -307,7 +320,10 @@ impl Fleets {
                 // Long tasks may wait longer in all: a share of their length.
                 let last = plan.goal_at.last().copied().unwrap_or(0);
                 let length = last.checked_sub(1).map_or(0.0, |k| plan.steps[k].end - t0);
-                let over = planned_wait(&plan, t0) - (most + WAIT_SHARE * length);
+                // No single wait as long as the stand-still a report calls stuck, however
+                // patient the task: a robot with a task keeps moving.
+                let over = (planned_wait(&plan, t0) - (most + WAIT_SHARE * length))
+                    .max(longest_wait(&plan, t0) - LONGEST_WAIT);
                 if over > 0.0 {
                     retry = retry.min(t + over.clamp(DISPATCH_EVERY, MAX_BACKOFF));
                     continue;
@@ -347,6 +363,25 @@ impl Fleets {
         if !self.pending.is_empty() {
             self.next_dispatch = t + DISPATCH_EVERY;
         }
+    }
+
+    /// The free robots (of `free`) that stay for good on a place of pending task `k`.
+    fn holders(&self, k: usize, free: &[(usize, Vec<f64>)]) -> Vec<usize> {
+        let conf = self.sched.conf();
+        let mut out = Vec::new();
+        for (_, steps) in &self.pending[k].steps {
+            for s in steps {
+                let Step::GoTo(g) = s else { continue };
+                for &x in &conf.vertex[*g] {
+                    if let Some(o) = self.sched.held_for_good(x, usize::MAX) {
+                        if free.iter().any(|(i, _)| *i == o) && !out.contains(&o) {
+                            out.push(o);
+                        }
+                    }
+                }
+            }
+        }
+        out
     }
 
     /// Robot `ri` takes task `ti` with its plan (against the schedule as it is now).
@@ -465,12 +500,21 @@ fn first_goal(steps: &[Step]) -> Option<usize> {
 /// How long `plan` waits for traffic up to its last place (s): time between its steps
 /// beyond the work it holds for.
 fn planned_wait(plan: &Plan, t0: f64) -> f64 {
+    waits(plan, t0).sum()
+}
+
+/// The longest of `plan`'s waits for traffic up to its last place (s).
+fn longest_wait(plan: &Plan, t0: f64) -> f64 {
+    waits(plan, t0).fold(0.0, f64::max)
+}
+
+/// Each wait of `plan` for traffic before a step, up to its last place (s).
+fn waits(plan: &Plan, t0: f64) -> impl Iterator<Item = f64> + '_ {
     let last = plan.goal_at.last().copied().unwrap_or(0);
     let mut prev = t0;
-    let mut w = 0.0;
-    for s in &plan.steps[..last] {
-        w += (s.start - prev - s.hold).max(0.0);
+    plan.steps[..last].iter().map(move |s| {
+        let w = (s.start - prev - s.hold).max(0.0);
         prev = s.end;
-    }
-    w
+        w
+    })
 }

@@ -2,6 +2,7 @@
 //! sets and parking spots built once.
 
 use super::*;
+use crate::traffic::parks::PARK;
 
 impl Fleets {
     /// Resolves spawns and workcells (named waypoints must exist on the fleet's graph).
@@ -140,10 +141,15 @@ impl Fleets {
                         codes::NO_ROOM,
                         f.span,
                         format!(
-                            "fleet `{}`: {} robots asked, room for {}: the building has no more waypoints where a standing robot blocks no route (one is kept free for robots making room)",
+                            "fleet `{}`: {} robots asked, room for {}: {}",
                             f.name,
                             f.count,
-                            chosen.len()
+                            chosen.len(),
+                            if nav.members[slot].iter().any(|&v| parks.per_slot[slot][v] == PARK) {
+                                "the building has no more waypoints where a standing robot blocks no route (one is kept free for robots making room)"
+                            } else {
+                                "robots can stand out of the way only on task places here, and park on at most half of them (on every one, no task could end)"
+                            }
                         ),
                     )
                     .with_help("lower `count`, add parking spots off the corridors, or name spawn waypoints"),

@@ -5,9 +5,10 @@
 //! task waypoints, chargers and lift cabins), so that a robot without work never stands in
 //! the way of one with work, and every robot has a parking vertex of its own to end its
 //! plans on (Token Passing's condition). Only on a graph with no parking vertex off the
-//! task places do robots start on task places that cut nothing (a robot parked there is
-//! sent away when a task needs the place). Fewer robots only when the building has too few
-//! parking vertices; the report says so (S0211) and counts the others as `reserve`.
+//! task places do robots start on task places that cut nothing, on at most half of them (a
+//! robot parked there holds up the tasks going there until it takes one or is sent away;
+//! with every place held, no task could end). Fewer robots only when the building has too
+//! few parking vertices; the report says so (S0211) and counts the others as `reserve`.
 //!
 //! Fleets share the parking vertices in proportion to their sizes: robots are placed one at
 //! a time, always for the fleet with the smallest share placed so far, on the level with
@@ -43,6 +44,8 @@ pub(super) fn auto_spawn(
     }
     let mut chosen: Vec<Vec<usize>> = vec![Vec::new(); fleets.len()];
     let mut full = vec![false; fleets.len()];
+    // Per slot: robots placed on task places.
+    let mut on_places = vec![0usize; nav.graphs.len()];
     loop {
         let next = (0..fleets.len())
             .filter(|&k| !full[k] && chosen[k].len() < fleets[k].count)
@@ -52,38 +55,47 @@ pub(super) fn auto_spawn(
             });
         let Some(k) = next else { break };
         let slot = fleets[k].slot;
-        // Task places only on a graph without any other parking vertex: a robot parked
-        // on a place holds up the tasks going there.
-        let tier = if nav.members[slot]
-            .iter()
-            .any(|&v| parks.per_slot[slot][v] == PARK)
-        {
-            PARK
-        } else {
-            PARK_ON_PLACE
+        // Task places only on a graph without any other parking vertex, and on at most
+        // half of them (at least one): a robot parked on a place holds up the tasks going
+        // there, and with every place held no task could end.
+        let free_on = |tier: u8| {
+            nav.members[slot]
+                .iter()
+                .copied()
+                .filter(move |&v| parks.per_slot[slot][v] == tier)
+                .filter(|&v| conf.vertex[v].iter().all(|&x| !held[x as usize]))
         };
-        let pick = nav.members[slot]
-            .iter()
-            .copied()
-            .filter(|&v| parks.per_slot[slot][v] == tier)
-            .filter(|&v| conf.vertex[v].iter().all(|&x| !held[x as usize]))
-            .min_by_key(|&v| {
-                let ro = &nav.vertices[v].roles;
-                let class = if ro.is_parking_spot {
-                    0
-                } else if ro.is_holding_point {
-                    1
-                } else {
-                    2
-                };
-                let tier = parks.per_slot[slot][v];
-                (
-                    tier,
-                    on_level.get(&nav.vertices[v].level).copied().unwrap_or(0),
-                    class,
-                    v,
-                )
-            });
+        let count = |tier: u8| {
+            nav.members[slot]
+                .iter()
+                .filter(|&&v| parks.per_slot[slot][v] == tier)
+                .count()
+        };
+        let tier = if count(PARK) > 0 {
+            PARK
+        } else if on_places[slot] < (count(PARK_ON_PLACE) / 2).max(1) {
+            PARK_ON_PLACE
+        } else {
+            full[k] = true;
+            continue;
+        };
+        let pick = free_on(tier).min_by_key(|&v| {
+            let ro = &nav.vertices[v].roles;
+            let class = if ro.is_parking_spot {
+                0
+            } else if ro.is_holding_point {
+                1
+            } else {
+                2
+            };
+            let tier = parks.per_slot[slot][v];
+            (
+                tier,
+                on_level.get(&nav.vertices[v].level).copied().unwrap_or(0),
+                class,
+                v,
+            )
+        });
         match pick {
             Some(v) => {
                 for &x in &conf.vertex[v] {
@@ -91,6 +103,9 @@ pub(super) fn auto_spawn(
                 }
                 *on_level.entry(nav.vertices[v].level).or_default() += 1;
                 chosen[k].push(v);
+                if tier == PARK_ON_PLACE {
+                    on_places[slot] += 1;
+                }
             }
             None => full[k] = true,
         }
