@@ -10,9 +10,12 @@
 //! on the floor has work (the kind of run a planner asks "how many robots can it take?"
 //! with). The scaling scenarios keep their own task mixes, with their fleets scaled together.
 //!
-//! Briefly in CI (2 and 8 robots, 4 simulated minutes); long on demand:
-//! `MAPC_DEMO_SIZES=2,4,8,16,32,64 MAPC_DEMO_MINUTES=120 cargo test -p mapc-sim --release
-//! --test traffic_demo_maps -- --nocapture` (`MAPC_DEMO_ONLY=clinic` picks runs by name).
+//! Briefly in CI: the demo maps at 2, 8 and 32 robots for 15 simulated minutes, the
+//! scaling scenarios at 2 and 8 robots for 4 minutes (at more robots and for longer, some
+//! still break the 95 % rule: triple_H, clinic_go and airport_terminal; issue 35). Long on
+//! demand: `MAPC_DEMO_SIZES=2,4,8,16,32,64 MAPC_DEMO_MINUTES=120 cargo test -p mapc-sim
+//! --release --test traffic_demo_maps -- --nocapture` (`MAPC_DEMO_ONLY=clinic` picks runs
+//! by name, `MAPC_DEMO_DUMP=DIR` writes each run's scenario there).
 
 #[path = "support/places.rs"]
 mod places;
@@ -28,15 +31,17 @@ fn env_or<T: std::str::FromStr>(name: &str, default: T) -> T {
         .unwrap_or(default)
 }
 
-fn sizes() -> Vec<usize> {
+/// `MAPC_DEMO_SIZES`, or `default`.
+fn sizes(default: &[usize]) -> Vec<usize> {
     std::env::var("MAPC_DEMO_SIZES")
         .ok()
         .map(|s| s.split(',').filter_map(|x| x.trim().parse().ok()).collect())
-        .unwrap_or_else(|| vec![2, 8])
+        .unwrap_or_else(|| default.to_vec())
 }
 
-fn minutes() -> f64 {
-    env_or("MAPC_DEMO_MINUTES", 4.0)
+/// `MAPC_DEMO_MINUTES`, or `default`.
+fn minutes(default: f64) -> f64 {
+    env_or("MAPC_DEMO_MINUTES", default)
 }
 
 /// Whether the run called `name` is one to do (`MAPC_DEMO_ONLY`: a part of the name).
@@ -208,8 +213,8 @@ fn demo_maps_take_every_fleet_size() {
                 continue;
             }
             let mut runs = Vec::new();
-            for n in sizes() {
-                let text = stream(&places, g, n, minutes(), 35 + g as u64);
+            for n in sizes(&[2, 8, 32]) {
+                let text = stream(&places, g, n, minutes(15.0), 35 + g as u64);
                 let report = run(
                     &format!("{name}, {n} robots"),
                     building,
@@ -297,8 +302,8 @@ fn scaling_scenarios_take_every_fleet_size() {
         let map = mapc_frontend::load(&dir.join(map.trim())).expect("map");
         let building = map.valid_building().expect("valid demo map");
         let mut runs = Vec::new();
-        for n in sizes() {
-            let (text, asked) = scaled(&text, n, minutes());
+        for n in sizes(&[2, 8]) {
+            let (text, asked) = scaled(&text, n, minutes(4.0));
             let report = run(&format!("{name}, {asked} robots"), building, &text, &dir);
             runs.push(Run { asked, report });
         }
