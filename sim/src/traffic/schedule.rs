@@ -492,6 +492,10 @@ impl Schedule {
                     if b == offs[r] && !it.travs[0].begun && it.ready <= now {
                         s.start = s.start.min(now);
                     }
+                } else {
+                    // Its first traversal is done: the robot holds the resource now (an
+                    // estimate from before would hide the span from the planner).
+                    s.start = s.start.min(now);
                 }
                 s.end = if s.last == FOREVER {
                     f64::INFINITY

@@ -151,3 +151,37 @@ fn a_robot_that_sets_off_early_makes_the_estimates_stale_until_retimed() {
     let it0 = s.itinerary(0);
     assert_eq!((it0.travs[1].start, it0.travs[1].end), (10.0, 20.0));
 }
+
+#[test]
+fn a_span_whose_first_traversal_is_done_is_busy_from_now() {
+    // Robot 0 planned to leave a at 50 s, goes early (granted at once) and is past b's first
+    // traversal by 11 s: the spans it holds at b are busy from now to the end of b→p1, not
+    // from the old estimate of 50 s (which once hid them from the planner: a plan through
+    // them was put after them in one queue and before them in another, a cycle).
+    let nav = nav();
+    let conf = conflicts(&nav);
+    let b = v(&nav, "b");
+    let at_b = conf.vertex[b].clone();
+    let mut s = Schedule::new(conf, &[v(&nav, "a"), v(&nav, "p2")], 0.0);
+    s.install(
+        0,
+        0,
+        &[
+            step(&nav, e(&nav, "a", "b"), 50.0, 10.0),
+            step(&nav, e(&nav, "b", "p1"), 60.0, 10.0),
+        ],
+        50.0,
+    );
+    s.retime(0.0).expect("acyclic");
+    s.begin(0, 1, 1.0);
+    s.complete_front(0, 11.0);
+    s.retime(11.0).expect("acyclic");
+    let mut seen = 0;
+    for &x in &at_b {
+        for (start, end) in s.busy(x, 1) {
+            seen += 1;
+            assert!(start <= 11.0 && start <= end, "busy [{start}, {end}) at b");
+        }
+    }
+    assert!(seen > 0, "robot 0 holds b's resources");
+}
