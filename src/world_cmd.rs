@@ -64,18 +64,6 @@ pub(crate) fn read_template(
         .and_then(|t| parse_template(&t, skip_camera_pose))
 }
 
-impl WorldArgs {
-    pub(crate) fn input(&self) -> &Path {
-        &self.input
-    }
-}
-
-/// What the signal watcher runs first for a world command: the early flush of a first
-/// compile (`output::early_flush`).
-pub(crate) fn first_job(args: &WorldArgs) -> Option<crate::signals::FirstJob> {
-    output::early_flush(&args.output_model_dir)
-}
-
 pub(crate) fn run(flavour: Flavour, args: &WorldArgs) -> ExitCode {
     if let Err(e) = sanity::world_outputs(&args.output_world, &args.output_model_dir) {
         eprintln!("error: {e}");
@@ -121,7 +109,7 @@ pub(crate) fn run(flavour: Flavour, args: &WorldArgs) -> ExitCode {
                 template,
                 skip_camera_pose: args.skip_camera_pose,
             };
-            let (meshes, mut files, tree) = world_files_untextured(b, flavour, &opts);
+            let (meshes, mut files) = world_files_untextured(b, flavour, &opts);
             let names = mapc_backends::texture_names(meshes.iter().flat_map(|(_, m)| m.all()));
             // Found images are linked from where they are (below), so only their heads are
             // read, to tell a PNG from anything else; placeholders are whole.
@@ -158,8 +146,6 @@ pub(crate) fn run(flavour: Flavour, args: &WorldArgs) -> ExitCode {
                     }),
                 }
             }
-            // The process ends soon: the tree and the meshes are not freed piece by piece.
-            std::mem::forget((tree, meshes, textures));
             out = Some((files, links));
         }
     }
@@ -219,9 +205,6 @@ pub(crate) fn run(flavour: Flavour, args: &WorldArgs) -> ExitCode {
     )
     .map(|w| (w[0], w[1]));
     let diagnostics = checked.diagnostics.len();
-    // The process ends here: freeing the map, its tree and every file's bytes one by one
-    // would only delay the exit.
-    std::mem::forget((checked, out.models, world, links));
     match result {
         Ok((m, w)) => {
             if !args.diag.quiet {
