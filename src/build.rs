@@ -443,12 +443,14 @@ fn build_one(input: &Path, args: &BuildArgs, opts: &WorldOptions) -> MapResult {
         }
         result.what = what.join(", ");
     }
-    if !empty.is_empty() && crate::something_ignored(&checked) {
+    let ignored = crate::ignored_codes(&checked);
+    if !empty.is_empty() && !ignored.is_empty() {
         // Zero outputs of a kind asked for, while keys were ignored: probably a typo.
         result.error = Some(format!(
-            "{}: {}, but keys were ignored (see the warnings above); nothing written",
+            "{}: {}, but keys were ignored (see the warnings above); nothing written; {}",
             map,
-            empty.join(" and ")
+            empty.join(" and "),
+            crate::ways_out(input, &args.diag.lints, &ignored)
         ));
         result.code = 1;
     } else if !files.is_empty() || result.blocked.is_empty() {

@@ -49,6 +49,7 @@ pub(crate) struct LevelSet {
 fn known_codes() -> impl Iterator<Item = (&'static str, &'static str)> {
     mapc_frontend::CODES
         .iter()
+        .chain(mapc_frontend::site::codes::CODES)
         .map(|c| (c.code, c.name))
         .chain(mapc_ir::rules().map(|r| (r.code, r.name)))
         .chain(mapc_backends::CODES.iter().map(|c| (c.code, c.name)))

@@ -536,12 +536,32 @@ pub(crate) fn plural(n: usize, thing: &str) -> String {
     }
 }
 
-/// Whether the frontend ignored anything that could have held the missing outputs: an
-/// unknown key (W0103), a likely typo (E0112).
-fn something_ignored(c: &Checked) -> bool {
-    c.diagnostics
-        .iter()
-        .any(|d| d.code == "W0103" || d.code == "E0112")
+/// The codes of what the frontend ignored that could have held the missing outputs: an
+/// unknown key (W0103), a likely typo (E0112); empty when nothing was.
+pub(crate) fn ignored_codes(c: &Checked) -> Vec<&'static str> {
+    ["W0103", "E0112"]
+        .into_iter()
+        .filter(|code| c.diagnostics.iter().any(|d| d.code == *code))
+        .collect()
+}
+
+/// How to go on when ignored keys (`codes`) are meant to be ignored (a fork's extension
+/// keys): the flag, or the mapc.toml setting in the file that applies to `input` (the
+/// `--config` file, else the one found beside the map or above it, else one beside it).
+pub(crate) fn ways_out(input: &Path, opts: &LintOpts, codes: &[&str]) -> String {
+    let flags: Vec<String> = codes.iter().map(|c| format!("--allow {c}")).collect();
+    let keys: Vec<String> = codes.iter().map(|c| format!("{c} = \"allow\"")).collect();
+    let toml = opts
+        .config
+        .clone()
+        .or_else(|| lints::discover(input))
+        .unwrap_or_else(|| input.parent().unwrap_or(Path::new(".")).join("mapc.toml"));
+    format!(
+        "if those keys are meant to be ignored, pass `{}` on the command line, or add `{}` under `[lints]` in {}",
+        flags.join(" "),
+        keys.join("` and `"),
+        toml.display()
+    )
 }
 
 /// The success line on stderr: what was written where, and how many warnings.
@@ -615,11 +635,14 @@ fn run_command(
         return ExitCode::from(1);
     }
     let label = build::map_name(input);
-    if count == 0 && something_ignored(&checked) {
+    let ignored = ignored_codes(&checked);
+    if count == 0 && !ignored.is_empty() {
         eprintln!(
             "error: {label}: no {} written: {}, but keys were ignored (see the warnings above); \
-             nothing written",
-            cmd.kind, cmd.none
+             nothing written; {}",
+            cmd.kind,
+            cmd.none,
+            ways_out(input, &opts.lints, &ignored)
         );
         return ExitCode::from(1);
     }

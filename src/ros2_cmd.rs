@@ -7,7 +7,7 @@ use crate::output;
 use mapc_sim::msgs::{Msg, Published, Topic};
 use std::io::{BufWriter, Write};
 use std::path::{Path, PathBuf};
-#[cfg(feature = "dds")]
+#[cfg(any(feature = "dds", feature = "zenoh"))]
 use std::time::{Duration, Instant};
 
 #[derive(clap::Args, Default)]
@@ -16,10 +16,14 @@ pub(crate) struct Ros2Args {
     /// `/clock` and `/map`, paced at --rate (docs/ros2.md).
     #[arg(long)]
     pub ros2: bool,
-    /// The DDS domain (ROS_DOMAIN_ID) to join.
-    #[arg(long, value_name = "N", requires = "ros2", default_value_t = 0,
+    /// The ROS 2 domain to join (default: ROS_DOMAIN_ID, else 0).
+    #[arg(long, value_name = "N", requires = "ros2",
           value_parser = clap::value_parser!(u16).range(0..=232))]
-    pub domain_id: u16,
+    pub domain_id: Option<u16>,
+    /// The middleware: `dds` (as rmw_cyclonedds_cpp, rmw_fastrtps_cpp) or `zenoh` (as
+    /// rmw_zenoh_cpp) (default: from RMW_IMPLEMENTATION, else dds).
+    #[arg(long, value_name = "RMW", requires = "ros2")]
+    pub rmw: Option<RmwArg>,
     /// Simulated seconds per wall-clock second with --ros2 (1 = real time, as Gazebo).
     #[arg(long, value_name = "X", requires = "ros2", value_parser = parse_rate)]
     pub rate: Option<f64>,
@@ -30,6 +34,23 @@ pub(crate) struct Ros2Args {
     /// Write every message of the run as a rosbag2-compatible MCAP file (ROS 2 schemas, CDR).
     #[arg(long, value_name = "FILE")]
     pub mcap: Option<PathBuf>,
+}
+
+#[derive(clap::ValueEnum, Clone, Copy, Debug)]
+pub(crate) enum RmwArg {
+    Dds,
+    Zenoh,
+}
+
+/// ROS 2's settings from the environment, the flags winning.
+#[cfg(any(feature = "dds", feature = "zenoh"))]
+fn ros_env(args: &Ros2Args) -> Result<mapc_ros2::ros_env::RosEnv, String> {
+    use mapc_ros2::ros_env::{Rmw, RosEnv};
+    let rmw = args.rmw.map(|r| match r {
+        RmwArg::Dds => Rmw::Dds,
+        RmwArg::Zenoh => Rmw::Zenoh,
+    });
+    RosEnv::read(&|k| std::env::var(k).ok(), args.domain_id, rmw)
 }
 
 fn parse_rate(s: &str) -> Result<f64, String> {
@@ -120,13 +141,13 @@ impl Drop for McapFile {
 }
 
 /// Holds the run to `rate` simulated seconds per wall-clock second.
-#[cfg(feature = "dds")]
+#[cfg(any(feature = "dds", feature = "zenoh"))]
 struct Pace {
     rate: f64,
     start: Option<(Instant, f64)>,
 }
 
-#[cfg(feature = "dds")]
+#[cfg(any(feature = "dds", feature = "zenoh"))]
 impl Pace {
     fn wait(&mut self, t: f64) {
         let (start, t0) = *self.start.get_or_insert((Instant::now(), t));
@@ -141,12 +162,12 @@ impl Pace {
 /// What `--ros2` and `--mcap` add to a run.
 pub(crate) struct Ros2Run {
     mcap: Option<McapFile>,
-    #[cfg(feature = "dds")]
-    bridge: Option<(mapc_ros2::bridge::Bridge, Pace, Option<Instant>)>,
+    #[cfg(any(feature = "dds", feature = "zenoh"))]
+    bridge: Option<(mapc_ros2::link::Link, Pace, Option<Instant>)>,
 }
 
 /// `/clock` at most this often (wall clock): a fast run need not flood the bus.
-#[cfg(feature = "dds")]
+#[cfg(any(feature = "dds", feature = "zenoh"))]
 const CLOCK_PERIOD: Duration = Duration::from_millis(5);
 
 impl Ros2Run {
@@ -156,9 +177,16 @@ impl Ros2Run {
             .as_deref()
             .map(|p| McapFile::create(p, building))
             .transpose()?;
-        #[cfg(feature = "dds")]
+        #[cfg(any(feature = "dds", feature = "zenoh"))]
         let bridge = if args.ros2 {
-            let b = mapc_ros2::bridge::Bridge::new(args.domain_id, args.plugins_only, building)?;
+            let env = ros_env(args)?;
+            let b = mapc_ros2::link::Link::open(
+                &env,
+                &|k| std::env::var(k).ok(),
+                args.plugins_only,
+                building,
+            )?;
+            eprintln!("{}", b.summary());
             b.settle();
             let pace = Pace {
                 rate: args.rate.unwrap_or(1.0),
@@ -168,20 +196,23 @@ impl Ros2Run {
         } else {
             None
         };
-        #[cfg(not(feature = "dds"))]
+        #[cfg(not(any(feature = "dds", feature = "zenoh")))]
         if args.ros2 {
-            return Err("--ros2: this mapc was built without DDS (cargo feature `dds`)".into());
+            return Err(
+                "--ros2: this mapc was built without DDS and Zenoh (cargo features `dds`, `zenoh`)"
+                    .into(),
+            );
         }
         Ok(Ros2Run {
             mcap,
-            #[cfg(feature = "dds")]
+            #[cfg(any(feature = "dds", feature = "zenoh"))]
             bridge,
         })
     }
 
     /// Whether the run needs the observer.
     pub(crate) fn active(&self) -> bool {
-        #[cfg(feature = "dds")]
+        #[cfg(any(feature = "dds", feature = "zenoh"))]
         if self.bridge.is_some() {
             return true;
         }
@@ -199,7 +230,7 @@ impl Ros2Run {
         if let Some(m) = self.mcap.as_mut() {
             m.record(p);
         }
-        #[cfg(feature = "dds")]
+        #[cfg(any(feature = "dds", feature = "zenoh"))]
         if let Some((b, _, _)) = self.bridge.as_mut() {
             b.publish(p);
         }
@@ -207,12 +238,15 @@ impl Ros2Run {
 
     /// Before each step: record `/clock`, keep pace, publish `/clock`, take what other
     /// nodes sent.
-    #[cfg_attr(not(feature = "dds"), allow(unused_variables, clippy::ptr_arg))]
+    #[cfg_attr(
+        not(any(feature = "dds", feature = "zenoh")),
+        allow(unused_variables, clippy::ptr_arg)
+    )]
     pub(crate) fn inject(&mut self, t: f64, out: &mut Vec<(Topic, Msg)>) {
         if let Some(m) = self.mcap.as_mut() {
             m.clock(t);
         }
-        #[cfg(feature = "dds")]
+        #[cfg(any(feature = "dds", feature = "zenoh"))]
         if let Some((b, pace, last_clock)) = self.bridge.as_mut() {
             pace.wait(t);
             let now = Instant::now();
@@ -225,7 +259,7 @@ impl Ros2Run {
     }
 
     pub(crate) fn finish(self) -> Result<(), String> {
-        #[cfg(feature = "dds")]
+        #[cfg(any(feature = "dds", feature = "zenoh"))]
         if let Some((b, _, _)) = self.bridge {
             b.finish();
         }

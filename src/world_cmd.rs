@@ -183,10 +183,12 @@ pub(crate) fn run(flavour: Flavour, args: &WorldArgs) -> ExitCode {
     let label = crate::build::map_name(&args.input);
     // A world without any level mesh shows nothing but its models: a failure unless the
     // map truly has no floors or walls (nothing was ignored on the way).
-    if meshes == 0 && crate::something_ignored(&checked) {
+    let ignored = crate::ignored_codes(&checked);
+    if meshes == 0 && !ignored.is_empty() {
         eprintln!(
             "error: {label}: no level mesh written: the map has no floors or walls, but keys \
-             were ignored (see the warnings above); nothing written"
+             were ignored (see the warnings above); nothing written; {}",
+            crate::ways_out(&args.input, &args.diag.lints, &ignored)
         );
         return ExitCode::from(1);
     }

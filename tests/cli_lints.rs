@@ -413,3 +413,72 @@ fn a_blocked_target_keeps_its_earlier_files_and_the_rest_report_success() {
     assert!(!stderr(&o).contains("written to"), "{}", stderr(&o));
     assert!(stderr(&o).contains("nav not written"), "{}", stderr(&o));
 }
+
+/// A fork's warehouse map: no lanes, its own extension keys (`aisles`, `rack_bays`) on the
+/// level. `mapc nav` refuses it (the lanes may have been under a key it ignored), and the
+/// refusal names both ways on: the flag, and the setting in the mapc.toml that applies.
+/// Each is then taken as written and the map is accepted with no nav graph.
+#[test]
+fn the_ignored_keys_refusal_names_the_flag_and_the_mapc_toml_setting() {
+    let dir = tempfile::tempdir().unwrap();
+    let map = dir.path().join("maps/rack.building.yaml");
+    std::fs::create_dir_all(map.parent().unwrap()).unwrap();
+    std::fs::write(
+        &map,
+        "name: rack\ncoordinate_system: cartesian_meters\nlevels:\n  L1:\n    elevation: 0\n    \
+         vertices:\n      - [0, 0, 0, a]\n      - [4, 0, 0, b]\n      - [4, 3, 0, c]\n    \
+         walls:\n      - [0, 1, {}]\n      - [1, 2, {}]\n    \
+         aisles: [{from: a, to: b}]\n    rack_bays: [{at: c, depth: 1.2}]\n",
+    )
+    .unwrap();
+    let m = s(&map);
+    let out = dir.path().join("nav");
+    let o = mapc(&["nav", &m, &s(&out)]);
+    assert_eq!(code(&o), 1, "{}", stderr(&o));
+    let err = stderr(&o);
+    assert_eq!(err.matches("[W0103]").count(), 2, "{err}");
+    let toml = dir.path().join("maps/mapc.toml");
+    let expected = format!(
+        "if those keys are meant to be ignored, pass `--allow W0103` on the command line, \
+         or add `W0103 = \"allow\"` under `[lints]` in {}",
+        toml.display()
+    );
+    assert!(err.contains(&expected), "{err}");
+    assert!(!out.exists(), "nothing written");
+
+    // The first way: the flag as the message spells it.
+    let o = mapc(&["nav", &m, &s(&out), "--allow", "W0103"]);
+    assert_eq!(code(&o), 0, "{}", stderr(&o));
+    assert!(
+        stderr(&o).contains("no nav graph written"),
+        "{}",
+        stderr(&o)
+    );
+
+    // The second way: the setting, in the file the message names; that file is then the
+    // one found beside the map, and a second refusal would name it again.
+    std::fs::write(&toml, "[lints]\nW0103 = \"allow\"\n").unwrap();
+    let o = mapc(&["nav", &m, &s(&dir.path().join("nav2"))]);
+    assert_eq!(code(&o), 0, "{}", stderr(&o));
+    assert!(!stderr(&o).contains("W0103"), "{}", stderr(&o));
+    std::fs::write(&toml, "[lints]\nW0204 = \"allow\"\n").unwrap();
+    let o = mapc(&["nav", &m, &s(&dir.path().join("nav3"))]);
+    assert_eq!(code(&o), 1, "{}", stderr(&o));
+    assert!(stderr(&o).contains(&expected), "{}", stderr(&o));
+    // With `--config FILE`, that file is the one to edit.
+    let other = dir.path().join("team.toml");
+    std::fs::write(&other, "[lints]\nW0204 = \"allow\"\n").unwrap();
+    let o = mapc(&[
+        "nav",
+        &m,
+        &s(&dir.path().join("nav4")),
+        "--config",
+        &s(&other),
+    ]);
+    assert_eq!(code(&o), 1, "{}", stderr(&o));
+    assert!(
+        stderr(&o).contains(&format!("under `[lints]` in {}", other.display())),
+        "{}",
+        stderr(&o)
+    );
+}

@@ -630,3 +630,57 @@ fn bad_input_never_stops_the_server() {
     assert!(!codes(&d).contains(&"E0001".to_string()), "{d:?}");
     assert_eq!(c.shutdown(), 0);
 }
+
+/// An rmf_site `.site.json` is checked like `mapc check` checks it: walls, floors and
+/// doors on the site's shared anchors are fine; the lane on a site anchor gets W0123 on
+/// that anchor id; a lane edited to a missing anchor gets E0121 on the id, and document
+/// symbols name the site's levels and doors.
+#[test]
+fn rmf_site_documents_with_site_anchors() {
+    let path =
+        Path::new(env!("CARGO_MANIFEST_DIR")).join("fixtures/sites/shared_anchors.site.json");
+    let text = std::fs::read_to_string(&path).expect("fixture");
+    let uri = file_uri(&path);
+    let dir = tempfile::tempdir().expect("tempdir");
+    let mut c = Client::start(&[], dir.path());
+    c.initialize();
+    c.open(&uri, &text);
+    let d = c.diagnostics(&uri, 1);
+    assert_eq!(codes(&d), ["W0123"], "{d:?}");
+    let (line, col) = find(&text, r#""42": {"anchors": [15, 3]"#);
+    let at = col + r#""42": {"anchors": [15, "#.len() as u32;
+    assert_eq!(diag(&d, "W0123")["range"]["start"], pos(line, at));
+    assert_eq!(diag(&d, "W0123")["severity"], 2);
+
+    let symbols = c.request(
+        "textDocument/documentSymbol",
+        json!({"textDocument": {"uri": uri}}),
+    );
+    let names: Vec<&str> = symbols
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|s| s["name"].as_str().unwrap())
+        .collect();
+    assert!(
+        names.contains(&"ground") && names.contains(&"upper"),
+        "{names:?}"
+    );
+
+    let bad = text.replace(
+        r#""40": {"anchors": [14, 15]"#,
+        r#""40": {"anchors": [14, 999]"#,
+    );
+    c.notify(
+        "textDocument/didChange",
+        json!({"textDocument": {"uri": uri, "version": 2}, "contentChanges": [{"text": bad}]}),
+    );
+    let d = c.diagnostics(&uri, 2);
+    // With lane 40 gone, nothing crosses `lab_door` and (15, 16) is cut off on `ground`.
+    assert_eq!(codes(&d), ["E0121", "W0123", "W0208", "W0306"], "{d:?}");
+    assert_eq!(diag(&d, "E0121")["range"]["start"], {
+        let (l, c) = find(&bad, "999");
+        pos(l, c)
+    });
+    assert_eq!(c.shutdown(), 0);
+}

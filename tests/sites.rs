@@ -4,6 +4,7 @@
 
 mod support;
 
+use mapc_ir::{Handle, Vertex};
 use rmf_site_format::legacy::building_map::BuildingMap;
 use rmf_site_format::legacy::nav_graph::NavGraph;
 use rmf_site_format::Site;
@@ -772,4 +773,448 @@ fn mangled_sites_never_panic() {
         }
     }
     assert!(inputs.len() > 1000);
+}
+
+fn shared_fixture() -> PathBuf {
+    Path::new(ROOT).join("fixtures/sites/shared_anchors.site.json")
+}
+
+/// Positions in millimetres, for comparisons free of f32 rounding.
+fn mm2(x: f64, y: f64) -> (i64, i64) {
+    ((x * 1000.0).round() as i64, (y * 1000.0).round() as i64)
+}
+
+/// A directed lane: start and end (mm) and its door name.
+type DoorLane = ((i64, i64), (i64, i64), String);
+
+/// A nav level's lanes as (start, end, door name), sorted.
+fn lanes_with_doors(level: &Value) -> Vec<DoorLane> {
+    let verts = level["vertices"].as_array().unwrap();
+    let at = |i: &Value| {
+        let v = &verts[i.as_u64().unwrap() as usize];
+        mm2(v[0].as_f64().unwrap(), v[1].as_f64().unwrap())
+    };
+    let mut out: Vec<_> = level["lanes"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|l| {
+            let door = l[2]["door_name"].as_str().unwrap_or("").to_string();
+            (at(&l[0]), at(&l[1]), door)
+        })
+        .collect();
+    out.sort();
+    out
+}
+
+/// fixtures/sites/shared_anchors.site.json: two levels whose lift-core walls end on the
+/// lift's reference anchors (site anchors 1 and 2, as in rmf_site's own demo sites),
+/// whose floors are drawn through those anchors, and whose stacked lab doors share site
+/// anchor 3; lane 42 runs from a level anchor to site anchor 3.
+///
+/// What rmf_site's nav export (`NavGraph::from_site`, rmf_site_format's legacy
+/// nav_graph.rs, the code behind the editor's "export nav graphs") gives for it, reasoned
+/// from that code:
+/// - per level, its vertices are first the lift cabin anchors that lanes of the graph use
+///   (anchor 90, at the lift's `center()`: the middle (8, 0) of the reference anchors, yaw
+///   `atan2(0, 2)` = 0, plus (-(1.0/2 + 0.1 wall + 0.01 gap + 0.05/2 door), 0), so
+///   (7.365, 0), marked `lift: core_lift`), then the level's own anchors that such lanes
+///   use, by id; site anchors never become vertices;
+/// - a lane whose two ends are not both among that level's vertices is skipped ("Lane .. is
+///   using a site anchor ... skipped"): lane 42 (to site anchor 3) on both levels, and
+///   each level's lane to the cabin anchor on the other level;
+/// - each remaining lane is two directed entries (`reverse: Same`), with the `door_name`
+///   of the level's door it crosses; doors are found with `site.get_anchor`, which knows
+///   site anchors, so the lab doors on (12, ±0.8) count;
+/// - locations name the vertex of their anchor.
+///
+/// So `ground` has (9,0)<->(14,0) through `lab_door`, (9,0)<->(7.365,0) and
+/// (14,0)<->(14,3) with `ground_charger` a charger at (14,3); `upper` has (9,0)<->(14,0)
+/// through `upper_lab_door` and (9,0)<->(7.365,0), with `upper_desk` a holding point at
+/// (14,0). mapc's graph must be that (its lift waypoint agrees for a lift of yaw 0), and
+/// rmf_site_format's own function, run here, must agree too.
+#[test]
+fn site_anchors_nav_graph_equals_rmf_sites_export() {
+    let tmp = tempfile::tempdir().unwrap();
+    let text = std::fs::read(shared_fixture()).unwrap();
+    let site = Site::from_bytes_json(&text).expect("rmf_site_format reads the fixture");
+    let nav = nav_dir(&shared_fixture(), tmp.path());
+    assert_eq!(nav.len(), 1);
+    assert_eq!(nav[0].0, "patrol.yaml");
+    let doc = yaml_value(&nav[0].1);
+
+    let both = |a: (i64, i64), b: (i64, i64), door: &str| {
+        [(a, b, door.to_string()), (b, a, door.to_string())]
+    };
+    let lift = mm2(7.365, 0.0);
+    let mut ground: Vec<_> = [
+        both(mm2(9.0, 0.0), mm2(14.0, 0.0), "lab_door"),
+        both(mm2(9.0, 0.0), lift, ""),
+        both(mm2(14.0, 0.0), mm2(14.0, 3.0), ""),
+    ]
+    .concat();
+    ground.sort();
+    let mut upper: Vec<_> = [
+        both(mm2(9.0, 0.0), mm2(14.0, 0.0), "upper_lab_door"),
+        both(mm2(9.0, 0.0), lift, ""),
+    ]
+    .concat();
+    upper.sort();
+    assert_eq!(lanes_with_doors(&doc["levels"]["ground"]), ground);
+    assert_eq!(lanes_with_doors(&doc["levels"]["upper"]), upper);
+    // The lift waypoint on each level, and the named places.
+    for level in ["ground", "upper"] {
+        let cabin: Vec<(i64, i64)> = doc["levels"][level]["vertices"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .filter(|v| v[2]["lift"] == "core_lift")
+            .map(|v| mm2(v[0].as_f64().unwrap(), v[1].as_f64().unwrap()))
+            .collect();
+        assert_eq!(cabin, vec![lift], "{level}");
+    }
+    let places = meaning_off_lifts(&doc, false);
+    let named: Vec<(String, Vec<Place>)> = places
+        .iter()
+        .map(|(l, _, p)| (l.clone(), p.iter().cloned().collect()))
+        .collect();
+    assert_eq!(
+        named,
+        vec![
+            (
+                "ground".to_string(),
+                vec![(mm2(14.0, 3.0), "ground_charger".into(), true, false, false)]
+            ),
+            (
+                "upper".to_string(),
+                vec![(mm2(14.0, 0.0), "upper_desk".into(), false, false, true)]
+            ),
+        ]
+    );
+
+    // rmf_site_format's export of the same file, run: the same graph, lift waypoints
+    // included (yaw 0), door names included (no lane runs near-parallel to a door).
+    let theirs = NavGraph::from_site(&site);
+    assert_eq!(theirs.len(), 1);
+    assert_eq!(theirs[0].0, "patrol");
+    let theirs = serde_json::to_value(&theirs[0].1).unwrap();
+    assert_eq!(meaning_off_lifts(&theirs, false), places);
+    for level in ["ground", "upper"] {
+        assert_eq!(
+            lanes_with_doors(&theirs["levels"][level]),
+            lanes_with_doors(&doc["levels"][level]),
+            "{level}"
+        );
+    }
+}
+
+/// The same fixture in the IR, the worlds and `mapc convert` both ways: every wall, floor
+/// and door on a site anchor is placed, on each level that uses it.
+#[test]
+fn site_anchors_in_walls_floors_and_doors() {
+    let parsed = mapc_frontend::load(&shared_fixture()).unwrap();
+    let d: Vec<(&str, u32, u32)> = parsed
+        .diagnostics
+        .iter()
+        .map(|d| (d.code, d.span.line, d.span.col))
+        .collect();
+    let text = std::fs::read_to_string(shared_fixture()).unwrap();
+    let lane = r#""42": {"anchors": [15, "#;
+    let (line, col) = line_col(&text, lane);
+    let col = col + lane.len() as u64;
+    assert_eq!(
+        d,
+        vec![("W0123", line as u32, col as u32)],
+        "lane 42's site anchor"
+    );
+    let b = parsed.building.unwrap();
+    let at = |v: Handle<Vertex>| mm2(b.vertices[v].pos.x, b.vertices[v].pos.y);
+    for (lh, level) in b.levels.iter() {
+        assert_eq!(level.walls.len(), 9, "{}", level.name);
+        // The lift-core walls start on the reference anchors (8, ±1).
+        let starts: Vec<(i64, i64)> = level.walls[..2]
+            .iter()
+            .map(|w| at(b.walls[*w].start))
+            .collect();
+        assert_eq!(
+            starts,
+            vec![mm2(8.0, 1.0), mm2(8.0, -1.0)],
+            "{}",
+            level.name
+        );
+        assert!(level
+            .walls
+            .iter()
+            .all(|w| b.vertices[b.walls[*w].start].level == lh
+                && b.vertices[b.walls[*w].end].level == lh));
+        assert_eq!(level.floors.len(), 1);
+        let floor: Vec<(i64, i64)> = b.floors[level.floors[0]]
+            .vertices
+            .iter()
+            .map(|v| at(*v))
+            .collect();
+        assert_eq!(
+            floor,
+            [
+                (8.0, -1.0),
+                (8.0, -4.0),
+                (16.0, -4.0),
+                (16.0, 4.0),
+                (8.0, 4.0),
+                (8.0, 1.0)
+            ]
+            .map(|(x, y)| mm2(x, y))
+        );
+        assert_eq!(level.doors.len(), 1);
+        let door = &b.doors[level.doors[0]];
+        assert_eq!(
+            (at(door.start), at(door.end)),
+            (mm2(12.0, 0.8), mm2(12.0, -0.8))
+        );
+    }
+    // One vertex per level for each site anchor used there: (8, 1) on both levels.
+    let on_anchor_2 = b
+        .vertices
+        .iter()
+        .filter(|(_, v)| mm2(v.pos.x, v.pos.y) == mm2(8.0, 1.0))
+        .map(|(_, v)| b.levels[v.level].name.as_str())
+        .collect::<Vec<_>>();
+    assert_eq!(on_anchor_2, ["ground", "upper"]);
+
+    // The world: both lab doors (door models named after the doors, at the middle (12, 0)
+    // of their anchors, turned to their x = 12 line, at their level's elevation), and a
+    // level model per level.
+    let tmp = tempfile::tempdir().unwrap();
+    let files = world(&shared_fixture(), &tmp.path().join("w"));
+    let sdf = String::from_utf8(
+        files
+            .iter()
+            .find(|(p, _)| p.ends_with("world.sdf"))
+            .unwrap()
+            .1
+            .clone(),
+    )
+    .unwrap();
+    for (door, z) in [("lab_door", "0.0"), ("upper_lab_door", "3.5")] {
+        let model = format!(
+            "<model name=\"{door}\">\n      <pose>12.0 0.0 {z} 0 0 1.5707963267948966</pose>"
+        );
+        assert!(sdf.contains(&model), "{door}");
+    }
+    let level_models = files
+        .iter()
+        .filter(|(p, _)| p.ends_with("model.sdf"))
+        .filter(|(p, _)| p.to_string_lossy().contains("shared_anchors_"))
+        .count();
+    assert_eq!(level_models, 2);
+    sdf_check(
+        &shared_fixture(),
+        &tmp.path().join("w/world.sdf"),
+        &tmp.path().join("w/models"),
+    );
+    // The other world flavours place the same doors.
+    for flavour in ["ignition", "classic"] {
+        let w = tmp.path().join(format!("{flavour}.world"));
+        let m = tmp.path().join(format!("{flavour}_models"));
+        let f = shared_fixture();
+        ok(&[
+            flavour,
+            f.to_str().unwrap(),
+            w.to_str().unwrap(),
+            m.to_str().unwrap(),
+            "-q",
+        ]);
+        let text = std::fs::read_to_string(&w).unwrap();
+        assert!(
+            text.contains("<pose>12.0 0.0 3.5 0 0 1.5707963267948966</pose>"),
+            "{flavour}"
+        );
+    }
+
+    // Converted to a .building.yaml and back to a site: the same walls per level and the
+    // same nav graph, and rmf_site_format reads the site.
+    let nav = nav_dir(&shared_fixture(), &tmp.path().join("nav"));
+    let bpath = tmp.path().join("x.building.yaml");
+    let spath = tmp.path().join("x.site.json");
+    ok(&[
+        "convert",
+        shared_fixture().to_str().unwrap(),
+        bpath.to_str().unwrap(),
+        "-q",
+    ]);
+    ok(&[
+        "convert",
+        bpath.to_str().unwrap(),
+        spath.to_str().unwrap(),
+        "-q",
+    ]);
+    Site::from_bytes_json(&std::fs::read(&spath).unwrap()).expect("rmf_site_format reads it");
+    for p in [&bpath, &spath] {
+        let again = mapc_frontend::load(p).unwrap().building.unwrap();
+        let walls: Vec<usize> = again.levels.iter().map(|(_, l)| l.walls.len()).collect();
+        assert_eq!(walls, [9, 9], "{}", p.display());
+        let n = nav_dir(
+            p,
+            &tmp.path()
+                .join(format!("nav_{}", p.extension().unwrap().to_string_lossy())),
+        );
+        assert_eq!(
+            meaning(&yaml_value(&n[0].1)),
+            meaning(&yaml_value(&nav[0].1))
+        );
+        assert_eq!(
+            lanes_with_doors(&yaml_value(&n[0].1)["levels"]["ground"]),
+            lanes_with_doors(&yaml_value(&nav[0].1)["levels"]["ground"])
+        );
+    }
+}
+
+/// Anchors a level element may not use, and a lane on a missing anchor: located errors.
+#[test]
+fn site_anchor_scoping_errors_are_located() {
+    let good = std::fs::read_to_string(shared_fixture()).unwrap();
+    let case = |from: &str, to: &str, needle: &str, code: &str| {
+        let bad = good.replace(from, to);
+        assert_ne!(bad, good, "{from}");
+        let d = diagnostics(&bad);
+        let (line, col) = line_col(&bad, needle);
+        assert!(d.contains(&(code.into(), line, col)), "{to}: {d:?}");
+        d
+    };
+    // A lane on a missing anchor.
+    case(
+        r#""40": {"anchors": [14, 15]"#,
+        r#""40": {"anchors": [14, 999]"#,
+        "999",
+        "E0121",
+    );
+    // A wall of `ground` on an anchor of `upper`.
+    case(
+        r#""21": {"anchors": [1, 13]"#,
+        r#""21": {"anchors": [1, 53]"#,
+        "53]",
+        "E0121",
+    );
+    // A floor on a lift's cabin anchor.
+    case(
+        r#""31": {"anchors": [1, 13,"#,
+        r#""31": {"anchors": [90, 13,"#,
+        "90, 13,",
+        "E0121",
+    );
+    // A door on a missing anchor.
+    case(
+        r#""30": {"anchors": [3, 17]"#,
+        r#""30": {"anchors": [3, 77]"#,
+        "77]",
+        "E0121",
+    );
+    // A location on a site anchor: a warning, as rmf_site's export names no waypoint.
+    let d = case(
+        r#""anchor": 16, "tags""#,
+        r#""anchor": 2, "tags""#,
+        r#"2, "tags""#,
+        "W0123",
+    );
+    assert!(d.iter().all(|x| x.0.starts_with('W')), "{d:?}");
+}
+
+/// rmf_site's own demo sites (its `assets/demo_maps/*.site.json`, not kept in this
+/// repository), when `MAPC_RMF_SITE_DEMOS` names a directory holding them: each compiles
+/// with no error, and `mapc nav` equals rmf_site_format's `NavGraph::from_site` of it by
+/// meaning (lift waypoints and the lanes to them aside).
+#[test]
+fn rmf_site_demo_sites_when_given() {
+    let Some(dir) = std::env::var_os("MAPC_RMF_SITE_DEMOS") else {
+        println!("skipped: MAPC_RMF_SITE_DEMOS not set");
+        return;
+    };
+    let tmp = tempfile::tempdir().unwrap();
+    let mut sites: Vec<PathBuf> = std::fs::read_dir(&dir)
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .filter(|p| p.to_string_lossy().ends_with(".site.json"))
+        .collect();
+    sites.sort();
+    assert!(
+        !sites.is_empty(),
+        "no .site.json in {}",
+        Path::new(&dir).display()
+    );
+    for (i, path) in sites.iter().enumerate() {
+        let errors: Vec<String> = mapc_frontend::load(path)
+            .unwrap()
+            .diagnostics
+            .iter()
+            .filter(|d| d.is_error())
+            .map(|d| format!("{}:{}: {}", d.span.line, d.span.col, d.message))
+            .collect();
+        assert!(errors.is_empty(), "{}: {errors:#?}", path.display());
+        let site = Site::from_bytes_json(&std::fs::read(path).unwrap()).unwrap();
+        let nav = nav_dir(path, &tmp.path().join(format!("nav{i}")));
+        assert_rmf_site_nav_equal(&site, &nav, &path.display().to_string());
+    }
+}
+
+/// A location in some graphs only (rmf_site's location `graphs`): rmf_site's export names
+/// the waypoint in those graphs and leaves it unnamed, with no tags, in the others; so
+/// does `mapc nav`. Converting to a `.building.yaml`, which names a waypoint in every
+/// graph, says so (W0122).
+#[test]
+fn a_location_names_its_waypoint_only_in_its_graphs() {
+    let tmp = tempfile::tempdir().unwrap();
+    let text = std::fs::read_to_string(shared_fixture())
+        .unwrap()
+        .replace(
+            r#""95": {"name": "patrol", "color": [0.2, 0.6, 1.0]}"#,
+            r#""95": {"name": "patrol", "color": [0.2, 0.6, 1.0]}, "96": {"name": "night", "color": [0.1, 0.1, 0.4]}"#,
+        )
+        .replace(
+            r#""name": "ground_charger", "graphs": "All""#,
+            r#""name": "ground_charger", "graphs": {"Only": [95]}"#,
+        );
+    let path = tmp.path().join("two_graphs.site.json");
+    std::fs::write(&path, &text).unwrap();
+    let nav = nav_dir(&path, &tmp.path().join("nav"));
+    let names: Vec<&str> = nav.iter().map(|(f, _)| f.as_str()).collect();
+    assert_eq!(names, ["night.yaml", "patrol.yaml"]);
+    let charger_at = |doc: &Value| -> Vec<Value> {
+        doc["levels"]["ground"]["vertices"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .filter(|v| mm2(v[0].as_f64().unwrap(), v[1].as_f64().unwrap()) == mm2(14.0, 3.0))
+            .map(|v| v[2].clone())
+            .collect()
+    };
+    let night = yaml_value(&nav[0].1);
+    let patrol = yaml_value(&nav[1].1);
+    assert_eq!(charger_at(&night), [serde_json::json!({"name": ""})]);
+    assert_eq!(
+        charger_at(&patrol),
+        [serde_json::json!({"name": "ground_charger", "is_charger": true})]
+    );
+    let site = Site::from_bytes_json(text.as_bytes()).unwrap();
+    for (name, graph) in NavGraph::from_site(&site) {
+        let theirs = serde_json::to_value(&graph).unwrap();
+        let ours = if name == "night" { &night } else { &patrol };
+        assert_eq!(
+            meaning_off_lifts(&theirs, false),
+            meaning_off_lifts(ours, false),
+            "{name}"
+        );
+    }
+    let r = mapc(&[
+        "convert",
+        path.to_str().unwrap(),
+        tmp.path().join("x.building.yaml").to_str().unwrap(),
+    ]);
+    assert_eq!(r.code, 0);
+    let err = String::from_utf8_lossy(&r.stderr);
+    assert!(
+        err.contains(
+            "warning[W0122]: waypoint `ground_charger` is a named place in some graphs only"
+        ),
+        "{err}"
+    );
 }

@@ -46,7 +46,7 @@ fn unrotate(yaw: f64, theta: f64) -> f64 {
 
 /// The `.building.yaml` text of `b` and the warnings about what it leaves out.
 pub fn building_yaml(b: &Building) -> (String, Vec<Diagnostic>) {
-    let diags = Vec::new();
+    let mut diags = Vec::new();
     let mut root = Vec::new();
     let pixels = b.coordinate_system == CoordinateSystem::ReferenceImage;
     root.push(("name".to_string(), Yaml::str(&b.name)));
@@ -113,6 +113,27 @@ pub fn building_yaml(b: &Building) -> (String, Vec<Diagnostic>) {
     }
     if !graphs.is_empty() {
         root.push(("graphs".into(), Yaml::Map(graphs)));
+    }
+    // A site location in some graphs only: a building names a waypoint in every graph.
+    let mut partial: Vec<Handle<Vertex>> = b
+        .graphs
+        .iter()
+        .flat_map(|g| g.unnamed.iter().copied())
+        .collect();
+    partial.sort_unstable();
+    partial.dedup();
+    for v in partial {
+        diags.push(
+            Diagnostic::warning(
+                "W0122",
+                b.vertices.span(v),
+                format!(
+                    "waypoint `{}` is a named place in some graphs only; the .building.yaml names it in every graph",
+                    b.vertices[v].name
+                ),
+            )
+            .with_help("nothing, or give the other graphs' fleets a waypoint of their own"),
+        );
     }
 
     let mut levels = Vec::new();

@@ -172,6 +172,11 @@ fn nav_level(out: &mut String, b: &Building, lh: Handle<Level>, graph: i64, ind:
         }
     }
     let lifts_here: Vec<&Lift> = b.lifts_on_level(lh).map(|h| &b.lifts[h]).collect();
+    let unnamed: &[Handle<Vertex>] = b
+        .graphs
+        .iter()
+        .find(|g| g.index == graph)
+        .map_or(&[], |g| &g.unnamed);
 
     let lane_entries = lanes().flat_map(|lane| {
         let (s, e) = (
@@ -197,6 +202,14 @@ fn nav_level(out: &mut String, b: &Building, lh: Handle<Level>, graph: i64, ind:
             .collect();
         // The vertex's own name wins over a parameter called `name`.
         p.insert("name".into(), Yaml::str(&v.name));
+        if unnamed.binary_search(&vh).is_ok() {
+            // A site location of other graphs: here the waypoint is not that place, as in
+            // rmf_site's export (no name, none of the location's tags or mutex).
+            p.insert("name".into(), Yaml::str(""));
+            for k in ["is_charger", "is_parking_spot", "is_holding_point", "mutex"] {
+                p.remove(k);
+            }
+        }
         if let Some(lift) = lifts_here.iter().find(|l| l.shaft_contains(v.pos)) {
             p.insert("lift".into(), Yaml::str(&lift.name));
         }

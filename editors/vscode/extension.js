@@ -12,6 +12,7 @@ function activate() {
     documentSelector: [
       { scheme: 'file', pattern: '**/*.building.yaml' },
       { scheme: 'file', pattern: '**/*.project.yaml' },
+      { scheme: 'file', pattern: '**/*.site.json' },
       { scheme: 'file', pattern: '**/*.scenario.yaml' },
     ],
   });

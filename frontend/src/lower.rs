@@ -682,6 +682,7 @@ impl Lower<'_> {
                         index,
                         name: self.opt_string(v, "name", "the graph"),
                         default_lane_width: self.opt_f64(v, "default_lane_width", "the graph", 1.0),
+                        unnamed: Vec::new(),
                     });
                 }
             }

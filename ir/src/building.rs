@@ -565,6 +565,10 @@ pub struct GraphInfo {
     pub index: i64,
     pub name: String,
     pub default_lane_width: f64,
+    /// Waypoints whose name and roles (a site location's) belong to other graphs only:
+    /// rmf_site's locations say which graphs they are in, and its nav export names them
+    /// only there. Sorted; empty for a `.building.yaml`, whose names hold in every graph.
+    pub unnamed: Vec<Handle<Vertex>>,
 }
 
 #[derive(Debug, Clone, PartialEq, Default)]

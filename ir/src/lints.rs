@@ -88,6 +88,8 @@ pub fn policy(code: &str) -> Policy {
         },
         // Frontend warnings (unknown keys, duplicate keys, alignment fallbacks, ...) may
         // change anything.
+        // A site's lane or location on a site anchor, left out of the nav graphs.
+        "W0123" => allow(Outputs::NAV),
         c if c.starts_with("W01") => allow(Outputs::ALL),
         // Lanes: only the nav graphs.
         c if c.starts_with("E02") || c.starts_with("W02") => allow(Outputs::NAV),

@@ -12,12 +12,14 @@
 use crate::building_map::building_map;
 use crate::cdr;
 use crate::msgs::{self, rmf_building_map_msgs::BuildingMap, rosgraph_msgs::Clock, RosMsg};
+use crate::ros_env::{self, DdsNetwork, RosEnv};
 use crate::topics::{self, Qos};
 use mapc_sim::msgs::{Msg, Published, Topic};
 use rustdds::no_key::{DataReader, DataWriter, DeserializerAdapter, SerializerAdapter};
 use rustdds::policy::{Durability, History, Reliability};
 use rustdds::{
-    DomainParticipant, QosPolicies, QosPolicyBuilder, RepresentationIdentifier, TopicKind,
+    DomainParticipant, DomainParticipantBuilder, QosPolicies, QosPolicyBuilder,
+    RepresentationIdentifier, TopicKind,
 };
 use std::collections::BTreeMap;
 use std::time::{Duration, Instant};
@@ -82,31 +84,7 @@ impl rustdds::no_key::DefaultDecoder<Raw> for RawAdapter {
     const DECODER: RawDecoder = RawDecoder;
 }
 
-/// Topics mapc publishes when it plays only the Gazebo plugins (what rmf_demos' simulation
-/// side publishes), plus the crowd's people as a human detector would publish them.
-pub const PLUGIN_OUTPUTS: [Topic; 8] = [
-    Topic::RobotState,
-    Topic::DoorStates,
-    Topic::LiftStates,
-    Topic::DispenserResults,
-    Topic::DispenserStates,
-    Topic::IngestorResults,
-    Topic::IngestorStates,
-    Topic::RmfObstacles,
-];
-
-/// Topics the plugins answer: the slotcars', door and lift plugins', workcells' requests,
-/// and the fleet states the workcells read to find the robot of a fleet.
-pub const PLUGIN_INPUTS: [Topic; 8] = [
-    Topic::RobotPathRequests,
-    Topic::RobotModeRequests,
-    Topic::RobotPauseRequests,
-    Topic::DoorRequests,
-    Topic::LiftRequests,
-    Topic::DispenserRequests,
-    Topic::IngestorRequests,
-    Topic::FleetStates,
-];
+pub use crate::topics::{PLUGIN_INPUTS, PLUGIN_OUTPUTS};
 
 fn dds_qos(q: Qos) -> QosPolicies {
     QosPolicyBuilder::new()
@@ -146,20 +124,62 @@ pub struct Bridge {
     _participant: DomainParticipant,
     /// Requests that could not be decoded (wrong type on a topic).
     pub rejected: u64,
+    /// Where mapc talks, for a line on stderr: domain, loopback or network, and why.
+    pub summary: String,
+}
+
+/// Participant ids (RTPS 2.5 section 9.6.2.3) whose discovery ports receive mapc's unicast
+/// announcements on each static peer and, on loopback, on 127.0.0.1: 0 to 32, as
+/// rmw_cyclonedds_cpp's `MaxAutoParticipantIndex` for LOCALHOST (one id per ROS 2 process).
+pub const MAX_PARTICIPANT_INDEX: u16 = 32;
+
+/// Where the participant talks, from ROS 2's settings and the host's interfaces.
+pub fn network(env: &RosEnv) -> Result<DdsNetwork, String> {
+    let interfaces: Vec<ros_env::Interface> = rustdds::local_interfaces()
+        .into_iter()
+        .map(|i| ros_env::Interface {
+            has_ipv4: !i.ipv4.is_empty(),
+            up: i.up,
+            loopback: i.loopback,
+            multicast: i.multicast,
+            name: i.name,
+        })
+        .collect();
+    ros_env::choose_network(env, &interfaces)
 }
 
 impl Bridge {
-    /// Joins DDS domain `domain_id`. With `plugins_only`, mapc publishes only what the
-    /// Gazebo plugins publish and answers their requests; otherwise it publishes every
-    /// message of the run (its own fleet layer and supervisors included) and reads nothing.
+    /// Joins the DDS domain of `env` (ROS 2's settings: domain, discovery range, static
+    /// peers), on loopback when the range asks for it or when loopback is the only
+    /// interface up, as Cyclone DDS and Fast DDS do under ROS 2's LOCALHOST range. With
+    /// `plugins_only`, mapc publishes only what the Gazebo plugins publish and answers
+    /// their requests; otherwise it publishes every message of the run (its own fleet
+    /// layer and supervisors included) and reads nothing.
     pub fn new(
-        domain_id: u16,
+        env: &RosEnv,
         plugins_only: bool,
         building: &mapc_ir::Building,
     ) -> Result<Bridge, String> {
         let err = |e: &dyn std::fmt::Display| format!("DDS: {e}");
         crate::dds_log::init();
-        let participant = DomainParticipant::new(domain_id).map_err(|e| err(&e))?;
+        let net = network(env)?;
+        let mut peers = env.static_peer_addresses()?;
+        let localhost = std::net::IpAddr::from([127, 0, 0, 1]);
+        if net.loopback_only && !peers.contains(&localhost) {
+            // As rmw_cyclonedds_cpp's `<Peer address="localhost"/>` for LOCALHOST: peers
+            // restricted to this machine may not use multicast at all.
+            peers.insert(0, localhost);
+        }
+        let mut summary = format!("DDS: domain {}, {}", env.domain_id, net.reason);
+        if !peers.is_empty() {
+            let shown: Vec<String> = peers.iter().map(|p| p.to_string()).collect();
+            summary += &format!("; announced to {}", shown.join(", "));
+        }
+        let participant = DomainParticipantBuilder::new(env.domain_id)
+            .loopback_only(net.loopback_only)
+            .initial_peers(peers, MAX_PARTICIPANT_INDEX)
+            .build()
+            .map_err(|e| err(&e))?;
         let default = dds_qos(topics::DEFAULT_QOS);
         let publisher = participant
             .create_publisher(&default)
@@ -238,6 +258,7 @@ impl Bridge {
             map,
             _participant: participant,
             rejected: 0,
+            summary,
         })
     }
 

@@ -497,3 +497,29 @@ fn workcell(
             .collect(),
     })
 }
+
+/// Topics mapc publishes when it plays only the Gazebo plugins (what rmf_demos' simulation
+/// side publishes), plus the crowd's people as a human detector would publish them.
+pub const PLUGIN_OUTPUTS: [Topic; 8] = [
+    Topic::RobotState,
+    Topic::DoorStates,
+    Topic::LiftStates,
+    Topic::DispenserResults,
+    Topic::DispenserStates,
+    Topic::IngestorResults,
+    Topic::IngestorStates,
+    Topic::RmfObstacles,
+];
+
+/// Topics the plugins answer: the slotcars', door and lift plugins', workcells' requests,
+/// and the fleet states the workcells read to find the robot of a fleet.
+pub const PLUGIN_INPUTS: [Topic; 8] = [
+    Topic::RobotPathRequests,
+    Topic::RobotModeRequests,
+    Topic::RobotPauseRequests,
+    Topic::DoorRequests,
+    Topic::LiftRequests,
+    Topic::DispenserRequests,
+    Topic::IngestorRequests,
+    Topic::FleetStates,
+];

@@ -28,6 +28,12 @@ pub(crate) fn check(doc: &Document, lints: &Lints) -> Analysis {
             lints.apply(&mut diags);
             (parsed.building, diags)
         }
+        Kind::Site => {
+            let parsed = mapc_frontend::parse_site_str(&name, &doc.text);
+            let mut diags = crate::all_diagnostics(&parsed);
+            lints.apply(&mut diags);
+            (parsed.building, diags)
+        }
         Kind::Project => (None, check_project(doc, lints)),
         Kind::Scenario => {
             let base = doc

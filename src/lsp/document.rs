@@ -9,6 +9,8 @@ use std::path::PathBuf;
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub(crate) enum Kind {
     Building,
+    /// An rmf_site `.site.json`.
+    Site,
     Project,
     Scenario,
 }
@@ -17,6 +19,8 @@ impl Kind {
     pub(crate) fn of(name: &str) -> Option<Kind> {
         if name.ends_with(".building.yaml") {
             Some(Kind::Building)
+        } else if mapc_frontend::site::is_site_file(name) {
+            Some(Kind::Site)
         } else if name.ends_with(".project.yaml") {
             Some(Kind::Project)
         } else if name.ends_with(".scenario.yaml") {

@@ -2,10 +2,10 @@
 //! and workspace symbols over the open maps.
 
 use super::analysis::Analysis;
-use super::document::Document;
+use super::document::{Document, Kind};
 use super::outline;
 use lsp_types::{DocumentSymbol, Location, OneOf, SymbolKind, Uri, WorkspaceSymbol};
-use mapc_ir::Span;
+use mapc_ir::{Building, Handle, Level, Span};
 
 #[allow(deprecated)] // `DocumentSymbol::deprecated` must be written out.
 fn symbol(
@@ -39,49 +39,75 @@ fn symbol(
     }
 }
 
+/// A level's doors and named waypoints.
+fn level_children(doc: &Document, b: &Building, lh: Handle<Level>) -> Vec<DocumentSymbol> {
+    let mut children = Vec::new();
+    let level = &b.levels[lh];
+    for &d in &level.doors {
+        let door = &b.doors[d];
+        let span = b.doors.span(d);
+        children.push(symbol(
+            doc,
+            door.name.clone(),
+            Some(format!("{} door", door.kind.as_str())),
+            SymbolKind::INTERFACE,
+            span,
+            span,
+            Vec::new(),
+        ));
+    }
+    for &v in &level.vertices {
+        let vx = &b.vertices[v];
+        if vx.name.is_empty() {
+            continue;
+        }
+        let span = b.vertices.span(v);
+        children.push(symbol(
+            doc,
+            vx.name.clone(),
+            Some("waypoint".into()),
+            SymbolKind::CONSTANT,
+            span,
+            span,
+            Vec::new(),
+        ));
+    }
+    children
+}
+
 pub(crate) fn document_symbols(doc: &Document, analysis: Option<&Analysis>) -> Vec<DocumentSymbol> {
-    let Some(root) = outline::parse(&doc.text) else {
-        return Vec::new();
-    };
-    let levels = outline::levels(&root);
     let b = analysis.and_then(|a| a.building.as_ref());
     let mut out = Vec::new();
+    if let (Kind::Site, Some(b)) = (doc.kind, b) {
+        // A site's levels are keyed by id: their names and places come from the building.
+        for (lh, level) in b.levels.iter() {
+            let span = b.levels.span(lh);
+            out.push(symbol(
+                doc,
+                level.name.clone(),
+                Some("level".into()),
+                SymbolKind::NAMESPACE,
+                span,
+                span,
+                level_children(doc, b, lh),
+            ));
+        }
+    }
+    let root = match doc.kind {
+        Kind::Site => None,
+        _ => match outline::parse(&doc.text) {
+            Some(r) => Some(r),
+            None => return Vec::new(),
+        },
+    };
+    let levels = root.as_ref().map(outline::levels).unwrap_or_default();
     for lo in &levels {
         let mut children = Vec::new();
         if let Some(b) = b {
             if let Some((lh, _)) = b.levels.iter().find(|(h, _)| {
                 b.levels.span(*h).start == lo.span.start || b.levels[*h].name == lo.name
             }) {
-                let level = &b.levels[lh];
-                for &d in &level.doors {
-                    let door = &b.doors[d];
-                    let span = b.doors.span(d);
-                    children.push(symbol(
-                        doc,
-                        door.name.clone(),
-                        Some(format!("{} door", door.kind.as_str())),
-                        SymbolKind::INTERFACE,
-                        span,
-                        span,
-                        Vec::new(),
-                    ));
-                }
-                for &v in &level.vertices {
-                    let vx = &b.vertices[v];
-                    if vx.name.is_empty() {
-                        continue;
-                    }
-                    let span = b.vertices.span(v);
-                    children.push(symbol(
-                        doc,
-                        vx.name.clone(),
-                        Some("waypoint".into()),
-                        SymbolKind::CONSTANT,
-                        span,
-                        span,
-                        Vec::new(),
-                    ));
-                }
+                children = level_children(doc, b, lh);
             }
         }
         out.push(symbol(
@@ -108,7 +134,11 @@ pub(crate) fn document_symbols(doc: &Document, analysis: Option<&Analysis>) -> V
             ));
         }
     }
-    if let Some(graphs) = root.get("graphs").and_then(|g| g.as_map()) {
+    if let Some(graphs) = root
+        .as_ref()
+        .and_then(|r| r.get("graphs"))
+        .and_then(|g| g.as_map())
+    {
         for (k, v) in graphs {
             let name = v.get("name").and_then(|n| n.key_text()).map_or_else(
                 || format!("graph {}", k.key_text().unwrap_or("")),

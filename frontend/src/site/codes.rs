@@ -25,13 +25,16 @@ pub const FORMAT_VERSION: Code = Code {
 
 /// # E0121 site-dangling-id
 ///
-/// **What:** an element refers to an id that the site does not hold: a lane, wall, door or
-/// floor anchor, a lift's reference anchor, a model's parent level, a lane's graph.
+/// **What:** an element refers to an id that the site does not hold (a lane, wall, door or
+/// floor anchor, a lift's reference anchor, a model's parent level, a lane's graph), or a
+/// wall, door or floor of one level uses an anchor of another level or a lift's cabin
+/// anchor. A level's elements may use the level's own anchors and the site's anchors
+/// (the site's `anchors`, shared by all levels), as rmf_site resolves them.
 ///
 /// **Why it matters:** the element cannot be placed; it is left out of every output.
 ///
-/// **Fix:** point the reference at an existing anchor (or level, graph) in rmf_site, or
-/// delete the element.
+/// **Fix:** point the reference at an existing anchor of the element's level or of the
+/// site (or an existing level, graph) in rmf_site, or delete the element.
 ///
 /// **Example:**
 /// ```json
@@ -45,11 +48,11 @@ pub const DANGLING_ID: Code = Code {
 
 /// # E0122 site-lane-between-levels
 ///
-/// **What:** a lane joins anchors of two different levels, or uses a site-wide anchor (one
-/// that belongs to no level).
+/// **What:** a lane joins anchors of two different levels, or has no end on a level
+/// anchor (both ends on lift cabin anchors).
 ///
 /// **Why it matters:** a nav graph lane lies on one level; robots change levels through
-/// lifts, whose cabin anchors a lane may use.
+/// lifts, whose cabin anchors a lane may use together with an anchor of a level.
 ///
 /// **Fix:** draw the lane between anchors of one level (or a level anchor and a lift cabin
 /// anchor).
@@ -58,13 +61,14 @@ pub const DANGLING_ID: Code = Code {
 pub const LANE_BETWEEN_LEVELS: Code = Code {
     code: "E0122",
     name: "site-lane-between-levels",
-    summary: "a lane joins anchors of different levels or a site anchor",
+    summary: "a lane joins anchors of different levels, or only cabin anchors",
 };
 
 /// # E0123 site-location-missing-anchor
 ///
 /// **What:** a location (a named waypoint with charger, parking or holding tags) sits on an
-/// anchor that does not exist or is not on a level.
+/// anchor that the site does not have on a level or a lift (a missing id, or a drawing's
+/// anchor). One on a site anchor is W0123.
 ///
 /// **Why it matters:** the waypoint's name and roles would vanish from the nav graph.
 ///
@@ -77,7 +81,7 @@ pub const LANE_BETWEEN_LEVELS: Code = Code {
 pub const LOCATION_ANCHOR: Code = Code {
     code: "E0123",
     name: "site-location-missing-anchor",
-    summary: "a location is on an anchor that does not exist or is not on a level",
+    summary: "a location is on an anchor that does not exist on a level or lift",
 };
 
 /// # W0120 site-cabin-anchor-outside
@@ -122,7 +126,8 @@ pub const UNKNOWN_FIELD: Code = Code {
 ///
 /// **What:** `mapc convert` met something the target format cannot say: a telescope lift
 /// door or a door model in a `.site.json`, a yaw orientation constraint, a lane that
-/// differs by direction in more than its dock, layers and features; or something only
+/// differs by direction in more than its dock, layers and features, a site location in
+/// some graphs only (a `.building.yaml` names a waypoint in every graph); or something only
 /// mapc's extension data in the site keeps (`crowd_sim`, human lanes, floor holes), which
 /// rmf_site neither shows nor edits. It names the element.
 ///
@@ -138,6 +143,33 @@ pub const NOT_CONVERTIBLE: Code = Code {
     summary: "the target format of `mapc convert` cannot say this",
 };
 
+/// # W0123 site-anchor-off-nav-graph
+///
+/// **What:** a lane or a location uses a site anchor (one of the site's `anchors`, shared
+/// by all levels, such as a lift's reference anchor). rmf_site's editor draws it, but its
+/// nav graph export (`NavGraph::from_site`) makes waypoints only of level anchors and lift
+/// cabin anchors, and leaves such a lane out ("not supported") and such a location
+/// unnamed. mapc's nav graphs are the same as rmf_site's: the lane or location is left
+/// out of them.
+///
+/// **Why it matters:** robots cannot drive that lane, or stop at that place by its name,
+/// though the editor shows it.
+///
+/// **Fix:** in rmf_site, draw the lane to (or put the location on) an anchor of the
+/// level: a new anchor at the same place. Walls, floors and doors may keep using site
+/// anchors.
+///
+/// **Example:**
+/// ```json
+/// "lanes": {"20": {"anchors": [3, 48], "graphs": "All"}}
+/// ```
+/// with 48 in the site's top-level `anchors`.
+pub const SITE_ANCHOR_OFF_NAV: Code = Code {
+    code: "W0123",
+    name: "site-anchor-off-nav-graph",
+    summary: "a lane or location on a site anchor is left out of nav graphs, as rmf_site does",
+};
+
 /// Every site code.
 pub static CODES: &[Code] = &[
     FORMAT_VERSION,
@@ -147,4 +179,5 @@ pub static CODES: &[Code] = &[
     CABIN_ANCHOR_OUTSIDE,
     UNKNOWN_FIELD,
     NOT_CONVERTIBLE,
+    SITE_ANCHOR_OFF_NAV,
 ];

@@ -58,8 +58,9 @@ const MOTION_KEYS: &[&str] = &["orientation_constraint", "speed_limit", "dock"];
 enum Anchor {
     /// A level anchor and the IR vertex made of it.
     Level(Handle<Level>, Handle<Vertex>),
-    /// A site-wide anchor (lift reference anchors, fiducials).
-    Site(Vec2),
+    /// A site-wide anchor (shared by every level: lift reference anchors, and whatever
+    /// walls, floors or doors of any level snap to), with the span of its definition.
+    Site(Vec2, Span),
     /// A lift cabin anchor: lift index (in `lifts`), position in the cabin frame.
     Cabin(usize, Vec2),
 }
@@ -71,6 +72,9 @@ pub(crate) struct SiteLower<'d, 'n, 's> {
     anchors: HashMap<u32, Anchor>,
     /// Cabin anchor id and level → the vertex made for it on that level.
     cabin_vertices: HashMap<(u32, Handle<Level>), Handle<Vertex>>,
+    /// Site anchor id and level → the vertex made for it on that level (the IR's
+    /// elements join vertices of their own level).
+    site_vertices: HashMap<(u32, Handle<Level>), Handle<Vertex>>,
     /// Site level id → handle.
     levels: HashMap<u32, Handle<Level>>,
     /// Graph id → IR graph index.
@@ -137,6 +141,7 @@ impl<'d, 'n, 's> SiteLower<'d, 'n, 's> {
             ext: None,
             anchors: HashMap::new(),
             cabin_vertices: HashMap::new(),
+            site_vertices: HashMap::new(),
             levels: HashMap::new(),
             graphs: BTreeMap::new(),
             mutexes: HashMap::new(),
@@ -374,8 +379,7 @@ impl<'d, 'n, 's> SiteLower<'d, 'n, 's> {
         }
         for (id, v, span) in self.entries(root, "anchors", "the site") {
             if let Some(p) = self.anchor_pos(v) {
-                let _ = span;
-                self.anchors.insert(id, Anchor::Site(p.plus(shift)));
+                self.anchors.insert(id, Anchor::Site(p.plus(shift), span));
             }
         }
 
@@ -623,7 +627,7 @@ impl<'d, 'n, 's> SiteLower<'d, 'n, 's> {
 
         for (wid, w, wspan) in self.entries(node, "walls", "a level") {
             self.unknown(w, &["anchors", "texture"], "a wall");
-            let Some((s, e)) = self.edge(w, wspan, lh, "a wall") else {
+            let Some((s, e)) = self.edge(b, w, wspan, lh, "a wall") else {
                 continue;
             };
             let params = self.texture_params(w, wspan, wid);
@@ -640,7 +644,7 @@ impl<'d, 'n, 's> SiteLower<'d, 'n, 's> {
         }
         for (did, d, dspan) in self.entries(node, "doors", "a level") {
             self.unknown(d, &["anchors", "name", "kind"], "a door");
-            let Some((s, e)) = self.edge(d, dspan, lh, "a door") else {
+            let Some((s, e)) = self.edge(b, d, dspan, lh, "a door") else {
                 continue;
             };
             let dname = self.name(d, "a door");
@@ -680,21 +684,14 @@ impl<'d, 'n, 's> SiteLower<'d, 'n, 's> {
             let mut vs = Vec::with_capacity(list.len());
             let mut ok = true;
             for a in list {
-                match ref_of(a).and_then(|id| self.anchors.get(&id).copied().map(|x| (id, x))) {
-                    Some((_, Anchor::Level(l2, v))) if l2 == lh => vs.push(v),
-                    Some((id, _)) => {
-                        self.l.err(
-                            "E0121",
-                            a.span,
-                            format!("floor anchor {id} is not an anchor of this level"),
-                            "use anchors of the floor's level",
-                        );
-                        ok = false;
-                    }
-                    None => {
-                        self.dangling(a.span, "a floor", ref_of(a).unwrap_or(0));
-                        ok = false;
-                    }
+                let Some(id) = ref_of(a) else {
+                    self.l.wrong_type(a, "an anchor id", "an unsigned integer");
+                    ok = false;
+                    continue;
+                };
+                match self.level_anchor(b, id, lh, a.span, "a floor") {
+                    Some(v) => vs.push(v),
+                    None => ok = false,
                 }
             }
             if !ok {
@@ -906,9 +903,10 @@ impl<'d, 'n, 's> SiteLower<'d, 'n, 's> {
         (t, yaw)
     }
 
-    /// The two anchors of a wall or door, both on level `lh`.
+    /// The two anchors of a wall or door on level `lh` (its own anchors or site anchors).
     fn edge(
         &mut self,
+        b: &mut Building,
         n: &Node,
         span: Span,
         lh: Handle<Level>,
@@ -922,24 +920,100 @@ impl<'d, 'n, 's> SiteLower<'d, 'n, 's> {
                     .wrong_type(node, "an anchor id", "an unsigned integer");
                 return None;
             };
-            match self.anchors.get(&id) {
-                Some(Anchor::Level(l2, v)) if *l2 == lh => out[i] = Some(*v),
-                Some(_) => {
-                    self.l.err(
-                        "E0121",
-                        node.span,
-                        format!("{what} uses anchor {id}, which is not an anchor of its level"),
-                        "use anchors of the same level",
-                    );
-                    return None;
-                }
-                None => {
-                    self.dangling(node.span, what, id);
-                    return None;
-                }
-            }
+            out[i] = Some(self.level_anchor(b, id, lh, node.span, what)?);
         }
         Some((out[0]?, out[1]?))
+    }
+
+    /// The vertex on level `lh` of anchor `id`, named by an element of that level (`what`,
+    /// the reference at `at`). rmf_site's loader resolves a level's walls, floors and doors
+    /// against the site's anchors and the level's own (site anchors first, then each
+    /// level's anchors before its elements), so both are accepted; a site anchor is where
+    /// the site says, on every level that uses it. Another level's anchor or a lift's cabin
+    /// anchor is an error: rmf_site's loader finds the first only when that level's id is
+    /// lower (it reads levels in id order) and the second never (lifts come after levels),
+    /// so a site using them opens in rmf_site by accident of numbering, or not at all.
+    fn level_anchor(
+        &mut self,
+        b: &mut Building,
+        id: u32,
+        lh: Handle<Level>,
+        at: Span,
+        what: &str,
+    ) -> Option<Handle<Vertex>> {
+        let level = |b: &Building, l: Handle<Level>| b.levels[l].name.clone();
+        match self.anchors.get(&id).copied() {
+            Some(Anchor::Level(l2, v)) if l2 == lh => Some(v),
+            Some(Anchor::Site(p, def)) => Some(self.site_vertex(b, id, p, lh, def)),
+            Some(Anchor::Level(l2, _)) => {
+                self.l.err(
+                    "E0121",
+                    at,
+                    format!(
+                        "{what} of level `{}` uses anchor {id}, which is an anchor of level `{}`",
+                        level(b, lh),
+                        level(b, l2)
+                    ),
+                    &format!(
+                        "use an anchor of level `{}` or a site anchor (the site's `anchors`, shared by all levels)",
+                        level(b, lh)
+                    ),
+                );
+                None
+            }
+            Some(Anchor::Cabin(..)) => {
+                self.l.err(
+                    "E0121",
+                    at,
+                    format!("{what} uses anchor {id}, which is a lift's cabin anchor"),
+                    &format!(
+                        "use an anchor of level `{}` or a site anchor; cabin anchors are for lanes and locations",
+                        level(b, lh)
+                    ),
+                );
+                None
+            }
+            None => {
+                self.dangling(at, what, id);
+                None
+            }
+        }
+    }
+
+    /// The vertex of site anchor `id` (at map position `pos`, defined at `span`) on level
+    /// `lh`, made on first use: one per level, as the IR's elements join vertices of their
+    /// own level.
+    fn site_vertex(
+        &mut self,
+        b: &mut Building,
+        id: u32,
+        pos: Vec2,
+        lh: Handle<Level>,
+        span: Span,
+    ) -> Handle<Vertex> {
+        if let Some(v) = self.site_vertices.get(&(id, lh)) {
+            return *v;
+        }
+        let raw = if b.coordinate_system == CoordinateSystem::ReferenceImage {
+            let kept = self.ext_level_point("raw_vertices", lh, id);
+            self.pixel_raw(b, lh, pos, kept)
+        } else {
+            pos.minus(b.offset)
+        };
+        let vh = b.vertices.append(
+            Vertex {
+                level: lh,
+                name: String::new(),
+                pos,
+                raw,
+                params: Params::default(),
+                roles: Default::default(),
+            },
+            span,
+        );
+        b.levels[lh].vertices.push(vh);
+        self.site_vertices.insert((id, lh), vh);
+        vh
     }
 
     fn door(
@@ -1060,6 +1134,7 @@ impl<'d, 'n, 's> SiteLower<'d, 'n, 's> {
                 index: self.graphs[&id],
                 name,
                 default_lane_width: 1.0,
+                unnamed: Vec::new(),
             });
         }
         b.graphs.sort_by_key(|g| g.index);
@@ -1104,7 +1179,7 @@ impl<'d, 'n, 's> SiteLower<'d, 'n, 's> {
                 continue;
             };
             let pos_of = |s: &Self, id: u32| match s.anchors.get(&id) {
-                Some(Anchor::Site(p)) => Some(*p),
+                Some(Anchor::Site(p, _)) => Some(*p),
                 Some(Anchor::Level(_, vh)) => Some(b.vertices[*vh].pos),
                 _ => None,
             };
@@ -1464,6 +1539,21 @@ impl<'d, 'n, 's> SiteLower<'d, 'n, 's> {
             }
         }
         let [Some(s), Some(e)] = ends else { return };
+        // rmf_site's nav export (`NavGraph::from_site`) makes waypoints of level anchors
+        // and cabin anchors only, and leaves out a lane on a site anchor ("not
+        // supported"); mapc's nav graphs are the same, and say so.
+        if let Some((aid, _, aspan)) = [s, e]
+            .into_iter()
+            .find(|(_, x, _)| matches!(x, Anchor::Site(..)))
+        {
+            self.l.warn(
+                "W0123",
+                aspan,
+                format!("lane {id} uses site anchor {aid}; it is left out of the nav graphs, as rmf_site's own nav export leaves it out"),
+                "in rmf_site, draw the lane to an anchor of the level (a new anchor at the same place), not to the site anchor",
+            );
+            return;
+        }
         let level_of = |x: &Anchor| match x {
             Anchor::Level(l, _) => Some(*l),
             _ => None,
@@ -1497,15 +1587,7 @@ impl<'d, 'n, 's> SiteLower<'d, 'n, 's> {
             vs[i] = match x {
                 Anchor::Level(_, v) => Some(v),
                 Anchor::Cabin(lift, p) => self.cabin_vertex(b, aid, lift, p, lh, aspan),
-                Anchor::Site(_) => {
-                    self.l.err(
-                        "E0122",
-                        aspan,
-                        format!("lane {id} uses site anchor {aid}, which is on no level"),
-                        "draw the lane between anchors of a level",
-                    );
-                    None
-                }
+                Anchor::Site(..) => None,
             };
         }
         let [Some(sv), Some(ev)] = vs else { return };
@@ -1530,7 +1612,7 @@ impl<'d, 'n, 's> SiteLower<'d, 'n, 's> {
             .and_then(ref_of)
             .and_then(|m| self.mutexes.get(&m).cloned())
             .filter(|m| !m.is_empty());
-        let graphs = self.lane_graphs(n, id);
+        let graphs = self.graph_set(n, &format!("lane {id}"));
         let lext = ext_lanes.and_then(|e| e.get(&id.to_string()));
         let ext_str = |k: &str| {
             lext.and_then(|e| e.get(k))
@@ -1597,8 +1679,8 @@ impl<'d, 'n, 's> SiteLower<'d, 'n, 's> {
         }
     }
 
-    /// The IR graph indices of a lane's `graphs` (`All`, `Only`, `AllExcept`).
-    fn lane_graphs(&mut self, n: &Node, id: u32) -> Vec<i64> {
+    /// The IR graph indices of a lane's or location's `graphs` (`what` names it).
+    fn graph_set(&mut self, n: &Node, what: &str) -> Vec<i64> {
         let all: Vec<(u32, i64)> = self.graphs.iter().map(|(k, v)| (*k, *v)).collect();
         let set = |s: &mut Self, v: Option<&Node>| -> Vec<u32> {
             let mut out = Vec::new();
@@ -1608,8 +1690,8 @@ impl<'d, 'n, 's> SiteLower<'d, 'n, 's> {
                     Some(gid) => s.l.err(
                         "E0121",
                         g.span,
-                        format!("lane {id} refers to graph {gid}, which the site does not have"),
-                        "point the lane at an existing graph",
+                        format!("{what} refers to graph {gid}, which the site does not have"),
+                        "point it at an existing graph",
                     ),
                     None => s.l.wrong_type(g, "a graph id", "an unsigned integer"),
                 }
@@ -1631,7 +1713,7 @@ impl<'d, 'n, 's> SiteLower<'d, 'n, 's> {
                 self.l.err(
                     "E0101",
                     span,
-                    format!("unknown lane graphs `{other}`"),
+                    format!("unknown graphs `{other}` of {what}"),
                     "use All, Only or AllExcept",
                 );
                 Vec::new()
@@ -1658,13 +1740,26 @@ impl<'d, 'n, 's> SiteLower<'d, 'n, 's> {
                 .filter(|((a, _), _)| Some(*a) == aid)
                 .map(|(_, v)| *v)
                 .collect(),
+            Some(Anchor::Site(..)) => {
+                let at = n.get("anchor").map_or(span, |a| a.span);
+                self.l.warn(
+                    "W0123",
+                    at,
+                    format!(
+                        "location `{name}` is on site anchor {}; no nav graph has a waypoint there, as rmf_site's own nav export has none",
+                        aid.map_or("?".into(), |a| a.to_string())
+                    ),
+                    "in rmf_site, put the location on an anchor of a level",
+                );
+                return;
+            }
             _ => {
                 let at = n.get("anchor").map_or(span, |a| a.span);
                 self.l.err(
                     "E0123",
                     at,
                     format!(
-                        "location `{name}` is on anchor {}, which is not an anchor of a level",
+                        "location `{name}` is on anchor {}, which the site does not have on a level or lift",
                         aid.map_or("?".into(), |a| a.to_string())
                     ),
                     "move the location onto an anchor of a level",
@@ -1721,6 +1816,13 @@ impl<'d, 'n, 's> SiteLower<'d, 'n, 's> {
             .and_then(|m| self.mutexes.get(&m))
             .filter(|m| !m.is_empty())
             .cloned();
+        // The graphs the location is not in keep the waypoint, unnamed.
+        let graphs = self.graph_set(n, &format!("location `{name}`"));
+        for g in b.graphs.iter_mut().filter(|g| !graphs.contains(&g.index)) {
+            g.unnamed.extend(&targets);
+            g.unnamed.sort_unstable();
+            g.unnamed.dedup();
+        }
         for v in targets {
             let vx = &mut b.vertices[v];
             vx.name = name.clone();

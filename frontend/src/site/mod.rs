@@ -113,6 +113,46 @@ mod tests {
         assert_eq!(lanes(p.building.as_ref().unwrap()), vec![(0, true, None)]);
     }
 
+    /// Site anchor 1 is used by a wall and a floor of L1 and a wall of L2: one vertex on
+    /// each level, shared by the elements of that level, at the anchor.
+    #[test]
+    fn a_site_anchor_is_one_vertex_per_level_that_uses_it() {
+        let text = r#"{"format_version": "0.1", "properties": {"name": "s"},
+  "anchors": {"1": {"Translate2D": [2.0, 3.0]}},
+  "levels": {
+    "10": {"properties": {"name": "L1", "elevation": 0.0},
+      "anchors": {"11": {"Translate2D": [0.0, 0.0]}, "12": {"Translate2D": [4.0, 0.0]}},
+      "walls": {"13": {"anchors": [11, 1]}},
+      "floors": {"14": {"anchors": [11, 12, 1]}}},
+    "20": {"properties": {"name": "L2", "elevation": 3.0},
+      "anchors": {"21": {"Translate2D": [0.0, 0.0]}},
+      "walls": {"22": {"anchors": [1, 21]}}}},
+  "navigation": {"guided": {"graphs": {"5": {"name": "g", "color": [1,1,1]}}, "ranking": [],
+    "lanes": {"30": {"anchors": [12, 1], "graphs": "All"}}, "locations": {}}}}"#;
+        let p = parse_site_str("t.site.json", text);
+        let codes: Vec<(&str, u32, u32)> = p
+            .diagnostics
+            .iter()
+            .map(|d| (d.code, d.span.line, d.span.col))
+            .collect();
+        assert_eq!(codes, vec![("W0123", 12, 38)], "the lane's site anchor");
+        let b = p.building.unwrap();
+        assert!(b.lanes.is_empty());
+        let on_site_anchor: Vec<(&str, Handle<Vertex>)> = b
+            .vertices
+            .iter()
+            .filter(|(_, v)| (v.pos.x, v.pos.y) == (2.0, 3.0))
+            .map(|(h, v)| (b.levels[v.level].name.as_str(), h))
+            .collect();
+        assert_eq!(on_site_anchor.len(), 2);
+        assert_eq!((on_site_anchor[0].0, on_site_anchor[1].0), ("L1", "L2"));
+        let (l1, l2) = (on_site_anchor[0].1, on_site_anchor[1].1);
+        let walls: Vec<Handle<Vertex>> = b.walls.iter().map(|(_, w)| w.end).collect();
+        assert_eq!(walls[0], l1);
+        assert_eq!(b.walls.iter().nth(1).unwrap().1.start, l2);
+        assert_eq!(b.floors.iter().next().unwrap().1.vertices[2], l1);
+    }
+
     #[test]
     fn broken_json_is_a_json_syntax_error() {
         let p = parse_site_str("t.site.json", "{\"format_version\": \"0.1\", ");

@@ -216,6 +216,8 @@ pub use dds::{
   typedesc::TypeDesc,
   with_key::{datareader::SelectByKey, WriteOptions, WriteOptionsBuilder},
 };
+/// The host's interfaces as RustDDS sees them (for choosing `loopback_only`).
+pub use network::util::{local_interfaces, LocalInterface};
 /// Needed to specify serialized data representation in case it is other than
 /// CDR.
 pub use serialization::RepresentationIdentifier;

@@ -59,6 +59,16 @@ use crate::{
 #[cfg(not(feature = "security"))]
 use crate::no_security::SecurityPluginsHandle;
 
+/// Which interfaces a participant uses and whom it announces itself to
+/// besides multicast ([`DomainParticipantBuilder::loopback_only`],
+/// [`DomainParticipantBuilder::initial_peers`]).
+#[derive(Clone, Debug, Default)]
+pub(crate) struct NetworkConfig {
+  loopback_only: bool,
+  initial_peers: Vec<std::net::IpAddr>,
+  max_participant_index: u16,
+}
+
 /// Builder object to create a [`DomainParticipant`] with non-default
 /// configuration.
 ///
@@ -72,6 +82,8 @@ pub struct DomainParticipantBuilder {
   which interfaces the DomainParticipant will talk to. */
   only_networks: Option<Vec<String>>, // if specified, run RTPS only over these interfaces
 
+  network: NetworkConfig,
+
   #[cfg(feature = "security")]
   security_plugins: Option<SecurityPlugins>,
   #[cfg(feature = "security")]
@@ -83,11 +95,41 @@ impl DomainParticipantBuilder {
     DomainParticipantBuilder {
       domain_id,
       only_networks: None,
+      network: NetworkConfig::default(),
       #[cfg(feature = "security")]
       security_plugins: None,
       #[cfg(feature = "security")]
       sec_properties: None,
     }
+  }
+
+  /// Run RTPS on the loopback interfaces only: unicast locators on 127.0.0.1,
+  /// multicast (SPDP and user traffic) over a multicast-capable loopback
+  /// interface if there is one. This is what Cyclone DDS and Fast DDS do
+  /// under ROS 2's `ROS_AUTOMATIC_DISCOVERY_RANGE=LOCALHOST` (and Humble's
+  /// `ROS_LOCALHOST_ONLY=1`), and the only way to talk on a host whose only
+  /// interface is `lo`. Usually combined with
+  /// `initial_peers(vec![127.0.0.1], ..)`, as peers restricted to localhost
+  /// may not listen to multicast at all.
+  pub fn loopback_only(mut self, loopback_only: bool) -> DomainParticipantBuilder {
+    self.network.loopback_only = loopback_only;
+    self
+  }
+
+  /// Also announce this participant (SPDP) by unicast to each of `peers`, at
+  /// the well-known discovery ports of participant ids 0 to
+  /// `max_participant_index` (RTPS 2.5 section 9.6.2.3): the "initial peers"
+  /// of Fast DDS and the `Peers` of Cyclone DDS, which is how participants
+  /// that do not use multicast find each other. A peer that receives the
+  /// announcement answers with its own, and discovery proceeds by unicast.
+  pub fn initial_peers(
+    mut self,
+    peers: Vec<std::net::IpAddr>,
+    max_participant_index: u16,
+  ) -> DomainParticipantBuilder {
+    self.network.initial_peers = peers;
+    self.network.max_participant_index = max_participant_index;
+    self
   }
 
   #[cfg(feature = "security")]
@@ -237,6 +279,7 @@ impl DomainParticipantBuilder {
     // intermediate DP wrapper
     let dp = DomainParticipantDisc::new(
       self.domain_id,
+      self.network,
       participant_guid,
       participant_qos,
       djh_receiver,
@@ -761,6 +804,7 @@ impl DomainParticipantDisc {
   #[allow(clippy::too_many_arguments)]
   pub fn new(
     domain_id: u16,
+    network: NetworkConfig,
     participant_guid: GUID,
     qos_policies: QosPolicies,
     discovery_join_handle: mio_channel::Receiver<JoinHandle<()>>,
@@ -773,6 +817,7 @@ impl DomainParticipantDisc {
   ) -> CreateResult<Self> {
     let dpi = DomainParticipantInner::new(
       domain_id,
+      network,
       participant_guid,
       qos_policies,
       discovery_update_notification_receiver,
@@ -987,6 +1032,7 @@ impl DomainParticipantInner {
   #[allow(clippy::too_many_arguments)]
   fn new(
     domain_id: u16,
+    network: NetworkConfig,
     participant_guid: GUID,
     _qos_policies: QosPolicies,
     discovery_update_notification_receiver: mio_channel::Receiver<DiscoveryNotificationType>,
@@ -1000,16 +1046,27 @@ impl DomainParticipantInner {
     let _dummy = _qos_policies; // to make clippy happy
 
     let mut listeners = HashMap::new();
+    let loopback_only = network.loopback_only;
+    // Without an interface to multicast on, announcing multicast locators would
+    // only make peers send where nobody listens.
+    let multicast = crate::network::util::get_local_multicast_ip_addrs_on(loopback_only)
+      .is_ok_and(|a| !a.is_empty());
+    if !multicast {
+      info!("No multicast-capable interface (loopback_only = {loopback_only}): unicast only");
+    }
 
-    match UDPListener::new_multicast(
-      "0.0.0.0",
-      spdp_well_known_multicast_port(domain_id),
-      Ipv4Addr::new(239, 255, 0, 1),
-    ) {
-      Ok(l) => {
-        listeners.insert(DISCOVERY_MUL_LISTENER_TOKEN, l);
+    if multicast {
+      match UDPListener::new_multicast_on(
+        "0.0.0.0",
+        spdp_well_known_multicast_port(domain_id),
+        Ipv4Addr::new(239, 255, 0, 1),
+        loopback_only,
+      ) {
+        Ok(l) => {
+          listeners.insert(DISCOVERY_MUL_LISTENER_TOKEN, l);
+        }
+        Err(e) => warn!("Cannot get multicast discovery listener: {e:?}"),
       }
-      Err(e) => warn!("Cannot get multicast discovery listener: {e:?}"),
     }
 
     let mut participant_id = 0;
@@ -1040,15 +1097,18 @@ impl DomainParticipantInner {
 
     // Now the user traffic listeners
 
-    match UDPListener::new_multicast(
-      "0.0.0.0",
-      user_traffic_multicast_port(domain_id),
-      Ipv4Addr::new(239, 255, 0, 1),
-    ) {
-      Ok(l) => {
-        listeners.insert(USER_TRAFFIC_MUL_LISTENER_TOKEN, l);
+    if multicast {
+      match UDPListener::new_multicast_on(
+        "0.0.0.0",
+        user_traffic_multicast_port(domain_id),
+        Ipv4Addr::new(239, 255, 0, 1),
+        loopback_only,
+      ) {
+        Ok(l) => {
+          listeners.insert(USER_TRAFFIC_MUL_LISTENER_TOKEN, l);
+        }
+        Err(e) => warn!("Cannot get multicast user traffic listener: {e:?}"),
       }
-      Err(e) => warn!("Cannot get multicast user traffic listener: {e:?}"),
     }
 
     let user_traffic_listener = UDPListener::new_unicast(
@@ -1075,7 +1135,7 @@ impl DomainParticipantInner {
     // construct our own Locators
     let self_locators: HashMap<mio_06::Token, Vec<Locator>> = listeners
       .iter()
-      .map(|(t, l)| match l.to_locator_address() {
+      .map(|(t, l)| match l.to_locator_address_on(loopback_only) {
         Ok(locs) => (*t, locs),
         Err(e) => {
           error!("No local network address for token {t:?}: {e:?}");
@@ -1094,10 +1154,24 @@ impl DomainParticipantInner {
       mio_channel::sync_channel::<WriterIngredients>(10);
     let (remove_writer_sender, remove_writer_receiver) = mio_channel::sync_channel::<GUID>(4);
 
+    let spdp_peers = network
+      .initial_peers
+      .iter()
+      .flat_map(|ip| {
+        (0..=network.max_participant_index).map(move |pid| {
+          Locator::from(std::net::SocketAddr::new(
+            *ip,
+            spdp_well_known_unicast_port(domain_id, pid),
+          ))
+        })
+      })
+      .collect();
     let domain_info = DomainInfo {
       domain_participant_guid: participant_guid,
       domain_id,
       participant_id,
+      loopback_only,
+      spdp_peers,
     };
     let domain_info_clone = domain_info.clone();
 

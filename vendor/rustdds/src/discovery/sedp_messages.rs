@@ -27,7 +27,6 @@ use crate::{
     parameter::Parameter,
     parameter_list::{ParameterList, ParameterListable},
   },
-  network::{constant::user_traffic_unicast_port, util::get_local_unicast_locators},
   rtps::{rtps_reader_proxy::RtpsReaderProxy, rtps_writer_proxy::RtpsWriterProxy},
   serialization::{
     pl_cdr_adapters::{
@@ -764,8 +763,12 @@ impl DiscoveredWriterData {
     dp: &DomainParticipant,
     security_info: Option<EndpointSecurityInfo>,
   ) -> Self {
-    let unicast_port = user_traffic_unicast_port(dp.domain_id(), dp.participant_id());
-    let unicast_addresses = get_local_unicast_locators(unicast_port);
+    // The participant's own user-traffic locators: those of the listener it
+    // opened (loopback ones when it runs on loopback only).
+    let unicast_addresses = dp
+      .self_locators()
+      .remove(&crate::rtps::constant::USER_TRAFFIC_LISTENER_TOKEN)
+      .unwrap_or_default();
     // TODO: Why empty vector below? No multicast?
     let writer_proxy = WriterProxy::new(writer.guid(), vec![], unicast_addresses);
     let publication_topic_data = PublicationBuiltinTopicData::new_with_qos(

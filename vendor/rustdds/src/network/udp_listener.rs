@@ -9,7 +9,7 @@ use bytes::{Bytes, BytesMut};
 
 use crate::{
   network::util::{
-    get_local_multicast_ip_addrs, get_local_multicast_locators, get_local_unicast_locators,
+    get_local_multicast_ip_addrs_on, get_local_multicast_locators, get_local_unicast_locators_on,
   },
   serialization::padding_needed_for_alignment_4,
   structure::locator::Locator,
@@ -93,12 +93,19 @@ impl UDPListener {
     Ok(mio_socket)
   }
 
+  #[cfg(test)]
   pub fn to_locator_address(&self) -> io::Result<Vec<Locator>> {
+    self.to_locator_address_on(false)
+  }
+
+  /// The locators of this listener; its unicast ones on the loopback
+  /// interfaces when `loopback_only`.
+  pub fn to_locator_address_on(&self, loopback_only: bool) -> io::Result<Vec<Locator>> {
     let local_port = self.socket.local_addr()?.port();
 
     match self.multicast_group {
       Some(_ipv4_addr) => Ok(get_local_multicast_locators(local_port)),
-      None => Ok(get_local_unicast_locators(local_port)),
+      None => Ok(get_local_unicast_locators_on(local_port, loopback_only)),
     }
   }
 
@@ -112,7 +119,19 @@ impl UDPListener {
     })
   }
 
+  #[cfg(test)]
   pub fn new_multicast(host: &str, port: u16, multicast_group: Ipv4Addr) -> io::Result<Self> {
+    Self::new_multicast_on(host, port, multicast_group, false)
+  }
+
+  /// A multicast listener that joins `multicast_group` on the loopback
+  /// interfaces only when `loopback_only` (else on the non-loopback ones).
+  pub fn new_multicast_on(
+    host: &str,
+    port: u16,
+    multicast_group: Ipv4Addr,
+    loopback_only: bool,
+  ) -> io::Result<Self> {
     if !multicast_group.is_multicast() {
       return io::Result::Err(io::Error::new(
         io::ErrorKind::Other,
@@ -122,7 +141,7 @@ impl UDPListener {
 
     let mio_socket = Self::new_listening_socket(host, port, true)?;
 
-    for multicast_if_ipaddr in get_local_multicast_ip_addrs()? {
+    for multicast_if_ipaddr in get_local_multicast_ip_addrs_on(loopback_only)? {
       match multicast_if_ipaddr {
         IpAddr::V4(a) => mio_socket
           .join_multicast_v4(&multicast_group, &a)

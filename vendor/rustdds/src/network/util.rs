@@ -13,11 +13,21 @@ pub fn get_local_multicast_locators(port: u16) -> Vec<Locator> {
   vec![Locator::from(saddr)]
 }
 
+#[cfg(test)]
 pub fn get_local_unicast_locators(port: u16) -> Vec<Locator> {
+  get_local_unicast_locators_on(port, false)
+}
+
+/// The unicast locators of this host at `port`: the addresses of its
+/// non-loopback interfaces, or with `loopback_only` those of its loopback
+/// interfaces (127.0.0.1), as Cyclone DDS and Fast DDS announce when
+/// restricted to localhost.
+pub fn get_local_unicast_locators_on(port: u16, loopback_only: bool) -> Vec<Locator> {
   match if_addrs::get_if_addrs() {
     Ok(ifaces) => ifaces
       .iter()
-      .filter(|ip| !ip.is_loopback())
+      .filter(|ip| ip.is_loopback() == loopback_only)
+      .filter(|ip| !loopback_only || ip.ip().is_ipv4())
       .map(|ip| Locator::from(SocketAddr::new(ip.ip(), port)))
       .collect(),
     Err(e) => {
@@ -30,12 +40,32 @@ pub fn get_local_unicast_locators(port: u16) -> Vec<Locator> {
 /// Enumerates local interfaces that we may use for multicasting.
 ///
 /// The result of this function is used to set up senders and listeners.
+#[cfg(test)]
 pub fn get_local_multicast_ip_addrs() -> io::Result<Vec<IpAddr>> {
+  get_local_multicast_ip_addrs_on(false)
+}
+
+/// [`get_local_multicast_ip_addrs`], or with `loopback_only` the IPv4
+/// addresses of the loopback interfaces that are up and multicast-capable
+/// (Linux's `lo` is after `ip link set lo multicast on`).
+pub fn get_local_multicast_ip_addrs_on(loopback_only: bool) -> io::Result<Vec<IpAddr>> {
   // grab a list of system intefaces.
   //
   // note: `pnet` works on mac, windows, and linux, potentially alongside
   // other systems.
   let interfaces = pnet::datalink::interfaces();
+
+  if loopback_only {
+    return Ok(
+      interfaces
+        .into_iter()
+        .filter(|i| i.is_loopback() && i.is_up() && i.is_multicast())
+        .flat_map(|i| i.ips)
+        .map(|ip_net| ip_net.ip())
+        .filter(|ip| ip.is_ipv4())
+        .collect(),
+    );
+  }
 
   // grab all the ips from each interface
   Ok(get_local_multicast_ip_addrs_inner(interfaces))
@@ -52,6 +82,38 @@ fn get_local_multicast_ip_addrs_inner(interfaces: Vec<NetworkInterface>) -> Vec<
     .map(|ip_net| ip_net.ip()) // get the ip from each ip network
     .filter(|ip| ip.is_ipv4()) // use ipv4 only :(
     .collect::<Vec<_>>()
+}
+
+/// A network interface of this host as RustDDS sees it when choosing where
+/// to talk (see [`crate::DomainParticipantBuilder::loopback_only`]).
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct LocalInterface {
+  pub name: String,
+  pub ipv4: Vec<std::net::Ipv4Addr>,
+  pub up: bool,
+  pub loopback: bool,
+  pub multicast: bool,
+}
+
+/// The interfaces of this host with their IPv4 addresses and flags.
+pub fn local_interfaces() -> Vec<LocalInterface> {
+  pnet::datalink::interfaces()
+    .into_iter()
+    .map(|i| LocalInterface {
+      ipv4: i
+        .ips
+        .iter()
+        .filter_map(|n| match n.ip() {
+          IpAddr::V4(a) => Some(a),
+          IpAddr::V6(_) => None,
+        })
+        .collect(),
+      up: i.is_up(),
+      loopback: i.is_loopback(),
+      multicast: i.is_multicast(),
+      name: i.name,
+    })
+    .collect()
 }
 
 #[cfg(test)]

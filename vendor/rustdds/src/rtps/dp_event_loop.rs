@@ -36,6 +36,7 @@ use crate::{
     dds_cache::DDSCache,
     entity::RTPSEntity,
     guid::{EntityId, GuidPrefix, TokenDecode, GUID},
+    locator::Locator,
   },
   //QosPolicyBuilder,
   //QosPolicies,
@@ -55,6 +56,11 @@ pub struct DomainInfo {
   pub domain_participant_guid: GUID,
   pub domain_id: u16,
   pub participant_id: u16,
+  /// Multicast on loopback interfaces only (`DomainParticipantBuilder::loopback_only`).
+  pub loopback_only: bool,
+  /// Where SPDP announcements go by unicast besides this participant's own
+  /// locators (`DomainParticipantBuilder::initial_peers`).
+  pub spdp_peers: Vec<Locator>,
 }
 
 pub(crate) enum EventLoopCommand {
@@ -193,7 +199,8 @@ impl DPEventLoop {
       .expect("Failed to register reader update notification.");
 
     // port number 0 means OS chooses an available port number.
-    let udp_sender = UDPSender::new(0).expect("UDPSender construction fail"); // TODO
+    let udp_sender =
+      UDPSender::new_on(0, domain_info.loopback_only).expect("UDPSender construction fail"); // TODO
 
     #[cfg(not(feature = "security"))]
     let security_plugins_opt = security_plugins_opt.and(None); // make sure it is None an consume value
@@ -617,8 +624,24 @@ impl DPEventLoop {
           .available_builtin_endpoints
           .contains(*reader_endpoint_set_elem)
         {
-          let reader_proxy =
+          let mut reader_proxy =
             discovered_participant.get_builtin_reader_proxy(*reader_eid, reader_qos);
+          // Our own SPDP reader stands for every participant listening where
+          // we announce: add the initial peers to its destinations. (The SPDP
+          // writer sends data to the multicast list when there is one, and to
+          // all of it.)
+          if *reader_eid == EntityId::SPDP_BUILTIN_PARTICIPANT_READER
+            && discovered_participant.participant_guid.prefix
+              == self.domain_info.domain_participant_guid.prefix
+          {
+            for peer in &self.domain_info.spdp_peers {
+              if !reader_proxy.multicast_locator_list.contains(peer)
+                && !reader_proxy.unicast_locator_list.contains(peer)
+              {
+                reader_proxy.multicast_locator_list.push(peer.clone());
+              }
+            }
+          }
 
           // Get the QoS for the built-in topic from the local writer
           let mut reader_qos = reader_qos.clone();
@@ -1157,6 +1180,8 @@ mod tests {
       domain_participant_guid: GUID::default(),
       domain_id: 0,
       participant_id: 0,
+      loopback_only: false,
+      spdp_peers: Vec::new(),
     };
 
     let (sender_stop, receiver_stop) = mio_channel::channel::<i32>();

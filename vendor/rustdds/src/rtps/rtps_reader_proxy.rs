@@ -107,9 +107,7 @@ impl RtpsReaderProxy {
         "Multicast:\n Old={:?}\n  New={:?}",
         self.multicast_locator_list, update.multicast_locator_list
       );
-      let mut unicasts = update.unicast_locator_list.clone();
-      unicasts.retain(Self::not_loopback);
-      self.unicast_locator_list = unicasts;
+      self.unicast_locator_list = Self::without_loopback(&update.unicast_locator_list);
       self
         .multicast_locator_list
         .clone_from(&update.multicast_locator_list);
@@ -199,14 +197,26 @@ impl RtpsReaderProxy {
   }
 
   // OpenDDS seems to advertise also loopback address as its Locator over SPDP,
-  // which is problematic, if we are not on the same host.
-  fn not_loopback(l: &Locator) -> bool {
-    let is_loopback = l.is_loopback();
-    if is_loopback {
-      info!("Ignoring loopback address {l:?}");
+  // which is problematic, if we are not on the same host. Loopback locators
+  // are dropped when the reader has others; a reader that announces only
+  // loopback ones (a participant restricted to localhost, as Cyclone DDS and
+  // Fast DDS are under ROS 2's LOCALHOST discovery range) can be reached only
+  // through them, and is on this host if it can be reached at all.
+  fn without_loopback(locators: &[Locator]) -> Vec<Locator> {
+    if locators.iter().all(Locator::is_loopback) {
+      return locators.to_vec();
     }
-
-    !is_loopback
+    locators
+      .iter()
+      .filter(|l| {
+        let is_loopback = l.is_loopback();
+        if is_loopback {
+          info!("Ignoring loopback address {l:?}");
+        }
+        !is_loopback
+      })
+      .cloned()
+      .collect()
   }
 
   pub fn from_discovered_reader_data(
@@ -214,11 +224,10 @@ impl RtpsReaderProxy {
     default_unicast_locators: &[Locator],
     default_multicast_locators: &[Locator],
   ) -> Self {
-    let mut unicast_locator_list = Self::discovered_or_default(
+    let unicast_locator_list = Self::without_loopback(&Self::discovered_or_default(
       &discovered_reader_data.reader_proxy.unicast_locator_list,
       default_unicast_locators,
-    );
-    unicast_locator_list.retain(Self::not_loopback);
+    ));
 
     let multicast_locator_list = Self::discovered_or_default(
       &discovered_reader_data.reader_proxy.multicast_locator_list,
