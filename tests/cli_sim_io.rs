@@ -286,3 +286,75 @@ fn summary_separates_resolved_and_unresolved_stuck_episodes() {
         "{out}"
     );
 }
+
+#[test]
+fn rmf_config_requests_and_states_in_rmf_format() {
+    let dir = tempfile::tempdir().unwrap();
+    let scenario = root().join("fixtures/rmf/warehouse_requests.scenario.yaml");
+    // --requests replaces the scenario's requests file.
+    let requests = dir.path().join("r.jsonl");
+    std::fs::write(
+        &requests,
+        concat!(
+            r#"{"at": "30s", "request": {"type": "dispatch_task_request", "request": {"category": "patrol", "description": {"places": ["hold_a", "pickup"], "rounds": 1}}}}"#,
+            "\n",
+            r#"{"at": "1min", "request": {"type": "dispatch_task_request", "request": {"category": "clean", "description": {"zone": "clean_zone"}}}}"#,
+            "\n"
+        ),
+    )
+    .unwrap();
+    let (t, f) = (dir.path().join("t.jsonl"), dir.path().join("f.jsonl"));
+    let (code, _, err) = mapc(&[
+        "sim",
+        scenario.to_str().unwrap(),
+        "--requests",
+        requests.to_str().unwrap(),
+        "--task-states",
+        t.to_str().unwrap(),
+        "--fleet-states",
+        f.to_str().unwrap(),
+        "--until",
+        "5min",
+        "-q",
+    ]);
+    assert_eq!(code, 0, "{err}");
+    let states: Vec<serde_json::Value> = std::fs::read_to_string(&t)
+        .unwrap()
+        .lines()
+        .map(|l| serde_json::from_str(l).unwrap())
+        .collect();
+    // The patrol (done by one of the config's robots), then the refused clean.
+    assert_eq!(states.len(), 2, "{states:#?}");
+    assert_eq!(states[0]["booking"]["id"], "loop_0");
+    assert_eq!(states[0]["category"], "patrol");
+    assert_eq!(states[0]["status"], "completed");
+    let robot = states[0]["assigned_to"]["name"].as_str().unwrap();
+    assert!(robot == "mover_1" || robot == "mover_2", "{robot}");
+    assert_eq!(states[1]["dispatch"]["status"], "failed_to_assign");
+    let updates = std::fs::read_to_string(&f).unwrap();
+    let first: serde_json::Value = serde_json::from_str(updates.lines().next().unwrap()).unwrap();
+    assert_eq!(first["type"], "fleet_state_update");
+    assert_eq!(first["data"]["name"], "movers");
+    // About one a second for 5 minutes.
+    assert!((290..=310).contains(&updates.lines().count()));
+
+    // A broken fleet config: located in the config, exit 1, nothing run.
+    std::fs::write(
+        dir.path().join("bad.yaml"),
+        "rmf_fleet:\n  name: f\n  limits:\n    linear: [-0.5, 0.75]\n  robots:\n    r: {charger: c}\n",
+    )
+    .unwrap();
+    let s = dir.path().join("s.scenario.yaml");
+    std::fs::write(&s, "duration: 1min\nfleets:\n  - {config: bad.yaml}\n").unwrap();
+    let (code, _, err) = mapc(&[
+        "sim",
+        s.to_str().unwrap(),
+        "--task-states",
+        t.to_str().unwrap(),
+    ]);
+    assert_eq!(code, 1, "{err}");
+    assert!(
+        err.contains("S0106") && err.contains("bad.yaml:4:14"),
+        "{err}"
+    );
+}

@@ -9,32 +9,10 @@
 //! with a TEST-NET-1 address (RFC 5737); both ends stay in the namespace and the 224.0.0.0/4
 //! route points at it. Prints `skipped: ...` without unshare, ip or the venv.
 
-use std::path::{Path, PathBuf};
+mod support;
+use std::path::Path;
 use std::process::Command;
-
-fn python() -> Option<PathBuf> {
-    if let Some(p) = std::env::var_os("MAPC_ROS2_PYTHON") {
-        return Some(p.into());
-    }
-    let p = Path::new(env!("CARGO_MANIFEST_DIR")).join("target/ros2-venv/bin/python");
-    let ok = Command::new(&p)
-        .args(["-c", "import cyclonedds.domain"])
-        .output()
-        .is_ok_and(|o| o.status.success());
-    ok.then_some(p)
-}
-
-fn namespace_works() -> bool {
-    Command::new("unshare")
-        .args([
-            "-rn",
-            "sh",
-            "-c",
-            "ip link set lo up && ip link add t0 type veth peer name t1",
-        ])
-        .output()
-        .is_ok_and(|o| o.status.success())
-}
+use support::ros2::peer;
 
 const RATE: f64 = 10.0;
 
@@ -101,14 +79,9 @@ fn in_namespace<'a>(
 
 #[test]
 fn rmf_side_drives_mapc_over_cyclone_dds() {
-    let Some(py) = python() else {
-        println!("skipped: cyclonedds (Python) not found; .ci/run makes target/ros2-venv");
+    let Some(py) = peer("cyclonedds.domain") else {
         return;
     };
-    if !namespace_works() {
-        println!("skipped: no private network namespace (unshare -rn, ip, veth) here");
-        return;
-    }
     let root = Path::new(env!("CARGO_MANIFEST_DIR"));
     let dir = test_dir();
     let defs: serde_json::Map<String, serde_json::Value> = mapc_ros2::msgs::definitions()
@@ -214,14 +187,7 @@ fn watch_full_run(
     fixture: &str,
     domain: u16,
 ) -> Option<(serde_json::Value, Vec<serde_json::Value>)> {
-    let Some(py) = python() else {
-        println!("skipped: cyclonedds (Python) not found; .ci/run makes target/ros2-venv");
-        return None;
-    };
-    if !namespace_works() {
-        println!("skipped: no private network namespace (unshare -rn, ip, veth) here");
-        return None;
-    }
+    let py = peer("cyclonedds.domain")?;
     let root = Path::new(env!("CARGO_MANIFEST_DIR"));
     let dir = test_dir();
     let defs: serde_json::Map<String, serde_json::Value> = mapc_ros2::msgs::definitions()

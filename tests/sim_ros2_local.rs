@@ -15,32 +15,10 @@
 //!
 //! Prints `skipped: ...` without unshare, ip or the venv.
 
-use std::path::{Path, PathBuf};
+mod support;
+use std::path::Path;
 use std::process::Command;
-
-fn python() -> Option<PathBuf> {
-    if let Some(p) = std::env::var_os("MAPC_ROS2_PYTHON") {
-        return Some(p.into());
-    }
-    let p = Path::new(env!("CARGO_MANIFEST_DIR")).join("target/ros2-venv/bin/python");
-    let ok = Command::new(&p)
-        .args(["-c", "import cyclonedds.domain"])
-        .output()
-        .is_ok_and(|o| o.status.success());
-    ok.then_some(p)
-}
-
-fn namespace_works() -> bool {
-    Command::new("unshare")
-        .args([
-            "-rn",
-            "sh",
-            "-c",
-            "ip link set lo up multicast on && ip route add 224.0.0.0/4 dev lo",
-        ])
-        .output()
-        .is_ok_and(|o| o.status.success())
-}
+use support::ros2::{namespace, peer};
 
 /// The namespace: `lo` up with multicast and the multicast route, nothing else; then mapc
 /// and the peer, mapc stopped with SIGINT when the peer is done.
@@ -71,14 +49,7 @@ fn run(
     peer_domain: u16,
     peer_uri: &str,
 ) -> Option<(serde_json::Value, String)> {
-    let Some(py) = python() else {
-        println!("skipped: cyclonedds (Python) not found; .ci/run makes target/ros2-venv");
-        return None;
-    };
-    if !namespace_works() {
-        println!("skipped: no private network namespace (unshare -rn, ip) here");
-        return None;
-    }
+    let py = peer("cyclonedds.domain")?;
     let root = Path::new(env!("CARGO_MANIFEST_DIR"));
     let dir = tempfile::tempdir().expect("tempdir");
     let defs: serde_json::Map<String, serde_json::Value> = mapc_ros2::msgs::definitions()
@@ -206,8 +177,7 @@ fn loopback_alone_is_used_without_settings() {
 
 #[test]
 fn no_usable_interface_is_an_error_naming_the_settings() {
-    if !namespace_works() {
-        println!("skipped: no private network namespace (unshare -rn, ip) here");
+    if !namespace() {
         return;
     }
     let root = Path::new(env!("CARGO_MANIFEST_DIR"));

@@ -9,32 +9,10 @@
 //! Everything runs in a private network namespace made here (`unshare -rn`, only `lo`).
 //! Prints `skipped: ...` without unshare, ip or the venv.
 
-use std::path::{Path, PathBuf};
+mod support;
+use std::path::Path;
 use std::process::Command;
-
-fn python() -> Option<PathBuf> {
-    let p = match std::env::var_os("MAPC_ROS2_PYTHON") {
-        Some(p) => PathBuf::from(p),
-        None => Path::new(env!("CARGO_MANIFEST_DIR")).join("target/ros2-venv/bin/python"),
-    };
-    let ok = Command::new(&p)
-        .args(["-c", "import zenoh.ext, xxhash, cyclonedds.idl"])
-        .output()
-        .is_ok_and(|o| o.status.success());
-    ok.then_some(p)
-}
-
-fn namespace_works() -> bool {
-    Command::new("unshare")
-        .args([
-            "-rn",
-            "sh",
-            "-c",
-            "ip link set lo up multicast on && ip route add 224.0.0.0/4 dev lo",
-        ])
-        .output()
-        .is_ok_and(|o| o.status.success())
-}
+use support::ros2::{namespace, peer};
 
 const SCRIPT: &str = r#"set -e
 ip link set lo up multicast on
@@ -58,17 +36,9 @@ wait $router
 
 #[test]
 fn rmf_side_drives_mapc_over_rmw_zenoh() {
-    let Some(py) = python() else {
-        println!(
-            "skipped: eclipse-zenoh, xxhash or cyclonedds (Python) not found; .ci/run makes \
-             target/ros2-venv"
-        );
+    let Some(py) = peer("zenoh.ext, xxhash, cyclonedds.idl") else {
         return;
     };
-    if !namespace_works() {
-        println!("skipped: no private network namespace (unshare -rn, ip) here");
-        return;
-    }
     let root = Path::new(env!("CARGO_MANIFEST_DIR"));
     let dir = tempfile::tempdir().expect("tempdir");
     let defs: serde_json::Map<String, serde_json::Value> = mapc_ros2::msgs::definitions()
@@ -226,8 +196,7 @@ fn rmf_side_drives_mapc_over_rmw_zenoh() {
 /// runs; a bad `ZENOH_ROUTER_CHECK_ATTEMPTS` or `ZENOH_SESSION_CONFIG_URI` is a usage error.
 #[test]
 fn zenoh_settings_without_a_router() {
-    if !namespace_works() {
-        println!("skipped: no private network namespace (unshare -rn, ip) here");
+    if !namespace() {
         return;
     }
     let root = Path::new(env!("CARGO_MANIFEST_DIR"));

@@ -616,3 +616,26 @@ fn the_walkthrough_sweep_plans_on_the_clinic_demo_map() {
         serde_json::from_slice(&std::fs::read(out.join("plan.json")).unwrap()).unwrap();
     assert_eq!(plan["runs"].as_array().unwrap().len(), 18);
 }
+
+#[test]
+fn axes_override_a_fleet_config_and_runs_find_its_files() {
+    // The scenario names its fleet config and requests file relative to itself; the runs
+    // (in OUT/runs/NNNN) find them, and axes override the config's count and speed.
+    let out = tempfile::tempdir().unwrap();
+    let (code, _, err) = support::mapc(&[
+        "sweep",
+        "fixtures/rmf/warehouse.sweep.yaml",
+        "-o",
+        out.path().to_str().unwrap(),
+    ]);
+    assert_eq!(code, 0, "{err}");
+    let (h, rows) = csv(out.path());
+    assert_eq!(rows.len(), 4);
+    let robots: Vec<&str> = rows.iter().map(|r| r[col(&h, "robots")].as_str()).collect();
+    assert_eq!(robots, ["1", "1", "2", "2"]);
+    // The same work at half the speed keeps the robots busy longer.
+    let util = |i: usize| rows[i][col(&h, "utilisation")].parse::<f64>().unwrap();
+    assert!(util(0) > 1.2 * util(1), "{} vs {}", util(0), util(1));
+    let done = |i: usize| rows[i][col(&h, "tasks_completed")].parse::<u32>().unwrap();
+    assert!((0..4).all(|i| done(i) >= 3), "{rows:?}");
+}

@@ -1,6 +1,7 @@
 //! Diagnostic codes the backends report while producing output (W07xx). Each `///` block is
 //! gathered into docs/diagnostics.md (see tests/docs.rs), like frontend/src/codes.rs.
 
+use mapc_ir::lints::Group;
 pub use mapc_ir::Code;
 
 /// # W0701 texture-not-found
@@ -24,6 +25,7 @@ pub use mapc_ir::Code;
 /// ```
 pub const TEXTURE_NOT_FOUND: Code = Code {
     code: "W0701",
+    group: Group::Textures,
     name: "texture-not-found",
     summary: "a texture could not be found on the texture search path",
 };
@@ -46,6 +48,7 @@ pub const TEXTURE_NOT_FOUND: Code = Code {
 /// ```
 pub const TEXTURE_URL: Code = Code {
     code: "W0702",
+    group: Group::Textures,
     name: "texture-url-not-fetched",
     summary: "a texture named by URL is not downloaded; a placeholder is used",
 };

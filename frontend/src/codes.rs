@@ -2,6 +2,7 @@
 //! into docs/diagnostics.md (see tests/docs.rs); the validation rules of mapc-ir document
 //! themselves the same way.
 
+use mapc_ir::lints::Group;
 pub use mapc_ir::Code;
 
 /// # E0001 invalid-yaml
@@ -20,6 +21,7 @@ pub use mapc_ir::Code;
 /// ```
 pub const INVALID_YAML: Code = Code {
     code: "E0001",
+    group: Group::Reading,
     name: "invalid-yaml",
     summary: "the file is not well-formed YAML",
 };
@@ -45,6 +47,7 @@ pub const INVALID_YAML: Code = Code {
 /// ```
 pub const INPUT_LIMIT: Code = Code {
     code: "E0002",
+    group: Group::Reading,
     name: "input-limit-exceeded",
     summary: "the file is too large, nests too deep or expands to too many nodes",
 };
@@ -61,6 +64,7 @@ pub const INPUT_LIMIT: Code = Code {
 /// **Example:** a name typed in Latin-1, such as the byte `0xE9` for `é`.
 pub const NOT_UTF8: Code = Code {
     code: "E0003",
+    group: Group::Reading,
     name: "not-utf8",
     summary: "the file is not valid UTF-8",
 };
@@ -82,6 +86,7 @@ pub const NOT_UTF8: Code = Code {
 /// ```
 pub const WRONG_TYPE: Code = Code {
     code: "E0101",
+    group: Group::Reading,
     name: "wrong-type",
     summary: "a value has the wrong YAML type or shape",
 };
@@ -105,6 +110,7 @@ pub const WRONG_TYPE: Code = Code {
 /// ```
 pub const MISSING_KEY: Code = Code {
     code: "E0102",
+    group: Group::Reading,
     name: "missing-key",
     summary: "a required key or parameter is absent",
 };
@@ -128,6 +134,7 @@ pub const MISSING_KEY: Code = Code {
 /// ```
 pub const VERTEX_INDEX: Code = Code {
     code: "E0103",
+    group: Group::Reading,
     name: "vertex-index-out-of-range",
     summary: "an element refers to a vertex that does not exist on its level",
 };
@@ -147,6 +154,7 @@ pub const VERTEX_INDEX: Code = Code {
 /// ```
 pub const NON_FINITE: Code = Code {
     code: "E0104",
+    group: Group::Reading,
     name: "non-finite-number",
     summary: "a number is NaN or infinite",
 };
@@ -170,6 +178,7 @@ pub const NON_FINITE: Code = Code {
 /// ```
 pub const INVALID_PARAM: Code = Code {
     code: "E0105",
+    group: Group::Reading,
     name: "invalid-param",
     summary: "a parameter is malformed or has the wrong type",
 };
@@ -190,6 +199,7 @@ pub const INVALID_PARAM: Code = Code {
 /// ```
 pub const UNKNOWN_COORDINATE_SYSTEM: Code = Code {
     code: "E0106",
+    group: Group::Reading,
     name: "unknown-coordinate-system",
     summary: "coordinate_system is not a known name",
 };
@@ -212,6 +222,7 @@ pub const UNKNOWN_COORDINATE_SYSTEM: Code = Code {
 /// ```
 pub const UNKNOWN_LEVEL: Code = Code {
     code: "E0107",
+    group: Group::Reading,
     name: "unknown-level",
     summary: "a reference names a level that does not exist",
 };
@@ -238,6 +249,7 @@ pub const UNKNOWN_LEVEL: Code = Code {
 /// ```
 pub const CRS: Code = Code {
     code: "E0108",
+    group: Group::Reading,
     name: "crs-problem",
     summary: "the target CRS is missing or unusable",
 };
@@ -260,6 +272,7 @@ pub const CRS: Code = Code {
 /// ```
 pub const DEGENERATE_ALIGNMENT: Code = Code {
     code: "E0109",
+    group: Group::Reading,
     name: "degenerate-alignment",
     summary: "a measurement or fiducial set cannot define scale or alignment",
 };
@@ -279,6 +292,7 @@ pub const DEGENERATE_ALIGNMENT: Code = Code {
 /// ```
 pub const NO_LEVELS: Code = Code {
     code: "E0110",
+    group: Group::Reading,
     name: "no-levels",
     summary: "the building has no levels",
 };
@@ -300,6 +314,7 @@ pub const NO_LEVELS: Code = Code {
 /// ```
 pub const BAD_PROJECT: Code = Code {
     code: "E0111",
+    group: Group::Reading,
     name: "bad-project-file",
     summary: "a .project.yaml does not lead to a building file",
 };
@@ -320,6 +335,7 @@ pub const BAD_PROJECT: Code = Code {
 /// ```
 pub const NULL_AS_EMPTY: Code = Code {
     code: "W0101",
+    group: Group::Frontend,
     name: "null-as-empty",
     summary: "a list or mapping is null and read as empty",
 };
@@ -341,6 +357,7 @@ pub const NULL_AS_EMPTY: Code = Code {
 /// ```
 pub const DUPLICATE_KEY: Code = Code {
     code: "W0102",
+    group: Group::Frontend,
     name: "duplicate-key",
     summary: "a mapping has the same key twice",
 };
@@ -363,6 +380,7 @@ pub const DUPLICATE_KEY: Code = Code {
 /// ```
 pub const UNKNOWN_KEY: Code = Code {
     code: "W0103",
+    group: Group::Frontend,
     name: "unknown-key",
     summary: "a key is not part of the format and is ignored",
 };
@@ -385,6 +403,7 @@ pub const UNKNOWN_KEY: Code = Code {
 /// ```
 pub const LIKELY_TYPO: Code = Code {
     code: "E0112",
+    group: Group::Typo,
     name: "likely-typo",
     summary: "an unknown key or vertex parameter is a misspelling of a known one",
 };
@@ -405,6 +424,7 @@ pub const LIKELY_TYPO: Code = Code {
 /// ```
 pub const CONFLICTING_NAME: Code = Code {
     code: "W0104",
+    group: Group::Frontend,
     name: "conflicting-building-name",
     summary: "building_name and name disagree",
 };
@@ -424,6 +444,7 @@ pub const CONFLICTING_NAME: Code = Code {
 /// ```
 pub const CROWD_SIM: Code = Code {
     code: "W0105",
+    group: Group::Frontend,
     name: "crowd-sim-problem",
     summary: "a crowd_sim value has the wrong type and is defaulted",
 };
@@ -440,6 +461,7 @@ pub const CROWD_SIM: Code = Code {
 /// **Example:** a level with `vertices` and `lanes` but no `measurements` (W0106).
 pub const NO_MEASUREMENTS: Code = Code {
     code: "W0106",
+    group: Group::Frontend,
     name: "no-measurements",
     summary: "the reference level has no measurement, so the map stays in pixels",
 };
@@ -459,6 +481,7 @@ pub const NO_MEASUREMENTS: Code = Code {
 /// **Example:** `L2` has fiducials `A`, `B`; the reference level `L1` has only `A` (W0107).
 pub const LEVEL_NOT_ALIGNED: Code = Code {
     code: "W0107",
+    group: Group::Frontend,
     name: "level-not-aligned",
     summary: "a level shares fewer than two fiducials with the reference level",
 };
@@ -479,6 +502,7 @@ pub const LEVEL_NOT_ALIGNED: Code = Code {
 /// ```
 pub const WEB_MERCATOR: Code = Code {
     code: "W0108",
+    group: Group::Frontend,
     name: "web-mercator-deprecated",
     summary: "the web_mercator coordinate system is deprecated",
 };

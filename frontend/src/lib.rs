@@ -4,7 +4,7 @@
 //! A building is returned only when it has at least one level; it may still carry
 //! diagnostics, and callers must not generate outputs when any of them is an error.
 
-mod codes;
+pub mod codes;
 pub mod crs;
 mod lower;
 pub mod site;

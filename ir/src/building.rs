@@ -543,6 +543,21 @@ impl Lift {
             && local.y.abs() <= self.depth / 2.0 + SHAFT_MARGIN + eps
     }
 
+    /// What the lift plugin carries: robots whose origin lies in this axis-aligned hull of
+    /// the rotated cabin footprint (`[x_min, x_max, y_min, y_max]`, map frame), as Gazebo's
+    /// bounding box of the cabin link. Wider than the cabin when the lift is rotated.
+    pub fn payload_box(&self) -> [f64; 4] {
+        let (s, c) = self.yaw.sin_cos();
+        let hx = (c * self.width / 2.0).abs() + (s * self.depth / 2.0).abs();
+        let hy = (s * self.width / 2.0).abs() + (c * self.depth / 2.0).abs();
+        [
+            self.pos.x - hx,
+            self.pos.x + hx,
+            self.pos.y - hy,
+            self.pos.y + hy,
+        ]
+    }
+
     /// Initial floor: explicit, else the first level in `level_doors`.
     pub fn initial_floor(&self) -> Option<Handle<Level>> {
         self.initial_level

@@ -16,12 +16,30 @@ pub struct Label {
 }
 
 /// A documented diagnostic code: each crate that reports diagnostics lists its codes as
-/// `Code` constants whose doc comments are gathered into docs/diagnostics.md.
+/// `Code` constants whose doc comments are gathered into docs/diagnostics.md (validation
+/// rules declare the same facts on their `Rule`).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct Code {
+    /// Stable code; its letter is the default severity (`E` error, `W` warning; `S`
+    /// scenario codes say theirs in their doc).
     pub code: &'static str,
+    /// Stable kebab-case name, accepted wherever a code is (`--allow lane-self-loop`).
     pub name: &'static str,
     pub summary: &'static str,
+    /// What an error of this code breaks, and whether it may be allowed.
+    pub group: crate::lints::Group,
+}
+
+impl Code {
+    /// Whether `d` is a diagnostic of this code.
+    pub fn is(&self, d: &Diagnostic) -> bool {
+        d.code == self.code
+    }
+}
+
+/// The anchor of a code's section in docs/diagnostics.md: `e0201-lane-self-loop`.
+pub fn doc_anchor(code: &str, name: &str) -> String {
+    format!("{}-{name}", code.to_lowercase())
 }
 
 /// One problem found in a map. `code` is stable across releases (see docs/diagnostics.md).

@@ -19,7 +19,7 @@ mod validate;
 
 pub use arena::{Arena, Handle};
 pub use building::*;
-pub use diag::{count_text, has_errors, Code, Diagnostic, Label, Severity};
+pub use diag::{count_text, doc_anchor, has_errors, Code, Diagnostic, Label, Severity};
 pub use geom::segment_intersection;
 pub use navmesh::{human_navmesh, NavMesh, DEFAULT_HUMAN_LANE_WIDTH};
 pub use params::{Param, ParamValue, Params};

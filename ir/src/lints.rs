@@ -1,7 +1,8 @@
 //! What each diagnostic code means for the outputs: whether the user may allow it (or
-//! lower it to a warning), and which outputs it blocks while it is an error. The CLI applies
-//! the user's levels (`--allow`/`--warn`/`--deny`, `mapc.toml`); docs/diagnostics.md shows
-//! this table for every code.
+//! lower it to a warning), and which outputs it blocks while it is an error. Each code
+//! declares its [`Group`] where it is declared; the group gives the [`Policy`]. The CLI
+//! applies the user's levels (`--allow`/`--warn`/`--deny`, `mapc.toml`);
+//! docs/diagnostics.md shows the policy of every code.
 
 /// A set of output kinds.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -68,63 +69,84 @@ const GEOMETRY: Outputs = Outputs::MESHES.union(Outputs::WORLDS).union(Outputs::
 const DOORS: Outputs = Outputs::WORLDS.union(Outputs::GLTF).union(Outputs::NAV);
 const LIFTS: Outputs = Outputs::WORLDS.union(Outputs::GLTF).union(Outputs::NAV);
 
-/// The policy of `code` (any code mapc reports on a map: `E`/`W` followed by 4 digits).
-pub fn policy(code: &str) -> Policy {
-    let allow = |blocks| Policy {
-        can_allow: true,
-        blocks,
-        nav_only_with_lanes: false,
-    };
-    match code {
-        // A likely typo of a known key (W0103's close cousin): the key is ignored, like an
-        // unknown key, so the user may allow it or lower it to a warning (the key really is
-        // an extension); while it is an error it blocks every output, as W0103 denied does.
-        "E0112" => allow(Outputs::ALL),
-        // Reading the file: the model itself is incomplete or wrong after these errors.
-        c if c.starts_with("E00") || c.starts_with("E01") => Policy {
-            can_allow: false,
-            blocks: Outputs::ALL,
-            nav_only_with_lanes: false,
-        },
-        // Frontend warnings (unknown keys, duplicate keys, alignment fallbacks, ...) may
-        // change anything.
-        // A site's lane or location on a site anchor, left out of the nav graphs.
-        "W0123" => allow(Outputs::NAV),
-        c if c.starts_with("W01") => allow(Outputs::ALL),
-        // Lanes: only the nav graphs.
-        c if c.starts_with("E02") || c.starts_with("W02") => allow(Outputs::NAV),
-        // Doors: the worlds' door models, the glTF door nodes, and door requests.
-        c if c.starts_with("E03") || c.starts_with("W03") => Policy {
-            nav_only_with_lanes: true,
-            ..allow(DOORS)
-        },
-        // Lift waypoints: what the fleet adapter reads (its parse_graph rejects them).
-        "E0407" | "E0409" | "W0404" => allow(Outputs::NAV),
-        c if c.starts_with("E04") || c.starts_with("W04") => allow(LIFTS),
-        // Robot spawns exist only in worlds.
-        "E0504" | "W0505" | "W0506" => allow(Outputs::WORLDS),
-        // Names end up in file names, model names and graphs alike.
-        "W0508" => allow(Outputs::ALL),
-        // Control or bidi characters in a name that becomes a path or a model name: no
-        // correct file can be written (nor a depfile naming it), so it cannot be allowed.
-        "E0509" => Policy {
-            can_allow: false,
-            blocks: Outputs::ALL,
-            nav_only_with_lanes: false,
-        },
-        c if c.starts_with("E05") || c.starts_with("W05") => allow(Outputs::NAV),
-        // The scale of the whole map is in doubt.
-        "W0606" => allow(Outputs::ALL),
-        "W0607" => allow(LIFTS),
-        "W0608" | "E0609" => allow(Outputs::WORLDS),
-        c if c.starts_with("E06") || c.starts_with("W06") => allow(GEOMETRY),
-        // Textures.
-        c if c.starts_with("W07") => allow(GEOMETRY),
-        // The crowd: the worlds' crowd plugin and Menge files (and `mapc sim`'s people).
-        c if c.starts_with("E08") || c.starts_with("W08") => allow(Outputs::WORLDS),
-        _ => allow(Outputs::ALL),
+/// The lint group of a diagnostic code: every code declares one beside its name (`Code`,
+/// `Rule`), and the group says what an error of the code breaks and whether the user may
+/// allow it. A new code picks a group; a new kind of consequence is a new group here.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Group {
+    /// Reading the file (E00xx, E01xx): the model itself is incomplete or wrong.
+    Reading,
+    /// A likely typo of a known key (E0112): the key is ignored, like an unknown key, so
+    /// it may be allowed (the key really is an extension); as an error it blocks every
+    /// output, as W0103 denied does.
+    Typo,
+    /// Frontend warnings (unknown keys, duplicate keys, alignment fallbacks, ...) may
+    /// change anything.
+    Frontend,
+    /// Lanes: only the nav graphs.
+    Lanes,
+    /// Doors: the worlds' door models, the glTF door nodes, and door requests (nav graphs
+    /// only when the map has lanes: a lane's `door_name` is what door requests use).
+    Doors,
+    /// Lift waypoints: what the fleet adapter reads (its parse_graph rejects them).
+    LiftWaypoints,
+    /// Lifts: the worlds' and glTF's cabins and the lift requests.
+    Lifts,
+    /// Robot spawns exist only in worlds.
+    Spawns,
+    /// Names and roles in the nav graphs.
+    Names,
+    /// Names that end up in file names, model names and graphs alike.
+    FileNames,
+    /// Control or bidi characters in a name that becomes a path or a model name: no
+    /// correct file can be written (nor a depfile naming it).
+    UnsafeNames,
+    /// The scale of the whole map is in doubt.
+    Scale,
+    /// Lift geometry.
+    LiftGeometry,
+    /// Geometry only worlds use.
+    WorldGeometry,
+    /// Floors, walls and holes: every mesh.
+    Geometry,
+    /// Textures: every mesh.
+    Textures,
+    /// The crowd: the worlds' crowd plugin and Menge files (and `mapc sim`'s people).
+    Crowd,
+    /// Scenario and sweep files (S codes): they break the run, not a map's outputs.
+    Scenario,
+}
+
+impl Group {
+    /// How codes of the group may be treated.
+    pub const fn policy(self) -> Policy {
+        let (can_allow, blocks, nav_only_with_lanes) = match self {
+            Group::Reading | Group::UnsafeNames => (false, Outputs::ALL, false),
+            Group::Typo | Group::Frontend | Group::FileNames | Group::Scale => {
+                (true, Outputs::ALL, false)
+            }
+            Group::Scenario => (true, Outputs::ALL, false),
+            Group::Lanes | Group::LiftWaypoints | Group::Names => (true, Outputs::NAV, false),
+            Group::Doors => (true, DOORS, true),
+            Group::Lifts | Group::LiftGeometry => (true, LIFTS, false),
+            Group::Spawns | Group::WorldGeometry | Group::Crowd => (true, Outputs::WORLDS, false),
+            Group::Geometry | Group::Textures => (true, GEOMETRY, false),
+        };
+        Policy {
+            can_allow,
+            blocks,
+            nav_only_with_lanes,
+        }
     }
 }
+
+/// The policy of a code no table declares: allowed, and blocking everything while an
+/// error (what it breaks is unknown).
+pub const UNKNOWN_CODE: Policy = Policy {
+    can_allow: true,
+    blocks: Outputs::ALL,
+    nav_only_with_lanes: false,
+};
 
 #[cfg(test)]
 mod tests {
@@ -132,12 +154,12 @@ mod tests {
 
     #[test]
     fn the_issues_examples() {
-        assert_eq!(policy("E0407").blocks, Outputs::NAV);
-        let p = policy("E0302");
+        assert_eq!(Group::LiftWaypoints.policy().blocks, Outputs::NAV);
+        let p = Group::Doors.policy();
         assert!(p.can_allow && p.blocks.intersects(Outputs::WORLDS) && p.nav_only_with_lanes);
-        assert!(!policy("E0001").can_allow && !policy("E0103").can_allow);
-        assert_eq!(policy("E0103").blocks, Outputs::ALL);
-        let typo = policy("E0112");
+        assert!(!Group::Reading.policy().can_allow);
+        assert_eq!(Group::Reading.policy().blocks, Outputs::ALL);
+        let typo = Group::Typo.policy();
         assert!(typo.can_allow && typo.blocks == Outputs::ALL);
         assert_eq!(
             Outputs::NAV.union(Outputs::WORLDS).names(),

@@ -211,13 +211,8 @@ impl Bridge {
             std::thread::sleep(std::time::Duration::from_millis(5));
             w
         };
-        let outputs: Vec<Topic> = if plugins_only {
-            PLUGIN_OUTPUTS.to_vec()
-        } else {
-            Topic::ALL.to_vec()
-        };
         let mut writers = BTreeMap::new();
-        for t in outputs {
+        for &t in topics::outputs(plugins_only) {
             writers.insert(t, writer(t.name(), topics::ros_type(t), topics::qos(t))?);
         }
         let clock = writer("/clock", Clock::NAME, crate::mcap::CLOCK_QOS)?;

@@ -511,6 +511,15 @@ pub const PLUGIN_OUTPUTS: [Topic; 8] = [
     Topic::RmfObstacles,
 ];
 
+/// The topics mapc publishes: the plugins' alone, or all of its own.
+pub(crate) fn outputs(plugins_only: bool) -> &'static [Topic] {
+    if plugins_only {
+        &PLUGIN_OUTPUTS
+    } else {
+        &Topic::ALL
+    }
+}
+
 /// Topics the plugins answer: the slotcars', door and lift plugins', workcells' requests,
 /// and the fleet states the workcells read to find the robot of a fleet.
 pub const PLUGIN_INPUTS: [Topic; 8] = [

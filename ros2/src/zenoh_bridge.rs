@@ -27,7 +27,7 @@ use crate::building_map::building_map;
 use crate::cdr;
 use crate::msgs::{self, rmf_building_map_msgs::BuildingMap, rosgraph_msgs::Clock, RosMsg};
 use crate::ros_env::RosEnv;
-use crate::topics::{self, Qos, PLUGIN_INPUTS, PLUGIN_OUTPUTS};
+use crate::topics::{self, Qos, PLUGIN_INPUTS};
 use crate::type_hash::type_hash;
 use mapc_sim::msgs::{Msg, Published, Topic};
 use std::collections::BTreeMap;
@@ -318,13 +318,8 @@ impl ZenohBridge {
                 sequence_number: 0,
             })
         };
-        let outputs: Vec<Topic> = if plugins_only {
-            PLUGIN_OUTPUTS.to_vec()
-        } else {
-            Topic::ALL.to_vec()
-        };
         let mut writers = BTreeMap::new();
-        for t in outputs {
+        for &t in topics::outputs(plugins_only) {
             writers.insert(t, writer(t.name(), topics::ros_type(t), topics::qos(t))?);
         }
         let clock = writer("/clock", Clock::NAME, crate::mcap::CLOCK_QOS)?;

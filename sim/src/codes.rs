@@ -3,6 +3,7 @@
 //! own consistency. Each `///` block is gathered into docs/diagnostics.md by tests/docs.rs;
 //! a `**Severity:** warning` line marks the warnings (the `S` prefix alone does not say).
 
+use mapc_ir::lints::Group;
 pub use mapc_ir::Code;
 
 /// # S0001 scenario-invalid-yaml
@@ -22,6 +23,7 @@ pub use mapc_ir::Code;
 /// ```
 pub const INVALID_YAML: Code = Code {
     code: "S0001",
+    group: Group::Scenario,
     name: "scenario-invalid-yaml",
     summary: "the scenario file is not well-formed YAML",
 };
@@ -47,6 +49,7 @@ pub const INVALID_YAML: Code = Code {
 /// ```
 pub const INPUT_LIMIT: Code = Code {
     code: "S0002",
+    group: Group::Scenario,
     name: "scenario-input-limit-exceeded",
     summary: "the scenario file is too large, nests too deep or expands to too many nodes",
 };
@@ -63,6 +66,7 @@ pub const INPUT_LIMIT: Code = Code {
 /// **Example:** a fleet name typed in Latin-1, such as the byte `0xE9` for `é`.
 pub const NOT_UTF8: Code = Code {
     code: "S0003",
+    group: Group::Scenario,
     name: "scenario-not-utf8",
     summary: "the scenario file is not valid UTF-8",
 };
@@ -84,6 +88,7 @@ pub const NOT_UTF8: Code = Code {
 /// ```
 pub const WRONG_TYPE: Code = Code {
     code: "S0101",
+    group: Group::Scenario,
     name: "scenario-wrong-type",
     summary: "a scenario value has the wrong type",
 };
@@ -106,6 +111,7 @@ pub const WRONG_TYPE: Code = Code {
 /// ```
 pub const MISSING_KEY: Code = Code {
     code: "S0102",
+    group: Group::Scenario,
     name: "scenario-missing-key",
     summary: "a required scenario key is missing",
 };
@@ -129,6 +135,7 @@ pub const MISSING_KEY: Code = Code {
 /// ```
 pub const UNKNOWN_KEY: Code = Code {
     code: "S0103",
+    group: Group::Scenario,
     name: "scenario-unknown-key",
     summary: "a scenario key is not part of the format and is ignored",
 };
@@ -151,6 +158,7 @@ pub const UNKNOWN_KEY: Code = Code {
 /// ```
 pub const DUPLICATE_KEY: Code = Code {
     code: "S0104",
+    group: Group::Scenario,
     name: "scenario-duplicate-key",
     summary: "a scenario key is defined twice; the last value is used",
 };
@@ -172,6 +180,7 @@ pub const DUPLICATE_KEY: Code = Code {
 /// ```
 pub const BAD_DURATION: Code = Code {
     code: "S0105",
+    group: Group::Scenario,
     name: "bad-duration",
     summary: "a time value is not a number of seconds or a duration like 1h30min",
 };
@@ -193,6 +202,7 @@ pub const BAD_DURATION: Code = Code {
 /// ```
 pub const NOT_POSITIVE: Code = Code {
     code: "S0106",
+    group: Group::Scenario,
     name: "not-positive",
     summary: "a value that must be positive is zero or negative",
 };
@@ -214,6 +224,7 @@ pub const NOT_POSITIVE: Code = Code {
 /// ```
 pub const STEP_TOO_LARGE: Code = Code {
     code: "S0107",
+    group: Group::Scenario,
     name: "step-too-large",
     summary: "the simulation step is larger than 0.1 s",
 };
@@ -238,6 +249,7 @@ pub const STEP_TOO_LARGE: Code = Code {
 /// ```
 pub const OUT_OF_RANGE: Code = Code {
     code: "S0108",
+    group: Group::Scenario,
     name: "out-of-range",
     summary: "a scenario value is outside its allowed range",
 };
@@ -260,6 +272,7 @@ pub const OUT_OF_RANGE: Code = Code {
 /// ```
 pub const TOO_LARGE: Code = Code {
     code: "S0109",
+    group: Group::Scenario,
     name: "scenario-too-large",
     summary: "the scenario asks for an absurd number of robots, tasks or time",
 };
@@ -285,6 +298,7 @@ pub const TOO_LARGE: Code = Code {
 /// ```
 pub const UNKNOWN_WAYPOINT: Code = Code {
     code: "S0201",
+    group: Group::Scenario,
     name: "unknown-waypoint",
     summary: "a waypoint named by the scenario is not on the fleet's nav graph",
 };
@@ -307,6 +321,7 @@ pub const UNKNOWN_WAYPOINT: Code = Code {
 /// ```
 pub const NOT_ENOUGH_SPAWNS: Code = Code {
     code: "S0202",
+    group: Group::Scenario,
     name: "not-enough-spawns",
     summary: "a fleet has more robots than free start waypoints",
 };
@@ -326,6 +341,7 @@ pub const NOT_ENOUGH_SPAWNS: Code = Code {
 /// ```
 pub const EMPTY_GRAPH: Code = Code {
     code: "S0203",
+    group: Group::Scenario,
     name: "empty-graph",
     summary: "a fleet drives on a nav graph that has no lanes",
 };
@@ -348,6 +364,7 @@ pub const EMPTY_GRAPH: Code = Code {
 /// ```
 pub const SPAWN_CLASH: Code = Code {
     code: "S0204",
+    group: Group::Scenario,
     name: "spawn-clash",
     summary: "two robots would start on one waypoint or share a name",
 };
@@ -369,6 +386,7 @@ pub const SPAWN_CLASH: Code = Code {
 /// ```
 pub const NO_FLEET_ON_MAP: Code = Code {
     code: "S0205",
+    group: Group::Scenario,
     name: "no-fleet-on-map",
     summary: "no placed fleet can take the task",
 };
@@ -391,6 +409,7 @@ pub const NO_FLEET_ON_MAP: Code = Code {
 /// ```
 pub const NO_WORKCELL: Code = Code {
     code: "S0206",
+    group: Group::Scenario,
     name: "no-workcell",
     summary: "a delivery has no dispenser or ingestor",
 };
@@ -411,8 +430,63 @@ pub const NO_WORKCELL: Code = Code {
 /// ```
 pub const IN_LIFT: Code = Code {
     code: "S0207",
+    group: Group::Scenario,
     name: "waypoint-in-lift",
     summary: "a task waypoint lies inside a lift cabin",
+};
+
+/// # S0210 not-well-formed
+///
+/// **Severity:** warning
+///
+/// **What:** a task waypoint is the only way to another place the scenario uses (a robot
+/// standing there cuts the graph): the scenario is not *well-formed* in the sense of
+/// lifelong multi-robot planning.
+///
+/// **Why it matters:** while a robot works at that waypoint (a dwell, a workcell, a
+/// charge) every robot going past it waits. The run never deadlocks (robots only stand for
+/// good on parking vertices, which cut nothing), but throughput suffers.
+///
+/// **Fix:** add a lane around the waypoint, or move the task to a waypoint beside the
+/// corridor (a dead end off it).
+///
+/// **Example:**
+/// ```yaml
+/// tasks:
+///   - {go_to_place: {place: corridor_mid}}   # S0210: the only way to the rooms behind it
+/// ```
+pub const NOT_WELL_FORMED: Code = Code {
+    code: "S0210",
+    name: "not-well-formed",
+    summary: "a task waypoint is the only way to another place the scenario uses",
+    group: Group::Scenario,
+};
+
+/// # S0211 no-room
+///
+/// **Severity:** warning
+///
+/// **What:** `spawn: auto` found room for fewer robots than the fleet's `count`: the
+/// building has fewer parking vertices (waypoints where a standing robot blocks no route to
+/// the rest of the graph, away from task waypoints, chargers and lift cabins, and from each
+/// other) than robots asked.
+///
+/// **Why it matters:** the robots without room stay out of the run (the report counts them
+/// as `reserve`); a robot with nowhere to stand but a corridor would block the others.
+///
+/// **Fix:** lower `count`, add parking spots (dead ends off the corridors), or name spawn
+/// waypoints for the fleet.
+///
+/// **Example:**
+/// ```yaml
+/// fleets:
+///   - {name: tiny, robot: TinyRobot, count: 64, spawn: auto}   # S0211 on a small floor
+/// ```
+pub const NO_ROOM: Code = Code {
+    code: "S0211",
+    name: "no-room",
+    summary: "the building has room for fewer robots than asked",
+    group: Group::Scenario,
 };
 
 /// # S0301 unknown-robot-preset
@@ -433,6 +507,7 @@ pub const IN_LIFT: Code = Code {
 /// ```
 pub const UNKNOWN_PRESET: Code = Code {
     code: "S0301",
+    group: Group::Scenario,
     name: "unknown-robot-preset",
     summary: "a fleet names a robot preset that does not exist",
 };
@@ -454,6 +529,7 @@ pub const UNKNOWN_PRESET: Code = Code {
 /// ```
 pub const UNKNOWN_TASK_KIND: Code = Code {
     code: "S0302",
+    group: Group::Scenario,
     name: "unknown-task-kind",
     summary: "a task kind or category is not loop, delivery, clean or go_to_place",
 };
@@ -474,6 +550,7 @@ pub const UNKNOWN_TASK_KIND: Code = Code {
 /// ```
 pub const SEVERAL_TASK_KINDS: Code = Code {
     code: "S0303",
+    group: Group::Scenario,
     name: "several-task-kinds",
     summary: "a task has more than one kind",
 };
@@ -495,6 +572,7 @@ pub const SEVERAL_TASK_KINDS: Code = Code {
 /// ```
 pub const DUPLICATE_FLEET: Code = Code {
     code: "S0304",
+    group: Group::Scenario,
     name: "duplicate-fleet",
     summary: "two fleets have the same name",
 };
@@ -515,6 +593,7 @@ pub const DUPLICATE_FLEET: Code = Code {
 /// ```
 pub const UNKNOWN_FLEET: Code = Code {
     code: "S0305",
+    group: Group::Scenario,
     name: "unknown-fleet",
     summary: "a task names a fleet that the scenario does not define",
 };
@@ -537,6 +616,7 @@ pub const UNKNOWN_FLEET: Code = Code {
 /// ```
 pub const NO_FLEET_FOR_TASK: Code = Code {
     code: "S0306",
+    group: Group::Scenario,
     name: "no-fleet-for-task",
     summary: "no fleet accepts the task's category",
 };
@@ -559,6 +639,7 @@ pub const NO_FLEET_FOR_TASK: Code = Code {
 /// ```
 pub const UNKNOWN_OPTION: Code = Code {
     code: "S0307",
+    group: Group::Scenario,
     name: "unknown-option",
     summary: "an option is not known and is ignored",
 };
@@ -580,6 +661,7 @@ pub const UNKNOWN_OPTION: Code = Code {
 /// ```
 pub const DUPLICATE_WORKCELL: Code = Code {
     code: "S0308",
+    group: Group::Scenario,
     name: "duplicate-workcell",
     summary: "two workcells have the same name",
 };
@@ -602,6 +684,7 @@ pub const DUPLICATE_WORKCELL: Code = Code {
 /// ```
 pub const SPAWN_COUNT: Code = Code {
     code: "S0309",
+    group: Group::Scenario,
     name: "spawn-count-mismatch",
     summary: "a fleet's spawn list does not name one distinct waypoint per robot",
 };
@@ -625,6 +708,7 @@ pub const SPAWN_COUNT: Code = Code {
 /// ```
 pub const TASK_AFTER_END: Code = Code {
     code: "S0310",
+    group: Group::Scenario,
     name: "task-after-end",
     summary: "a task or generator starts after the end of the run",
 };
@@ -648,8 +732,124 @@ pub const TASK_AFTER_END: Code = Code {
 /// ```
 pub const CROWD: Code = Code {
     code: "S0208",
+    group: Group::Scenario,
     name: "crowd-cannot-walk",
     summary: "the map's crowd cannot be placed on its navmesh",
+};
+
+/// # S0311 fault-target
+///
+/// **What:** a fault names no `robot`, `door` or `lift`, or more than one of them.
+///
+/// **Why it matters:** a fault puts one thing out of service for a while; without exactly
+/// one target it is not clear what stops.
+///
+/// **Fix:** give the fault one of `robot: <robot name>`, `door: <door name>` or
+/// `lift: <lift name>`; write several faults for several things.
+///
+/// **Example:**
+/// ```yaml
+/// faults:
+///   - {at: 10min, for: 10min}   # S0311: what is out of service?
+/// ```
+pub const FAULT_TARGET: Code = Code {
+    code: "S0311",
+    group: Group::Scenario,
+    name: "fault-target",
+    summary: "a fault names no robot, door or lift, or several",
+};
+
+/// # S0212 unknown-fault-target
+///
+/// **What:** a fault names a robot, door or lift that this run does not have (robots are
+/// named by their fleet and number, `tinyRobot_0`, or by the map's spawn points).
+///
+/// **Why it matters:** the fault would change nothing, and the study would answer a
+/// question nobody asked.
+///
+/// **Fix:** use a name from the map (`mapc check --format json` lists doors and lifts) or
+/// from the run's report (`robots`).
+///
+/// **Example:**
+/// ```yaml
+/// faults:
+///   - {at: 10min, for: 10min, lift: LIFT1}   # S0212 when the map's lift is `lift_1`
+/// ```
+pub const UNKNOWN_FAULT_TARGET: Code = Code {
+    code: "S0212",
+    group: Group::Scenario,
+    name: "unknown-fault-target",
+    summary: "a fault names a robot, door or lift the run does not have",
+};
+
+/// # S0004 included-file-unreadable
+///
+/// **What:** a file the scenario names (a fleet's `config:`, the `requests:` file) cannot
+/// be read: it does not exist, is not a file, is larger than the input limit or is not
+/// UTF-8.
+///
+/// **Why it matters:** the fleet or the tasks it describes would be missing from the run.
+///
+/// **Fix:** correct the path; it is relative to the scenario file.
+///
+/// **Example:**
+/// ```yaml
+/// fleets:
+///   - {config: tinyRobot_config.yml}   # S0004: the file is tinyRobot_config.yaml
+/// ```
+pub const INCLUDED_FILE: Code = Code {
+    code: "S0004",
+    group: Group::Scenario,
+    name: "included-file-unreadable",
+    summary: "a file the scenario names cannot be read",
+};
+
+/// # S0312 rmf-config-no-fleet
+///
+/// **What:** an RMF fleet adapter config (a fleet's `config:`) has no `rmf_fleet` block, or
+/// lists no robots (neither under `rmf_fleet.robots` nor as the older template's top-level
+/// `robots`).
+///
+/// **Why it matters:** the fleet's name, limits, footprint and battery come from
+/// `rmf_fleet`, and its robots from `robots`; without them there is no fleet to simulate.
+///
+/// **Fix:** pass the fleet adapter's `config.yaml` (the file with `rmf_fleet:`), or add
+/// the missing block.
+///
+/// **Example:**
+/// ```yaml
+/// # fleet_config.yaml
+/// fleet_manager: {ip: 127.0.0.1, port: 22011}   # S0312: no `rmf_fleet`
+/// ```
+pub const RMF_CONFIG_NO_FLEET: Code = Code {
+    code: "S0312",
+    group: Group::Scenario,
+    name: "rmf-config-no-fleet",
+    summary: "a fleet adapter config has no rmf_fleet or no robots",
+};
+
+/// # S0313 request-invalid
+///
+/// **What:** a line of the `requests:` file is not an RMF task API request mapc can read:
+/// not JSON (a truncated line), not `{"at": TIME, "request": {...}}`, a request that breaks
+/// rmf_api_msgs' schema (a missing `category` or `description`, a wrong type), or a task
+/// description mapc cannot simulate (a patrol of more than two places, a composition other
+/// than go_to_place, two places, a pickup then a dropoff, or a clean action).
+///
+/// **Why it matters:** the task would be missing from the study.
+///
+/// **Fix:** write one JSON object a line, with the request as RMF's API server takes it
+/// (docs/sim.md, "RMF task requests").
+///
+/// **Example:**
+/// ```json
+/// {"at": "5min", "request": {"type": "dispatch_task_request", "request": {"category": "patrol"   <- S0313: the line ends
+/// ```
+pub const BAD_REQUEST: Code = Code {
+    code: "S0313",
+    group: Group::Scenario,
+    name: "request-invalid",
+    summary: "a line of the requests file is not a task request mapc can read",
 };
 
 /// Every scenario code.
@@ -673,6 +873,8 @@ pub static CODES: &[Code] = &[
     NO_FLEET_ON_MAP,
     NO_WORKCELL,
     IN_LIFT,
+    NOT_WELL_FORMED,
+    NO_ROOM,
     UNKNOWN_PRESET,
     UNKNOWN_TASK_KIND,
     SEVERAL_TASK_KINDS,
@@ -684,4 +886,9 @@ pub static CODES: &[Code] = &[
     SPAWN_COUNT,
     TASK_AFTER_END,
     CROWD,
+    FAULT_TARGET,
+    UNKNOWN_FAULT_TARGET,
+    INCLUDED_FILE,
+    RMF_CONFIG_NO_FLEET,
+    BAD_REQUEST,
 ];

@@ -25,6 +25,10 @@ pub struct NavVertex {
     pub elevation: f64,
     /// Index into `Nav::lifts` when the vertex lies in a lift cabin.
     pub lift: Option<usize>,
+    /// The lift whose plugin would carry a robot standing here (its payload box holds the
+    /// vertex, `mapc_ir::Lift::payload_box`): the cabin's vertices, and around a rotated
+    /// cabin some just outside it.
+    pub carried_by: Option<usize>,
     pub roles: WaypointRoles,
 }
 
@@ -50,11 +54,17 @@ pub struct NavEdge {
     pub door: Option<usize>,
     pub mutex: Option<String>,
     pub orientation: Orientation,
+    /// The lift whose plugin would carry a robot driving this lane (it crosses the lift's
+    /// payload box on a floor the lift serves).
+    pub carried_by: Option<usize>,
 }
 
 #[derive(Debug, Clone)]
 pub struct NavLift {
     pub name: String,
+    /// Longest ride between two of its floors (s, as `edge_cost` counts it): how long a
+    /// call may take for the cabin to come.
+    pub call: f64,
 }
 
 #[derive(Debug, Clone)]
@@ -92,6 +102,7 @@ impl Nav {
         for (_, l) in b.lifts.iter() {
             nav.lifts.push(NavLift {
                 name: l.name.clone(),
+                call: 0.0,
             });
         }
         for (_, d) in b.doors.iter() {
@@ -112,6 +123,14 @@ impl Nav {
                         l.shaft_contains(v.pos) || v.roles.lift_cabin.as_deref() == Some(&l.name)
                     })
                     .map(|lh| lh.index());
+                let carried_by = lift.or_else(|| {
+                    b.lifts_on_level(v.level)
+                        .find(|&lh| {
+                            let [x0, x1, y0, y1] = b.lifts[lh].payload_box();
+                            (x0..=x1).contains(&v.pos.x) && (y0..=y1).contains(&v.pos.y)
+                        })
+                        .map(|lh| lh.index())
+                });
                 nav.vertices.push(NavVertex {
                     name: v.name.clone(),
                     pos: v.pos,
@@ -119,6 +138,7 @@ impl Nav {
                     level_name: level.name.clone(),
                     elevation: level.elevation,
                     lift,
+                    carried_by,
                     roles: (*v.roles).clone(),
                 });
                 nav.vertices.len() - 1
@@ -143,6 +163,10 @@ impl Nav {
                     let (from, to) = if rev { (e, s) } else { (s, e) };
                     let (a, z) = (nav.vertices[from].pos, nav.vertices[to].pos);
                     let door = b.crossed_door(lane.level, a, z).map(|d| d.index());
+                    let carried_by = b
+                        .lifts_on_level(lane.level)
+                        .find(|&lh| segment_crosses_box(a, z, b.lifts[lh].payload_box()))
+                        .map(|lh| lh.index());
                     nav.edges.push(NavEdge {
                         graph: slot,
                         from,
@@ -158,6 +182,7 @@ impl Nav {
                         } else {
                             lane.orientation.clone()
                         },
+                        carried_by,
                     });
                 }
             }
@@ -196,6 +221,7 @@ impl Nav {
                         door: None,
                         mutex: None,
                         orientation: Orientation::Any,
+                        carried_by: Some(l),
                     });
                 }
             }
@@ -203,6 +229,12 @@ impl Nav {
         nav.out = vec![vec![Vec::new(); nav.vertices.len()]; graphs.len()];
         for (i, e) in nav.edges.iter().enumerate() {
             nav.out[e.graph][e.from].push(i);
+        }
+        for e in 0..nav.edges.len() {
+            if let EdgeKind::Lift(l) = nav.edges[e].kind {
+                let c = nav.edge_cost(e, 1.0);
+                nav.lifts[l].call = nav.lifts[l].call.max(c);
+            }
         }
         nav
     }
@@ -323,6 +355,11 @@ impl Nav {
         Some((dist[to], edges))
     }
 
+    /// Whether `to` can be reached from `from` on graph slot `slot`.
+    pub fn times_reachable(&self, slot: usize, from: usize, to: usize) -> bool {
+        self.plan(slot, from, to, 1.0).is_some()
+    }
+
     /// Travel times from `from` to every vertex of slot `slot` (Dijkstra).
     pub fn times_from(&self, slot: usize, from: usize, speed: f64) -> Vec<f64> {
         self.tree_from(slot, from, speed).0
@@ -395,113 +432,24 @@ impl PartialOrd for QItem {
     }
 }
 
-/// Lift lobbies of the graphs: for every bridge lane of a level (a lane whose removal
-/// splits its level's graph), the smaller side when it holds a lift cabin, entered over the
-/// bridge. Robots enter a lobby only while fewer than `capacity` robots are inside or
-/// committed to it (admission control, see fleet.rs), so robots queueing for a lift do not
-/// fill the lobby that riders must leave through. Plain dead ends are not limited: on the
-/// hotel benchmark that made more robots wait on through routes (they have no holding spot
-/// to wait at), and reservations already keep two robots from meeting in a corridor.
-#[derive(Debug, Clone, Default)]
-pub struct Regions {
-    /// Vertices of each region, ascending.
-    pub members: Vec<Vec<usize>>,
-    /// Robots a region admits at once: its leaves (dead ends, lift cabins, where a robot
-    /// stands off the others' way out), at least one.
-    pub capacity: Vec<usize>,
-    /// Per edge: the region it enters (its lane is the region's bridge, driven inwards).
-    pub entry: Vec<Option<usize>>,
-}
-
-impl Regions {
-    pub fn contains(&self, region: usize, v: usize) -> bool {
-        self.members
-            .get(region)
-            .is_some_and(|m| m.binary_search(&v).is_ok())
-    }
-}
-
-impl Nav {
-    /// The lift lobbies of every graph slot (see [`Regions`]).
-    pub fn regions(&self) -> Regions {
-        let nv = self.vertices.len();
-        let mut out = Regions {
-            entry: vec![None; self.edges.len()],
-            ..Regions::default()
-        };
-        for slot in 0..self.graphs.len() {
-            // Undirected lane multigraph of the slot (lift rides are not lanes); lanes
-            // driven both ways appear twice as edges, so count IR lanes.
-            let mut lanes: BTreeMap<(usize, usize), std::collections::BTreeSet<Option<usize>>> =
-                BTreeMap::new();
-            for e in self.edges.iter().filter(|e| e.graph == slot) {
-                if e.kind == EdgeKind::Lane && e.from != e.to {
-                    lanes
-                        .entry((e.from.min(e.to), e.from.max(e.to)))
-                        .or_default()
-                        .insert(e.lane);
-                }
-            }
-            let mut nbrs: Vec<Vec<usize>> = vec![Vec::new(); nv];
-            for &(a, b) in lanes.keys() {
-                nbrs[a].push(b);
-                nbrs[b].push(a);
-            }
-            let side = |start: usize, cut: (usize, usize)| -> Vec<usize> {
-                let mut seen = vec![false; nv];
-                let mut stack = vec![start];
-                seen[start] = true;
-                let mut comp = Vec::new();
-                while let Some(v) = stack.pop() {
-                    comp.push(v);
-                    for &w in &nbrs[v] {
-                        if (v.min(w), v.max(w)) == cut || seen[w] {
-                            continue;
-                        }
-                        seen[w] = true;
-                        stack.push(w);
-                    }
-                }
-                comp.sort_unstable();
-                comp
-            };
-            for (&(a, b), ls) in &lanes {
-                if ls.len() > 1 {
-                    continue;
-                }
-                let cb = side(b, (a, b));
-                if cb.binary_search(&a).is_ok() {
-                    continue;
-                }
-                let ca = side(a, (a, b));
-                let (outer, inner, members) = match ca.len().cmp(&cb.len()) {
-                    Ordering::Greater => (a, b, cb),
-                    Ordering::Less => (b, a, ca),
-                    Ordering::Equal => continue,
-                };
-                if !members.iter().any(|&v| self.vertices[v].lift.is_some()) {
-                    continue;
-                }
-                let leaves = members.iter().filter(|&&v| nbrs[v].len() == 1).count();
-                let id = out.members.len();
-                out.members.push(members);
-                out.capacity.push(leaves.max(1));
-                for (k, e) in self.edges.iter().enumerate() {
-                    if e.graph == slot
-                        && e.kind == EdgeKind::Lane
-                        && e.from == outer
-                        && e.to == inner
-                    {
-                        out.entry[k] = Some(id);
-                    }
-                }
-            }
-        }
-        out
-    }
-}
-
 /// Distance from `p` to segment `a→b`.
+/// Whether segment `a`–`z` meets the box `[x_min, x_max, y_min, y_max]` (slab clipping).
+fn segment_crosses_box(a: Vec2, z: Vec2, [x0, x1, y0, y1]: [f64; 4]) -> bool {
+    let (mut lo, mut hi) = (0.0f64, 1.0f64);
+    for (p, d, min, max) in [(a.x, z.x - a.x, x0, x1), (a.y, z.y - a.y, y0, y1)] {
+        if d.abs() < 1e-12 {
+            if p < min || p > max {
+                return false;
+            }
+        } else {
+            let (t0, t1) = ((min - p) / d, (max - p) / d);
+            lo = lo.max(t0.min(t1));
+            hi = hi.min(t0.max(t1));
+        }
+    }
+    lo <= hi
+}
+
 pub fn point_segment(p: Vec2, a: Vec2, b: Vec2) -> f64 {
     let ab = b.minus(a);
     let l2 = ab.dot(ab);

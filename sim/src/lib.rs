@@ -26,14 +26,17 @@ mod world;
 
 pub use crowd::{compare_crowd, CrowdReport, FleetCompare, SpeedStats, Spread};
 pub use params::RobotParams;
+pub use report::rmf_states;
 pub use report::{
-    DoorReport, Encounter, FleetReport, LiftReport, Report, RobotReport, StuckReport, TaskReport,
-    Waits,
+    DoorReport, Encounter, FleetReport, LiftReport, Report, RequestReport, RobotReport,
+    ScenarioWarning, StuckReport, TaskReport, TrafficReport, Waits,
 };
 pub use scenario::{
-    parse as parse_scenario, parse_duration, CrowdOptions, FleetSpec, GeneratorSpec, Scenario,
-    SimOptions, SpawnSpec, TaskCategory, TaskKind, TaskSpec, WorkcellKind, WorkcellSpec,
-    MAX_DURATION,
+    parse as parse_scenario, parse_duration, parse_files as parse_scenario_files,
+    parse_files_with as parse_scenario_files_with, CrowdOptions, FaultSpec, FaultTarget, Finishing,
+    FleetSpec, GeneratorSpec, Included, Parsed, RequestKind, RequestSpec, RequestedTask, RmfFleet,
+    RmfRobot, Scenario, SimOptions, SpawnSpec, TaskCategory, TaskKind, TaskSpec, WorkcellKind,
+    WorkcellSpec, MAX_DURATION,
 };
 pub use trace::TraceFilter;
 
@@ -85,6 +88,17 @@ pub fn simulate(
     scenario: &Scenario,
     mut opts: RunOptions<'_>,
 ) -> Result<Report, SimError> {
+    // RMF task requests become tasks (or are refused) on this map.
+    let accepted;
+    let mut outcomes = Vec::new();
+    let scenario = if scenario.requests.is_empty() {
+        scenario
+    } else {
+        let (s, o) = scenario::accept_requests(building, scenario).map_err(SimError::Invalid)?;
+        accepted = s;
+        outcomes = o;
+        &accepted
+    };
     let placement = fleet::Fleets::place(building, scenario).map_err(SimError::Invalid)?;
     let mut fleets =
         fleet::Fleets::new(building, scenario, &placement).map_err(SimError::Invalid)?;
@@ -96,6 +110,26 @@ pub fn simulate(
         lifts_start_at_initial_floor: scenario.options.lifts_start_at_initial_floor,
     };
     let mut world = world::World::new(building, &setup);
+    let unknown = world.set_faults(&scenario.faults);
+    if !unknown.is_empty() {
+        return Err(SimError::Invalid(
+            unknown
+                .into_iter()
+                .map(|k| {
+                    let f = &scenario.faults[k];
+                    Diagnostic::error(
+                        codes::UNKNOWN_FAULT_TARGET.code,
+                        f.span,
+                        format!(
+                            "the fault names {} `{}`, which this run does not have",
+                            f.target.kind(),
+                            f.target.name()
+                        ),
+                    )
+                })
+                .collect(),
+        ));
+    }
     let o = &scenario.options;
     if o.crowd.enabled {
         let crowd = crowd::Crowd::new(building, o.crowd.scale, scenario.seed, scenario.step)
@@ -178,7 +212,44 @@ pub fn simulate(
     }
     let mut report = report.finish(world.time(), &world.robots());
     report.interrupted = interrupted;
+    if !outcomes.is_empty() {
+        let ids = scenario::task_ids(scenario);
+        report.requests = scenario
+            .requests
+            .iter()
+            .zip(outcomes)
+            .map(|(r, o)| match o {
+                scenario::RequestOutcome::Task(i) => report::RequestReport {
+                    line: r.line,
+                    at: r.at,
+                    task_id: ids.get(i).cloned(),
+                    refused: None,
+                },
+                scenario::RequestOutcome::Refused(why) => report::RequestReport {
+                    line: r.line,
+                    at: r.at,
+                    task_id: None,
+                    refused: Some(why),
+                },
+            })
+            .collect();
+    }
+    // Robots are listed in spawn order, as the world has them.
+    for (i, r) in report.robots.iter_mut().enumerate() {
+        r.battery_soc = world.soc(i).unwrap_or(1.0);
+    }
     report.crowd = world.crowd().map(|c| c.report(world.time()));
+    report.traffic = fleets.traffic_report();
+    report.warnings = placement
+        .warnings
+        .iter()
+        .map(|d| report::ScenarioWarning {
+            code: d.code.to_string(),
+            message: d.message.clone(),
+            line: d.span.line,
+            column: d.span.col,
+        })
+        .collect();
     Ok(report)
 }
 

@@ -3,6 +3,7 @@
 //! would see. Every list is in a deterministic order (map order, first-seen order, or
 //! sorted), and every struct serialises its fields in declaration order.
 
+pub mod rmf_states;
 use crate::msgs::{door_mode, lift_request, lift_state, robot_mode, Msg, TaskWaits, Topic};
 use crate::world::RobotTruth;
 use serde::Serialize;
@@ -53,6 +54,51 @@ pub struct Report {
     /// People (`crowd/`), when the map's crowd walked.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub crowd: Option<crate::crowd::CrowdReport>,
+    /// The traffic planner's work.
+    pub traffic: TrafficReport,
+    /// Warnings about the scenario on this map (codes S0210, S0211), located.
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub warnings: Vec<ScenarioWarning>,
+    /// What became of each line of the `requests:` file, in file order.
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub requests: Vec<RequestReport>,
+}
+
+/// One RMF task API request (`requests:`): the task it became, or why it was refused.
+#[derive(Debug, Clone, Default, PartialEq, Serialize)]
+pub struct RequestReport {
+    /// Line in the requests file.
+    pub line: usize,
+    /// When it arrived or, later, its earliest start (s).
+    pub at: f64,
+    /// The task's id (in `tasks`), when it was accepted.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub task_id: Option<String>,
+    /// Why it was refused (as RMF would refuse it, or mapc cannot do it).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub refused: Option<String>,
+}
+
+/// What the traffic planner did (`crate::traffic`).
+#[derive(Debug, Clone, Default, PartialEq, Serialize)]
+pub struct TrafficReport {
+    /// Plans made (SIPP searches), and how many found no way at the time.
+    pub plans: u64,
+    pub plans_failed: u64,
+    /// States the planner expanded per successful plan: median and 99th percentile.
+    pub expanded_median: u64,
+    pub expanded_p99: u64,
+    /// Dependency cycles found in the schedule (the guarantee says 0).
+    pub cycles: u64,
+}
+
+/// A located warning about the scenario.
+#[derive(Debug, Clone, Default, PartialEq, Serialize)]
+pub struct ScenarioWarning {
+    pub code: String,
+    pub message: String,
+    pub line: u32,
+    pub column: u32,
 }
 
 #[derive(Debug, Clone, Default, PartialEq, Serialize)]
@@ -107,6 +153,8 @@ pub struct RobotReport {
     pub distance_m: f64,
     /// Time with at least one assigned, unfinished task (s).
     pub busy_s: f64,
+    /// State of charge at the end of the run (0..1).
+    pub battery_soc: f64,
 }
 
 /// Waiting times in seconds.
@@ -683,6 +731,7 @@ impl ReportBuilder {
                 fleet: r.fleet.clone(),
                 distance_m: r.distance,
                 busy_s: r.busy_s + r.busy_since.map_or(0.0, |s| t - s),
+                battery_soc: 1.0,
             })
             .collect();
         let fleets = self
@@ -750,6 +799,9 @@ impl ReportBuilder {
             bottleneck,
             interrupted: false,
             crowd: None,
+            traffic: TrafficReport::default(),
+            warnings: Vec::new(),
+            requests: Vec::new(),
         }
     }
 }
@@ -1017,6 +1069,8 @@ mod tests {
             workcells: Vec::new(),
             reserve: Vec::new(),
             needed: Vec::new(),
+            warnings: Vec::new(),
+            parks: Default::default(),
         };
         ReportBuilder::new(&building, &scenario, &placement)
     }
@@ -1475,6 +1529,8 @@ mod sweep_tests {
             workcells: Vec::new(),
             reserve: Vec::new(),
             needed: Vec::new(),
+            warnings: Vec::new(),
+            parks: Default::default(),
         };
         let mut b = ReportBuilder::new(&building, &scenario.unwrap(), &placement);
         let mut rng = fastrand::Rng::with_seed(11);

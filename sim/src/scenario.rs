@@ -8,6 +8,14 @@ use mapc_ir::{Diagnostic, FileId, Span};
 use std::collections::{BTreeMap, BTreeSet};
 use std::path::{Path, PathBuf};
 
+mod faults;
+mod requests;
+mod rmf_config;
+pub use faults::{FaultSpec, FaultTarget};
+pub(crate) use requests::{accept_requests, task_ids, RequestOutcome};
+pub use requests::{RequestKind, RequestSpec, RequestedTask};
+pub use rmf_config::{Finishing, RmfFleet, RmfRobot};
+
 #[derive(Debug, Clone, PartialEq)]
 pub struct Scenario {
     /// The map, resolved against the scenario file's directory (None if the scenario does
@@ -22,7 +30,11 @@ pub struct Scenario {
     pub workcells: Vec<WorkcellSpec>,
     pub tasks: Vec<TaskSpec>,
     pub generators: Vec<GeneratorSpec>,
+    /// Things out of service for a while (`faults.rs`).
+    pub faults: Vec<FaultSpec>,
     pub options: SimOptions,
+    /// RMF task API requests (`requests:`, `requests.rs`), in file order.
+    pub requests: Vec<RequestSpec>,
 }
 
 #[derive(Debug, Clone, PartialEq)]
@@ -40,6 +52,27 @@ pub struct FleetSpec {
     /// Task categories this fleet accepts (empty: all).
     pub task_kinds: Vec<TaskCategory>,
     pub span: Span,
+    /// What the fleet's RMF adapter config says beyond the above (`config:`): its robots'
+    /// names and start waypoints above all.
+    pub rmf: Option<Box<RmfFleet>>,
+}
+
+/// A file a scenario names (a fleet's `config:`): its diagnostics have file id
+/// `scenario's id + 1 + its index` in [`Parsed::included`].
+#[derive(Debug, Clone, PartialEq)]
+pub struct Included {
+    pub path: PathBuf,
+    pub text: String,
+    /// The scenario's node that names it.
+    pub from: Span,
+}
+
+/// A scenario read with the files it names.
+#[derive(Debug)]
+pub struct Parsed {
+    pub scenario: Option<Scenario>,
+    pub diagnostics: Vec<Diagnostic>,
+    pub included: Vec<Included>,
 }
 
 #[derive(Debug, Clone, PartialEq)]
@@ -129,6 +162,11 @@ pub struct TaskSpec {
     pub kind: TaskKind,
     /// Restrict to one fleet (default: any fleet that accepts the category).
     pub fleet: Option<String>,
+    /// Only this robot (of `fleet`) may do it: an RMF `robot_task_request`.
+    pub robot: Option<String>,
+    /// RMF's binary priority: a task of priority 1 goes before every task of priority 0
+    /// still waiting.
+    pub priority: u64,
     pub span: Span,
 }
 
@@ -215,12 +253,15 @@ const TOP_KEYS: &[&str] = &[
     "workcells",
     "tasks",
     "generators",
+    "faults",
     "options",
     "crowd",
     "description",
+    "requests",
 ];
 const CROWD_KEYS: &[&str] = &["enabled", "scale"];
 const FLEET_KEYS: &[&str] = &[
+    "config",
     "name",
     "graph",
     "robot",
@@ -395,6 +436,13 @@ pub const MAX_DIAGNOSTICS: usize = 1000;
 
 struct P<'d> {
     diags: &'d mut Vec<Diagnostic>,
+    /// The scenario's file id; included files follow it.
+    file: FileId,
+    /// The scenario's directory (included files are relative to it).
+    base: PathBuf,
+    included: Vec<Included>,
+    /// `--requests FILE`: read instead of the scenario's `requests`.
+    requests: Option<PathBuf>,
     /// Diagnostics past MAX_DIAGNOSTICS, not kept.
     suppressed: usize,
     /// Where diagnostics past the limit are written (and forgotten).
@@ -695,6 +743,10 @@ impl P<'_> {
             Some(v) if !v.is_null() => self.seq(v, "`generators`", |p, n| p.generator(n, duration)),
             _ => Some(Vec::new()),
         };
+        let faults = match top.get("faults") {
+            Some(v) if !v.is_null() => self.seq(v, "`faults`", |p, n| p.fault(n, duration)),
+            _ => Some(Vec::new()),
+        };
         let mut options = match top.get("options") {
             Some(v) if !v.is_null() => self.options(v),
             _ => Some(SimOptions::default()),
@@ -707,6 +759,11 @@ impl P<'_> {
             }
         }
 
+        let requests = match top.get("requests") {
+            Some(v) if !v.is_null() => self.requests_file(Some(v), duration),
+            _ if self.requests.is_some() => self.requests_file(None, duration),
+            _ => Some(Vec::new()),
+        };
         if let (Some(fleets), Some(tasks), Some(gens)) = (&fleets, &tasks, &generators) {
             self.cross_check(fleets, tasks, gens);
             ok &= self.count_tasks(tasks, gens, duration);
@@ -724,7 +781,9 @@ impl P<'_> {
             workcells: workcells?,
             tasks: tasks?,
             generators: generators?,
+            faults: faults?,
             options: options?,
+            requests: requests?,
         })
     }
 
@@ -791,11 +850,180 @@ impl P<'_> {
         ok.then_some(fleets)
     }
 
+    /// Reads a file the scenario names (relative to the scenario's directory) and keeps
+    /// it with the scenario's sources; returns its index in `included`.
+    fn include(&mut self, v: &Node, what: &str) -> Option<usize> {
+        let name = self.name(v, what)?;
+        let path = self.base.join(&name);
+        self.include_path(path, v.span, what)
+    }
+
+    fn include_path(&mut self, path: PathBuf, from: Span, what: &str) -> Option<usize> {
+        let text = match read_limited(&path) {
+            Ok(t) => t,
+            Err(e) => {
+                self.error(
+                    codes::INCLUDED_FILE,
+                    from,
+                    format!("{what} `{}` cannot be read: {e}", path.display()),
+                );
+                self.help(if what == "`--requests`" {
+                    "the path is relative to the current directory"
+                } else {
+                    "the path is relative to the scenario file"
+                });
+                return None;
+            }
+        };
+        self.included.push(Included { path, text, from });
+        Some(self.included.len() - 1)
+    }
+
+    /// `requests: FILE` or `{file: FILE, start_unix_millis: N}`: the requests, their
+    /// `unix_millis_earliest_start_time` read against N (the run's start; default 0).
+    /// With `--requests FILE` (`self.requests`), that file instead of the scenario's.
+    fn requests_file(
+        &mut self,
+        v: Option<&Node>,
+        duration: Option<f64>,
+    ) -> Option<Vec<RequestSpec>> {
+        let (file, epoch) = match v {
+            None => (None, 0),
+            Some(v) => {
+                let (f, e) = self.requests_key(v)?;
+                (Some(f), e)
+            }
+        };
+        let k = match (self.requests.clone(), file) {
+            (Some(path), _) => {
+                let from = file.map_or(Span::UNKNOWN, |f| f.span);
+                self.include_path(path, from, "`--requests`")?
+            }
+            (None, Some(f)) => self.include(f, "`requests`")?,
+            (None, None) => return Some(Vec::new()),
+        };
+        let id = self.included_id(k);
+        let text = self.included[k].text.clone();
+        let mut reqs = self.requests(id, &text)?;
+        for r in &mut reqs {
+            r.start_unix_millis = epoch;
+            if let RequestKind::Task(t) = &r.what {
+                if let Some(ms) = t.earliest_start_ms {
+                    r.at = r.at.max(ms.saturating_sub(epoch) as f64 / 1000.0);
+                }
+            }
+            if let Some(d) = duration.filter(|&d| r.at >= d) {
+                self.warning(
+                    codes::TASK_AFTER_END,
+                    r.span,
+                    format!(
+                        "the request arrives (or may start) at {} s, at or after the end of the run ({d} s)",
+                        r.at
+                    ),
+                );
+                self.help("check `at` and `unix_millis_earliest_start_time` (read against `start_unix_millis`)");
+            }
+        }
+        Some(reqs)
+    }
+
+    /// The `requests` key: its file node and `start_unix_millis`.
+    fn requests_key<'n, 'a>(&mut self, v: &'n Node<'a>) -> Option<(&'n Node<'a>, i64)> {
+        let (file, epoch) = if v.as_map().is_some() {
+            let e = self.entries(
+                v,
+                "`requests`",
+                Some((&["file", "start_unix_millis"], codes::UNKNOWN_KEY)),
+            )?;
+            let f = self.required(&e, "file", "`requests`")?;
+            let epoch = match e.get("start_unix_millis") {
+                None => 0,
+                Some(n) => self.int(n, "`start_unix_millis`")?,
+            };
+            (f, epoch)
+        } else {
+            (v, 0)
+        };
+        Some((file, epoch))
+    }
+
+    fn included_id(&self, k: usize) -> FileId {
+        FileId(self.file.0 + 1 + k as u32)
+    }
+
+    /// The fleet described by an RMF fleet adapter config (`config:`).
+    fn config_fleet(&mut self, v: &Node) -> Option<rmf_config::ConfigFleet> {
+        let k = self.include(v, "`config`")?;
+        let id = self.included_id(k);
+        let text = self.included[k].text.clone();
+        let path = self.included[k].path.clone();
+        let root = match yaml_tree::parse(&text, id) {
+            Ok(r) => r,
+            Err(mut d) => {
+                d.code = codes::INVALID_YAML.code;
+                if !d.span.is_known() {
+                    d.span = v.span;
+                }
+                self.push(d);
+                return None;
+            }
+        };
+        if root.is_null() {
+            self.error(
+                codes::RMF_CONFIG_NO_FLEET,
+                v.span,
+                "the fleet config is empty",
+            );
+            return None;
+        }
+        self.rmf_config(&root, path)
+    }
+
+    fn recharge_threshold(&mut self, t: &Node) -> Option<f64> {
+        self.number(t, "`recharge_threshold`").and_then(|x| {
+            if (0.0..1.0).contains(&x) {
+                Some(x)
+            } else {
+                self.error(
+                    codes::OUT_OF_RANGE,
+                    t.span,
+                    format!("`recharge_threshold` is {x}; it must be in [0, 1)"),
+                );
+                self.help("it is a fraction of the battery: 0.2 means 20 %");
+                None
+            }
+        })
+    }
+
+    fn recharge_soc(&mut self, t: &Node) -> Option<f64> {
+        self.number(t, "`recharge_soc`").and_then(|x| {
+            if x > 0.0 && x <= 1.0 {
+                Some(x)
+            } else {
+                self.error(
+                    codes::OUT_OF_RANGE,
+                    t.span,
+                    format!("`recharge_soc` is {x}; it must be in (0, 1]"),
+                );
+                self.help("it is a fraction of the battery: 1.0 means full");
+                None
+            }
+        })
+    }
+
     fn fleet(&mut self, v: &Node) -> Option<FleetSpec> {
         let e = self.entries(v, "a fleet", Some((FLEET_KEYS, codes::UNKNOWN_KEY)))?;
-        let name = self
-            .required(&e, "name", "a fleet")
-            .and_then(|n| self.name(n, "a fleet's `name`"));
+        // From an RMF fleet adapter config; the scenario's own keys override it.
+        let cfg = match e.get("config") {
+            Some(c) => Some(self.config_fleet(c)?),
+            None => None,
+        };
+        let name = match (e.get("name"), &cfg) {
+            (None, Some(c)) => Some(c.name.clone()),
+            _ => self
+                .required(&e, "name", "a fleet")
+                .and_then(|n| self.name(n, "a fleet's `name`")),
+        };
         let graph = match e.get("graph") {
             None => Some(0),
             Some(g) => self.int(g, "`graph`").and_then(|i| {
@@ -807,12 +1035,11 @@ impl P<'_> {
                 }
             }),
         };
-        let robot = self
-            .required(&e, "robot", "a fleet")
-            .and_then(|r| self.robot(r));
-        let spawn = match e.get("spawn") {
-            None => Some(SpawnSpec::Auto),
-            Some(s) => self.spawn(s),
+        let robot = match (e.get("robot"), &cfg) {
+            (None, Some(c)) => Some(c.robot.clone()),
+            (r, c) => r
+                .or_else(|| self.required(&e, "robot", "a fleet"))
+                .and_then(|r| self.robot(r, c.as_ref().map(|c| c.robot.clone()))),
         };
         let count = match e.get("count") {
             Some(c) => self.int(c, "`count`").and_then(|i| {
@@ -835,7 +1062,29 @@ impl P<'_> {
                     Some(i as usize)
                 }
             }),
-            None => match &spawn {
+            None => None,
+        };
+        let spawn = match (e.get("spawn"), &cfg) {
+            (Some(s), _) => self.spawn(s),
+            // The config's robots at their start waypoints; more robots than it lists
+            // (a `count` override) are placed automatically.
+            (None, Some(c)) => Some(match count {
+                Some(n) if n > c.rmf.robots.len() => SpawnSpec::Auto,
+                n => SpawnSpec::Waypoints(
+                    c.rmf
+                        .robots
+                        .iter()
+                        .take(n.unwrap_or(usize::MAX))
+                        .map(|r| r.start.clone())
+                        .collect(),
+                ),
+            }),
+            (None, None) => Some(SpawnSpec::Auto),
+        };
+        let count = match (count, e.get("count")) {
+            (Some(n), _) => Some(n),
+            (None, Some(_)) => None,
+            (None, None) => match &spawn {
                 Some(SpawnSpec::Waypoints(w)) => Some(w.len()),
                 Some(_) => {
                     self.error(codes::MISSING_KEY, e.span, "a fleet has no `count`");
@@ -855,37 +1104,15 @@ impl P<'_> {
                 self.help("list one waypoint per robot, leave `count` out, or use `spawn: auto`");
             }
         }
-        let threshold = match e.get("recharge_threshold") {
-            None => Some(0.2),
-            Some(t) => self.number(t, "`recharge_threshold`").and_then(|x| {
-                if (0.0..1.0).contains(&x) {
-                    Some(x)
-                } else {
-                    self.error(
-                        codes::OUT_OF_RANGE,
-                        t.span,
-                        format!("`recharge_threshold` is {x}; it must be in [0, 1)"),
-                    );
-                    self.help("it is a fraction of the battery: 0.2 means 20 %");
-                    None
-                }
-            }),
+        let threshold = match (e.get("recharge_threshold"), &cfg) {
+            (None, Some(c)) => Some(c.recharge_threshold),
+            (None, None) => Some(0.2),
+            (Some(t), _) => self.recharge_threshold(t),
         };
-        let soc = match e.get("recharge_soc") {
-            None => Some(1.0),
-            Some(t) => self.number(t, "`recharge_soc`").and_then(|x| {
-                if x > 0.0 && x <= 1.0 {
-                    Some(x)
-                } else {
-                    self.error(
-                        codes::OUT_OF_RANGE,
-                        t.span,
-                        format!("`recharge_soc` is {x}; it must be in (0, 1]"),
-                    );
-                    self.help("it is a fraction of the battery: 1.0 means full");
-                    None
-                }
-            }),
+        let soc = match (e.get("recharge_soc"), &cfg) {
+            (None, Some(c)) => Some(c.recharge_soc),
+            (None, None) => Some(1.0),
+            (Some(t), _) => self.recharge_soc(t),
         };
         if let (Some(t), Some(s)) = (threshold, soc) {
             if t >= s {
@@ -901,9 +1128,10 @@ impl P<'_> {
                 self.help("a robot leaves the charger at recharge_soc and goes back below recharge_threshold");
             }
         }
-        let kinds = match e.get("tasks") {
-            None => Some(Vec::new()),
-            Some(t) => self.categories(t),
+        let kinds = match (e.get("tasks"), &cfg) {
+            (None, Some(c)) => Some(c.task_kinds.clone()),
+            (None, None) => Some(Vec::new()),
+            (Some(t), _) => self.categories(t),
         };
         Some(FleetSpec {
             name: name?,
@@ -915,10 +1143,13 @@ impl P<'_> {
             recharge_soc: soc?,
             task_kinds: kinds?,
             span: v.span,
+            rmf: cfg.map(|c| Box::new(c.rmf)),
         })
     }
 
-    fn robot(&mut self, v: &Node) -> Option<RobotParams> {
+    /// A preset name, or a mapping of parameters over a preset or over `base` (a fleet
+    /// config's robot).
+    fn robot(&mut self, v: &Node, base: Option<RobotParams>) -> Option<RobotParams> {
         if v.as_map().is_none() {
             let name = self.name(v, "`robot`")?;
             return self.preset(v, &name);
@@ -931,7 +1162,7 @@ impl P<'_> {
                 let name = self.name(n, "`preset`")?;
                 self.preset(n, &name)?
             }
-            None => RobotParams::default(),
+            None => base.unwrap_or_default(),
         };
         let mut ok = true;
         if let Some(m) = e.get("model") {
@@ -1276,6 +1507,8 @@ impl P<'_> {
             at: at?,
             kind: kind?,
             fleet: fleet?,
+            robot: None,
+            priority: 0,
             span: v.span,
         })
     }
@@ -1514,9 +1747,62 @@ fn category(s: &str) -> Option<TaskCategory> {
 }
 
 /// Reads a scenario. `base` is the scenario file's directory (for `map`). Returns the
-/// scenario when there are no errors, and all diagnostics (warnings too).
+/// scenario when there are no errors, and all diagnostics (warnings too). Problems in the
+/// files the scenario names (a fleet's `config:`) are reported at the scenario's node that
+/// names the file, their own position in the message; [`parse_files`] keeps them located
+/// in those files.
 pub fn parse(file: FileId, text: &str, base: &Path) -> (Option<Scenario>, Vec<Diagnostic>) {
+    let p = parse_files(file, text, base);
+    let mut diags = p.diagnostics;
+    for d in &mut diags {
+        let k = d.span.file.0.wrapping_sub(file.0 + 1) as usize;
+        if d.span.file != file && k < p.included.len() {
+            let inc = &p.included[k];
+            d.message = format!(
+                "{}:{}:{}: {}",
+                inc.path.display(),
+                d.span.line,
+                d.span.col,
+                d.message
+            );
+            d.span = inc.from;
+            d.labels.retain(|l| l.span.file == file);
+        }
+    }
+    (p.scenario, diags)
+}
+
+/// Reads a file a scenario names, within the input limit, as UTF-8.
+fn read_limited(path: &Path) -> Result<String, String> {
+    use std::io::Read;
+    let limit = mapc_frontend::MAX_FILE_BYTES;
+    let mut bytes = Vec::new();
+    std::fs::File::open(path)
+        .and_then(|f| f.take(limit + 1).read_to_end(&mut bytes))
+        .map_err(|e| e.to_string())?;
+    if bytes.len() as u64 > limit {
+        return Err(format!(
+            "it is larger than the input limit of {limit} bytes"
+        ));
+    }
+    String::from_utf8(bytes).map_err(|_| "it is not valid UTF-8".to_string())
+}
+
+/// Like [`parse`], with the files the scenario names: their diagnostics have file ids
+/// after `file` (see [`Included`]).
+pub fn parse_files(file: FileId, text: &str, base: &Path) -> Parsed {
+    parse_files_with(file, text, base, None)
+}
+
+/// Like [`parse_files`], reading `requests` (a requests file, as `--requests` names it)
+/// instead of the scenario's own `requests:`.
+pub fn parse_files_with(file: FileId, text: &str, base: &Path, requests: Option<&Path>) -> Parsed {
     let mut diags = Vec::new();
+    let done = |scenario, diagnostics| Parsed {
+        scenario,
+        diagnostics,
+        included: Vec::new(),
+    };
     let whole = Span {
         file,
         start: 0,
@@ -1536,7 +1822,7 @@ pub fn parse(file: FileId, text: &str, base: &Path) -> (Option<Scenario>, Vec<Di
             )
             .with_help("scenarios are a few dozen lines; check that this is the right file"),
         );
-        return (None, diags);
+        return done(None, diags);
     }
     let root = match yaml_tree::parse(text, file) {
         Ok(r) => r,
@@ -1551,7 +1837,7 @@ pub fn parse(file: FileId, text: &str, base: &Path) -> (Option<Scenario>, Vec<Di
                 d.span = whole;
             }
             diags.push(d);
-            return (None, diags);
+            return done(None, diags);
         }
     };
     if root.is_null() {
@@ -1564,16 +1850,21 @@ pub fn parse(file: FileId, text: &str, base: &Path) -> (Option<Scenario>, Vec<Di
             Diagnostic::error(codes::INVALID_YAML.code, span, "the scenario file is empty")
                 .with_help("a scenario needs at least `duration` and `fleets`; see docs/sim.md"),
         );
-        return (None, diags);
+        return done(None, diags);
     }
     let mut p = P {
         diags: &mut diags,
         suppressed: 0,
         scratch: Diagnostic::error("", whole, ""),
         had_error: false,
+        file,
+        base: base.to_path_buf(),
+        included: Vec::new(),
+        requests: requests.map(Path::to_path_buf),
     };
     let scenario = p.scenario(&root, base);
     let suppressed = p.suppressed;
+    let included = std::mem::take(&mut p.included);
     if suppressed > 0 {
         diags.push(
             Diagnostic::error(
@@ -1586,7 +1877,11 @@ pub fn parse(file: FileId, text: &str, base: &Path) -> (Option<Scenario>, Vec<Di
             .with_help("this is probably not a scenario file; fix the problems above first"),
         );
     }
-    (scenario, diags)
+    Parsed {
+        scenario,
+        diagnostics: diags,
+        included,
+    }
 }
 
 #[cfg(test)]
@@ -2122,6 +2417,7 @@ tasks:
         assert_eq!(keys(&defs["crowd"]), want(CROWD_KEYS, &[]));
         assert_eq!(keys(&defs["task"]), want(TASK_KEYS, KINDS));
         assert_eq!(keys(&defs["generator"]), want(GENERATOR_KEYS, KINDS));
+        assert_eq!(keys(&defs["fault"]), want(faults::FAULT_KEYS, &[]));
         let robot: Vec<&str> = ROBOT_NUMBERS.iter().map(|r| r.0).collect();
         assert_eq!(
             keys(&defs["robot"]["oneOf"][1]),

@@ -64,6 +64,23 @@ pub struct WorldSetup {
     pub lifts_start_at_initial_floor: bool,
 }
 
+/// A robot, door or lift out of service over `[from, to)`.
+struct Fault {
+    from: f64,
+    to: f64,
+    what: Faulted,
+    /// A robot's pause was requested (and, after `to`, its resume).
+    paused: bool,
+    resumed: bool,
+}
+
+#[derive(Clone, Copy, PartialEq)]
+enum Faulted {
+    Robot(usize),
+    Door(usize),
+    Lift(usize),
+}
+
 pub struct World {
     dt: f64,
     steps: u64,
@@ -92,6 +109,8 @@ pub struct World {
     /// Supervisor requests for the plugins, applied at the start of the next step.
     to_doors: Vec<DoorRequest>,
     to_lifts: Vec<LiftRequest>,
+    /// Things out of service for a while (`Scenario::faults`).
+    faults: Vec<Fault>,
     first_step: bool,
     /// The people (`crowd/`), when the map's crowd walks.
     crowd: Option<crate::crowd::Crowd>,
@@ -215,12 +234,7 @@ impl World {
             } else {
                 0.0
             };
-            // Axis-aligned hull of the rotated cabin footprint.
-            let (s, c) = l.yaw.sin_cos();
-            let hx = (c * l.width / 2.0).abs() + (s * l.depth / 2.0).abs();
-            let hy = (s * l.width / 2.0).abs() + (c * l.depth / 2.0).abs();
-            let aabb = [l.pos.x - hx, l.pos.x + hx, l.pos.y - hy, l.pos.y + hy];
-            let mut lift = LiftSim::new(l.name.clone(), floors, initial, z, aabb);
+            let mut lift = LiftSim::new(l.name.clone(), floors, initial, z, l.payload_box());
             lift.set_phase(rng.f64());
             lift_index.entry(l.name.clone()).or_insert(lifts.len());
             lifts.push(lift);
@@ -289,6 +303,7 @@ impl World {
             inbox: Vec::new(),
             to_doors: Vec::new(),
             to_lifts: Vec::new(),
+            faults: Vec::new(),
             first_step: true,
             crowd: None,
         }
@@ -350,6 +365,59 @@ impl World {
         }
     }
 
+    /// Puts robots, doors and lifts out of service for a while. Returns the faults that
+    /// name nothing in this world (by index in `faults`).
+    pub fn set_faults(&mut self, faults: &[crate::scenario::FaultSpec]) -> Vec<usize> {
+        use crate::scenario::FaultTarget;
+        let mut unknown = Vec::new();
+        self.faults.clear();
+        for (k, f) in faults.iter().enumerate() {
+            let what = match &f.target {
+                FaultTarget::Robot(n) => self.robot_index.get(n).map(|&i| Faulted::Robot(i)),
+                FaultTarget::Door(n) => self.door_index.get(n).map(|&i| Faulted::Door(i)),
+                FaultTarget::Lift(n) => self.lift_index.get(n).map(|&i| Faulted::Lift(i)),
+            };
+            match what {
+                Some(what) => self.faults.push(Fault {
+                    from: f.at,
+                    to: f.at + f.duration,
+                    what,
+                    paused: false,
+                    resumed: false,
+                }),
+                None => unknown.push(k),
+            }
+        }
+        unknown
+    }
+
+    /// Whether `what` is out of service at `t`.
+    fn out_of_service(&self, what: Faulted, t: f64) -> bool {
+        self.faults
+            .iter()
+            .any(|f| f.what == what && f.from <= t && t < f.to)
+    }
+
+    /// Pauses and resumes the robots whose faults begin or end at `t` (as a pause request
+    /// from outside would).
+    fn robot_faults(&mut self, t: f64) {
+        use crate::msgs::pause_type;
+        for f in &mut self.faults {
+            let Faulted::Robot(i) = f.what else { continue };
+            let Some(r) = self.robots.get_mut(i) else {
+                continue;
+            };
+            if !f.paused && t >= f.from {
+                f.paused = true;
+                r.pause_request(pause_type::PAUSE_IMMEDIATELY, 0, 0);
+            }
+            if f.paused && !f.resumed && t >= f.to {
+                f.resumed = true;
+                r.pause_request(pause_type::RESUME, 0, 0);
+            }
+        }
+    }
+
     /// Whether mapc's door and lift supervisors run (off: only the plugins answer requests).
     pub fn set_supervisors(&mut self, on: bool) {
         self.supervisors = on;
@@ -384,15 +452,23 @@ impl World {
             }
         }
         self.inbox = inbox;
-        for r in self.to_doors.drain(..) {
+        // A door or lift out of service answers nothing (its requests are lost, as with a
+        // plugin that is down).
+        for r in std::mem::take(&mut self.to_doors) {
             if let Some(&i) = self.door_index.get(&r.door_name) {
+                if self.out_of_service(Faulted::Door(i), t) {
+                    continue;
+                }
                 if let Some(d) = self.doors.get_mut(i) {
                     d.command(r.requested_mode.value == crate::msgs::door_mode::OPEN);
                 }
             }
         }
-        for r in self.to_lifts.drain(..) {
+        for r in std::mem::take(&mut self.to_lifts) {
             if let Some(&i) = self.lift_index.get(&r.lift_name) {
+                if self.out_of_service(Faulted::Lift(i), t) {
+                    continue;
+                }
                 if let Some(l) = self.lifts.get_mut(i) {
                     l.request(&r);
                 }
@@ -417,6 +493,7 @@ impl World {
         let t = self.t;
         let dt = self.dt;
         let start = out.len();
+        self.robot_faults(t);
         self.callbacks(t, out);
 
         // Slotcars read the poses at the start of the step.
@@ -507,7 +584,6 @@ impl World {
     }
 
     /// State of charge (0..1) of robot `i` (spawn order).
-    #[allow(dead_code)] // for the report and tests
     pub fn soc(&self, i: usize) -> Option<f64> {
         self.robots.get(i).map(|r| r.soc)
     }

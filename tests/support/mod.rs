@@ -89,3 +89,4 @@ pub fn mapc(args: &[&str]) -> (i32, String, String) {
         String::from_utf8_lossy(&out.stderr).into_owned(),
     )
 }
+pub mod ros2;

@@ -1,6 +1,7 @@
 //! Diagnostic codes of rmf_site `.site.json` input and of conversions between the two map
 //! formats. Gathered into docs/diagnostics.md like the other code lists (tests/docs.rs).
 
+use mapc_ir::lints::Group;
 pub use mapc_ir::Code;
 
 /// # E0120 site-format-version
@@ -19,6 +20,7 @@ pub use mapc_ir::Code;
 /// ```
 pub const FORMAT_VERSION: Code = Code {
     code: "E0120",
+    group: Group::Reading,
     name: "site-format-version",
     summary: "the site's format_version is missing or newer than mapc reads",
 };
@@ -42,6 +44,7 @@ pub const FORMAT_VERSION: Code = Code {
 /// ```
 pub const DANGLING_ID: Code = Code {
     code: "E0121",
+    group: Group::Reading,
     name: "site-dangling-id",
     summary: "a reference to an anchor, level or graph id that does not exist",
 };
@@ -60,6 +63,7 @@ pub const DANGLING_ID: Code = Code {
 /// **Example:** a lane from an anchor of `L1` to an anchor of `L2`.
 pub const LANE_BETWEEN_LEVELS: Code = Code {
     code: "E0122",
+    group: Group::Reading,
     name: "site-lane-between-levels",
     summary: "a lane joins anchors of different levels, or only cabin anchors",
 };
@@ -80,6 +84,7 @@ pub const LANE_BETWEEN_LEVELS: Code = Code {
 /// ```
 pub const LOCATION_ANCHOR: Code = Code {
     code: "E0123",
+    group: Group::Reading,
     name: "site-location-missing-anchor",
     summary: "a location is on an anchor that does not exist on a level or lift",
 };
@@ -96,6 +101,7 @@ pub const LOCATION_ANCHOR: Code = Code {
 /// **Example:** a 1.5 × 1.65 m cabin with a cabin anchor at `[3.0, 0.0]`.
 pub const CABIN_ANCHOR_OUTSIDE: Code = Code {
     code: "W0120",
+    group: Group::Frontend,
     name: "site-cabin-anchor-outside",
     summary: "a lift cabin anchor lies outside the cabin",
 };
@@ -118,6 +124,7 @@ pub const CABIN_ANCHOR_OUTSIDE: Code = Code {
 /// ```
 pub const UNKNOWN_FIELD: Code = Code {
     code: "W0121",
+    group: Group::Frontend,
     name: "site-unknown-field",
     summary: "a site field mapc does not know or does not use",
 };
@@ -139,6 +146,7 @@ pub const UNKNOWN_FIELD: Code = Code {
 /// **Example:** converting a map with `crowd_sim` to `.site.json`.
 pub const NOT_CONVERTIBLE: Code = Code {
     code: "W0122",
+    group: Group::Frontend,
     name: "not-convertible",
     summary: "the target format of `mapc convert` cannot say this",
 };
@@ -166,6 +174,8 @@ pub const NOT_CONVERTIBLE: Code = Code {
 /// with 48 in the site's top-level `anchors`.
 pub const SITE_ANCHOR_OFF_NAV: Code = Code {
     code: "W0123",
+    // Only the nav graphs lose the lane or location.
+    group: Group::Lanes,
     name: "site-anchor-off-nav-graph",
     summary: "a lane or location on a site anchor is left out of nav graphs, as rmf_site does",
 };

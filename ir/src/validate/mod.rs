@@ -29,10 +29,26 @@ pub struct Rule {
     pub name: &'static str,
     /// One line: what the rule finds.
     pub summary: &'static str,
+    /// What an error of this rule breaks, and whether it may be allowed.
+    pub group: crate::lints::Group,
+    /// The rule compares positions with thresholds in metres (a door's width, how close two
+    /// waypoints are): meaningless, and not run, when the frontend could not tell the map's
+    /// units.
+    pub metric: bool,
     pub check: fn(&Context, &mut Vec<Diagnostic>),
 }
 
 impl Rule {
+    /// The rule's facts as a [`crate::Code`], as the other crates declare theirs.
+    pub fn code(&self) -> crate::Code {
+        crate::Code {
+            code: self.code,
+            name: self.name,
+            summary: self.summary,
+            group: self.group,
+        }
+    }
+
     pub fn severity(&self) -> Severity {
         if self.code.starts_with('E') {
             Severity::Error

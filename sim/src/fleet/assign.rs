@@ -1,15 +1,70 @@
-//! Task assignment: a task goes to the robot that can start it soonest.
+//! The dispatcher: a task goes to the robot that, planned against the schedule, gets to
+//! its first place first.
+//!
+//! Tasks wait in one queue, oldest first, until a robot that stands idle takes one, as in
+//! Token Passing (Ma et al. 2017): the robot's whole task (every place, the work there,
+//! then a parking vertex) is planned when it is assigned, so a robot holding a task
+//! always has a plan. The nearest idle robots (free-flow time) are planned for, and the
+//! one whose plan arrives first takes the task. A plan that would wait long for traffic
+//! is not taken while the task is young: robots stay parked rather than queue in the
+//! corridors, so a bigger fleet does not jam a building that a smaller one serves.
+//! Such a task is not planned again for the same robots until one of their plans could
+//! first fit (the least excess wait, at most `MAX_BACKOFF`): with a saturating stream hundreds of tasks
+//! wait, and planning each again at every round cost 95 % of a run.
 
 use super::*;
+use crate::traffic::sipp::{Plan, Query};
+
+/// Robots planned for per task (the nearest by free-flow time).
+const CANDIDATES: usize = 3;
+/// Plans tried per dispatch round, and tasks looked at (bound the work of a round).
+const PLANS_PER_ROUND: usize = 32;
+const SCAN_PER_ROUND: usize = 64;
+/// A plan waiting longer than this for traffic (s, summed up to its last place) is not
+/// taken, unless younger tasks have gone before the task for `PATIENCE`.
+const MAX_PLANNED_WAIT: f64 = 60.0;
+/// The share of a plan's length (to its last place) it may wait on top of that.
+const WAIT_SHARE: f64 = 0.25;
+/// A task passed over this long (s) by younger ones takes the soonest plan that waits at
+/// most `PATIENT_WAIT`: robots with a task never plan to stand for longer.
+const PATIENCE: f64 = 600.0;
+const PATIENT_WAIT: f64 = 200.0;
+/// Dispatch is tried again this often (s) while tasks wait (and at once when a robot
+/// becomes free or a task comes).
+const DISPATCH_EVERY: f64 = 5.0;
+/// Robots in a waiting task's way are asked to make room at most this often (s).
+const DISPLACE_EVERY: f64 = 5.0;
+/// A task whose plans all waited too long is planned for the same robots again after at
+/// most this long (s), even if their excess wait was longer (the others may have got
+/// ahead of their plans meanwhile).
+const MAX_BACKOFF: f64 = 60.0;
+
+/// A task in the queue.
+pub(super) struct Pending {
+    pub task: usize,
+    /// (fleet, the task's steps for it) of every fleet that may do the task.
+    pub steps: Vec<(usize, Vec<Step>)>,
+    /// The only robot that may do it (a robot task).
+    pub robot: Option<usize>,
+    /// RMF's priority: the queue keeps higher ones first.
+    pub priority: u64,
+    /// Since when younger tasks have been taken while this one was not.
+    pub passed_over: Option<f64>,
+    /// When robots were last asked to make room for it.
+    pub displaced_at: f64,
+    /// The robots last planned for it, whose plans all waited too long, and when planning for the same robots again may first succeed (see
+    /// [`Fleets::dispatch`]).
+    pub backoff: Option<(Vec<usize>, f64)>,
+}
 
 impl Fleets {
-    pub(super) fn request_task(
-        &mut self,
-        t: f64,
-        kind: TaskKind,
-        fleet: Option<String>,
-        out: &mut Vec<(Topic, Msg)>,
-    ) {
+    pub(super) fn request_task(&mut self, t: f64, new: NewTask, out: &mut Vec<(Topic, Msg)>) {
+        let NewTask {
+            kind,
+            fleet,
+            robot,
+            priority,
+        } = new;
         let category = kind.category();
         let n = self.counters.entry(category).or_insert(0);
         let id = format!("{}_{}", category.as_str(), *n);
@@ -19,110 +74,326 @@ impl Fleets {
             id,
             category,
             kind,
-            fleet,
+            fleet: fleet.clone(),
             ended: false,
         });
         self.event(t, ti, "queued", None, String::new(), out);
-        self.assign(ti, t, out);
+        // A robot task: that robot of the task's fleet, or nobody.
+        let only = robot.as_ref().map(|name| {
+            self.by_name.get(name).copied().filter(|&i| {
+                fleet
+                    .as_ref()
+                    .is_none_or(|f| self.fleets[self.robots[i].fleet].name == *f)
+            })
+        });
+        if let (Some(None), Some(name)) = (only, &robot) {
+            self.tasks[ti].ended = true;
+            let detail = format!("no robot named `{name}` in the task's fleet");
+            self.event(t, ti, "failed", None, detail, out);
+            return;
+        }
+        let steps: Vec<(usize, Vec<Step>)> = self
+            .fleets_for(ti)
+            .into_iter()
+            .filter(|(fi, _)| only.flatten().is_none_or(|i| self.robots[i].fleet == *fi))
+            .collect();
+        if steps.is_empty() {
+            self.tasks[ti].ended = true;
+            self.event(
+                t,
+                ti,
+                "failed",
+                None,
+                "no robot can reach the task".into(),
+                out,
+            );
+            return;
+        }
+        let p = Pending {
+            task: ti,
+            steps,
+            robot: only.flatten(),
+            priority,
+            passed_over: None,
+            displaced_at: f64::NEG_INFINITY,
+            backoff: None,
+        };
+        // Oldest first within a priority; a higher priority before every lower one.
+        let at = self
+            .pending
+            .iter()
+            .position(|q| q.priority < priority)
+            .unwrap_or(self.pending.len());
+        self.pending.insert(at, p);
+        self.next_dispatch = self.next_dispatch.min(t);
     }
 
-    /// Gives task `ti` to the robot that can start it soonest, or fails it when no robot
-    /// can reach it.
-    pub(super) fn assign(&mut self, ti: usize, t: f64, out: &mut Vec<(Topic, Msg)>) {
-        let category = self.tasks[ti].category;
-        // Pick the robot that can start soonest: (ready time + travel to the first
-        // waypoint, robot index).
-        let mut best: Option<(f64, usize, f64)> = None;
+    /// (fleet, its steps for the task) of every fleet that may do task `ti` and has a
+    /// robot that can reach the task's places in order.
+    fn fleets_for(&self, ti: usize) -> Vec<(usize, Vec<Step>)> {
+        let task = &self.tasks[ti];
+        let mut out = Vec::new();
         for (fi, f) in self.fleets.iter().enumerate() {
-            let task = &self.tasks[ti];
             if task.fleet.as_ref().is_some_and(|n| *n != f.name)
-                || !(f.kinds.is_empty() || f.kinds.contains(&category))
+                || !(f.kinds.is_empty() || f.kinds.contains(&task.category))
             {
                 continue;
             }
             let Some(steps) = self.expand(fi, &task.kind) else {
                 continue;
             };
-            let Some(first) = steps.iter().find_map(|s| match s {
-                Step::GoTo(v) => Some(*v),
-                _ => None,
-            }) else {
-                continue;
-            };
-            let dur = self.estimate(f.slot, f.speed, first, &steps);
-            for &ri in &f.robots {
-                let r = &self.robots[ri];
-                let (ready, from) = if r.idle() {
-                    (t, r.at)
-                } else {
-                    (r.free_at.max(t), r.end_vertex)
-                };
-                let Some((travel, _)) = self.nav.plan(f.slot, from, first, f.speed) else {
+            // The first place from some robot (one search from all of them), then each
+            // place from the one before.
+            let mut seen = vec![false; self.nav.vertices.len()];
+            let mut stack: Vec<usize> = f
+                .robots
+                .iter()
+                .map(|&ri| self.sched.itinerary(ri).at)
+                .collect();
+            while let Some(v) = stack.pop() {
+                if std::mem::replace(&mut seen[v], true) {
                     continue;
-                };
-                // An idle robot standing on one of the task's waypoints would have to be
-                // moved aside for it anyway: it takes the task unless another robot is much
-                // sooner.
-                let on_task = r.idle()
-                    && steps
-                        .iter()
-                        .any(|s| matches!(s, Step::GoTo(v) if *v == r.at));
-                let bonus = if on_task { ON_TASK_BONUS } else { 0.0 };
-                let score = ready + travel - bonus;
-                if best.is_none_or(|b| score < b.0) {
-                    best = Some((score, ri, dur));
                 }
+                for &e in &self.nav.out[f.slot][v] {
+                    stack.push(self.nav.edges[e].to);
+                }
+            }
+            let goals: Vec<usize> = steps
+                .iter()
+                .filter_map(|s| match s {
+                    Step::GoTo(v) => Some(*v),
+                    _ => None,
+                })
+                .collect();
+            let reaches = goals.first().is_some_and(|&g| seen[g])
+                && goals
+                    .windows(2)
+                    .all(|w| self.nav.times_reachable(f.slot, w[0], w[1]));
+            if reaches {
+                out.push((fi, steps));
             }
         }
-        match best {
-            None => {
-                self.tasks[ti].ended = true;
-                self.event(
-                    t,
-                    ti,
-                    "failed",
-                    None,
-                    "no robot can reach the task".into(),
-                    out,
-                );
-            }
-            Some((score, ri, dur)) => {
-                let end = self
-                    .expand(self.robots[ri].fleet, &self.tasks[ti].kind)
-                    .and_then(|s| {
-                        s.iter().rev().find_map(|s| match s {
-                            Step::GoTo(v) => Some(*v),
-                            _ => None,
-                        })
-                    });
-                let r = &mut self.robots[ri];
-                r.free_at = score.max(t) + dur;
-                if let Some(e) = end {
-                    r.end_vertex = e;
-                }
-                r.queue.push_back(ti);
-                r.dirty = true;
-                self.event(t, ti, "assigned", Some(ri), String::new(), out);
-            }
+        out
+    }
+
+    /// Whether robot `i` may take a task now: idle, and not at a door or lift.
+    fn free(&self, i: usize) -> bool {
+        let r = &self.robots[i];
+        r.idle() && r.gate == Gate::None
+    }
+
+    /// Where robot `i` plans from: where the traversals it was sent along end, and when
+    /// (its first traversals still to be kept).
+    fn plan_start(&self, i: usize, t: f64) -> (usize, usize, f64) {
+        let keep = self.robots[i].n_sent;
+        let it = self.sched.itinerary(i);
+        match keep.checked_sub(1).and_then(|k| it.travs.get(k)) {
+            Some(tr) => (keep, tr.to, tr.end.max(t)),
+            None => (0, it.at, t),
         }
     }
 
-    /// Rough duration of `steps` after arriving at `first`.
-    pub(super) fn estimate(&self, slot: usize, speed: f64, first: usize, steps: &[Step]) -> f64 {
-        let mut at = first;
-        let mut d = 0.0;
-        for s in steps {
-            match s {
-                Step::GoTo(v) => {
-                    d += self.nav.plan(slot, at, *v, speed).map_or(0.0, |p| p.0);
-                    at = *v;
+    /// One dispatch round: tasks oldest first, each to the free robot whose plan gets
+    /// there first. Tasks no robot can take now stay queued. A round looks at no more
+    /// than `SCAN_PER_ROUND` tasks and makes no more than `PLANS_PER_ROUND` plans.
+    pub(super) fn dispatch(&mut self, t: f64, out: &mut Vec<(Topic, Msg)>) {
+        if t < self.next_dispatch || self.pending.is_empty() {
+            return;
+        }
+        self.next_dispatch = f64::INFINITY;
+        self.retime(t);
+        // Free robots, with their free-flow times to every vertex (once per round).
+        let mut free: Vec<(usize, Vec<f64>)> = (0..self.robots.len())
+            .filter(|&i| self.free(i))
+            .map(|i| {
+                let f = &self.fleets[self.robots[i].fleet];
+                let (_, at, t0) = self.plan_start(i, t);
+                let mut times = self.nav.times_from(f.slot, at, f.speed);
+                for x in &mut times {
+                    *x += t0 - t;
                 }
-                Step::Dwell(x) => d += x,
-                Step::Dispense(_) | Step::Ingest(_) => d += 5.0,
-                Step::Charge(_) => {}
+                (i, times)
+            })
+            .collect();
+        let mut budget = PLANS_PER_ROUND;
+        let mut k = 0;
+        let mut scanned = 0;
+        while k < self.pending.len() && budget > 0 && !free.is_empty() && scanned < SCAN_PER_ROUND {
+            scanned += 1;
+            let ti = self.pending[k].task;
+            let patient = self.pending[k]
+                .passed_over
+                .is_some_and(|p| t - p >= PATIENCE);
+            // The nearest free robots by free-flow time to the task's first place.
+            let mut near: Vec<(f64, usize, Vec<Step>)> = Vec::new();
+            for (fi, steps) in &self.pending[k].steps {
+                let Some(first) = first_goal(steps) else {
+                    continue;
+                };
+                let only = self.pending[k].robot;
+                for (ri, times) in &free {
+                    if self.robots[*ri].fleet == *fi
+                        && only.is_none_or(|o| o == *ri)
+                        && times[first].is_finite()
+                    {
+                        near.push((times[first], *ri, steps.clone()));
+                    }
+                }
+            }
+            near.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
+            near.truncate(CANDIDATES);
+            // Planning again for the same robots before the backoff ends cannot succeed
+            // unless the others got ahead of their plans: a later start shortens a plan's
+            // waits by at most the delay, and the plans installed since only add spans.
+            let tried: Vec<usize> = near.iter().map(|n| n.1).collect();
+            if let Some((robots, until)) = &self.pending[k].backoff {
+                if *robots == tried && t < *until {
+                    k += 1;
+                    continue;
+                }
+            }
+            // Not past the moment the task turns patient (its plans may then wait longer).
+            let turns_patient = self.pending[k]
+                .passed_over
+                .map(|p| p + PATIENCE)
+                .filter(|&p| t < p)
+                .unwrap_or(f64::INFINITY);
+            let mut best: Option<(f64, usize, Vec<Step>, Plan, usize, f64)> = None;
+            let mut failed = false;
+            // When the first of the plans that waited too long could fit.
+            let mut retry = f64::INFINITY;
+            for (_, ri, steps) in near {
+                budget = budget.saturating_sub(1);
+                let goals = self.goals_of(ri, &steps);
+                let stay = matches!(self.tasks[ti].kind, TaskKind::GoToPlace { .. })
+                    .then(|| goals.last().map(|g| g.0))
+                    .flatten();
+                let f = &self.fleets[self.robots[ri].fleet];
+                let (keep, from, t0) = self.plan_start(ri, t);
+                // A place where another robot stays for good: no plan can get there (a
+                // search would only prove it, at length), that robot must make room.
+                let conf = self.sched.conf();
+                if goals.iter().any(|&(g, _)| {
+                    conf.vertex[g]
+                        .iter()
+                        .any(|&x| self.sched.held_for_good(x, ri).is_some())
+                }) {
+                    failed = true;
+                    continue;
+                }
+                let q = Query {
+                    robot: ri,
+                    slot: f.slot,
+                    kin: f.kin,
+                    from,
+                    t0,
+                    goals: &goals,
+                    parks: &self.parks.per_slot[f.slot],
+                    stay,
+                };
+                let Some(plan) = self.planner.plan(&self.nav, &self.sched, &q) else {
+                    failed = true;
+                    continue;
+                };
+                let arrive = match plan.goal_at.first() {
+                    Some(&0) | None => t0,
+                    Some(&n) => plan.steps[n - 1].end,
+                };
+                let most = if patient {
+                    PATIENT_WAIT
+                } else {
+                    MAX_PLANNED_WAIT
+                };
+                // Long tasks may wait longer in all: a share of their length.
+                let last = plan.goal_at.last().copied().unwrap_or(0);
+                let length = last.checked_sub(1).map_or(0.0, |k| plan.steps[k].end - t0);
+                let over = planned_wait(&plan, t0) - (most + WAIT_SHARE * length);
+                if over > 0.0 {
+                    retry = retry.min(t + over.clamp(DISPATCH_EVERY, MAX_BACKOFF));
+                    continue;
+                }
+                if best.as_ref().is_none_or(|b| arrive < b.0) {
+                    best = Some((arrive, ri, steps, plan, keep, t0));
+                }
+            }
+            let Some((_, ri, steps, plan, keep, t0)) = best else {
+                // A robot that found no way may find one as soon as others make room.
+                if !failed && retry.is_finite() {
+                    self.pending[k].backoff = Some((tried, retry.min(turns_patient)));
+                }
+                if failed && t >= self.pending[k].displaced_at + DISPLACE_EVERY {
+                    self.pending[k].displaced_at = t;
+                    // Maybe a robot stays for good where the task must go: it makes room.
+                    let found = self.pending[k].steps.iter().find_map(|(fi, st)| {
+                        free.iter()
+                            .find(|(ri, _)| self.robots[*ri].fleet == *fi)
+                            .map(|(ri, _)| (*ri, st.clone()))
+                    });
+                    if let Some((ri, steps)) = found {
+                        let goals = self.goals_of(ri, &steps);
+                        self.displace_for(ri, &goals, t);
+                    }
+                }
+                k += 1;
+                continue;
+            };
+            self.pending.remove(k);
+            for p in self.pending.iter_mut().take(k) {
+                p.passed_over.get_or_insert(t);
+            }
+            free.retain(|(i, _)| *i != ri);
+            self.start_task(ri, ti, steps, plan, (keep, t0), t, out);
+        }
+        if !self.pending.is_empty() {
+            self.next_dispatch = t + DISPATCH_EVERY;
+        }
+    }
+
+    /// Robot `ri` takes task `ti` with its plan (against the schedule as it is now).
+    #[allow(clippy::too_many_arguments)]
+    fn start_task(
+        &mut self,
+        ri: usize,
+        ti: usize,
+        steps: Vec<Step>,
+        plan: Plan,
+        (keep, t0): (usize, f64),
+        t: f64,
+        out: &mut Vec<(Topic, Msg)>,
+    ) {
+        self.install(ri, keep, plan, t0);
+        let r = &mut self.robots[ri];
+        r.task = Some(ti);
+        r.task_started = t;
+        r.steps = steps.into();
+        r.park_pending = false;
+        r.dirty = true;
+        r.wake = t;
+        self.event(t, ti, "assigned", Some(ri), String::new(), out);
+        self.event(t, ti, "started", Some(ri), String::new(), out);
+    }
+
+    /// The places of `steps` in order, each with how long robot `i` stays there (the
+    /// work of the steps up to the next place).
+    pub(super) fn goals_of(&self, i: usize, steps: &[Step]) -> Vec<(usize, f64)> {
+        let r = &self.robots[i];
+        let f = &self.fleets[r.fleet];
+        let mut goals: Vec<(usize, f64)> = Vec::new();
+        for s in steps {
+            let dwell = match s {
+                Step::GoTo(v) => {
+                    goals.push((*v, 0.0));
+                    continue;
+                }
+                Step::Dwell(x) => *x,
+                Step::Dispense(_) | Step::Ingest(_) => WORKCELL_ESTIMATE,
+                Step::Charge(pct) => (pct - r.battery()).max(0.0) / f.charge_rate.max(1e-9),
+            };
+            if let Some(g) = goals.last_mut() {
+                g.1 = (g.1 + dwell).min(4.0 * 3600.0);
             }
         }
-        d
+        goals
     }
 
     /// The steps of a task for fleet `fi`, or None if its waypoints are not on the graph.
@@ -181,4 +452,25 @@ impl Fleets {
             TaskKind::GoToPlace { place } => vec![Step::GoTo(v(place)?)],
         })
     }
+}
+
+/// The first place of `steps`.
+fn first_goal(steps: &[Step]) -> Option<usize> {
+    steps.iter().find_map(|s| match s {
+        Step::GoTo(v) => Some(*v),
+        _ => None,
+    })
+}
+
+/// How long `plan` waits for traffic up to its last place (s): time between its steps
+/// beyond the work it holds for.
+fn planned_wait(plan: &Plan, t0: f64) -> f64 {
+    let last = plan.goal_at.last().copied().unwrap_or(0);
+    let mut prev = t0;
+    let mut w = 0.0;
+    for s in &plan.steps[..last] {
+        w += (s.start - prev - s.hold).max(0.0);
+        prev = s.end;
+    }
+    w
 }

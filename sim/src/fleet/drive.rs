@@ -4,15 +4,13 @@
 use super::*;
 
 impl Fleets {
-    /// Drops the planned route (the robot stays where it is once the edges it is already
-    /// driving are done) and gives back any door/lift it had asked for.
+    /// Drops the leg being driven (the robot finishes the traversals it was sent along, then
+    /// its itinerary takes it to park) and gives back any door/lift it had asked for.
     pub(super) fn abandon_route(&mut self, i: usize, t: f64, out: &mut Vec<(Topic, Msg)>) {
         let r = &mut self.robots[i];
-        let keep = r.n_sent;
-        r.route.truncate(keep);
-        r.n_res = keep;
-        r.wait_since = None;
-        r.blockers.clear();
+        r.leg = None;
+        r.legs.clear();
+        r.waiting = None;
         match std::mem::replace(&mut r.gate, Gate::None) {
             Gate::Door { door, .. } => self.door_request(i, door, false, t, out),
             Gate::Lift { lift, .. } if self.nav.vertices[self.robots[i].at].lift.is_none() => {
@@ -20,7 +18,6 @@ impl Fleets {
             }
             _ => {}
         }
-        self.rehold(i);
     }
 
     // ----- per-robot state machine -----
@@ -37,7 +34,8 @@ impl Fleets {
         }
         if s.mode.mode == robot_mode::ADAPTER_ERROR {
             // The robot was too far from the path start: send it again from where it is.
-            self.send_path(i, t, out);
+            let n = self.robots[i].n_sent;
+            self.send_path(i, n, t, out);
             return;
         }
         let reached = r.n_sent.saturating_sub(s.path.len());
@@ -47,11 +45,23 @@ impl Fleets {
     }
 
     pub(super) fn reach_next(&mut self, i: usize, t: f64, out: &mut Vec<(Topic, Msg)>) {
+        let Some(to) = self.sched.itinerary(i).travs.front().map(|tr| tr.to) else {
+            return;
+        };
+        self.sched.complete_front(i, t);
+        if cfg!(debug_assertions) {
+            if let Err(e) = self.sched.check(t) {
+                self.cycles += 1;
+                debug_assert!(false, "schedule broken after robot {i} arrived: {e}");
+            }
+        }
+        self.released = true;
         let r = &mut self.robots[i];
-        let Some(e) = r.route.pop_front() else { return };
         r.n_sent = r.n_sent.saturating_sub(1);
-        r.n_res = r.n_res.saturating_sub(1);
-        r.at = self.nav.edges[e].to;
+        if let Some(l) = &mut r.leg {
+            *l = l.saturating_sub(1);
+        }
+        r.at = to;
         r.stuck_reported = false;
         if let Some(d) = r.close_door.take() {
             self.door_request(i, d, false, t, out);
@@ -63,7 +73,6 @@ impl Fleets {
                 self.lift_request(i, l, None, t, out);
             }
         }
-        self.rehold(i);
     }
 
     /// Advances a GoTo. Some(true) arrived, Some(false) in progress, None no route.
@@ -76,159 +85,58 @@ impl Fleets {
         out: &mut Vec<(Topic, Msg)>,
     ) -> Option<bool> {
         if !planned {
-            let r = &self.robots[i];
-            if r.n_sent > 0 {
+            if t < self.robots[i].replan_at {
+                // The last try found no way: drive what the itinerary holds (to park).
+                self.robots[i].wake = self.robots[i].replan_at;
+                let n = self.sched.itinerary(i).travs.len();
+                self.advance(i, n, t, out);
                 return Some(false);
             }
-            let speed = self.fleets[r.fleet].speed;
-            // Around robots parked on the graph when there is a way, else through them
-            // (they will be asked to move aside).
-            let mut parked: Vec<Res> = Vec::new();
-            for (o, x) in self.robots.iter().enumerate() {
-                if o != i && x.idle() && x.n_sent == 0 {
-                    parked.extend_from_slice(self.res.held(o));
+            let goals = self.remaining_goals(i, goal);
+            match self.plan_to(i, &goals, t) {
+                Ok(leg) => {
+                    let r = &mut self.robots[i];
+                    r.leg = Some(leg);
+                    r.cur = Cur::GoTo {
+                        goal,
+                        planned: true,
+                    };
+                }
+                Err(NoPlan::Unreachable) => return None,
+                Err(NoPlan::Busy) => {
+                    // Not now: at least it goes to stand where it blocks nobody (a robot
+                    // spawned in a corridor may be what keeps the others from planning).
+                    let end = self.sched.end_vertex(i);
+                    if self.parks.per_slot[self.robots[i].slot][end] == 0 {
+                        let _ = self.plan_to(i, &[], t);
+                    }
+                    let r = &mut self.robots[i];
+                    r.wake = r.replan_at;
+                    if r.waiting.is_none() {
+                        r.waiting = Some(t);
+                    }
+                    let n = self.sched.itinerary(i).travs.len();
+                    self.advance(i, n, t, out);
+                    return Some(false);
                 }
             }
-            parked.sort_unstable();
-            parked.dedup();
-            let clear = |e: usize| {
-                !self.conf.edge[e]
-                    .iter()
-                    .any(|x| parked.binary_search(x).is_ok())
-            };
-            let (_, edges) = if parked.is_empty() {
-                None
-            } else {
-                self.nav.plan_with(r.slot, r.at, goal, speed, &clear)
-            }
-            .or_else(|| self.nav.plan(r.slot, r.at, goal, speed))?;
-            let r = &mut self.robots[i];
-            // Keep edges already reserved (they are a prefix only if the plan agrees).
-            r.route = edges.into();
-            r.n_res = 0;
-            r.cur = Cur::GoTo {
-                goal,
-                planned: true,
-            };
-            self.rehold(i);
         }
         let r = &self.robots[i];
-        if r.n_sent > 0 {
-            // Moving: reserve ahead and extend the path while lanes stay plain.
-            let all_plain = r.route.iter().take(r.n_sent).all(|&e| self.is_plain(e));
-            if all_plain && r.n_res == r.n_sent && r.n_res < LOOKAHEAD {
-                if let Some(&next) = r.route.get(r.n_res) {
-                    if self.is_plain(next) && self.try_reserve(i, t) {
-                        self.send_path(i, t, out);
-                    } else {
-                        // Retry on the next RobotState; traffic waits only count at rest.
-                        self.robots[i].wait_since = None;
-                    }
-                }
+        let leg = r.leg.unwrap_or(0);
+        if leg == 0 && r.n_sent == 0 {
+            if r.at == goal {
+                self.robots[i].leg = None;
+                return Some(true);
             }
-            return Some(false);
-        }
-        if r.route.is_empty() {
-            return Some(r.at == goal).filter(|&b| b).or_else(|| {
-                // Arrived somewhere else (route dropped): plan again next tick.
-                if let Cur::GoTo { planned, .. } = &mut self.robots[i].cur {
-                    *planned = false;
-                }
-                self.robots[i].dirty = true;
-                Some(false)
-            });
-        }
-        let Some(&e) = r.route.front() else {
-            return Some(false);
-        };
-        let edge = self.nav.edges[e].clone();
-        // 1. Reserve the next edge (all-or-nothing).
-        if r.n_res == 0 && !self.try_reserve(i, t) {
-            return Some(false);
-        }
-        // 2. Gates: lift ride, lift call, door.
-        if let EdgeKind::Lift(l) = edge.kind {
-            let floor = self.nav.vertices[edge.to].level_name.clone();
-            if !self.gate(
-                i,
-                Gate::Lift {
-                    lift: l,
-                    floor: floor.clone(),
-                    next_send: t,
-                    since: t,
-                },
-                t,
-                out,
-            ) {
-                return Some(false);
+            // Somewhere else (the leg was dropped): plan again.
+            if let Cur::GoTo { planned, .. } = &mut self.robots[i].cur {
+                *planned = false;
             }
-            // Arrived at the destination floor: the robot is now on the other cabin vertex.
-            let r = &mut self.robots[i];
-            r.gate = Gate::None;
-            r.end_lift = Some(l);
-            self.reach_next_lift(i);
             self.robots[i].dirty = true;
             return Some(false);
         }
-        let to_lift = self.nav.vertices[edge.to].lift;
-        let from_lift = self.nav.vertices[edge.from].lift;
-        if let Some(l) = to_lift.filter(|&l| from_lift != Some(l)) {
-            let floor = self.nav.vertices[edge.from].level_name.clone();
-            if !self.gate(
-                i,
-                Gate::Lift {
-                    lift: l,
-                    floor,
-                    next_send: t,
-                    since: t,
-                },
-                t,
-                out,
-            ) {
-                return Some(false);
-            }
-            self.robots[i].gate = Gate::None;
-            self.robots[i].end_lift = Some(l);
-        } else if let Some(d) = edge.door.filter(|&d| self.nav.doors[d].controlled) {
-            if !self.gate(
-                i,
-                Gate::Door {
-                    door: d,
-                    next_send: t,
-                    since: t,
-                },
-                t,
-                out,
-            ) {
-                return Some(false);
-            }
-            self.robots[i].gate = Gate::None;
-            self.robots[i].close_door = Some(d);
-        } else {
-            // Plain lanes: reserve a few more while they stay plain.
-            while self.robots[i].n_res < LOOKAHEAD {
-                let r = &self.robots[i];
-                let Some(&next) = r.route.get(r.n_res) else {
-                    break;
-                };
-                if !(self.is_plain(e) && self.is_plain(next) && self.try_reserve(i, t)) {
-                    self.robots[i].wait_since = None;
-                    self.robots[i].blockers.clear();
-                    break;
-                }
-            }
-        }
-        self.send_path(i, t, out);
+        self.advance(i, leg, t, out);
         Some(false)
-    }
-
-    pub(super) fn reach_next_lift(&mut self, i: usize) {
-        let r = &mut self.robots[i];
-        if let Some(e) = r.route.pop_front() {
-            r.n_res = r.n_res.saturating_sub(1);
-            r.at = self.nav.edges[e].to;
-        }
-        self.rehold(i);
     }
 
     /// Waits on a door or lift. True when it is ready (open / at the floor with doors open).
@@ -376,8 +284,16 @@ impl Fleets {
         ));
     }
 
-    /// PathRequest: where the robot is, then the targets of the reserved edges.
-    pub(super) fn send_path(&mut self, i: usize, t: f64, out: &mut Vec<(Topic, Msg)>) {
+    /// PathRequest: where the robot is, then the ends of its first `n` traversals.
+    pub(super) fn send_path(&mut self, i: usize, n: usize, t: f64, out: &mut Vec<(Topic, Msg)>) {
+        let edges: Vec<usize> = self
+            .sched
+            .itinerary(i)
+            .travs
+            .iter()
+            .take(n)
+            .map(|tr| tr.edge)
+            .collect();
         let r = &mut self.robots[i];
         r.path_seq += 1;
         r.path_id = format!("{}", r.path_seq);
@@ -402,7 +318,7 @@ impl Fleets {
         let mut path = vec![start];
         let speed = self.fleets[r.fleet].speed;
         let mut eta = t;
-        for (k, &e) in r.route.iter().take(r.n_res).enumerate() {
+        for (k, &e) in edges.iter().enumerate() {
             let edge = &self.nav.edges[e];
             if edge.kind != EdgeKind::Lane {
                 break;
@@ -436,6 +352,4 @@ impl Fleets {
             }),
         ));
     }
-
-    // ----- traffic supervision -----
 }

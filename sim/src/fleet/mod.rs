@@ -4,30 +4,31 @@
 //!
 //! Event driven: `update` returns at once unless a message arrived or a timer expired.
 //!
-//! A robot follows its route in PathRequests of the lanes it has reserved (see traffic.rs):
-//! a corridor is reserved whole up to the next place where robots can pass (`segment`),
-//! at least `LOOKAHEAD` plain lanes ahead; entering a lift reserves the ride and the lane
-//! out at the destination. A lane through a controlled door, into a lift cabin, or a lift
-//! ride is driven alone, after the door is open (DoorState OPEN and our heartbeat session)
-//! or the lift is at the floor with its doors open in our session. Progress is read from
-//! RobotState (`path` = waypoints not yet reached). Who waits for whom is decided by the
-//! traffic planner (traffic.rs), which is deadlock-free by construction: no task ever fails
-//! for traffic. Empty dispensers are asked again (without limit while their item is on its
-//! way back); a delivery that fails while carrying its item still takes it to the ingestor.
+//! Traffic is planned, not negotiated: every GoTo is planned into one schedule shared by
+//! all fleets (`crate::traffic`), and a robot drives a traversal only when the schedule
+//! grants it, in the order the plans fixed. A lane through a controlled door, into a lift
+//! cabin, or a lift ride is driven alone, after the door is open (DoorState OPEN and our
+//! heartbeat session) or the lift is at the floor with its doors open in our session.
+//! Progress is read from RobotState (`path` = waypoints not yet reached). Empty
+//! dispensers are asked again (without limit while their item is on its way back); a
+//! delivery that fails while carrying its item still takes it to the ingestor.
 //!
-//! Modules: `setup` (placement, graphs, conflict sets), `assign` (which robot takes a
-//! task), `task` (the steps of a task and their sessions), `drive` (path requests, doors
-//! and lifts on the way), `traffic` (reservations and the planner), `park` (where idle
-//! robots stand).
+//! Modules: `setup` (placement, graphs, the schedule), `spawn` (where auto-spawned robots
+//! start), `assign` (which robot takes a task), `task` (the steps of a task and their
+//! sessions), `drive` (path requests, doors and lifts on the way), `traffic` (planning legs
+//! into the schedule and driving what it grants), `waits` (why robots wait).
 
-use crate::graph::{EdgeKind, Nav, Regions};
+use crate::graph::{EdgeKind, Nav};
 use crate::msgs::{
     door_mode, lift_request, lift_state, robot_mode, workcell_result, DoorMode, DoorRequest,
     FleetState, ItemType, LiftRequest, Location, Msg, PathRequest, Published, RobotState,
     TaskEvent, TaskWaits, Time, Topic, WaitCause, WorkcellRequest,
 };
 use crate::scenario::{Scenario, SpawnSpec, TaskCategory, TaskKind};
-use crate::traffic::{Clearance, Conflicts, Res, Reservations};
+use crate::traffic::parks::Parks;
+use crate::traffic::schedule::Schedule;
+use crate::traffic::sipp::Planner;
+use crate::traffic::{Clearance, Conflicts};
 use crate::world::{RobotSpawn, WorkcellSpawn};
 use mapc_ir::{Building, Diagnostic, Span};
 use std::collections::{BTreeMap, VecDeque};
@@ -41,7 +42,8 @@ mod task;
 mod traffic;
 mod waits;
 
-use park::{park_vertices, parks_after, waypoint_names};
+use park::{choose_parks, waypoint_names, well_formed_warnings};
+use traffic::NoPlan;
 
 /// Diagnostic codes of scenario/map mismatches.
 pub mod codes {
@@ -59,6 +61,10 @@ pub mod codes {
     pub const NO_WORKCELL: &str = "S0206";
     /// A task waypoint lies inside a lift cabin.
     pub const IN_LIFT: &str = "S0207";
+    /// A task waypoint cuts the graph (warning).
+    pub const NOT_WELL_FORMED: &str = "S0210";
+    /// Auto spawn found room for fewer robots than asked (warning).
+    pub const NO_ROOM: &str = "S0211";
 }
 
 /// Seconds between re-sent door, lift and workcell requests.
@@ -72,33 +78,24 @@ const ITEM_WAIT: f64 = 1200.0;
 const ITEM_HOME: f64 = 30.0;
 /// A robot waiting for traffic this long is reported stuck.
 const STUCK_AFTER: f64 = 120.0;
-/// Longest a robot that made room waits for the robot it made room for to get going.
-const HOLD_OFF: f64 = 60.0;
-/// A stalled robot looks for a detour this often.
-const DETOUR_AFTER: f64 = 30.0;
-/// Extra cost (s) of a yield or back-off spot that is not a parking spot, holding point
-/// or charger.
-const SPOT_PENALTY: f64 = 10.0;
-/// Head start (s) in task assignment of an idle robot standing on one of the task's
-/// waypoints.
-const ON_TASK_BONUS: f64 = 180.0;
-/// Farthest (s) an idle robot drives to park: a long drive crosses the others' ways.
-const PARK_REACH: f64 = 120.0;
-/// Most edges reserved at once through a corridor.
-const SEGMENT_MAX: usize = 12;
-/// Edges reserved ahead of a moving robot.
+/// What a dispenser's or ingestor's work takes in plans (s); the plugins take 5 s.
+const WORKCELL_ESTIMATE: f64 = 5.0;
+/// Traversals sent at once along plain lanes.
 const LOOKAHEAD: usize = 3;
 
 /// Where robots and workcells start, resolved from the scenario against the map.
 pub struct Placement {
     pub robots: Vec<RobotSpawn>,
     pub workcells: Vec<WorkcellSpawn>,
-    /// Per fleet, robots that auto spawn found no home for on the floor (a free place off
-    /// every task route, or a charger): they stay in the depot and take no part.
+    /// Per fleet, robots that auto spawn found no room for: the building has fewer
+    /// parking vertices (`crate::traffic::parks`) than robots asked.
     pub reserve: Vec<(String, usize)>,
-    /// Per auto-spawned fleet, the robots its task stream keeps busy (`spawn::needed`):
-    /// auto spawn places no more.
+    /// Unused (kept for the report's shape): auto spawn places every robot it has room for.
     pub needed: Vec<(String, usize)>,
+    /// Warnings about the scenario on this map (not well-formed places, rooms short).
+    pub warnings: Vec<Diagnostic>,
+    /// Where robots may stand for good.
+    pub(crate) parks: Parks,
 }
 
 #[derive(Debug, Clone)]
@@ -163,10 +160,13 @@ struct Robot {
     slot: usize,
     at: usize,
     state: Option<RobotState>,
-    route: VecDeque<usize>,
-    /// Leading edges of `route` that are reserved / sent in the current PathRequest.
-    n_res: usize,
+    /// Leading traversals of the itinerary sent in the current PathRequest.
     n_sent: usize,
+    /// Leading traversals of the itinerary up to the current GoTo's goal (None: no leg).
+    leg: Option<usize>,
+    /// The legs of the task's next GoTos, planned with it: traversals from one place to
+    /// the next.
+    legs: VecDeque<usize>,
     path_id: String,
     path_seq: u64,
     gate: Gate,
@@ -176,34 +176,16 @@ struct Robot {
     steps: VecDeque<Step>,
     cur: Cur,
     task: Option<usize>,
-    queue: VecDeque<usize>,
     wake: f64,
     dirty: bool,
-    /// Waiting for reservations since, and on whom.
-    wait_since: Option<f64>,
-    blockers: Vec<usize>,
+    /// Waiting for the schedule to grant its next traversal (or for a plan) since.
+    waiting: Option<f64>,
+    /// When a failed plan is tried again.
+    replan_at: f64,
     stuck_reported: bool,
-    /// Traffic priority (smaller first): when the move it is making began; infinite for
-    /// moves nobody waits for (parking, making room while idle).
-    prio: f64,
-    /// The goal whose arrival ends the current priority: moves made to make room keep the
-    /// priority of the move they interrupt.
-    prio_until: Option<usize>,
-    /// Making room: (for whom, the spot it drives to).
-    escape: Option<(usize, usize)>,
-    /// Made room for this robot, arrived at the spot at this time: it stays there while
-    /// that robot still waits at rest (at most `HOLD_OFF` s), rather than drive straight
-    /// back into its way.
-    made_room: Option<(usize, f64)>,
-    /// Since when nothing this robot waits for (directly or through others) moved.
-    stall_since: f64,
-    /// When it last looked for a detour.
-    last_detour: f64,
     /// Last reported position that differed by more than 5 cm, and when.
     last_pos: (f64, f64),
     last_moved: f64,
-    free_at: f64,
-    end_vertex: usize,
     charger: Option<usize>,
     /// (drop-off vertex, ingestor) of the item the robot carries.
     carrying: Option<(usize, String)>,
@@ -211,7 +193,7 @@ struct Robot {
     item_from: Option<String>,
     /// When the current task started.
     task_started: f64,
-    /// Its task just ended: once idle, it drives to a parking vertex (`Fleets::park`).
+    /// Not on a parking vertex yet (a spawn elsewhere): plans its way there when idle.
     park_pending: bool,
     /// What it waits for now (cause, place, since) and the waits of its current task.
     waiting_for: Option<(WaitCause, waits::Place, f64)>,
@@ -220,10 +202,7 @@ struct Robot {
 
 impl Robot {
     fn idle(&self) -> bool {
-        self.task.is_none()
-            && self.queue.is_empty()
-            && self.steps.is_empty()
-            && self.cur == Cur::None
+        self.task.is_none() && self.steps.is_empty() && self.cur == Cur::None
     }
     fn battery(&self) -> f64 {
         self.state.as_ref().map_or(100.0, |s| s.battery_percent)
@@ -234,12 +213,24 @@ struct FleetRt {
     name: String,
     slot: usize,
     speed: f64,
+    /// How its robots drive (traversal times in plans).
+    kin: crate::traffic::sipp::Kinematics,
     recharge_threshold: f64,
     recharge_soc: f64,
     /// Battery percent gained per second on a charger.
     charge_rate: f64,
     kinds: Vec<TaskCategory>,
     robots: Vec<usize>,
+}
+
+/// A task as requested (from the scenario's tasks, generators or RMF requests), before it
+/// is queued.
+struct NewTask {
+    kind: TaskKind,
+    fleet: Option<String>,
+    /// A robot task's robot, by name.
+    robot: Option<String>,
+    priority: u64,
 }
 
 struct Task {
@@ -265,24 +256,29 @@ struct LiftView {
 
 pub struct Fleets {
     nav: Nav,
-    conf: Conflicts,
-    /// Per graph slot, per vertex: robots can wait or pass each other there (junctions,
-    /// leaves, holding points, lift cabins); corridors are the other vertices.
-    passing: Vec<Vec<bool>>,
-    /// Dead-end regions with their capacities (admission control, `Fleets::admission`).
-    regions: Regions,
-    /// Per graph slot, per vertex: where an idle robot parks out of everybody's way
-    /// (see `park_vertices`).
-    park: Vec<Vec<bool>>,
-    res: Reservations,
-    /// The claimants in priority order and the resources each claims (see traffic.rs).
-    claims: Vec<(usize, Vec<Res>)>,
+    /// Every robot's itinerary and the order robots pass each resource.
+    sched: Schedule,
+    planner: Planner,
+    /// Where robots may stand for good.
+    parks: Parks,
+    /// When the schedule was last retimed.
+    retimed_at: f64,
+    /// A traversal completed in this update (waiting robots may go on).
+    released: bool,
+    /// Dependency cycles found (never expected; counted for the tests).
+    cycles: u64,
+    /// States the planner expanded, per plan made.
+    decisions: Vec<u32>,
     fleets: Vec<FleetRt>,
     robots: Vec<Robot>,
     by_name: BTreeMap<String, usize>,
     tasks: Vec<Task>,
+    /// Tasks no robot has taken yet, oldest first.
+    pending: VecDeque<assign::Pending>,
+    /// When the dispatcher runs next.
+    next_dispatch: f64,
     /// (request time, source order, kind, fleet) of tasks not yet requested, sorted.
-    upcoming: VecDeque<(f64, usize, TaskKind, Option<String>)>,
+    upcoming: VecDeque<(f64, usize, NewTask)>,
     doors: Vec<DoorView>,
     door_index: BTreeMap<String, usize>,
     lifts: Vec<LiftView>,
@@ -294,13 +290,8 @@ pub struct Fleets {
     next_fleet_state: f64,
     next_traffic: f64,
     clean_duration: f64,
-    released: bool,
     /// Per dispenser, when its item was last ingested (it then goes home by itself).
     ingested: BTreeMap<String, f64>,
-}
-
-fn level_handle_eq(a: mapc_ir::Handle<mapc_ir::Level>, b: mapc_ir::Handle<mapc_ir::Level>) -> bool {
-    a == b
 }
 
 impl Fleets {
@@ -372,17 +363,18 @@ impl Fleets {
         }
         // New tasks.
         while self.upcoming.front().is_some_and(|u| u.0 <= t) {
-            if let Some((_, _, kind, fleet)) = self.upcoming.pop_front() {
-                self.request_task(t, kind, fleet, out);
+            if let Some((_, _, new)) = self.upcoming.pop_front() {
+                self.request_task(t, new, out);
             }
         }
+        self.dispatch(t, out);
         // Robots with news or an expired timer; repeat while reservations were released
         // (a release can unblock robots that are waiting).
         for pass in 0..4 {
             self.released = false;
             for i in 0..self.robots.len() {
                 let r = &self.robots[i];
-                let due = r.dirty || r.wake <= t || (pass > 0 && r.wait_since.is_some());
+                let due = r.dirty || r.wake <= t || (pass > 0 && r.waiting.is_some());
                 if due {
                     self.robots[i].dirty = false;
                     self.tick(i, t, out);
@@ -392,8 +384,12 @@ impl Fleets {
                 break;
             }
         }
+        // Robots that became free in this update take waiting tasks.
+        self.dispatch(t, out);
         if t >= self.next_traffic {
-            self.traffic_check(t, out);
+            self.next_traffic = t + 1.0;
+            self.replan_delayed(t);
+            self.watch_waits(t, out);
         }
         if t >= self.next_fleet_state {
             self.next_fleet_state = t + 1.0;
@@ -415,7 +411,7 @@ impl Fleets {
         for i in 0..self.robots.len() {
             self.account_wait(i, t);
         }
-        let any_waiting = self.robots.iter().any(|r| r.wait_since.is_some());
+        let any_waiting = self.robots.iter().any(|r| r.waiting.is_some());
         self.next_traffic = if any_waiting {
             self.next_traffic.min(t + 1.0).max(t + 1e-9)
         } else {
@@ -424,7 +420,10 @@ impl Fleets {
         if self.next_traffic <= t {
             self.next_traffic = t + 1.0;
         }
-        let mut next = self.next_fleet_state.min(self.next_traffic);
+        let mut next = self
+            .next_fleet_state
+            .min(self.next_traffic)
+            .min(self.next_dispatch);
         if let Some(u) = self.upcoming.front() {
             next = next.min(u.0);
         }
@@ -432,6 +431,26 @@ impl Fleets {
             next = next.min(r.wake);
         }
         self.next_wake = next;
+    }
+
+    /// The traffic planner's work so far.
+    pub fn traffic_report(&self) -> crate::report::TrafficReport {
+        let mut e = self.decisions.clone();
+        e.sort_unstable();
+        let pick = |q: f64| -> u64 {
+            if e.is_empty() {
+                0
+            } else {
+                e[((e.len() - 1) as f64 * q).round() as usize] as u64
+            }
+        };
+        crate::report::TrafficReport {
+            plans: self.planner.plans,
+            plans_failed: self.planner.plans - e.len() as u64,
+            expanded_median: pick(0.5),
+            expanded_p99: pick(0.99),
+            cycles: self.cycles,
+        }
     }
 
     /// True when every task has ended (completed or failed) and no generator is pending.

@@ -8,9 +8,7 @@ impl Fleets {
     pub fn place(building: &Building, scenario: &Scenario) -> Result<Placement, Vec<Diagnostic>> {
         let graphs: Vec<i64> = scenario.fleets.iter().map(|f| f.graph).collect();
         let nav = Nav::build(building, &graphs);
-        // Homes: where an idle robot stands in nobody's way (off every task route, or a
-        // charger). Robots that auto spawn finds no home for wait in the depot.
-        let park = park_vertices(&nav, &conflicts(&nav, scenario), scenario);
+        let conf = conflicts(&nav, scenario);
         let mut diags = Vec::new();
         let mut robots: Vec<RobotSpawn> = Vec::new();
         let mut reserve: Vec<(String, usize)> = Vec::new();
@@ -77,7 +75,13 @@ impl Fleets {
                     }
                 }
                 SpawnSpec::Waypoints(names) => {
-                    for name in names.iter().take(f.count) {
+                    for (k, name) in names.iter().take(f.count).enumerate() {
+                        // A fleet config's robots: located at their waypoint in the config.
+                        let span = f
+                            .rmf
+                            .as_ref()
+                            .and_then(|r| r.robots.get(k))
+                            .map_or(f.span, |r| r.span);
                         match nav.find(slot, name) {
                             Some(v)
                                 if taken.iter().any(|&(w, _)| w == v)
@@ -93,7 +97,7 @@ impl Fleets {
                                 );
                             }
                             Some(v) => chosen.push((v, None)),
-                            None => diags.push(unknown_waypoint(&nav, slot, name, f.span, &f.name)),
+                            None => diags.push(unknown_waypoint(&nav, slot, name, span, &f.name)),
                         }
                     }
                 }
@@ -102,7 +106,6 @@ impl Fleets {
                         fleet: fi,
                         slot,
                         count: f.count,
-                        footprint: f.robot.footprint,
                     });
                     continue;
                 }
@@ -112,25 +115,39 @@ impl Fleets {
             }
             explicit[fi] = Some(chosen);
         }
-        // No more robots than the task stream can keep busy.
-        let need = spawn::needed(&nav, scenario);
-        let mut needed = Vec::new();
-        for a in &mut auto {
-            a.count = a.count.min(need[a.fleet]);
-            if need[a.fleet] < usize::MAX {
-                needed.push((scenario.fleets[a.fleet].name.clone(), need[a.fleet]));
+        // Parking vertices for every robot asked (and spares), around the named spawns.
+        let mut per_slot = vec![0usize; nav.graphs.len()];
+        for f in &scenario.fleets {
+            if let Some(s) = nav.slot(f.graph) {
+                per_slot[s] += f.count;
             }
         }
-        let auto_chosen = spawn::auto_spawn(&nav, &park, &auto, &taken);
+        let spawned: Vec<usize> = taken.iter().map(|&(v, _)| v).collect();
+        let parks = choose_parks(&nav, &conf, scenario, &spawned, &per_slot);
+        let auto_chosen = spawn::auto_spawn(&nav, &conf, &parks, &auto, &spawned);
         for (a, vs) in auto.iter().zip(auto_chosen) {
             explicit[a.fleet] = Some(vs.into_iter().map(|v| (v, None)).collect());
         }
+        let mut warnings = well_formed_warnings(&nav, &conf, scenario);
         for (fi, f) in scenario.fleets.iter().enumerate() {
             let (Some(chosen), Some(slot)) = (explicit[fi].take(), nav.slot(f.graph)) else {
                 continue;
             };
             if f.spawn == SpawnSpec::Auto && !chosen.is_empty() && chosen.len() < f.count {
                 reserve.push((f.name.clone(), f.count - chosen.len()));
+                warnings.push(
+                    Diagnostic::warning(
+                        codes::NO_ROOM,
+                        f.span,
+                        format!(
+                            "fleet `{}`: {} robots asked, room for {}: the building has no more waypoints where a standing robot blocks no route (one is kept free for robots making room)",
+                            f.name,
+                            f.count,
+                            chosen.len()
+                        ),
+                    )
+                    .with_help("lower `count`, add parking spots off the corridors, or name spawn waypoints"),
+                );
             } else if chosen.len() < f.count
                 && !matches!(f.spawn, SpawnSpec::Waypoints(ref n) if n.len() >= f.count && chosen.len() + diags.len() >= f.count)
             {
@@ -158,7 +175,13 @@ impl Fleets {
             }
             for (i, (v, name)) in chosen.into_iter().enumerate() {
                 let nv = &nav.vertices[v];
-                let name = name.unwrap_or_else(|| format!("{}_{i}", f.name));
+                // A fleet config's robots are named as in the config.
+                let own = f
+                    .rmf
+                    .as_ref()
+                    .and_then(|r| r.robots.get(i))
+                    .map(|r| r.name.clone());
+                let name = own.or(name).unwrap_or_else(|| format!("{}_{i}", f.name));
                 if robots.iter().any(|r| r.name == name) {
                     diags.push(Diagnostic::error(
                         codes::SPAWN_CLASH,
@@ -213,7 +236,9 @@ impl Fleets {
             robots,
             workcells,
             reserve,
-            needed,
+            needed: Vec::new(),
+            warnings,
+            parks,
         })
     }
 
@@ -237,6 +262,11 @@ impl Fleets {
                 name: f.name.clone(),
                 slot,
                 speed: f.robot.nominal_drive_speed.max(0.05),
+                kin: crate::traffic::sipp::Kinematics {
+                    speed: f.robot.nominal_drive_speed.max(0.05),
+                    accel: f.robot.nominal_drive_acceleration.max(0.01),
+                    turn: f.robot.nominal_turn_speed.max(0.05),
+                },
                 recharge_threshold: f.recharge_threshold,
                 recharge_soc: f.recharge_soc,
                 charge_rate: 100.0 * f.robot.charging_current
@@ -269,9 +299,9 @@ impl Fleets {
                     slot,
                     at,
                     state: None,
-                    route: VecDeque::new(),
-                    n_res: 0,
                     n_sent: 0,
+                    leg: None,
+                    legs: VecDeque::new(),
                     path_id: String::new(),
                     path_seq: 0,
                     gate: Gate::None,
@@ -280,22 +310,13 @@ impl Fleets {
                     steps: VecDeque::new(),
                     cur: Cur::None,
                     task: None,
-                    queue: VecDeque::new(),
                     wake: f64::INFINITY,
                     dirty: true,
-                    wait_since: None,
-                    blockers: Vec::new(),
+                    waiting: None,
+                    replan_at: 0.0,
                     stuck_reported: false,
-                    prio: f64::INFINITY,
-                    prio_until: None,
-                    escape: None,
-                    made_room: None,
-                    stall_since: 0.0,
-                    last_detour: f64::NEG_INFINITY,
                     last_pos: (spawn.x, spawn.y),
                     last_moved: 0.0,
-                    free_at: 0.0,
-                    end_vertex: at,
                     charger: None,
                     carrying: None,
                     item_from: None,
@@ -306,10 +327,6 @@ impl Fleets {
                 });
             }
             fleets.push(rt);
-        }
-        let mut res = Reservations::new(conf.n_res, robots.len());
-        for (i, r) in robots.iter().enumerate() {
-            res.set_held(i, conf.vertex[r.at].clone());
         }
 
         // Tasks: validate against the fleets, then order by request time (stable).
@@ -404,7 +421,16 @@ impl Fleets {
         };
         for (i, t) in scenario.tasks.iter().enumerate() {
             check(&t.kind, &t.fleet, t.span, &mut diags);
-            upcoming.push((t.at, i, t.kind.clone(), t.fleet.clone()));
+            upcoming.push((
+                t.at,
+                i,
+                NewTask {
+                    kind: t.kind.clone(),
+                    fleet: t.fleet.clone(),
+                    robot: t.robot.clone(),
+                    priority: t.priority,
+                },
+            ));
         }
         let base = scenario.tasks.len();
         for (g, gen) in scenario.generators.iter().enumerate() {
@@ -419,7 +445,16 @@ impl Fleets {
                 if at > end || k > 1_000_000 {
                     break;
                 }
-                upcoming.push((at, base + g, gen.kind.clone(), gen.fleet.clone()));
+                upcoming.push((
+                    at,
+                    base + g,
+                    NewTask {
+                        kind: gen.kind.clone(),
+                        fleet: gen.fleet.clone(),
+                        robot: None,
+                        priority: 0,
+                    },
+                ));
                 k += 1;
             }
         }
@@ -435,67 +470,30 @@ impl Fleets {
         for (i, l) in nav.lifts.iter().enumerate() {
             lift_index.entry(l.name.clone()).or_insert(i);
         }
-        let passing = (0..nav.graphs.len())
-            .map(|slot| {
-                let mut nbrs: Vec<Vec<usize>> = vec![Vec::new(); nav.vertices.len()];
-                // Vertices touching a lane driven both ways: only there can two robots
-                // meet head-on, so only there must a corridor be reserved whole. On
-                // one-way corridors robots just follow each other.
-                let mut two_way = vec![false; nav.vertices.len()];
-                let directed: std::collections::BTreeSet<(usize, usize)> = nav
-                    .edges
-                    .iter()
-                    .filter(|e| e.graph == slot && e.kind == EdgeKind::Lane)
-                    .map(|e| (e.from, e.to))
-                    .collect();
-                for &(a, b) in &directed {
-                    if directed.contains(&(b, a)) {
-                        two_way[a] = true;
-                        two_way[b] = true;
-                    }
-                }
-                for e in nav.edges.iter().filter(|e| e.graph == slot) {
-                    nbrs[e.from].push(e.to);
-                    nbrs[e.to].push(e.from);
-                }
-                nbrs.iter_mut()
-                    .enumerate()
-                    .map(|(v, n)| {
-                        n.sort_unstable();
-                        n.dedup();
-                        let x = &nav.vertices[v];
-                        n.len() != 2 || !two_way[v] || x.roles.is_holding_point || x.lift.is_some()
-                    })
-                    .collect()
-            })
-            .collect();
-        let park = park_vertices(&nav, &conf, scenario);
-        // A robot that starts on a waypoint of a loop, delivery or cleaning parks first.
+        // A robot that does not start on a parking vertex drives to one first.
+        let parks = placement.parks.clone();
         for r in robots.iter_mut() {
-            r.park_pending = scenario
-                .tasks
-                .iter()
-                .map(|t| &t.kind)
-                .chain(scenario.generators.iter().map(|g| &g.kind))
-                .filter(|k| parks_after(k))
-                .flat_map(|k| waypoint_names(k))
-                .any(|name| nav.find(r.slot, name) == Some(r.at));
+            r.park_pending = parks.per_slot[r.slot][r.at] == 0;
         }
-        let regions = nav.regions();
+        let starts: Vec<usize> = robots.iter().map(|r| r.at).collect();
+        let planner = Planner::new(&nav);
+        let sched = Schedule::new(conf, &starts, 0.0);
         Ok(Fleets {
-            park,
-            passing,
-            regions,
             doors: vec![DoorView::default(); nav.doors.len()],
             lifts: vec![LiftView::default(); nav.lifts.len()],
             nav,
-            conf,
-            res,
-            claims: Vec::new(),
+            sched,
+            planner,
+            parks,
+            retimed_at: f64::NAN,
+            cycles: 0,
+            decisions: Vec::new(),
             fleets,
             robots,
             by_name,
             tasks: Vec::new(),
+            pending: VecDeque::new(),
+            next_dispatch: f64::INFINITY,
             upcoming: upcoming.into(),
             door_index,
             lift_index,

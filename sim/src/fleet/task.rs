@@ -15,8 +15,8 @@ impl Fleets {
         let Some(ti) = self.robots[i].task.take() else {
             return;
         };
-        // Like RMF's `finishing_request: park`, but a robot sent to a place stays there.
-        self.robots[i].park_pending = self.tasks.get(ti).is_some_and(|tk| parks_after(&tk.kind));
+        // The robot is free (once its steps are done): waiting tasks may go to it.
+        self.next_dispatch = self.next_dispatch.min(t);
         if let Some(tk) = self.tasks.get_mut(ti) {
             tk.ended = true;
         }
@@ -41,10 +41,8 @@ impl Fleets {
             }
         );
         r.steps.clear();
+        r.legs.clear();
         r.cur = Cur::None;
-        r.prio_until = None;
-        r.escape = None;
-        r.made_room = None;
         if !ok {
             self.abandon_route(i, t, out);
             // A failed delivery still takes the item it carries to the ingestor, so that
@@ -75,18 +73,7 @@ impl Fleets {
                     continue;
                 }
                 Cur::GoTo { goal, planned } => match self.drive(i, goal, planned, t, out) {
-                    Some(true) => {
-                        let r = &mut self.robots[i];
-                        if r.prio_until == Some(goal) {
-                            r.prio_until = None;
-                        }
-                        if let Some((c, v)) = r.escape.take() {
-                            if v == goal {
-                                r.made_room = Some((c, t));
-                            }
-                        }
-                        true
-                    }
+                    Some(true) => true,
                     Some(false) => return,
                     None => {
                         self.end_task(i, t, false, "no route".into(), out);
@@ -233,24 +220,20 @@ impl Fleets {
                 since: t,
                 sent: false,
             };
-            if let Step::GoTo(goal) = step {
-                // The priority kept for a goal no step leads to any more (a spot to make
-                // room at, replaced by another) would be kept for ever: drop it.
-                let kept = r.prio_until.is_some_and(|u| {
-                    u == goal
-                        || r.steps
-                            .iter()
-                            .any(|s| matches!(s, Step::GoTo(v) if *v == u))
-                });
-                if !kept {
-                    r.prio_until = None;
-                    r.prio = t;
-                }
-            }
             r.cur = match step {
-                Step::GoTo(goal) => Cur::GoTo {
-                    goal,
-                    planned: false,
+                // Planned with the task (or the leg before): its leg is known.
+                Step::GoTo(goal) => match r.legs.pop_front() {
+                    Some(n) => {
+                        r.leg = Some(n);
+                        Cur::GoTo {
+                            goal,
+                            planned: true,
+                        }
+                    }
+                    None => Cur::GoTo {
+                        goal,
+                        planned: false,
+                    },
                 },
                 Step::Dwell(d) => Cur::Dwell { until: t + d },
                 Step::Charge(pct) => Cur::Charge {
@@ -270,72 +253,23 @@ impl Fleets {
         if self.robots[i].charger.is_none() && self.maybe_charge(i) {
             // The charger is where it stays afterwards.
             self.robots[i].park_pending = false;
-            self.hand_back_for_charging(i, t, out);
             return true;
         }
-        let Some(ti) = self.robots[i].queue.pop_front() else {
-            // Once after a task: park off everybody's way rather than where the task ended
-            // (task waypoints and corridors are what the next tasks need).
-            if std::mem::take(&mut self.robots[i].park_pending) {
-                if let Some((v, dt)) = self.park_spot(i) {
+        // Nothing to do: to a parking vertex (a robot that did not start on one plans its
+        // way there first; every plan ends on one).
+        if self.robots[i].park_pending && t >= self.robots[i].replan_at {
+            match self.plan_to(i, &[], t) {
+                Ok(_) => self.robots[i].park_pending = false,
+                Err(_) => {
                     let r = &mut self.robots[i];
-                    // Nobody waits for a robot to park.
-                    r.prio = f64::INFINITY;
-                    r.prio_until = Some(v);
-                    r.steps.push_back(Step::GoTo(v));
-                    r.free_at = t + dt;
-                    r.end_vertex = v;
-                    return true;
+                    r.replan_at = t + 2.0;
+                    r.wake = r.replan_at;
                 }
             }
-            let r = &mut self.robots[i];
-            r.free_at = t;
-            r.end_vertex = r.at;
-            return false;
-        };
-        let fi = self.robots[i].fleet;
-        match self.expand(fi, &self.tasks[ti].kind.clone()) {
-            Some(steps) => {
-                let r = &mut self.robots[i];
-                r.task = Some(ti);
-                r.task_started = t;
-                r.steps = steps.into();
-                self.event(t, ti, "started", Some(i), String::new(), out);
-            }
-            None => {
-                self.tasks[ti].ended = true;
-                self.event(
-                    t,
-                    ti,
-                    "failed",
-                    Some(i),
-                    "waypoints not on the fleet's graph".into(),
-                    out,
-                );
-            }
         }
-        true
-    }
-
-    /// Robot `i` goes to charge, which takes long (CleanerBotA: 72 s a percent): it
-    /// counts as busy until charged, and the tasks queued behind go to whoever is then
-    /// soonest (RMF's task planner likewise puts the charge into the robot's estimates).
-    fn hand_back_for_charging(&mut self, i: usize, t: f64, out: &mut Vec<(Topic, Msg)>) {
-        let r = &self.robots[i];
-        let f = &self.fleets[r.fleet];
-        let to = r.charger.unwrap_or(r.at);
-        let drive = self
-            .nav
-            .plan(f.slot, r.at, to, f.speed)
-            .map_or(0.0, |p| p.0);
-        let charge = (f.recharge_soc * 100.0 - r.battery()).max(0.0) / f.charge_rate.max(1e-9);
-        let r = &mut self.robots[i];
-        r.free_at = t + drive + charge;
-        r.end_vertex = to;
-        let back: Vec<usize> = r.queue.drain(..).collect();
-        for ti in back {
-            self.assign(ti, t, out);
-        }
+        let n = self.sched.itinerary(i).travs.len();
+        self.advance(i, n, t, out);
+        false
     }
 
     pub(super) fn maybe_charge(&mut self, i: usize) -> bool {

@@ -18,9 +18,7 @@ impl Fleets {
     /// it stands on), a door, a lift, a workcell, or charging while a task waits for it.
     fn wait_cause(&self, i: usize) -> Option<(WaitCause, Place)> {
         let r = &self.robots[i];
-        if r.task.is_none() && r.queue.is_empty() {
-            return None;
-        }
+        r.task?;
         match (&r.gate, &r.cur) {
             (Gate::Door { door, .. }, _) => Some((WaitCause::Door, Place::Door(*door))),
             (Gate::Lift { lift, .. }, _) => Some((WaitCause::Lift, Place::Lift(*lift))),
@@ -28,7 +26,7 @@ impl Fleets {
                 Some((WaitCause::Workcell, Place::Workcell(target.clone())))
             }
             (_, Cur::Charge { .. }) => Some((WaitCause::Charging, Place::Charging)),
-            _ if r.wait_since.is_some() && r.n_sent == 0 => {
+            _ if r.waiting.is_some() && r.n_sent == 0 => {
                 Some((WaitCause::Traffic, Place::Vertex(r.at)))
             }
             _ => None,

@@ -37,6 +37,7 @@ fn fleet(name: &str, count: usize, spawn: SpawnSpec) -> FleetSpec {
         recharge_soc: 0.9,
         task_kinds: Vec::new(),
         span: Span::UNKNOWN,
+        rmf: None,
     }
 }
 
@@ -50,7 +51,9 @@ fn scenario(fleets: Vec<FleetSpec>, tasks: Vec<TaskSpec>) -> Scenario {
         workcells: Vec::new(),
         tasks,
         generators: Vec::new(),
+        faults: Vec::new(),
         options: SimOptions::default(),
+        requests: Vec::new(),
     }
 }
 
@@ -70,6 +73,8 @@ fn task(at: f64, fleet: Option<&str>, kind: TaskKind) -> TaskSpec {
         at,
         kind,
         fleet: fleet.map(str::to_string),
+        robot: None,
+        priority: 0,
         span: Span::UNKNOWN,
     }
 }
@@ -299,7 +304,7 @@ levels:
 "#;
 
 #[test]
-fn world_door_stays_open_until_both_robots_passed() {
+fn world_door_is_passed_one_robot_at_a_time_and_only_open() {
     let b = load("wide_door", Some(WIDE_DOOR));
     let s = scenario(
         vec![
@@ -342,10 +347,9 @@ fn world_door_stays_open_until_both_robots_passed() {
         "{}",
         dump(&r.events)
     );
-    assert!(
-        both_requested,
-        "the two robots never held the door together"
-    );
+    // The schedule passes a door one robot at a time (the door is a resource of its own):
+    // never two sessions at once, and nobody in the doorway while it is not open.
+    assert!(!both_requested, "two robots held the door at once");
     assert!(
         violations.is_empty(),
         "robot in the doorway while the door was not open: {violations:?}"
@@ -489,12 +493,12 @@ fn world_low_battery_goes_charging() {
 }
 
 #[test]
-fn world_a_robot_going_to_charge_hands_its_queued_task_to_another() {
+fn world_a_robot_going_to_charge_leaves_the_next_task_to_another() {
     // a_0 starts on the L1 charger, b_0 on L2. The first task (the lobby, next to the
-    // charger) goes to a_0; the second (the corridor) too, queued behind it: it will be
-    // there long before b_0 rides down. a_0's battery drains fast (20 kW), so after its
-    // first task it is below its 90 % threshold and must charge for about an hour: the
-    // corridor goes to b_0.
+    // charger) goes to a_0. Tasks wait in the dispatcher's queue until a robot is free
+    // (none is queued behind a busy robot): the second (the corridor) goes to b_0, free
+    // at once, and a_0, whose battery drains fast (20 kW), goes back to charge after its
+    // task.
     let b = load("two_level_clinic", None);
     let mut a = fleet(
         "a",
@@ -518,11 +522,7 @@ fn world_a_robot_going_to_charge_hands_its_queued_task_to_another() {
         .collect();
     assert_eq!(
         assigned,
-        [
-            ("go_to_place_0", "a_0"),
-            ("go_to_place_1", "a_0"),
-            ("go_to_place_1", "b_0"),
-        ],
+        [("go_to_place_0", "a_0"), ("go_to_place_1", "b_0")],
         "{}",
         dump(&r.events)
     );
@@ -1215,9 +1215,10 @@ fn guarantee_two_robots_need_the_lift_in_opposite_directions() {
     );
     let r = run(&b, &s, 1800.0);
     assert_all_completed(&r, 2);
+    // Each reached the other's start (the completions); "up" stays at ward_a. "down"
+    // stays at the corridor only until "up" needs its way through: then it makes room.
     let robots = r.world.robots();
     assert!((robots[0].z - 4.0).abs() < 0.05, "{:?}", robots[0]);
-    assert!(robots[1].z.abs() < 0.05, "{:?}", robots[1]);
 }
 
 #[test]

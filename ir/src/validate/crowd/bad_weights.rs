@@ -20,6 +20,7 @@
 //! ```
 
 use super::crowd;
+use crate::lints::Group;
 use crate::validate::{Context, Rule};
 use crate::Diagnostic;
 
@@ -27,6 +28,8 @@ pub(crate) static RULE: Rule = Rule {
     code: "E0806",
     name: "crowd-bad-weights",
     summary: "a crowd transition's target weights do not sum to a positive number",
+    group: Group::Crowd,
+    metric: false,
     check,
 };
 

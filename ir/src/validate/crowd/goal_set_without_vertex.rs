@@ -18,6 +18,7 @@
 //! ```
 
 use super::{crowd, goal_vertices};
+use crate::lints::Group;
 use crate::validate::{Context, Rule};
 use crate::Diagnostic;
 
@@ -25,6 +26,8 @@ pub(crate) static RULE: Rule = Rule {
     code: "E0803",
     name: "crowd-goal-set-without-vertex",
     summary: "a crowd goal set has no vertex with one of its area names",
+    group: Group::Crowd,
+    metric: false,
     check,
 };
 

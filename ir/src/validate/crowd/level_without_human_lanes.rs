@@ -20,6 +20,7 @@
 //! ```
 
 use super::{crowd, goal_vertices, EXTERNAL_PROFILE};
+use crate::lints::Group;
 use crate::validate::{Context, Rule};
 use crate::Diagnostic;
 use std::collections::BTreeSet;
@@ -28,6 +29,8 @@ pub(crate) static RULE: Rule = Rule {
     code: "E0805",
     name: "crowd-level-without-human-lanes",
     summary: "people walk on a level that has no human lanes",
+    group: Group::Crowd,
+    metric: false,
     check,
 };
 

@@ -16,6 +16,7 @@
 //! ```
 
 use super::crowd;
+use crate::lints::Group;
 use crate::validate::{Context, Rule};
 use crate::Diagnostic;
 
@@ -23,6 +24,8 @@ pub(crate) static RULE: Rule = Rule {
     code: "E0802",
     name: "crowd-unknown-goal-set",
     summary: "a crowd state names a goal set that does not exist",
+    group: Group::Crowd,
+    metric: false,
     check,
 };
 

@@ -18,6 +18,7 @@
 //! ```
 
 use super::crowd;
+use crate::lints::Group;
 use crate::validate::{Context, Rule};
 use crate::Diagnostic;
 
@@ -25,6 +26,8 @@ pub(crate) static RULE: Rule = Rule {
     code: "E0804",
     name: "crowd-unknown-profile",
     summary: "an agent group names an agent profile that does not exist",
+    group: Group::Crowd,
+    metric: false,
     check,
 };
 

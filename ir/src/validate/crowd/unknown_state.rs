@@ -18,6 +18,7 @@
 //! ```
 
 use super::crowd;
+use crate::lints::Group;
 use crate::validate::{Context, Rule};
 use crate::{Diagnostic, Span};
 
@@ -25,6 +26,8 @@ pub(crate) static RULE: Rule = Rule {
     code: "E0801",
     name: "crowd-unknown-state",
     summary: "a crowd transition or agent group names an unknown state",
+    group: Group::Crowd,
+    metric: false,
     check,
 };
 

@@ -21,6 +21,7 @@
 //!       - [3, 4, {name: [1, lobby], type: [1, sliding]}]   # E0302
 //! ```
 
+use crate::lints::Group;
 use crate::validate::{Context, Rule};
 use crate::{Diagnostic, Door, Handle};
 use std::collections::HashMap;
@@ -29,6 +30,8 @@ pub(crate) static RULE: Rule = Rule {
     code: "E0302",
     name: "duplicate-door-name",
     summary: "two doors have the same name",
+    group: Group::Doors,
+    metric: false,
     check,
 };
 

@@ -16,6 +16,7 @@
 //!   - [4, 5, {name: [1, ""], type: [1, hinged], motion_direction: [2, 1], motion_degrees: [3, 90]}]   # E0301
 //! ```
 
+use crate::lints::Group;
 use crate::validate::{Context, Rule};
 use crate::Diagnostic;
 
@@ -23,6 +24,8 @@ pub(crate) static RULE: Rule = Rule {
     code: "E0301",
     name: "empty-door-name",
     summary: "a door has an empty name",
+    group: Group::Doors,
+    metric: false,
     check,
 };
 

@@ -22,6 +22,7 @@
 //! ```
 
 use super::zero_width::MIN_DOOR_WIDTH;
+use crate::lints::Group;
 use crate::validate::{Context, Rule};
 use crate::Diagnostic;
 
@@ -32,6 +33,8 @@ pub(crate) static RULE: Rule = Rule {
     code: "W0305",
     name: "implausible-door-width",
     summary: "a door is narrower than 0.5 m or wider than 6 m",
+    group: Group::Doors,
+    metric: true,
     check,
 };
 

@@ -24,6 +24,7 @@
 //!   - [4, 5, {name: [1, d1], type: [1, hinged], motion_direction: [2, 0], motion_degrees: [3, 90]}]   # E0307
 //! ```
 
+use crate::lints::Group;
 use crate::validate::{Context, Rule};
 use crate::{Diagnostic, Door, DoorKind, Span};
 
@@ -31,6 +32,8 @@ pub(crate) static RULE: Rule = Rule {
     code: "E0307",
     name: "door-motion-params",
     summary: "a door's motion_direction, motion_degrees or right_left_ratio is out of range",
+    group: Group::Doors,
+    metric: false,
     check,
 };
 

@@ -24,6 +24,7 @@
 //! ```
 
 use super::zero_width::MIN_DOOR_WIDTH;
+use crate::lints::Group;
 use crate::validate::geometry::shapes::{segments_meet, Meet};
 use crate::validate::{Context, Rule};
 use crate::Diagnostic;
@@ -32,6 +33,8 @@ pub(crate) static RULE: Rule = Rule {
     code: "W0306",
     name: "door-not-crossed",
     summary: "no lane crosses a door, so robots never open it",
+    group: Group::Doors,
+    metric: false,
     check,
 };
 

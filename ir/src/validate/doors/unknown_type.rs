@@ -15,6 +15,7 @@
 //!   - [4, 5, {name: [1, d1], type: [1, revolving]}]   # E0303
 //! ```
 
+use crate::lints::Group;
 use crate::validate::{Context, Rule};
 use crate::{Diagnostic, DoorKind};
 
@@ -22,6 +23,8 @@ pub(crate) static RULE: Rule = Rule {
     code: "E0303",
     name: "unknown-door-type",
     summary: "a door's type is not hinged, double_hinged, sliding or double_sliding",
+    group: Group::Doors,
+    metric: false,
     check,
 };
 

@@ -14,6 +14,7 @@
 //!   - [4, 4, {name: [1, d1], type: [1, sliding]}]   # E0304
 //! ```
 
+use crate::lints::Group;
 use crate::validate::{Context, Rule};
 use crate::Diagnostic;
 
@@ -24,6 +25,8 @@ pub(crate) static RULE: Rule = Rule {
     code: "E0304",
     name: "zero-width-door",
     summary: "a door's end points coincide",
+    group: Group::Doors,
+    metric: false,
     check,
 };
 

@@ -17,6 +17,7 @@
 //!   - {name: "", model_name: OpenRobotics/Chair, x: 2, y: 3, yaw: 0, z: 0, static: true}   # E0609
 //! ```
 
+use crate::lints::Group;
 use crate::validate::{Context, Rule};
 use crate::Diagnostic;
 
@@ -24,6 +25,8 @@ pub(crate) static RULE: Rule = Rule {
     code: "E0609",
     name: "empty-model-name",
     summary: "a model's name or model_name is empty",
+    group: Group::WorldGeometry,
+    metric: false,
     check,
 };
 

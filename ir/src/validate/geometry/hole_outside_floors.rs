@@ -22,6 +22,7 @@
 //! ```
 
 use super::shapes::{distinct_vertices, polygons, ring, rings_overlap};
+use crate::lints::Group;
 use crate::validate::{Context, Rule};
 use crate::Diagnostic;
 
@@ -29,6 +30,8 @@ pub(crate) static RULE: Rule = Rule {
     code: "W0604",
     name: "hole-outside-floors",
     summary: "a hole overlaps no floor of its level",
+    group: Group::Geometry,
+    metric: false,
     check,
 };
 

@@ -22,6 +22,7 @@
 //!   - [4, 5, {distance: [3, 15.0]}]   # W0606: 200 px: 0.075 m/px
 //! ```
 
+use crate::lints::Group;
 use crate::validate::{Context, Rule};
 use crate::{CoordinateSystem, Diagnostic};
 
@@ -32,6 +33,8 @@ pub(crate) static RULE: Rule = Rule {
     code: "W0606",
     name: "inconsistent-measurements",
     summary: "a measurement's scale differs by more than 5% from the median scale",
+    group: Group::Scale,
+    metric: false,
     check,
 };
 

@@ -20,6 +20,7 @@
 //! ```
 
 use super::shapes::{bbox, distinct_vertices, point_in_polygon, ring};
+use crate::lints::Group;
 use crate::validate::{Context, Rule};
 use crate::{Diagnostic, Vec2};
 
@@ -27,6 +28,8 @@ pub(crate) static RULE: Rule = Rule {
     code: "W0608",
     name: "model-outside-floors",
     summary: "a model stands outside every floor of its level",
+    group: Group::WorldGeometry,
+    metric: false,
     check,
 };
 

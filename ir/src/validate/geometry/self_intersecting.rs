@@ -25,6 +25,7 @@ use super::shapes::{
     distinct_vertices, fan_extent, level_index, polygons, ring, self_intersection, Simplicity,
 };
 use super::zero_area::MIN_AREA;
+use crate::lints::Group;
 use crate::validate::{Context, Rule};
 use crate::Diagnostic;
 
@@ -32,6 +33,8 @@ pub(crate) static RULE: Rule = Rule {
     code: "E0602",
     name: "polygon-self-intersecting",
     summary: "a floor or hole has crossing edges",
+    group: Group::Geometry,
+    metric: false,
     check,
 };
 

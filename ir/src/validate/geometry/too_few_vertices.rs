@@ -15,6 +15,7 @@
 //! ```
 
 use super::shapes::{distinct_vertices, polygons};
+use crate::lints::Group;
 use crate::validate::{Context, Rule};
 use crate::Diagnostic;
 
@@ -22,6 +23,8 @@ pub(crate) static RULE: Rule = Rule {
     code: "E0601",
     name: "polygon-too-few-vertices",
     summary: "a floor or hole has fewer than three distinct vertices",
+    group: Group::Geometry,
+    metric: false,
     check,
 };
 

@@ -24,6 +24,7 @@
 //!     y: 149452.3
 //! ```
 
+use crate::lints::Group;
 use crate::validate::{Context, Rule};
 use crate::{CoordinateSystem, Diagnostic};
 
@@ -31,6 +32,8 @@ pub(crate) static RULE: Rule = Rule {
     code: "W0607",
     name: "wgs84-lifts",
     summary: "a wgs84 map has lifts, whose coordinates the editor does not write as lon/lat",
+    group: Group::LiftGeometry,
+    metric: false,
     check,
 };
 

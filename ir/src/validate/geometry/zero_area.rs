@@ -21,6 +21,7 @@
 use super::shapes::{
     distinct_vertices, fan_extent, polygons, ring, self_intersection, signed_area, Simplicity,
 };
+use crate::lints::Group;
 use crate::validate::{Context, Rule};
 use crate::Diagnostic;
 
@@ -31,6 +32,8 @@ pub(crate) static RULE: Rule = Rule {
     code: "E0603",
     name: "polygon-zero-area",
     summary: "a floor or hole encloses no area",
+    group: Group::Geometry,
+    metric: false,
     check,
 };
 

@@ -14,6 +14,7 @@
 //!   - [2, 2, {texture_name: [1, default]}]   # E0605
 //! ```
 
+use crate::lints::Group;
 use crate::validate::{Context, Rule};
 use crate::Diagnostic;
 
@@ -23,6 +24,8 @@ pub(crate) static RULE: Rule = Rule {
     code: "E0605",
     name: "zero-length-wall",
     summary: "a wall's end points coincide",
+    group: Group::Geometry,
+    metric: false,
     check,
 };
 

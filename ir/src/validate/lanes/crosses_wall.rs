@@ -29,6 +29,7 @@
 //! ```
 
 use super::geom::{meet, point_segment_distance, segment_intersection, Bbox, Meet, TOUCH};
+use crate::lints::Group;
 use crate::validate::grid::BoxGrid;
 use crate::validate::{Context, Rule};
 use crate::{Diagnostic, Handle, Vec2, Vertex, Wall};
@@ -37,6 +38,8 @@ pub(crate) static RULE: Rule = Rule {
     code: "W0204",
     name: "lane-crosses-wall",
     summary: "a lane crosses a wall where there is no door",
+    group: Group::Lanes,
+    metric: true,
     check,
 };
 

@@ -22,6 +22,7 @@
 //!   - [1, 2, {graph_idx: [2, 0], bidirectional: [4, false]}]   # vertex 2: W0209
 //! ```
 
+use crate::lints::Group;
 use crate::validate::{Context, Rule};
 use crate::{Diagnostic, Handle, Lane, Lift, Vertex};
 use std::collections::{BTreeMap, HashMap};
@@ -30,6 +31,8 @@ pub(crate) static RULE: Rule = Rule {
     code: "W0209",
     name: "one-way-dead-end",
     summary: "a waypoint robots can enter but not leave, or leave but not reach",
+    group: Group::Lanes,
+    metric: false,
     check,
 };
 

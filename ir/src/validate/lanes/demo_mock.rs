@@ -16,6 +16,7 @@
 //! ```
 
 use super::label_lane;
+use crate::lints::Group;
 use crate::validate::{Context, Rule};
 use crate::Diagnostic;
 
@@ -23,6 +24,8 @@ pub(crate) static RULE: Rule = Rule {
     code: "E0212",
     name: "demo-mock-incomplete",
     summary: "demo_mock_floor_name without demo_mock_lift_name",
+    group: Group::Lanes,
+    metric: false,
     check,
 };
 

@@ -15,6 +15,7 @@
 //! ```
 
 use super::label_lane;
+use crate::lints::Group;
 use crate::validate::{Context, Rule};
 use crate::Diagnostic;
 
@@ -22,6 +23,8 @@ pub(crate) static RULE: Rule = Rule {
     code: "W0213",
     name: "demo-mock-lift-without-floor",
     summary: "demo_mock_lift_name without demo_mock_floor_name (ignored)",
+    group: Group::Lanes,
+    metric: false,
     check,
 };
 

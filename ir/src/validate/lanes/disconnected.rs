@@ -23,6 +23,7 @@
 //!   - [2, 3, {graph_idx: [2, 0], bidirectional: [4, true]}]   # W0208: 2-3 is cut off
 //! ```
 
+use crate::lints::Group;
 use crate::validate::{Context, Rule};
 use crate::{count_text, Diagnostic, Handle, Lane, Level, Lift};
 use std::collections::BTreeMap;
@@ -31,6 +32,8 @@ pub(crate) static RULE: Rule = Rule {
     code: "W0208",
     name: "disconnected-graph",
     summary: "the lanes of a graph form more than one connected piece",
+    group: Group::Lanes,
+    metric: false,
     check,
 };
 

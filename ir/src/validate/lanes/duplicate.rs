@@ -21,6 +21,7 @@
 //!   - [1, 0, {graph_idx: [2, 0], bidirectional: [4, false]}]   # W0203: 1 → 0 exists
 //! ```
 
+use crate::lints::Group;
 use crate::validate::{Context, Rule};
 use crate::{Diagnostic, Handle, Lane, Vertex};
 use std::collections::HashMap;
@@ -29,6 +30,8 @@ pub(crate) static RULE: Rule = Rule {
     code: "W0203",
     name: "duplicate-lane",
     summary: "the same directed edge occurs twice in one graph",
+    group: Group::Lanes,
+    metric: false,
     check,
 };
 

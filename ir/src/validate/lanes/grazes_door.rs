@@ -31,6 +31,7 @@
 use super::geom::{
     abs_sin, colinear_overlap, point_segment_distance, segment_intersection, side, Bbox, TOUCH,
 };
+use crate::lints::Group;
 use crate::validate::grid::BoxGrid;
 use crate::validate::{Context, Rule};
 use crate::{Diagnostic, Handle, Vertex};
@@ -39,6 +40,8 @@ pub(crate) static RULE: Rule = Rule {
     code: "W0205",
     name: "lane-grazes-door",
     summary: "a lane meets a door but does not pass through the doorway",
+    group: Group::Lanes,
+    metric: true,
     check,
 };
 

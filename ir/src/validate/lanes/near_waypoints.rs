@@ -26,6 +26,7 @@
 //!   - [2, 3, {graph_idx: [2, 0], bidirectional: [4, true]}]
 //! ```
 
+use crate::lints::Group;
 use crate::validate::grid::PointGrid;
 use crate::validate::{Context, Rule};
 use crate::{Diagnostic, Handle, Vertex};
@@ -35,6 +36,8 @@ pub(crate) static RULE: Rule = Rule {
     code: "W0207",
     name: "unconnected-near-waypoints",
     summary: "two waypoints of one graph are closer than 0.1 m but not joined",
+    group: Group::Lanes,
+    metric: true,
     check,
 };
 

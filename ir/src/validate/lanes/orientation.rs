@@ -19,6 +19,7 @@
 //! ```
 
 use super::label_lane;
+use crate::lints::Group;
 use crate::validate::{Context, Rule};
 use crate::{Diagnostic, Orientation, ParamValue};
 
@@ -26,6 +27,8 @@ pub(crate) static RULE: Rule = Rule {
     code: "E0210",
     name: "invalid-orientation",
     summary: "a lane orientation other than '', forward or backward",
+    group: Group::Lanes,
+    metric: false,
     check,
 };
 

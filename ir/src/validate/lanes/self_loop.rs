@@ -14,6 +14,7 @@
 //!   - [3, 3, {graph_idx: [2, 0], bidirectional: [4, true]}]   # E0201
 //! ```
 
+use crate::lints::Group;
 use crate::validate::{Context, Rule};
 use crate::Diagnostic;
 
@@ -21,6 +22,8 @@ pub(crate) static RULE: Rule = Rule {
     code: "E0201",
     name: "lane-self-loop",
     summary: "a lane starts and ends at the same vertex",
+    group: Group::Lanes,
+    metric: false,
     check,
 };
 

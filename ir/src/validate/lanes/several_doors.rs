@@ -28,6 +28,7 @@
 //! ```
 
 use super::geom::{segment_intersection, Bbox, TOUCH};
+use crate::lints::Group;
 use crate::validate::grid::BoxGrid;
 use crate::validate::{Context, Rule};
 use crate::{Diagnostic, Door, Handle, Vertex};
@@ -36,6 +37,8 @@ pub(crate) static RULE: Rule = Rule {
     code: "W0206",
     name: "lane-crosses-several-doors",
     summary: "a lane crosses more than one door",
+    group: Group::Lanes,
+    metric: true,
     check,
 };
 

@@ -18,6 +18,7 @@
 //! ```
 
 use super::label_lane;
+use crate::lints::Group;
 use crate::validate::{Context, Rule};
 use crate::Diagnostic;
 
@@ -25,6 +26,8 @@ pub(crate) static RULE: Rule = Rule {
     code: "W0211",
     name: "speed-limit-out-of-range",
     summary: "a lane speed limit that is negative or above 5 m/s",
+    group: Group::Lanes,
+    metric: false,
     check,
 };
 

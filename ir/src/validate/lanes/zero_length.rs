@@ -20,6 +20,7 @@
 //! ```
 
 use super::geom::TOUCH;
+use crate::lints::Group;
 use crate::validate::{Context, Rule};
 use crate::Diagnostic;
 
@@ -27,6 +28,8 @@ pub(crate) static RULE: Rule = Rule {
     code: "W0202",
     name: "zero-length-lane",
     summary: "a lane joins two different vertices less than 1 mm apart",
+    group: Group::Lanes,
+    metric: true,
     check,
 };
 

@@ -18,6 +18,7 @@
 //!     depth: 2.0
 //! ```
 
+use crate::lints::Group;
 use crate::validate::{Context, Rule};
 use crate::Diagnostic;
 
@@ -25,6 +26,8 @@ pub(crate) static RULE: Rule = Rule {
     code: "E0401",
     name: "lift-dimensions",
     summary: "a lift's width or depth is not positive",
+    group: Group::Lifts,
+    metric: false,
     check,
 };
 

@@ -21,6 +21,7 @@
 //!       L2: [front]
 //! ```
 
+use crate::lints::Group;
 use crate::validate::{Context, Rule};
 use crate::Diagnostic;
 
@@ -28,6 +29,8 @@ pub(crate) static RULE: Rule = Rule {
     code: "W0410",
     name: "lift-door-never-opens",
     summary: "a lift door is not listed for any level in level_doors",
+    group: Group::Lifts,
+    metric: false,
     check,
 };
 

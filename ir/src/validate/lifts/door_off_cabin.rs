@@ -28,6 +28,7 @@
 //!       door1: {door_type: 2, x: 0, y: 0, width: 1.0, motion_axis_orientation: 0}   # W0402: at the centre
 //! ```
 
+use crate::lints::Group;
 use crate::validate::{Context, Rule};
 use crate::{Diagnostic, Lift, LiftDoor};
 
@@ -42,6 +43,8 @@ pub(crate) static RULE: Rule = Rule {
     code: "W0402",
     name: "lift-door-off-cabin",
     summary: "a lift door is not on a side of its cabin, or is wider than the side",
+    group: Group::Lifts,
+    metric: true,
     check,
 };
 

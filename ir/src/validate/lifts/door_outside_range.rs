@@ -24,6 +24,7 @@
 //! ```
 
 use super::range_inverted::inverted;
+use crate::lints::Group;
 use crate::validate::{Context, Rule};
 use crate::Diagnostic;
 
@@ -31,6 +32,8 @@ pub(crate) static RULE: Rule = Rule {
     code: "W0406",
     name: "lift-door-outside-range",
     summary: "level_doors lists a level outside the lift's lowest..highest floor range",
+    group: Group::Lifts,
+    metric: false,
     check,
 };
 

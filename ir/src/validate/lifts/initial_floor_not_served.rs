@@ -22,6 +22,7 @@
 //!       L2: [door1]
 //! ```
 
+use crate::lints::Group;
 use crate::validate::{Context, Rule};
 use crate::Diagnostic;
 
@@ -29,6 +30,8 @@ pub(crate) static RULE: Rule = Rule {
     code: "W0408",
     name: "lift-initial-floor-not-served",
     summary: "a lift's initial_floor_name is not one of its level_doors levels",
+    group: Group::Lifts,
+    metric: false,
     check,
 };
 

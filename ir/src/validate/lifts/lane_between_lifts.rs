@@ -17,6 +17,7 @@
 //!   - [0, 1, {graph_idx: [2, 0], bidirectional: [4, true]}]   # E0409
 //! ```
 
+use crate::lints::Group;
 use crate::validate::{Context, Rule};
 use crate::Diagnostic;
 
@@ -24,6 +25,8 @@ pub(crate) static RULE: Rule = Rule {
     code: "E0409",
     name: "lane-between-lifts",
     summary: "a lane joins waypoints inside two different lifts",
+    group: Group::LiftWaypoints,
+    metric: false,
     check,
 };
 

@@ -26,6 +26,7 @@
 //!       L2: [door1]   # W0404: no lane on L2 reaches (10, 5)
 //! ```
 
+use crate::lints::Group;
 use crate::validate::{Context, Rule};
 use crate::{Diagnostic, Handle, Level, Lift};
 use std::collections::HashSet;
@@ -34,6 +35,8 @@ pub(crate) static RULE: Rule = Rule {
     code: "W0404",
     name: "lift-level-without-waypoint",
     summary: "a level a lift serves has no lane vertex inside the lift",
+    group: Group::LiftWaypoints,
+    metric: true,
     check,
 };
 

@@ -22,6 +22,7 @@
 //!     highest_floor: L1
 //! ```
 
+use crate::lints::Group;
 use crate::validate::{Context, Rule};
 use crate::{Diagnostic, Lift};
 
@@ -29,6 +30,8 @@ pub(crate) static RULE: Rule = Rule {
     code: "E0405",
     name: "lift-range-inverted",
     summary: "a lift's lowest_floor is above its highest_floor",
+    group: Group::Lifts,
+    metric: false,
     check,
 };
 

@@ -19,6 +19,7 @@
 //!       L1: [door_1]   # E0403
 //! ```
 
+use crate::lints::Group;
 use crate::validate::{Context, Rule};
 use crate::Diagnostic;
 
@@ -26,6 +27,8 @@ pub(crate) static RULE: Rule = Rule {
     code: "E0403",
     name: "unknown-lift-door",
     summary: "level_doors names a door the lift does not have",
+    group: Group::Lifts,
+    metric: false,
     check,
 };
 

@@ -22,6 +22,7 @@
 //!   vertices: [[10.4, 5, 0, LA_L2], ...]   # E0407: 0.4 m from LA_L1
 //! ```
 
+use crate::lints::Group;
 use crate::validate::{Context, Rule};
 use crate::{Diagnostic, Handle, Lift, Vertex};
 use std::collections::BTreeMap;
@@ -33,6 +34,8 @@ pub(crate) static RULE: Rule = Rule {
     code: "E0407",
     name: "lift-waypoints-misaligned",
     summary: "waypoints inside the same lift are more than 0.1 m apart",
+    group: Group::LiftWaypoints,
+    metric: true,
     check,
 };
 

@@ -18,6 +18,7 @@
 //! ```
 
 use super::{duplicates_per_graph, graphs_text};
+use crate::lints::Group;
 use crate::validate::{Context, Rule};
 use crate::Diagnostic;
 
@@ -25,6 +26,8 @@ pub(crate) static RULE: Rule = Rule {
     code: "E0502",
     name: "duplicate-dock-name",
     summary: "two waypoints of one graph have the same dock_name",
+    group: Group::Names,
+    metric: false,
     check,
 };
 

@@ -17,6 +17,7 @@
 //!   - [4, 0, 0, b, {spawn_robot_type: [1, TinyRobot], spawn_robot_name: [1, tiny]}]   # W0506
 //! ```
 
+use crate::lints::Group;
 use crate::validate::{Context, Rule};
 use crate::{Diagnostic, Handle, Vertex};
 use std::collections::HashMap;
@@ -25,6 +26,8 @@ pub(crate) static RULE: Rule = Rule {
     code: "W0506",
     name: "duplicate-spawn-name",
     summary: "two spawn vertices have the same spawn_robot_name",
+    group: Group::Spawns,
+    metric: false,
     check,
 };
 

@@ -21,6 +21,7 @@
 //! ```
 
 use super::{duplicates_per_graph, graphs_text};
+use crate::lints::Group;
 use crate::validate::{Context, Rule};
 use crate::Diagnostic;
 
@@ -28,6 +29,8 @@ pub(crate) static RULE: Rule = Rule {
     code: "E0501",
     name: "duplicate-waypoint-name",
     summary: "two waypoints of one graph have the same name",
+    group: Group::Names,
+    metric: false,
     check,
 };
 

@@ -19,6 +19,7 @@
 //!   - [0, 0, 0, charger_1, {is_charger: [4, true]}]   # W0503: no lane here
 //! ```
 
+use crate::lints::Group;
 use crate::validate::{Context, Rule};
 use crate::{Diagnostic, WaypointRoles};
 
@@ -26,6 +27,8 @@ pub(crate) static RULE: Rule = Rule {
     code: "W0503",
     name: "role-off-graph",
     summary: "a vertex with a waypoint role that no lane uses",
+    group: Group::Names,
+    metric: false,
     check,
 };
 

@@ -14,6 +14,7 @@
 //!   - [0, 0, 0, start, {spawn_robot_name: [1, tiny_1]}]   # W0505
 //! ```
 
+use crate::lints::Group;
 use crate::validate::{Context, Rule};
 use crate::Diagnostic;
 
@@ -21,6 +22,8 @@ pub(crate) static RULE: Rule = Rule {
     code: "W0505",
     name: "spawn-name-without-type",
     summary: "spawn_robot_name without spawn_robot_type (ignored)",
+    group: Group::Spawns,
+    metric: false,
     check,
 };
 

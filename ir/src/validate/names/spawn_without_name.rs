@@ -16,6 +16,7 @@
 //!   - [0, 0, 0, start, {spawn_robot_type: [1, TinyRobot]}]   # E0504
 //! ```
 
+use crate::lints::Group;
 use crate::validate::{Context, Rule};
 use crate::Diagnostic;
 
@@ -23,6 +24,8 @@ pub(crate) static RULE: Rule = Rule {
     code: "E0504",
     name: "spawn-without-name",
     summary: "spawn_robot_type without a non-empty spawn_robot_name",
+    group: Group::Spawns,
+    metric: false,
     check,
 };
 

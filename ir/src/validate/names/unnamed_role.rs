@@ -17,6 +17,7 @@
 //!   - [0, 0, 0, "", {is_charger: [4, true]}]   # W0507
 //! ```
 
+use crate::lints::Group;
 use crate::validate::{Context, Rule};
 use crate::Diagnostic;
 
@@ -24,6 +25,8 @@ pub(crate) static RULE: Rule = Rule {
     code: "W0507",
     name: "unnamed-role-waypoint",
     summary: "a charger, dispenser or ingestor vertex has no name",
+    group: Group::Names,
+    metric: false,
     check,
 };
 

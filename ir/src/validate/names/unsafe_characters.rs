@@ -22,6 +22,7 @@
 //!     elevation: 0
 //! ```
 
+use crate::lints::Group;
 use crate::validate::{Context, Rule};
 use crate::{Diagnostic, Span};
 
@@ -29,6 +30,8 @@ pub(crate) static RULE: Rule = Rule {
     code: "E0509",
     name: "unsafe-characters-in-name",
     summary: "a name that becomes a path or model name has control or bidi characters",
+    group: Group::UnsafeNames,
+    metric: false,
     check,
 };
 

@@ -21,6 +21,7 @@
 //!     elevation: 0
 //! ```
 
+use crate::lints::Group;
 use crate::validate::{Context, Rule};
 use crate::{Diagnostic, Span};
 
@@ -28,6 +29,8 @@ pub(crate) static RULE: Rule = Rule {
     code: "W0508",
     name: "unsafe-name",
     summary: "a level, lift, door or model name unsafe as a file or model name",
+    group: Group::FileNames,
+    metric: false,
     check,
 };
 

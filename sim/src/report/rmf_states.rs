@@ -1,0 +1,205 @@
+//! A run in RMF's own API format: each task's final `task_state` and the fleets'
+//! `fleet_state` updates (rmf_api_msgs' schemas), so that tools written against RMF's API
+//! read a run of mapc. Times are `unix_millis`: the run's start is the requests file's
+//! `start_unix_millis` (0 without one) plus the simulated time.
+
+use super::{Report, TaskReport};
+use crate::msgs::{robot_mode, FleetState};
+use crate::scenario::{RequestKind, Scenario};
+use serde_json::{json, Map, Value};
+
+fn millis(start: i64, t: f64) -> i64 {
+    start.saturating_add((t * 1000.0).round() as i64)
+}
+
+/// RMF's category for a task of mapc's own scenario (`tasks:`, `generators:`).
+fn rmf_category(mapc: &str) -> &str {
+    match mapc {
+        "loop" => "patrol",
+        "go_to_place" => "compose",
+        c => c,
+    }
+}
+
+/// The run's start in unix milliseconds.
+pub fn start_unix_millis(scenario: &Scenario) -> i64 {
+    scenario.requests.first().map_or(0, |r| r.start_unix_millis)
+}
+
+/// Each task's final state (in `report.tasks` order), then one failed state per refused
+/// request; one JSON object each.
+pub fn task_states(scenario: &Scenario, report: &Report) -> Vec<Value> {
+    let start = start_unix_millis(scenario);
+    // Task id -> the request it came from (its line in the file).
+    let mut from_request = std::collections::BTreeMap::new();
+    for r in &report.requests {
+        if let Some(id) = &r.task_id {
+            from_request.insert(id.as_str(), r.line);
+        }
+    }
+    let request_of = |line: usize| scenario.requests.iter().find(|r| r.line == line);
+    let mut out: Vec<Value> = report
+        .tasks
+        .iter()
+        .map(|t| {
+            let req = from_request.get(t.id.as_str()).and_then(|&l| request_of(l));
+            task_state(t, req, start)
+        })
+        .collect();
+    for r in report.requests.iter().filter(|r| r.refused.is_some()) {
+        let Some(req) = request_of(r.line) else {
+            continue;
+        };
+        let why = r.refused.clone().unwrap_or_default();
+        let (category, booking) = booking(&format!("refused_{}", r.line), Some(req), start, r.at);
+        out.push(json!({
+            "booking": booking,
+            "category": category.unwrap_or_else(|| "cancel".into()),
+            "detail": why,
+            "status": "failed",
+            "dispatch": {
+                "status": "failed_to_assign",
+                "errors": [{"code": 0, "category": "refused", "detail": why}],
+            },
+        }));
+    }
+    out
+}
+
+/// The booking of a task (and the RMF category its request gave it).
+fn booking(
+    id: &str,
+    req: Option<&crate::scenario::RequestSpec>,
+    start: i64,
+    requested: f64,
+) -> (Option<String>, Value) {
+    let mut b = Map::new();
+    b.insert("id".into(), json!(id));
+    b.insert(
+        "unix_millis_request_time".into(),
+        json!(millis(start, requested)),
+    );
+    let mut category = None;
+    if let Some(r) = req {
+        // The task request inside the API request.
+        let inner = &r.json["request"];
+        for key in [
+            "unix_millis_earliest_start_time",
+            "priority",
+            "labels",
+            "requester",
+        ] {
+            if let Some(v) = inner.get(key) {
+                b.insert(key.into(), v.clone());
+            }
+        }
+        if let RequestKind::Task(t) = &r.what {
+            category = Some(t.category.clone());
+        }
+    }
+    (category, Value::Object(b))
+}
+
+fn task_state(t: &TaskReport, req: Option<&crate::scenario::RequestSpec>, start: i64) -> Value {
+    let requested = t.requested.unwrap_or(0.0);
+    let (category, booking) = booking(&t.id, req, start, requested);
+    let category = category.unwrap_or_else(|| rmf_category(&t.category).to_string());
+    let status = match t.result.as_str() {
+        "completed" => "completed",
+        "failed" => "failed",
+        "cancelled" => "canceled",
+        _ if t.started.is_some() => "underway",
+        _ if t.assigned.is_some() => "standby",
+        _ => "queued",
+    };
+    let mut s = Map::new();
+    s.insert("booking".into(), booking);
+    s.insert("category".into(), json!(category));
+    let detail = match req {
+        Some(r) => r.json["request"]["description"].clone(),
+        None => json!(t.detail),
+    };
+    s.insert("detail".into(), detail);
+    if let Some(a) = t.started {
+        s.insert("unix_millis_start_time".into(), json!(millis(start, a)));
+    }
+    if let Some(f) = t.finished {
+        s.insert("unix_millis_finish_time".into(), json!(millis(start, f)));
+    }
+    if !t.robot.is_empty() {
+        s.insert(
+            "assigned_to".into(),
+            json!({"group": t.fleet, "name": t.robot}),
+        );
+    }
+    s.insert("status".into(), json!(status));
+    let dispatch = if !t.robot.is_empty() {
+        json!({"status": "dispatched", "assignment": {"fleet_name": t.fleet, "expected_robot_name": t.robot}})
+    } else if t.result == "failed" {
+        json!({"status": "failed_to_assign", "errors": [{"code": 0, "category": "failed", "detail": t.detail}]})
+    } else {
+        json!({"status": "queued"})
+    };
+    s.insert("dispatch".into(), dispatch);
+    // One phase: the task as mapc runs it, with one event (its outcome).
+    let mut phase = Map::new();
+    phase.insert("id".into(), json!(1));
+    phase.insert("category".into(), json!(category));
+    phase.insert("detail".into(), json!(t.detail));
+    if let Some(a) = t.started {
+        phase.insert("unix_millis_start_time".into(), json!(millis(start, a)));
+    }
+    if let Some(f) = t.finished {
+        phase.insert("unix_millis_finish_time".into(), json!(millis(start, f)));
+    }
+    phase.insert("final_event_id".into(), json!(0));
+    phase.insert(
+        "events".into(),
+        json!({"0": {"id": 0, "status": status, "name": t.category, "detail": t.detail}}),
+    );
+    s.insert("phases".into(), json!({"1": Value::Object(phase)}));
+    match status {
+        "completed" | "failed" | "canceled" => {
+            s.insert("completed".into(), json!([1]));
+        }
+        "underway" => {
+            s.insert("active".into(), json!(1));
+        }
+        _ => {
+            s.insert("pending".into(), json!([1]));
+        }
+    }
+    Value::Object(s)
+}
+
+/// A `fleet_state_update` of a fleet state the fleet layer published at `t`.
+pub fn fleet_state_update(f: &FleetState, t: f64, start_unix_millis: i64) -> Value {
+    let mut robots = Map::new();
+    for r in &f.robots {
+        let status = match r.mode.mode {
+            robot_mode::IDLE => "idle",
+            robot_mode::CHARGING => "charging",
+            robot_mode::EMERGENCY | robot_mode::ADAPTER_ERROR => "error",
+            _ if r.task_id.is_empty() => "idle",
+            _ => "working",
+        };
+        robots.insert(
+            r.name.clone(),
+            json!({
+                "name": r.name,
+                "status": status,
+                "task_id": r.task_id,
+                "unix_millis_time": millis(start_unix_millis, t),
+                "location": {
+                    "map": r.location.level_name,
+                    "x": r.location.x,
+                    "y": r.location.y,
+                    "yaw": r.location.yaw,
+                },
+                "battery": (r.battery_percent / 100.0).clamp(0.0, 1.0),
+                "issues": [],
+            }),
+        );
+    }
+    json!({"type": "fleet_state_update", "data": {"name": f.name, "robots": robots}})
+}

@@ -1,0 +1,396 @@
+//! Parking: the vertices where a robot may stand for good, chosen so that the building
+//! stays *well-formed* (Ma et al., AAMAS 2017): with a robot standing on every parking
+//! vertex at once, every other vertex the graphs connect is still connected (both ways, on
+//! every graph, across fleets: standing sets are geometric), and every parking vertex can
+//! still be left and reached. Then a robot can always wait at its parking vertex until the
+//! others' finite plans are done and drive on: planning never fails for want of room.
+//!
+//! Not parking vertices: where a lift would carry a robot (its cabins, and around a rotated
+//! cabin some vertices just outside), and vertices whose standing set reaches a task
+//! waypoint, a charger or a spawn point (a robot there would be in their way). Task
+//! waypoints and chargers themselves are parking vertices of a second kind, taken only when
+//! the others are too few: a robot parked there is sent elsewhere when another needs it.
+
+use super::conflicts::{Conflicts, Res};
+use crate::graph::Nav;
+
+/// Per graph slot, per vertex: 0 not a parking vertex, [`PARK`], or [`PARK_ON_PLACE`].
+#[derive(Debug, Clone, Default)]
+pub struct Parks {
+    pub per_slot: Vec<Vec<u8>>,
+}
+
+/// A parking vertex off every task place.
+pub const PARK: u8 = 1;
+/// A task place where a robot may also park (it cuts nothing), when the building has too
+/// few others: a robot parked there is sent elsewhere when a task needs the place.
+pub const PARK_ON_PLACE: u8 = 2;
+
+/// Vertices a graph must keep reachable, and vertices that must not be parked on.
+pub struct Needs<'a> {
+    /// Per slot, per vertex: task waypoints, chargers, spawn points (not parking vertices,
+    /// nor in a parking vertex's standing set).
+    pub required: &'a [Vec<bool>],
+    /// Per slot, per vertex: task waypoints, which may still be parking vertices of the
+    /// second kind ([`PARK_ON_PLACE`]) when there are too few of the first.
+    pub places: &'a [Vec<bool>],
+    /// At most this many parking vertices per slot (enough for the robots and spares).
+    pub want: &'a [usize],
+}
+
+/// Undirected neighbours and edge lists of one slot.
+struct Slot {
+    s: usize,
+    nbrs: Vec<Vec<usize>>,
+    edges: Vec<usize>,
+}
+
+/// Chooses the parking vertices (see the module doc). Greedy in order of preference:
+/// parking spots, holding points, dead ends (leaves), then other vertices; a candidate is
+/// taken when the graphs stay connected with it taken too. Deterministic.
+pub fn choose(nav: &Nav, conf: &Conflicts, needs: &Needs) -> Parks {
+    let nv = nav.vertices.len();
+    let slots: Vec<Slot> = (0..nav.graphs.len())
+        .map(|s| {
+            let mut nbrs = vec![Vec::new(); nv];
+            let mut edges = Vec::new();
+            for (i, e) in nav.edges.iter().enumerate() {
+                if e.graph == s {
+                    nbrs[e.from].push(e.to);
+                    nbrs[e.to].push(e.from);
+                    edges.push(i);
+                }
+            }
+            for n in &mut nbrs {
+                n.sort_unstable();
+                n.dedup();
+            }
+            Slot { s, nbrs, edges }
+        })
+        .collect();
+    // Per resource: the edges whose traversal needs it.
+    let mut users: Vec<Vec<usize>> = vec![Vec::new(); conf.n_res];
+    for (e, set) in conf.trav.iter().enumerate() {
+        for &x in set {
+            users[x as usize].push(e);
+        }
+    }
+    // Per resource: the vertices whose standing set holds it.
+    let mut standers: Vec<Vec<usize>> = vec![Vec::new(); conf.n_res];
+    for (v, set) in conf.vertex.iter().enumerate() {
+        for &x in set {
+            standers[x as usize].push(v);
+        }
+    }
+    let required = |s: usize, v: usize| {
+        needs
+            .required
+            .get(s)
+            .and_then(|r| r.get(v))
+            .copied()
+            .unwrap_or(false)
+    };
+    // Per slot: its strongly connected parts, which must stay connected.
+    let full_block = vec![false; nav.edges.len()];
+    let gone = vec![false; nv];
+    let main: Vec<Vec<usize>> = (0..slots.len())
+        .map(|s| parts(nav, &slots[s], &full_block, &gone))
+        .collect();
+
+    let mut parks = Parks {
+        per_slot: vec![vec![0; nv]; slots.len()],
+    };
+    let mut blocked = vec![false; nav.edges.len()];
+    // Vertices that cannot be used while the parks are taken (in a park's standing set).
+    let mut absorbed = vec![false; nv];
+    let mut held: Vec<bool> = vec![false; conf.n_res];
+    let mut taken_parks: Vec<usize> = Vec::new();
+    for s in 0..slots.len() {
+        let want = needs.want.get(s).copied().unwrap_or(0);
+        let place = |v: usize| {
+            needs
+                .places
+                .get(s)
+                .and_then(|r| r.get(v))
+                .copied()
+                .unwrap_or(false)
+        };
+        // Only in the largest strongly connected part: a robot parked past a one-way lane
+        // could never come back to the places it is sent to.
+        let mut size: std::collections::BTreeMap<usize, usize> = Default::default();
+        for &v in &nav.members[s] {
+            if main[s][v] != usize::MAX {
+                *size.entry(main[s][v]).or_insert(0) += 1;
+            }
+        }
+        let biggest = size
+            .iter()
+            .max_by(|a, b| a.1.cmp(b.1).then(b.0.cmp(a.0)))
+            .map(|(&id, _)| id);
+        let mut cands: Vec<usize> = nav.members[s]
+            .iter()
+            .copied()
+            .filter(|&v| Some(main[s][v]) == biggest && nav.vertices[v].carried_by.is_none())
+            .filter(|&v| !required(s, v) || place(v))
+            .collect();
+        let class = |v: usize| {
+            let r = &nav.vertices[v].roles;
+            if r.is_parking_spot {
+                0
+            } else if r.is_holding_point {
+                1
+            } else if slots[s].nbrs[v].len() <= 1 {
+                2
+            } else {
+                3 + slots[s].nbrs[v].len()
+            }
+        };
+        // Task places last, and only as many as still wanted.
+        cands.sort_by_key(|&v| (place(v), class(v), v));
+        let mut taken = 0;
+        for v in cands {
+            if taken >= want {
+                break;
+            }
+            let set: &[Res] = &conf.vertex[v];
+            if set.iter().any(|&x| held[x as usize]) || absorbed[v] {
+                continue;
+            }
+            // What a robot standing on v would absorb and block.
+            let mut abs: Vec<usize> = set
+                .iter()
+                .flat_map(|&x| standers[x as usize].iter().copied())
+                .filter(|&w| w != v)
+                .collect();
+            abs.sort_unstable();
+            abs.dedup();
+            let touches_need = abs.iter().any(|&w| {
+                nav.vertices[w].carried_by.is_some()
+                    || (0..slots.len()).any(|t| required(t, w) || parks.per_slot[t][w] != 0)
+            });
+            if touches_need {
+                continue;
+            }
+            let mut blk: Vec<usize> = set
+                .iter()
+                .flat_map(|&x| users[x as usize].iter().copied())
+                .filter(|&e| !blocked[e])
+                .collect();
+            blk.sort_unstable();
+            blk.dedup();
+            // Every park (this one too) keeps a way in and a way out that no park blocks.
+            let access = |p: usize, blocked: &[bool], absorbed: &[bool]| {
+                (0..slots.len()).all(|t| {
+                    let outs = nav.out[t][p]
+                        .iter()
+                        .any(|&e| !blocked[e] && !absorbed[nav.edges[e].to]);
+                    let ins = slots[t].edges.iter().any(|&e| {
+                        nav.edges[e].to == p && !blocked[e] && !absorbed[nav.edges[e].from]
+                    });
+                    nav.members[t].binary_search(&p).is_err() || (outs && ins)
+                })
+            };
+            let own_ok = access(v, &blocked, &absorbed) && {
+                // With v taken, the others keep theirs.
+                absorbed[v] = true;
+                let ok = taken_parks.iter().all(|&p| {
+                    absorbed[p] = false;
+                    let ok = access(p, &blocked, &absorbed);
+                    absorbed[p] = true;
+                    ok
+                });
+                absorbed[v] = false;
+                ok
+            };
+            if !own_ok {
+                continue;
+            }
+            // A leaf that blocks only its own lanes cannot cut anything.
+            let own_only = blk
+                .iter()
+                .all(|&e| nav.edges[e].from == v || nav.edges[e].to == v);
+            let leaf = own_only && slots[s].nbrs[v].len() <= 1;
+            let ok = leaf || {
+                for &e in &blk {
+                    blocked[e] = true;
+                }
+                for &w in &abs {
+                    absorbed[w] = true;
+                }
+                absorbed[v] = true;
+                let ok = (0..slots.len()).all(|t| {
+                    let m = parts(nav, &slots[t], &blocked, &absorbed);
+                    // Every part keeps what parks do not take together.
+                    kept_together(&main[t], &m, &absorbed)
+                });
+                for &e in &blk {
+                    blocked[e] = false;
+                }
+                for &w in &abs {
+                    absorbed[w] = false;
+                }
+                absorbed[v] = false;
+                ok
+            };
+            if !ok {
+                continue;
+            }
+            for e in blk {
+                // The park's own lanes stay usable by the robot parking there.
+                if nav.edges[e].from != v && nav.edges[e].to != v {
+                    blocked[e] = true;
+                }
+            }
+            for w in abs {
+                absorbed[w] = true;
+            }
+            for &x in set {
+                held[x as usize] = true;
+            }
+            parks.per_slot[s][v] = if place(v) { PARK_ON_PLACE } else { PARK };
+            taken_parks.push(v);
+            taken += 1;
+        }
+    }
+    parks
+}
+
+/// The strongly connected parts of slot `s` without the `blocked` edges and `gone`
+/// vertices: per vertex, its part's id (its smallest member), or `usize::MAX` when it is
+/// alone (it cannot be left and reached again).
+fn parts(nav: &Nav, slot: &Slot, blocked: &[bool], gone: &[bool]) -> Vec<usize> {
+    let nv = nav.vertices.len();
+    let mut id = vec![usize::MAX; nv];
+    let mut seen = vec![false; nv];
+    let usable = |e: usize| {
+        let ed = &nav.edges[e];
+        !blocked[e] && !gone[ed.from] && !gone[ed.to]
+    };
+    for &root in &nav.members[slot.s] {
+        if seen[root] || gone[root] {
+            continue;
+        }
+        let fwd = reach(nav, slot, root, true, &usable);
+        let bwd = reach(nav, slot, root, false, &usable);
+        let part: Vec<usize> = (0..nv).filter(|&v| fwd[v] && bwd[v]).collect();
+        for &v in &part {
+            seen[v] = true;
+            if part.len() > 1 {
+                id[v] = root;
+            }
+        }
+        seen[root] = true;
+    }
+    id
+}
+
+/// Whether every part of `before` keeps its members (those not `gone`) together in `after`.
+fn kept_together(before: &[usize], after: &[usize], gone: &[bool]) -> bool {
+    // A part left with one member has nothing to keep together (`parts` gives a lone
+    // vertex no part).
+    let mut left: std::collections::HashMap<usize, usize> = std::collections::HashMap::new();
+    for v in 0..before.len() {
+        if before[v] != usize::MAX && !gone[v] {
+            *left.entry(before[v]).or_insert(0) += 1;
+        }
+    }
+    let mut to: std::collections::HashMap<usize, usize> = std::collections::HashMap::new();
+    for v in 0..before.len() {
+        if before[v] == usize::MAX || gone[v] || left[&before[v]] < 2 {
+            continue;
+        }
+        if after[v] == usize::MAX {
+            return false;
+        }
+        if *to.entry(before[v]).or_insert(after[v]) != after[v] {
+            return false;
+        }
+    }
+    true
+}
+
+fn reach(
+    nav: &Nav,
+    slot: &Slot,
+    root: usize,
+    forward: bool,
+    usable: &dyn Fn(usize) -> bool,
+) -> Vec<bool> {
+    let nv = nav.vertices.len();
+    let mut seen = vec![false; nv];
+    seen[root] = true;
+    let mut stack = vec![root];
+    // Reverse adjacency on demand: scan the slot's edges once into lists.
+    let mut inn: Vec<Vec<usize>> = Vec::new();
+    if !forward {
+        inn = vec![Vec::new(); nv];
+        for &e in &slot.edges {
+            inn[nav.edges[e].to].push(e);
+        }
+    }
+    while let Some(v) = stack.pop() {
+        let es: &[usize] = if forward {
+            &nav.out[slot.s][v]
+        } else {
+            &inn[v]
+        };
+        for &e in es {
+            if !usable(e) {
+                continue;
+            }
+            let w = if forward {
+                nav.edges[e].to
+            } else {
+                nav.edges[e].from
+            };
+            if !seen[w] {
+                seen[w] = true;
+                stack.push(w);
+            }
+        }
+    }
+    seen
+}
+
+/// Whether a robot standing on `v` for a while (working there) cuts the graph of slot `s`:
+/// the vertices of the main part it separates from each other, if any (for the
+/// well-formedness warning).
+pub fn cut_by(nav: &Nav, conf: &Conflicts, s: usize, v: usize, of: &[usize]) -> Vec<usize> {
+    let nv = nav.vertices.len();
+    let slot_edges: Vec<usize> = (0..nav.edges.len())
+        .filter(|&e| nav.edges[e].graph == s)
+        .collect();
+    let slot = Slot {
+        s,
+        nbrs: Vec::new(),
+        edges: slot_edges,
+    };
+    let set = &conf.vertex[v];
+    let blocked: Vec<bool> = conf
+        .trav
+        .iter()
+        .map(|t| t.iter().any(|x| set.binary_search(x).is_ok()))
+        .collect();
+    let mut gone = vec![false; nv];
+    for (w, ws) in conf.vertex.iter().enumerate() {
+        if ws.iter().any(|x| set.binary_search(x).is_ok()) {
+            gone[w] = true;
+        }
+    }
+    let usable = |e: usize| {
+        let ed = &nav.edges[e];
+        !blocked[e] && !gone[ed.from] && !gone[ed.to]
+    };
+    let Some(&root) = of.iter().find(|&&w| !gone[w]) else {
+        return Vec::new();
+    };
+    let fwd = reach(nav, &slot, root, true, &usable);
+    let bwd = reach(nav, &slot, root, false, &usable);
+    of.iter()
+        .copied()
+        .filter(|&w| !(gone[w] || fwd[w] && bwd[w]))
+        .collect()
+}
+
+#[cfg(test)]
+mod tests;

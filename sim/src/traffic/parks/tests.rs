@@ -1,0 +1,72 @@
+//! Parking vertices keep the building well-formed.
+
+use super::*;
+use crate::traffic::test_map::{conflicts, nav, v};
+
+#[test]
+fn dead_ends_are_parks_and_corridors_are_not() {
+    let nav = nav();
+    let conf = conflicts(&nav);
+    let n = nav.vertices.len();
+    let none = vec![vec![false; n]];
+    let parks = choose(
+        &nav,
+        &conf,
+        &Needs {
+            required: &none,
+            places: &none,
+            want: &[10],
+        },
+    );
+    let names: Vec<&str> = (0..n)
+        .filter(|&x| parks.per_slot[0][x] != 0)
+        .map(|x| nav.vertices[x].name.as_str())
+        .collect();
+    // p1, p2 (parking spots), a and d (dead ends of the part that can be driven both
+    // ways: e, past a one-way lane, has no way back); b and c cut the corridor.
+    assert_eq!(names, ["a", "d", "p1", "p2"]);
+}
+
+#[test]
+fn task_places_park_only_as_the_second_kind() {
+    let nav = nav();
+    let conf = conflicts(&nav);
+    let n = nav.vertices.len();
+    let mut places = vec![vec![false; n]];
+    places[0][v(&nav, "a")] = true;
+    let parks = choose(
+        &nav,
+        &conf,
+        &Needs {
+            required: &places,
+            places: &places,
+            want: &[10],
+        },
+    );
+    assert_eq!(parks.per_slot[0][v(&nav, "a")], PARK_ON_PLACE);
+    assert_eq!(parks.per_slot[0][v(&nav, "p1")], PARK);
+    // Wanting one: the best kind first.
+    let one = choose(
+        &nav,
+        &conf,
+        &Needs {
+            required: &places,
+            places: &places,
+            want: &[1],
+        },
+    );
+    assert_eq!(one.per_slot[0].iter().filter(|&&p| p != 0).count(), 1);
+    assert_eq!(one.per_slot[0][v(&nav, "p1")], PARK);
+}
+
+#[test]
+fn a_robot_working_in_the_corridor_cuts_it() {
+    let nav = nav();
+    let conf = conflicts(&nav);
+    let places = [v(&nav, "a"), v(&nav, "c"), v(&nav, "d")];
+    // Working at c separates a from d.
+    let cut = cut_by(&nav, &conf, 0, v(&nav, "c"), &places);
+    assert!(!cut.is_empty());
+    // Working at a (a dead end) cuts nothing.
+    assert!(cut_by(&nav, &conf, 0, v(&nav, "a"), &places).is_empty());
+}

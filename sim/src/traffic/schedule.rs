@@ -1,0 +1,556 @@
+//! The shared schedule: every robot's itinerary (the edges it will drive, in order, with
+//! estimated times) and, per resource, the order in which robots hold it: one schedule for
+//! all fleets, as in rmf_traffic.
+//!
+//! Execution keeps that order (an action dependency graph, Hönig et al. 2019): a robot may
+//! drive a traversal only when, for every resource the traversal needs, its own span is the
+//! first unfinished one in that resource's queue. Delays then slow robots down but cannot
+//! deadlock them.
+//!
+//! Invariant (checked by [`Schedule::retime`], which fails on a cycle): the order of every
+//! queue agrees with the robots' own order of traversals, so the dependency graph is
+//! acyclic. It holds because spans are only ever appended or inserted where their estimated
+//! times fit between their neighbours' (the planner plans against retimed estimates), and
+//! removing spans removes dependencies. Hence at any time the unfinished traversal with the
+//! earliest estimated start has every dependency met: some robot can always go on.
+//!
+//! Every itinerary ends where its robot may stand for good (a span with `last ==
+//! FOREVER`); the planner never plans through such a span, so a robot that has nothing to do
+//! blocks nobody's plan.
+
+use super::conflicts::{Conflicts, Res};
+use std::collections::VecDeque;
+
+/// `Span::last` of a robot that stays where its itinerary ends.
+pub const FOREVER: u64 = u64::MAX;
+
+/// One edge of an itinerary.
+#[derive(Debug, Clone)]
+pub struct Trav {
+    /// The robot's running number of its traversals (0 is its arrival at its start).
+    pub seq: u64,
+    pub edge: usize,
+    pub to: usize,
+    /// Nominal duration (s).
+    pub dur: f64,
+    /// Least time (s) the robot stays where the traversal starts after it got there before it leaves (the
+    /// work of a task step there).
+    pub hold: f64,
+    /// Estimated start and end (the planner's, then retimed).
+    pub start: f64,
+    pub end: f64,
+    /// The robot has been sent along it.
+    pub begun: bool,
+}
+
+/// A robot's hold on one resource, over its traversals `first..=last`.
+#[derive(Debug, Clone)]
+struct Span {
+    robot: u32,
+    first: u64,
+    last: u64,
+    start: f64,
+    end: f64,
+}
+
+/// One robot's plan.
+#[derive(Debug, Clone)]
+pub struct Itinerary {
+    /// Where the robot stands, or where its first remaining traversal starts.
+    pub at: usize,
+    /// The earliest its first remaining traversal may start (s).
+    pub ready: f64,
+    /// Traversals still to drive or being driven; `travs[k].seq == base + k`.
+    pub travs: VecDeque<Trav>,
+    base: u64,
+}
+
+/// What a plan hands to [`Schedule::install`].
+#[derive(Debug, Clone, PartialEq)]
+pub struct Step {
+    pub edge: usize,
+    pub from: usize,
+    pub to: usize,
+    pub dur: f64,
+    pub hold: f64,
+    pub start: f64,
+    pub end: f64,
+}
+
+/// The dependency graph has a cycle (a bug: the invariant above is broken).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Cycle {
+    pub robots: Vec<usize>,
+}
+
+#[derive(Debug, Clone)]
+pub struct Schedule {
+    conf: Conflicts,
+    queues: Vec<VecDeque<Span>>,
+    its: Vec<Itinerary>,
+    /// A traversal began or ended since the last retime: the estimates are stale.
+    stale: bool,
+}
+
+impl Schedule {
+    /// Robots standing at `starts` from `t0` on, for good.
+    pub fn new(conf: Conflicts, starts: &[usize], t0: f64) -> Schedule {
+        let mut queues = vec![VecDeque::new(); conf.n_res];
+        let mut its = Vec::with_capacity(starts.len());
+        for (r, &at) in starts.iter().enumerate() {
+            for &x in &conf.vertex[at] {
+                let q: &mut VecDeque<Span> = &mut queues[x as usize];
+                // Robots placed closer than their clearance share a resource: only the first
+                // holds it (a span after one held for good could never be reached).
+                if q.is_empty() {
+                    q.push_back(Span {
+                        robot: r as u32,
+                        first: 0,
+                        last: FOREVER,
+                        start: f64::NEG_INFINITY,
+                        end: f64::INFINITY,
+                    });
+                }
+            }
+            its.push(Itinerary {
+                at,
+                ready: t0,
+                travs: VecDeque::new(),
+                base: 1,
+            });
+        }
+        Schedule {
+            conf,
+            queues,
+            its,
+            stale: true,
+        }
+    }
+
+    pub fn conf(&self) -> &Conflicts {
+        &self.conf
+    }
+
+    pub fn itinerary(&self, r: usize) -> &Itinerary {
+        &self.its[r]
+    }
+
+    /// Where robot `r`'s itinerary ends (where it will stand for good).
+    pub fn end_vertex(&self, r: usize) -> usize {
+        let it = &self.its[r];
+        it.travs.back().map_or(it.at, |t| t.to)
+    }
+
+    /// The resources traversal `t` holds.
+    fn set(&self, t: &Trav) -> &[Res] {
+        &self.conf.trav[t.edge]
+    }
+
+    /// Whether robot `r` may drive its `k`-th remaining traversal: for every resource, its
+    /// own span is the first unfinished one.
+    pub fn granted(&self, r: usize, k: usize) -> bool {
+        let Some(t) = self.its[r].travs.get(k) else {
+            return false;
+        };
+        self.set(t).iter().all(|&x| {
+            self.queues[x as usize]
+                .front()
+                .is_some_and(|s| s.robot as usize == r && s.first <= t.seq && t.seq <= s.last)
+        })
+    }
+
+    /// The robots whose spans come before robot `r`'s in the queues its `k`-th remaining
+    /// traversal needs (whom it waits for), ascending.
+    pub fn waits_for(&self, r: usize, k: usize) -> Vec<usize> {
+        let Some(t) = self.its[r].travs.get(k) else {
+            return Vec::new();
+        };
+        let mut who: Vec<usize> = Vec::new();
+        for &x in self.set(t) {
+            for s in &self.queues[x as usize] {
+                if s.robot as usize == r {
+                    break;
+                }
+                who.push(s.robot as usize);
+            }
+        }
+        who.sort_unstable();
+        who.dedup();
+        who
+    }
+
+    /// Robot `r` starts driving its first `n` remaining traversals (they are granted).
+    /// Traversals sent together are driven one after the other.
+    pub fn begin(&mut self, r: usize, n: usize, t: f64) {
+        self.stale = true;
+        let mut prev = t;
+        for tr in self.its[r].travs.iter_mut().take(n) {
+            if !tr.begun {
+                tr.begun = true;
+                tr.start = prev.max(t);
+                tr.end = tr.start + tr.dur;
+            }
+            prev = tr.end;
+        }
+    }
+
+    /// Robot `r` reached the end of its first remaining traversal at `t`: what it no
+    /// longer needs is released.
+    pub fn complete_front(&mut self, r: usize, t: f64) {
+        let Some(tr) = self.its[r].travs.pop_front() else {
+            return;
+        };
+        self.stale = true;
+
+        for &x in &self.conf.trav[tr.edge] {
+            let q = &mut self.queues[x as usize];
+            if q.front()
+                .is_some_and(|s| s.robot as usize == r && s.last == tr.seq)
+            {
+                q.pop_front();
+            }
+        }
+        let it = &mut self.its[r];
+        it.base = tr.seq + 1;
+        it.at = tr.to;
+        it.ready = t + it.travs.front().map_or(0.0, |n| n.hold);
+    }
+
+    /// Replaces robot `r`'s traversals after the first `keep` with `steps` (which start
+    /// where the kept ones end); `ready`: the earliest the first new step may start. The
+    /// steps' times must fit the others' spans (the planner's result against this
+    /// schedule as it is).
+    pub fn install(&mut self, r: usize, keep: usize, steps: &[Step], ready: f64) {
+        let keep = keep.min(self.its[r].travs.len());
+        let s0 = self.its[r].base + keep as u64;
+        // Every resource robot `r` may hold a span on: its traversals' and its standing set.
+        let mut touched: Vec<Res> = self.conf.vertex[self.its[r].at].clone();
+        for t in &self.its[r].travs {
+            touched.extend_from_slice(&self.conf.trav[t.edge]);
+        }
+        touched.sort_unstable();
+        touched.dedup();
+        // 1. Cut the itinerary after `keep`: spans wholly after go, spans reaching past end
+        //    at the last kept traversal (they are extended below where the new steps need
+        //    the resource straight on).
+        for &x in &touched {
+            let q = &mut self.queues[x as usize];
+            q.retain(|s| !(s.robot as usize == r && s.first >= s0));
+            for s in q.iter_mut() {
+                if s.robot as usize == r && s.last >= s0 {
+                    s.last = s0 - 1;
+                }
+            }
+        }
+        let it = &mut self.its[r];
+        it.travs.truncate(keep);
+        if keep == 0 {
+            it.ready = ready;
+        }
+        for (k, st) in steps.iter().enumerate() {
+            it.travs.push_back(Trav {
+                seq: s0 + k as u64,
+                edge: st.edge,
+                to: st.to,
+                dur: st.dur,
+                hold: st.hold,
+                start: st.start,
+                end: st.end,
+                begun: false,
+            });
+        }
+        // 2. Spans of the new steps: runs of consecutive steps needing a resource.
+        let end_v = self.end_vertex(r);
+        let n = steps.len();
+        let mut runs: Vec<(Res, usize, usize)> = Vec::new();
+        {
+            let mut open: std::collections::BTreeMap<Res, usize> = Default::default();
+            for (k, st) in steps.iter().enumerate() {
+                let set = &self.conf.trav[st.edge];
+                let next: &[Res] = steps.get(k + 1).map_or(&[], |n| &self.conf.trav[n.edge]);
+                // Between two traversals the robot holds only its standing set: where it
+                // waits there, what the traversals alone need is released and taken again.
+                let waits = steps.get(k + 1).is_some_and(|n| n.start > st.end + 1e-9);
+                let stand = &self.conf.vertex[st.to];
+                for &x in set {
+                    open.entry(x).or_insert(k);
+                    let goes_on = next.binary_search(&x).is_ok()
+                        && (!waits || stand.binary_search(&x).is_ok());
+                    if !goes_on {
+                        let a = open.remove(&x).unwrap_or(k);
+                        runs.push((x, a, k));
+                    }
+                }
+            }
+        }
+        for (x, a, b) in runs {
+            let forever = b + 1 == n && self.conf.vertex[end_v].binary_search(&x).is_ok();
+            let last = if forever { FOREVER } else { s0 + b as u64 };
+            let (start, end) = (
+                steps[a].start,
+                if forever { f64::INFINITY } else { steps[b].end },
+            );
+            let q = &mut self.queues[x as usize];
+            // Straight on from what the robot holds now (the standing set, or a kept
+            // traversal's set): the same span goes on.
+            let straight_on = steps.first().is_some_and(|f| {
+                f.start <= ready + 1e-9 || self.conf.vertex[f.from].binary_search(&x).is_ok()
+            });
+            if a == 0 && straight_on {
+                if let Some(s) = q
+                    .iter_mut()
+                    .find(|s| s.robot as usize == r && s.last == s0 - 1)
+                {
+                    s.last = last;
+                    s.end = end;
+                    continue;
+                }
+            }
+            // Elsewhere: before the first span of another robot that starts after it ends
+            // (queues are in time order; the planner kept clear of the others' spans), but
+            // never before a span whose robot holds the resource now.
+            let its = &self.its;
+            let held = |s: &Span| {
+                let it = &its[s.robot as usize];
+                s.first < it.base
+                    || it
+                        .travs
+                        .front()
+                        .is_some_and(|t| t.begun && s.first <= t.seq)
+            };
+            let pos = q
+                .iter()
+                .position(|s| s.robot as usize != r && s.start >= end && !held(s))
+                .unwrap_or(q.len());
+            q.insert(
+                pos,
+                Span {
+                    robot: r as u32,
+                    first: s0 + a as u64,
+                    last,
+                    start,
+                    end,
+                },
+            );
+        }
+        // 3. Nothing new: the robot stays where its kept traversals end, for good.
+        if n == 0 {
+            let at = self.end_vertex(r);
+            let last_kept = s0 - 1;
+            for &x in &self.conf.vertex[at] {
+                for s in self.queues[x as usize].iter_mut() {
+                    if s.robot as usize == r && s.last == last_kept {
+                        s.last = FOREVER;
+                        s.end = f64::INFINITY;
+                    }
+                }
+            }
+        }
+        // 4. Standing (nothing kept): what it held up to the cut and does not hold straight
+        //    on is released now (its last traversal is done).
+        if keep == 0 {
+            for &x in &touched {
+                self.queues[x as usize].retain(|s| !(s.robot as usize == r && s.last == s0 - 1));
+            }
+        }
+    }
+
+    /// The robot other than `r` that holds resource `x` for good (stays there), if any.
+    pub fn held_for_good(&self, x: Res, r: usize) -> Option<usize> {
+        self.queues[x as usize]
+            .back()
+            .filter(|s| s.last == FOREVER && s.robot as usize != r)
+            .map(|s| s.robot as usize)
+    }
+
+    /// Busy intervals `[start, end)` of resource `x` for anybody but robot `r`.
+    pub fn busy(&self, x: Res, r: usize) -> impl Iterator<Item = (f64, f64)> + '_ {
+        self.queues[x as usize]
+            .iter()
+            .filter(move |s| s.robot as usize != r)
+            .map(|s| (s.start, s.end))
+    }
+
+    /// Whether a traversal began or ended since the last [`Schedule::retime`].
+    pub fn stale(&self) -> bool {
+        self.stale
+    }
+
+    /// Re-estimates every traversal's times from `now` on, keeping every queue's order:
+    /// a traversal starts when its robot is ready and every span before its own in the
+    /// queues it needs has ended. Fails when the dependencies form a cycle.
+    pub fn retime(&mut self, now: f64) -> Result<(), Cycle> {
+        self.stale = false;
+        // Dependencies of each traversal on the last traversal of the span before its own.
+        let nr = self.its.len();
+        let offs: Vec<usize> = {
+            let mut o = Vec::with_capacity(nr + 1);
+            let mut acc = 0;
+            for it in &self.its {
+                o.push(acc);
+                acc += it.travs.len();
+            }
+            o.push(acc);
+            o
+        };
+        let total = offs[nr];
+        // Node id of (robot, seq), when that traversal is still in the itinerary.
+        let node = |its: &[Itinerary], r: usize, seq: u64| -> Option<usize> {
+            let it = &its[r];
+            let k = seq.checked_sub(it.base)? as usize;
+            (k < it.travs.len()).then(|| offs[r] + k)
+        };
+        let mut deps: Vec<Vec<usize>> = vec![Vec::new(); total];
+        for q in &self.queues {
+            for w in 1..q.len() {
+                let (p, s) = (&q[w - 1], &q[w]);
+                if p.last == FOREVER {
+                    // A span after one held for good can never start.
+                    debug_assert!(false, "after forever: {q:?}");
+                    return Err(Cycle {
+                        robots: vec![p.robot as usize, s.robot as usize],
+                    });
+                }
+                let (Some(a), Some(b)) = (
+                    node(&self.its, p.robot as usize, p.last),
+                    node(&self.its, s.robot as usize, s.first),
+                ) else {
+                    continue;
+                };
+                deps[b].push(a);
+            }
+        }
+        for (r, it) in self.its.iter().enumerate() {
+            for k in 1..it.travs.len() {
+                deps[offs[r] + k].push(offs[r] + k - 1);
+            }
+        }
+        // Kahn's algorithm: a node whose dependencies are all timed is timed.
+        let mut indeg: Vec<usize> = deps.iter().map(Vec::len).collect();
+        let mut users: Vec<Vec<usize>> = vec![Vec::new(); total];
+        for (b, ds) in deps.iter().enumerate() {
+            for &a in ds {
+                users[a].push(b);
+            }
+        }
+        let mut ready: Vec<usize> = (0..total).filter(|&b| indeg[b] == 0).collect();
+        let mut end = vec![0.0f64; total];
+        let mut start = vec![0.0f64; total];
+        let robot_of = |b: usize| offs.partition_point(|&o| o <= b) - 1;
+        let mut done = 0;
+        while let Some(b) = ready.pop() {
+            done += 1;
+            let r = robot_of(b);
+            let k = b - offs[r];
+            let it = &self.its[r];
+            let tr = &it.travs[k];
+            if tr.begun {
+                start[b] = tr.start;
+                end[b] = (tr.start + tr.dur).max(now);
+            } else {
+                let own = if k == 0 {
+                    it.ready
+                } else {
+                    end[b - 1] + tr.hold
+                };
+                let mut s = now.max(own);
+                for &a in &deps[b] {
+                    s = s.max(end[a]);
+                }
+                start[b] = s;
+                end[b] = s + tr.dur;
+            }
+            for &u in &users[b] {
+                indeg[u] -= 1;
+                if indeg[u] == 0 {
+                    ready.push(u);
+                }
+            }
+        }
+        if done < total {
+            let mut robots: Vec<usize> =
+                (0..total).filter(|&b| indeg[b] > 0).map(robot_of).collect();
+            robots.dedup();
+            return Err(Cycle { robots });
+        }
+        for (r, it) in self.its.iter_mut().enumerate() {
+            for (k, tr) in it.travs.iter_mut().enumerate() {
+                tr.start = start[offs[r] + k];
+                tr.end = end[offs[r] + k];
+            }
+        }
+        let its = &self.its;
+        for q in &mut self.queues {
+            for s in q.iter_mut() {
+                let r = s.robot as usize;
+                if let Some(b) = node(its, r, s.first) {
+                    s.start = start[b];
+                    // A robot ready to go on and waiting for its turn holds its next
+                    // traversal's resources from now: nobody planned later goes before
+                    // it (else a waiting robot could be overtaken for ever).
+                    let it = &its[r];
+                    if b == offs[r] && !it.travs[0].begun && it.ready <= now {
+                        s.start = s.start.min(now);
+                    }
+                }
+                s.end = if s.last == FOREVER {
+                    f64::INFINITY
+                } else if let Some(b) = node(its, r, s.last) {
+                    end[b]
+                } else {
+                    s.end
+                };
+            }
+        }
+        Ok(())
+    }
+
+    /// Checks the schedule's invariants: spans name traversals that exist, every queue's
+    /// spans of one robot are in its order, and the whole is acyclic (by retiming a copy).
+    pub fn check(&self, now: f64) -> Result<(), String> {
+        for (x, q) in self.queues.iter().enumerate() {
+            for (w, s) in q.iter().enumerate() {
+                if s.last != FOREVER && s.last < s.first {
+                    return Err(format!("resource {x}: span {w} ends before it starts"));
+                }
+                // A span whose traversals are all done was not released: nobody behind it
+                // would ever be granted the resource.
+                let it = &self.its[s.robot as usize];
+                if s.last != FOREVER && s.last < it.base {
+                    return Err(format!(
+                        "resource {x}: span {w} of robot {} ends at traversal {}, done before {}: {q:?}",
+                        s.robot, s.last, it.base
+                    ));
+                }
+                if s.last == FOREVER && w + 1 != q.len() {
+                    return Err(format!(
+                        "resource {x}: a span after one held for good: {q:?}"
+                    ));
+                }
+            }
+        }
+        self.clone().retime(now).map_err(|c| {
+            let mut dump = String::new();
+            for (x, q) in self.queues.iter().enumerate() {
+                if q.len() > 1 {
+                    dump.push_str(&format!("\n  res {x}: {q:?}"));
+                }
+            }
+            for (r, it) in self.its.iter().enumerate() {
+                dump.push_str(&format!(
+                    "\n  robot {r} base {} at {}: {:?}",
+                    it.base,
+                    it.at,
+                    it.travs
+                        .iter()
+                        .map(|t| (t.seq, t.edge, t.start, t.end))
+                        .collect::<Vec<_>>()
+                ));
+            }
+            format!("cycle among robots {:?}{dump}", c.robots)
+        })
+    }
+}
+
+#[cfg(test)]
+mod tests;

@@ -1,0 +1,153 @@
+//! The schedule: order kept per resource, grants in that order, retiming, releases.
+
+use super::*;
+use crate::traffic::test_map::{conflicts, e, nav, v};
+
+fn step(nav: &crate::graph::Nav, edge: usize, start: f64, dur: f64) -> Step {
+    Step {
+        edge,
+        from: nav.edges[edge].from,
+        to: nav.edges[edge].to,
+        dur,
+        hold: 0.0,
+        start,
+        end: start + dur,
+    }
+}
+
+/// Robot 0 at a drives a→b→p1 over [0, 20); robot 1 at p2 drives p2→c→b→a after it.
+fn two_robots() -> (crate::graph::Nav, Schedule) {
+    let nav = nav();
+    let conf = conflicts(&nav);
+    let mut s = Schedule::new(conf, &[v(&nav, "a"), v(&nav, "p2")], 0.0);
+    s.install(
+        0,
+        0,
+        &[
+            step(&nav, e(&nav, "a", "b"), 0.0, 10.0),
+            step(&nav, e(&nav, "b", "p1"), 10.0, 10.0),
+        ],
+        0.0,
+    );
+    s.install(
+        1,
+        0,
+        &[
+            step(&nav, e(&nav, "p2", "c"), 0.0, 5.0),
+            step(&nav, e(&nav, "c", "b"), 30.0, 10.0),
+            step(&nav, e(&nav, "b", "a"), 40.0, 10.0),
+        ],
+        0.0,
+    );
+    (nav, s)
+}
+
+#[test]
+fn grants_follow_the_planned_order() {
+    let (_, mut s) = two_robots();
+    assert!(s.check(0.0).is_ok(), "{:?}", s.check(0.0));
+    assert!(s.granted(0, 0));
+    // Robot 1's p2→c is 4 m from anything robot 0 drives: it goes at once (lanes conflict
+    // only with the lanes near them, not with those near a lane near them).
+    assert!(s.granted(1, 0));
+    s.begin(1, 1, 0.0);
+    s.complete_front(1, 5.0);
+    // Its c→b needs b, which robot 0 passes first: it waits for it.
+    assert!(!s.granted(1, 0));
+    assert_eq!(s.waits_for(1, 0), vec![0]);
+    s.begin(0, 1, 0.0);
+    s.complete_front(0, 12.0);
+    assert!(!s.granted(1, 0), "robot 0 still at b");
+    s.begin(0, 1, 12.0);
+    s.complete_front(0, 23.0);
+    assert!(s.granted(1, 0), "free once robot 0 is in p1");
+    assert_eq!(s.end_vertex(0), s.itinerary(0).at);
+}
+
+#[test]
+fn retiming_pushes_the_later_robot_back_by_the_delay() {
+    let (nav, mut s) = two_robots();
+    // Robot 0 begins a→b at 0 but is still on it at 25 s (10 s planned): its b→p1 starts
+    // at 25 at the earliest, ends at 35; robot 1's c→b needs b: starts at 35, not 30.
+    s.begin(0, 1, 0.0);
+    s.retime(25.0).expect("acyclic");
+    let it0 = s.itinerary(0);
+    assert_eq!((it0.travs[0].start, it0.travs[0].end), (0.0, 25.0));
+    assert_eq!((it0.travs[1].start, it0.travs[1].end), (25.0, 35.0));
+    // Robot 1: p2→c depends on nobody (from now: 25-30), c→b waits for b (35-45), then
+    // b→a (45-55).
+    let it1 = s.itinerary(1);
+    let times: Vec<(f64, f64)> = it1.travs.iter().map(|t| (t.start, t.end)).collect();
+    assert_eq!(times, [(25.0, 30.0), (35.0, 45.0), (45.0, 55.0)]);
+    let _ = nav;
+}
+
+#[test]
+fn replanning_drops_the_old_spans_and_keeps_the_standing_set() {
+    let (nav, mut s) = two_robots();
+    // Robot 1 gives up its plan before starting: it stays at p2 for good.
+    s.install(1, 0, &[], 0.0);
+    assert!(s.check(0.0).is_ok());
+    assert!(s.itinerary(1).travs.is_empty());
+    // Nobody else holds b's resources now, and p2's are robot 1's for good.
+    for &x in &s.conf().vertex[v(&nav, "b")] {
+        assert_eq!(s.busy(x, 0).count(), 0);
+    }
+    for &x in &s.conf().vertex[v(&nav, "p2")] {
+        assert_eq!(
+            s.busy(x, 0).collect::<Vec<_>>(),
+            vec![(f64::NEG_INFINITY, f64::INFINITY)]
+        );
+    }
+}
+
+#[test]
+fn a_broken_order_is_reported_as_a_cycle() {
+    let (nav, mut s) = two_robots();
+    // On b, robot 1 now comes first (its c→b..b→a span) while on the lane a-b robot 0
+    // (a→b) still comes before robot 1's b→a: each waits for the other.
+    let x = s.conf().vertex[v(&nav, "b")][0] as usize;
+    s.queues[x].swap(0, 1);
+    let err = s.check(0.0).expect_err("a cycle");
+    assert!(err.contains("cycle"), "{err}");
+    assert!(s.clone().retime(0.0).is_err());
+}
+
+#[test]
+fn a_robot_that_sets_off_early_makes_the_estimates_stale_until_retimed() {
+    let nav = nav();
+    let conf = conflicts(&nav);
+    let mut s = Schedule::new(conf, &[v(&nav, "a"), v(&nav, "d")], 0.0);
+    s.retime(0.0).expect("acyclic");
+    assert!(!s.stale());
+    // Robot 0 was planned to drive a→b→p1 from 100 s, but it is granted now and sets off
+    // at once (execution keeps the order, not the times).
+    s.install(
+        0,
+        0,
+        &[
+            step(&nav, e(&nav, "a", "b"), 100.0, 10.0),
+            step(&nav, e(&nav, "b", "p1"), 110.0, 10.0),
+        ],
+        0.0,
+    );
+    assert!(!s.stale(), "a plan alone changes no estimate");
+    assert!(s.granted(0, 0));
+    s.begin(0, 1, 0.0);
+    // Its spans still say 100 s: a plan made now would fit another robot through b
+    // before it. The schedule says so, and retiming puts b's spans at now.
+    assert!(s.stale());
+    let b = v(&nav, "b");
+    let first_busy = |s: &Schedule| {
+        s.conf().vertex[b]
+            .iter()
+            .flat_map(|&x| s.busy(x, 1).map(|(a, _)| a).collect::<Vec<_>>())
+            .fold(f64::INFINITY, f64::min)
+    };
+    assert_eq!(first_busy(&s), 100.0);
+    s.retime(0.0).expect("acyclic");
+    assert!(!s.stale());
+    assert_eq!(first_busy(&s), 0.0);
+    let it0 = s.itinerary(0);
+    assert_eq!((it0.travs[1].start, it0.travs[1].end), (10.0, 20.0));
+}

@@ -1,0 +1,594 @@
+//! Safe Interval Path Planning (Phillips & Likhachev, ICRA 2011) against the shared
+//! schedule: A* over (vertex, safe interval, goals reached) in continuous time, waiting only
+//! where another robot's span makes it necessary.
+//!
+//! A plan visits its goals in order (staying at each for its dwell) and ends where the
+//! robot may stay for good: a parking vertex whose standing set nobody needs after the
+//! robot arrives. So every plan leaves the robot where it blocks nobody's plan.
+//!
+//! Complete for the schedule as it is: if the robot can reach its goals and a free parking
+//! vertex by any timing of waits and moves that keeps clear of the others' spans, the search
+//! finds the earliest such arrival (within `MAX_EXPANSIONS`).
+
+use super::conflicts::Res;
+use super::parks::{PARK, PARK_ON_PLACE};
+use super::schedule::{Schedule, Step};
+use crate::graph::{EdgeKind, Nav, DOOR_COST};
+use std::cmp::Ordering;
+use std::collections::BinaryHeap;
+
+/// The search's maps are keyed by small integers and never iterated: a fast fixed hasher
+/// keeps them deterministic and cheap.
+type Map<K, V> = std::collections::HashMap<K, V, foldhash::fast::FixedState>;
+
+/// Bound on the search (states expanded) of one plan.
+const MAX_EXPANSIONS: usize = 200_000;
+/// Distance tables to goals kept between plans (each a float per vertex).
+const GOAL_TABLES: usize = 512;
+/// Extra cost (s) of ending on a parking vertex that is a task place: another robot's task
+/// may need it (and send the robot parked there away).
+const PLACE_PENALTY: f64 = 60.0;
+
+/// How a robot drives, for traversal times: the slotcar accelerates to its top speed,
+/// brakes to a stop at every waypoint, and turns in place towards the next one.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Kinematics {
+    /// Top speed (m/s) and acceleration (m/s²).
+    pub speed: f64,
+    pub accel: f64,
+    /// Turning speed (rad/s).
+    pub turn: f64,
+}
+
+impl Kinematics {
+    /// Time to drive `len` metres from rest to rest at top speed `v` (a trapezoid, or a
+    /// triangle on short lanes).
+    fn drive(&self, len: f64, v: f64) -> f64 {
+        let a = self.accel.max(1e-3);
+        if len >= v * v / a {
+            len / v + v / a
+        } else {
+            2.0 * (len / a).sqrt()
+        }
+    }
+
+    /// Time to drive edge `e` after arriving along `prev` (None: no turn counted).
+    #[cfg(test)]
+    pub fn edge_time(&self, nav: &Nav, e: usize, prev: Option<usize>) -> f64 {
+        self.edge_time_with(nav, e, prev, |x| heading(nav, x))
+    }
+
+    /// [`Kinematics::edge_time`] with the edges' headings from `h` (the planner keeps them).
+    fn edge_time_with(
+        &self,
+        nav: &Nav,
+        e: usize,
+        prev: Option<usize>,
+        h: impl Fn(usize) -> f64,
+    ) -> f64 {
+        let edge = &nav.edges[e];
+        match edge.kind {
+            EdgeKind::Lift(_) => nav.edge_cost(e, self.speed),
+            EdgeKind::Lane => {
+                let v = edge
+                    .speed_limit
+                    .map_or(self.speed, |l| l.min(self.speed))
+                    .max(0.05);
+                let door = if edge.door.is_some_and(|d| nav.doors[d].controlled) {
+                    DOOR_COST
+                } else {
+                    0.0
+                };
+                // Into a cabin: the cabin may first have to come from another floor.
+                let call = match (nav.vertices[edge.to].lift, nav.vertices[edge.from].lift) {
+                    (Some(l), from) if from != Some(l) => nav.lifts[l].call,
+                    _ => 0.0,
+                };
+                let turn = prev.map_or(0.0, |p| {
+                    if nav.edges[p].kind != EdgeKind::Lane || edge.length < 1e-6 {
+                        return 0.0;
+                    }
+                    let mut a = (h(e) - h(p)).abs() % std::f64::consts::TAU;
+                    if a > std::f64::consts::PI {
+                        a = std::f64::consts::TAU - a;
+                    }
+                    a / self.turn.max(0.05)
+                });
+                self.drive(edge.length, v) + door + call + turn + STOP_S
+            }
+        }
+    }
+
+    /// A lower bound of [`Kinematics::edge_time`] (for the search's heuristic).
+    fn edge_bound(&self, nav: &Nav, e: usize) -> f64 {
+        let edge = &nav.edges[e];
+        match edge.kind {
+            EdgeKind::Lift(_) => nav.edge_cost(e, self.speed),
+            EdgeKind::Lane => {
+                let v = edge
+                    .speed_limit
+                    .map_or(self.speed, |l| l.min(self.speed))
+                    .max(0.05);
+                edge.length / v
+            }
+        }
+    }
+}
+
+/// The heading of edge `e` (rad).
+fn heading(nav: &Nav, e: usize) -> f64 {
+    let x = &nav.edges[e];
+    let d = nav.vertices[x.to].pos.minus(nav.vertices[x.from].pos);
+    d.y.atan2(d.x)
+}
+
+/// Settling at a waypoint (s): the slotcar stops within its tolerance, then reports.
+const STOP_S: f64 = 0.5;
+
+/// What to plan.
+pub struct Query<'a> {
+    pub robot: usize,
+    pub slot: usize,
+    pub kin: Kinematics,
+    /// Where the robot is (or will be), and from when it may leave.
+    pub from: usize,
+    pub t0: f64,
+    /// Goals in order, each with how long the robot stays there (s).
+    pub goals: &'a [(usize, f64)],
+    /// Per vertex: where the robot may stay for good (`parks::PARK`, or `PARK_ON_PLACE`
+    /// at a cost of `PLACE_PENALTY`), 0 elsewhere.
+    pub parks: &'a [u8],
+    /// A vertex where the plan may end, at no penalty, even if it is not a parking vertex:
+    /// the place a robot was sent to (it stays there, as after RMF's go-to-place; when it is
+    /// in somebody's way later, it is sent on to a parking vertex).
+    pub stay: Option<usize>,
+}
+
+/// A plan: its steps, and after how many steps each goal is reached.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Plan {
+    pub steps: Vec<Step>,
+    pub goal_at: Vec<usize>,
+    /// When the robot is at its last vertex for good.
+    pub done: f64,
+    /// States expanded.
+    pub expanded: usize,
+}
+
+#[derive(Clone, Copy)]
+struct Node {
+    v: usize,
+    iv: usize,
+    label: usize,
+    /// When the robot is at `v` ready to leave (after a goal's dwell).
+    t: f64,
+    parent: usize,
+    /// The edge driven to get here (None: a goal reached at `v`), its start and end.
+    edge: Option<(usize, f64, f64)>,
+    /// The end: the robot stays at `v` for good (its cost counts the parking's penalty).
+    end: bool,
+}
+
+#[derive(PartialEq)]
+struct Open(f64, f64, usize);
+impl Eq for Open {}
+impl Ord for Open {
+    fn cmp(&self, o: &Self) -> Ordering {
+        // Smallest f, then largest g (deeper first), then oldest node.
+        o.0.total_cmp(&self.0)
+            .then(self.1.total_cmp(&o.1))
+            .then(o.2.cmp(&self.2))
+    }
+}
+impl PartialOrd for Open {
+    fn partial_cmp(&self, o: &Self) -> Option<Ordering> {
+        Some(self.cmp(o))
+    }
+}
+
+/// Reverse graphs and heuristic tables, reused across plans.
+pub struct Planner {
+    /// Per slot, per vertex: incoming edges.
+    inn: Vec<Vec<Vec<usize>>>,
+    /// Per edge: its heading (rad), for turning times.
+    heading: Vec<f64>,
+    /// Time to the nearest parking vertex, per (slot, speed bits, parking vertices' hash).
+    park_dist: Map<(usize, u64, u64), Vec<f64>>,
+    /// Time to a goal, per (slot, speed bits, goal vertex): tasks go to the same places
+    /// again and again.
+    goal_dist: Map<(usize, u64, usize), Vec<f64>>,
+    /// Plans made and states expanded, for the report.
+    pub plans: u64,
+    pub expanded: u64,
+    /// Why the last plan failed (for debugging).
+    pub why: &'static str,
+}
+
+impl Planner {
+    pub fn new(nav: &Nav) -> Planner {
+        let inn = (0..nav.graphs.len())
+            .map(|slot| {
+                let mut inn = vec![Vec::new(); nav.vertices.len()];
+                for (i, e) in nav.edges.iter().enumerate() {
+                    if e.graph == slot {
+                        inn[e.to].push(i);
+                    }
+                }
+                inn
+            })
+            .collect();
+        Planner {
+            inn,
+            heading: (0..nav.edges.len()).map(|e| heading(nav, e)).collect(),
+            park_dist: Map::default(),
+            goal_dist: Map::default(),
+            plans: 0,
+            expanded: 0,
+            why: "",
+        }
+    }
+
+    /// Travel times to the nearest of `targets` from every vertex (reverse Dijkstra).
+    fn dist_to(&self, nav: &Nav, slot: usize, kin: &Kinematics, targets: &[usize]) -> Vec<f64> {
+        let mut d = vec![f64::INFINITY; nav.vertices.len()];
+        let mut heap = BinaryHeap::new();
+        for &g in targets {
+            d[g] = 0.0;
+            heap.push(Open(0.0, 0.0, g));
+        }
+        while let Some(Open(c, _, v)) = heap.pop() {
+            if c > d[v] {
+                continue;
+            }
+            for &e in &self.inn[slot][v] {
+                let u = nav.edges[e].from;
+                let nc = c + kin.edge_bound(nav, e);
+                if nc < d[u] {
+                    d[u] = nc;
+                    heap.push(Open(nc, 0.0, u));
+                }
+            }
+        }
+        d
+    }
+
+    /// The earliest plan for `q` against `sched` (ignoring the robot's own spans), or None.
+    /// It ends on a parking vertex off the task places if it can, else on a place that may
+    /// be parked on (a robot there blocks the tasks going there until it is sent away).
+    pub fn plan(&mut self, nav: &Nav, sched: &Schedule, q: &Query) -> Option<Plan> {
+        self.plans += 1;
+        self.search(nav, sched, q, false).or_else(|| {
+            let any_place = q.parks.contains(&PARK_ON_PLACE);
+            if any_place {
+                self.search(nav, sched, q, true)
+            } else {
+                None
+            }
+        })
+    }
+
+    /// [`Planner::plan`], ending on places only when `places`.
+    fn search(&mut self, nav: &Nav, sched: &Schedule, q: &Query, places: bool) -> Option<Plan> {
+        let conf = sched.conf();
+        // Keyed by the parking vertices too: making room plans with other sets of them.
+        let key = (q.slot, q.kin.speed.to_bits(), {
+            use std::hash::{Hash, Hasher};
+            let mut h = std::collections::hash_map::DefaultHasher::new();
+            q.parks.hash(&mut h);
+            h.finish()
+        });
+        if !self.park_dist.contains_key(&key) {
+            if self.park_dist.len() >= 64 {
+                self.park_dist.clear();
+            }
+            let parks: Vec<usize> = (0..nav.vertices.len())
+                .filter(|&v| q.parks[v] != 0)
+                .collect();
+            let d = self.dist_to(nav, q.slot, &q.kin, &parks);
+            self.park_dist.insert(key, d);
+        }
+        let nl = q.goals.len();
+        // Bounded memory: a few hundred places' tables (each a float per vertex).
+        if self.goal_dist.len() + nl + 1 > GOAL_TABLES {
+            self.goal_dist.clear();
+        }
+        for g in q.goals.iter().map(|g| g.0).chain(q.stay) {
+            let gk = (q.slot, q.kin.speed.to_bits(), g);
+            if !self.goal_dist.contains_key(&gk) {
+                let d = self.dist_to(nav, q.slot, &q.kin, &[g]);
+                self.goal_dist.insert(gk, d);
+            }
+        }
+        let park_dist = &self.park_dist[&key];
+        let table = |g: usize| &self.goal_dist[&(q.slot, q.kin.speed.to_bits(), g)];
+        // h(v, label): to the goal of `label`, then through the rest, then to a park.
+        let dist: Vec<&Vec<f64>> = q.goals.iter().map(|&(g, _)| table(g)).collect();
+        // After the last goal: to a parking vertex, or back to where the robot may stay.
+        let end_dist: std::borrow::Cow<[f64]> = match q.stay {
+            Some(st) => park_dist
+                .iter()
+                .zip(table(st))
+                .map(|(a, b)| a.min(*b))
+                .collect(),
+            None => std::borrow::Cow::Borrowed(park_dist),
+        };
+        let mut rest = vec![0.0; nl + 1];
+        for l in (0..nl).rev() {
+            let (g, dwell) = q.goals[l];
+            let next = if l + 1 < nl {
+                dist[l + 1][g]
+            } else {
+                end_dist[g]
+            };
+            rest[l] = dwell + next + rest[l + 1];
+        }
+        let h = |v: usize, label: usize| -> f64 {
+            if label < nl {
+                dist[label][v] + rest[label]
+            } else {
+                end_dist[v]
+            }
+        };
+        if !h(q.from, 0).is_finite() {
+            self.why = "unreachable";
+            return None;
+        }
+        let r = q.robot;
+        // Safe intervals per vertex, computed when first needed.
+        let mut safe_at: Map<usize, usize> = Map::default();
+        let mut safe: Vec<Vec<(f64, f64)>> = Vec::new();
+        let mut intervals = |v: usize, safe: &mut Vec<Vec<(f64, f64)>>| -> usize {
+            *safe_at.entry(v).or_insert_with(|| {
+                safe.push(free_of(sched, &conf.vertex[v], r));
+                safe.len() - 1
+            })
+        };
+        let iv0 = intervals(q.from, &mut safe);
+        let Some(i0) = safe[iv0].iter().position(|&(a, b)| a <= q.t0 && q.t0 < b) else {
+            self.why = "start busy";
+            return None;
+        };
+        let mut nodes = vec![Node {
+            v: q.from,
+            iv: i0,
+            label: 0,
+            t: q.t0,
+            parent: usize::MAX,
+            edge: None,
+            end: false,
+        }];
+        let mut best: Map<(usize, usize, usize), f64> = Map::default();
+        let mut open = BinaryHeap::new();
+        open.push(Open(q.t0 + h(q.from, 0), q.t0, 0));
+        let mut expanded = 0usize;
+        let mut busy_cache: Map<usize, Vec<(f64, f64)>> = Map::default();
+        while let Some(Open(_, _, id)) = open.pop() {
+            let n = nodes[id];
+            if best.get(&(n.v, n.iv, n.label)).is_some_and(|&t| t < n.t) {
+                continue;
+            }
+            if n.end {
+                self.expanded += expanded as u64;
+                let mut plan = unwind(nav, &nodes, n.parent, nl, expanded);
+                wait_early(sched, q.robot, &mut plan);
+                return Some(plan);
+            }
+            let at = intervals(n.v, &mut safe);
+            let (_, hi) = safe[at][n.iv];
+            let may_stay = q.stay == Some(n.v)
+                || q.parks[n.v] == PARK
+                || (places && q.parks[n.v] == PARK_ON_PLACE);
+            if n.label == nl && may_stay && hi == f64::INFINITY {
+                // Staying here for good: a candidate end, ranked with its penalty.
+                let pen = if q.parks[n.v] == PARK_ON_PLACE && q.stay != Some(n.v) {
+                    PLACE_PENALTY
+                } else {
+                    0.0
+                };
+                nodes.push(Node {
+                    parent: id,
+                    end: true,
+                    ..n
+                });
+                open.push(Open(n.t + pen, n.t, nodes.len() - 1));
+            }
+            expanded += 1;
+            if expanded > MAX_EXPANSIONS {
+                break;
+            }
+            let mut push = |node: Node, nodes: &mut Vec<Node>, open: &mut BinaryHeap<Open>| {
+                let k = (node.v, node.iv, node.label);
+                if best.get(&k).is_some_and(|&t| t <= node.t) {
+                    return;
+                }
+                let hv = h(node.v, node.label);
+                if !hv.is_finite() {
+                    return;
+                }
+                best.insert(k, node.t);
+                nodes.push(node);
+                open.push(Open(node.t + hv, node.t, nodes.len() - 1));
+            };
+            // A goal reached: stay for its dwell.
+            if n.label < nl && q.goals[n.label].0 == n.v {
+                let t = n.t + q.goals[n.label].1;
+                if t < hi {
+                    push(
+                        Node {
+                            label: n.label + 1,
+                            t,
+                            parent: id,
+                            edge: None,
+                            end: false,
+                            ..n
+                        },
+                        &mut nodes,
+                        &mut open,
+                    );
+                }
+            }
+            for &e in &nav.out[q.slot][n.v] {
+                let w = nav.edges[e].to;
+                let prev = n.edge.map(|(p, _, _)| p);
+                let dur = q.kin.edge_time_with(nav, e, prev, |x| self.heading[x]);
+
+                let busy = busy_cache
+                    .entry(e)
+                    .or_insert_with(|| merged(sched, &conf.trav[e], r));
+                let wi_at = intervals(w, &mut safe);
+                let wivs = &safe[wi_at];
+                // Each gap of the edge's resources wide enough, left while still in this
+                // vertex's safe interval; the first arrival in each of w's intervals.
+                let mut from = n.t;
+                let mut k = busy.partition_point(|&(_, b)| b <= from);
+                loop {
+                    let gap_end = busy.get(k).map_or(f64::INFINITY, |&(a, _)| a);
+                    let d = from;
+                    if d >= hi {
+                        break;
+                    }
+                    if gap_end - d >= dur {
+                        let a = d + dur;
+                        if let Some(wi) = wivs.iter().position(|&(lo, up)| lo <= a && a < up) {
+                            push(
+                                Node {
+                                    v: w,
+                                    iv: wi,
+                                    label: n.label,
+                                    t: a,
+                                    parent: id,
+                                    edge: Some((e, d, a)),
+                                    end: false,
+                                },
+                                &mut nodes,
+                                &mut open,
+                            );
+                        }
+                    }
+                    let Some(&(_, b)) = busy.get(k) else { break };
+                    from = b;
+                    k += 1;
+                }
+            }
+        }
+        self.expanded += expanded as u64;
+        self.why = if expanded > MAX_EXPANSIONS {
+            "search bound"
+        } else {
+            "no way"
+        };
+        None
+    }
+}
+
+/// The merged busy intervals of `set` for anybody but robot `r`, sorted.
+fn merged(sched: &Schedule, set: &[Res], r: usize) -> Vec<(f64, f64)> {
+    let mut all: Vec<(f64, f64)> = set.iter().flat_map(|&x| sched.busy(x, r)).collect();
+    all.sort_by(|a, b| a.0.total_cmp(&b.0));
+    let mut out: Vec<(f64, f64)> = Vec::with_capacity(all.len());
+    for (a, b) in all {
+        if b <= a {
+            continue;
+        }
+        match out.last_mut() {
+            Some(l) if a <= l.1 => l.1 = l.1.max(b),
+            _ => out.push((a, b)),
+        }
+    }
+    out
+}
+
+/// The safe intervals of `set` for robot `r`: the gaps between the others' spans.
+fn free_of(sched: &Schedule, set: &[Res], r: usize) -> Vec<(f64, f64)> {
+    let busy = merged(sched, set, r);
+    let mut out = Vec::with_capacity(busy.len() + 1);
+    let mut from = f64::NEG_INFINITY;
+    for (a, b) in busy {
+        if a > from {
+            out.push((from, a));
+        }
+        from = b;
+    }
+    if from < f64::INFINITY {
+        out.push((from, f64::INFINITY));
+    }
+    out
+}
+
+/// Moves each leg's waits (from a place to the next, and to the parking vertex) to its
+/// start, where they keep the same arrival: the robot waits where it stands or works (a
+/// parking vertex, a task place) rather than in a corridor, and leaves when its way is
+/// clear. A traversal is only delayed into a gap of the others' spans that fits it, while
+/// the robot may still stand where it starts.
+fn wait_early(sched: &Schedule, r: usize, plan: &mut Plan) {
+    let conf = sched.conf();
+    let mut bounds = plan.goal_at.clone();
+    bounds.push(plan.steps.len());
+    let mut l0 = 0;
+    for &l1 in &bounds {
+        for k in (l0..l1.saturating_sub(1)).rev() {
+            let latest_end = plan.steps[k + 1].start;
+            let st = &plan.steps[k];
+            if latest_end <= st.end + 1e-9 {
+                continue;
+            }
+            let start = latest_end - st.dur;
+            let clear = merged(sched, &conf.trav[st.edge], r)
+                .iter()
+                .all(|&(a, b)| b <= start || a >= latest_end);
+            let stays = free_of(sched, &conf.vertex[st.from], r)
+                .iter()
+                .any(|&(a, b)| a <= st.start && start <= b);
+            if clear && stays {
+                let st = &mut plan.steps[k];
+                st.start = start;
+                st.end = latest_end;
+            }
+        }
+        l0 = l1;
+    }
+}
+
+fn unwind(nav: &Nav, nodes: &[Node], mut id: usize, nl: usize, expanded: usize) -> Plan {
+    let done = nodes[id].t;
+    let mut chain = Vec::new();
+    while id != usize::MAX {
+        chain.push(id);
+        id = nodes[id].parent;
+    }
+    chain.reverse();
+    let mut steps: Vec<Step> = Vec::new();
+    let mut goal_at = Vec::with_capacity(nl);
+    let mut hold = 0.0;
+    for w in chain.windows(2) {
+        let (p, n) = (&nodes[w[0]], &nodes[w[1]]);
+        match n.edge {
+            None => {
+                goal_at.push(steps.len());
+                hold = n.t - p.t;
+            }
+            Some((e, d, a)) => {
+                let edge = &nav.edges[e];
+                steps.push(Step {
+                    edge: e,
+                    from: edge.from,
+                    to: edge.to,
+                    dur: a - d,
+                    hold,
+                    start: d,
+                    end: a,
+                });
+                hold = 0.0;
+            }
+        }
+    }
+    Plan {
+        steps,
+        goal_at,
+        done,
+        expanded,
+    }
+}
+
+#[cfg(test)]
+mod tests;

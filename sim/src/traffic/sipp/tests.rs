@@ -1,0 +1,164 @@
+//! The planner: earliest arrival against the schedule, waits where needed, ends parked.
+
+use super::*;
+use crate::traffic::parks::PARK;
+use crate::traffic::schedule::Schedule;
+use crate::traffic::test_map::{conflicts, e, nav, v};
+
+const KIN: Kinematics = Kinematics {
+    speed: 0.5,
+    accel: 0.25,
+    turn: 0.5,
+};
+
+/// A query of robot `robot` from `from` at 0 s, staying nowhere but on `parks`.
+fn query<'a>(robot: usize, from: usize, goals: &'a [(usize, f64)], parks: &'a [u8]) -> Query<'a> {
+    Query {
+        robot,
+        slot: 0,
+        kin: KIN,
+        from,
+        t0: 0.0,
+        goals,
+        parks,
+        stay: None,
+    }
+}
+
+fn parks(nav: &Nav, names: &[&str]) -> Vec<u8> {
+    let mut p = vec![0; nav.vertices.len()];
+    for n in names {
+        p[v(nav, n)] = PARK;
+    }
+    p
+}
+
+#[test]
+fn drive_times_follow_the_slotcar_profile() {
+    let nav = nav();
+    // 4 m at 0.5 m/s with 0.25 m/s²: 4/0.5 + 0.5/0.25 = 10 s, plus 0.5 s to settle.
+    assert!((KIN.edge_time(&nav, e(&nav, "a", "b"), None) - 10.5).abs() < 1e-9);
+    // Turning left by 90° at 0.5 rad/s first: π/2 / 0.5 = 3.14 s more; 3 m: 8 s.
+    let t = KIN.edge_time(&nav, e(&nav, "b", "p1"), Some(e(&nav, "a", "b")));
+    assert!((t - (3.0 / 0.5 + 2.0 + 0.5 + std::f64::consts::FRAC_PI_2 / 0.5)).abs() < 1e-9);
+}
+
+#[test]
+fn alone_it_drives_straight_to_the_goal_and_parks() {
+    let nav = nav();
+    let conf = conflicts(&nav);
+    let sched = Schedule::new(conf, &[v(&nav, "a"), v(&nav, "p2")], 0.0);
+    let mut planner = Planner::new(&nav);
+    let p = parks(&nav, &["p1", "p2"]);
+    let plan = planner
+        .plan(
+            &nav,
+            &sched,
+            &query(0, v(&nav, "a"), &[(v(&nav, "c"), 5.0)], &p),
+        )
+        .expect("a plan");
+    let to: Vec<&str> = plan
+        .steps
+        .iter()
+        .map(|s| nav.vertices[s.to].name.as_str())
+        .collect();
+    // c, then the nearest free park: p1 (p2 is robot 1's for good).
+    assert_eq!(to, ["b", "c", "b", "p1"]);
+    assert_eq!(plan.goal_at, vec![2]);
+    // No waiting: every step starts when the last ended, the dwell at c aside.
+    assert_eq!(plan.steps[0].start, 0.0);
+    assert_eq!(plan.steps[1].start, plan.steps[0].end);
+    assert!((plan.steps[2].start - plan.steps[1].end - 5.0).abs() < 1e-9);
+    assert_eq!(plan.steps[2].hold, 5.0);
+}
+
+#[test]
+fn it_waits_for_a_robot_planned_through_first() {
+    let nav = nav();
+    let conf = conflicts(&nav);
+    let mut sched = Schedule::new(conf, &[v(&nav, "a"), v(&nav, "d")], 0.0);
+    // Robot 1 drives d→c→b→p1 from 0 s, 10.5 s a lane (no turns counted here).
+    let mut planner = Planner::new(&nav);
+    let p = parks(&nav, &["p1", "p2", "a", "d"]);
+    let goals_q1 = [(v(&nav, "p1"), 0.0)];
+    let q1 = query(1, v(&nav, "d"), &goals_q1, &p);
+    let plan1 = planner.plan(&nav, &sched, &q1).expect("robot 1 plans");
+    sched.install(1, 0, &plan1.steps, 0.0);
+    let arrive_p1 = plan1.done;
+    // Robot 0 wants d: it cannot be in the corridor while robot 1 comes down it.
+    let goals_q0 = [(v(&nav, "d"), 0.0)];
+    let q0 = query(0, v(&nav, "a"), &goals_q0, &p);
+    let plan0 = planner.plan(&nav, &sched, &q0).expect("robot 0 plans");
+    sched.install(0, 0, &plan0.steps, 0.0);
+    assert!(sched.check(0.0).is_ok());
+    // It reaches b only after robot 1 has left it for p1.
+    let b = v(&nav, "b");
+    let at_b = plan0
+        .steps
+        .iter()
+        .find(|s| s.to == b)
+        .expect("through b")
+        .end;
+    assert!(
+        at_b >= arrive_p1 - 1e-9 || plan0.steps[0].start > 0.0,
+        "{plan0:?} vs {plan1:?}"
+    );
+    assert!(
+        plan0.steps.first().is_some_and(|s| s.start > 0.0),
+        "it waits at a: {plan0:?}"
+    );
+}
+
+#[test]
+fn no_way_back_over_a_one_way_lane_means_no_plan() {
+    let nav = nav();
+    let conf = conflicts(&nav);
+    let sched = Schedule::new(conf, &[v(&nav, "a")], 0.0);
+    let mut planner = Planner::new(&nav);
+    let p = parks(&nav, &["p1"]);
+    // e is reached one way only: no parking vertex after it.
+    let goals_q = [(v(&nav, "e"), 0.0)];
+    let q = query(0, v(&nav, "a"), &goals_q, &p);
+    assert!(planner.plan(&nav, &sched, &q).is_none());
+}
+
+#[test]
+fn waits_are_taken_where_the_robot_stands_not_in_the_corridor() {
+    let nav = nav();
+    let conf = conflicts(&nav);
+    let (a, c, d) = (v(&nav, "a"), v(&nav, "c"), v(&nav, "d"));
+    let mut sched = Schedule::new(conf, &[a, c], 0.0);
+    let mut planner = Planner::new(&nav);
+    let p = parks(&nav, &["p1", "p2", "a", "d"]);
+    // Robot 1 works at c for 20 s, then parks at p2.
+    let goals_q1 = [(c, 20.0)];
+    let q1 = query(1, c, &goals_q1, &p);
+    let plan1 = planner.plan(&nav, &sched, &q1).expect("robot 1 plans");
+    sched.install(1, 0, &plan1.steps, 0.0);
+    let c_free = plan1.steps[0].end;
+    assert!(c_free > 20.0, "{plan1:?}");
+    // Robot 0 goes a → b → c → d: it cannot pass c before robot 1 has left it. The search
+    // finds the earliest arrival by driving to b and waiting there; the plan waits at a
+    // instead, and arrives as early.
+    let goals_q0 = [(d, 0.0)];
+    let q0 = query(0, a, &goals_q0, &p);
+    let plan0 = planner.plan(&nav, &sched, &q0).expect("robot 0 plans");
+    let to: Vec<&str> = plan0
+        .steps
+        .iter()
+        .map(|s| nav.vertices[s.to].name.as_str())
+        .collect();
+    assert_eq!(to, ["b", "c", "d"]);
+    let b_to_c = &plan0.steps[1];
+    assert!(b_to_c.start >= c_free - 1e-9, "{plan0:?}");
+    // Leaves a late, then drives on without a stop: a→b ends as b→c starts.
+    let a_to_b = &plan0.steps[0];
+    assert!(a_to_b.start > 5.0, "{plan0:?}");
+    assert!((b_to_c.start - a_to_b.end).abs() < 1e-9, "{plan0:?}");
+    assert!(
+        (plan0.steps[2].start - b_to_c.end).abs() < 1e-9,
+        "{plan0:?}"
+    );
+    sched.install(0, 0, &plan0.steps, 0.0);
+    assert!(sched.check(0.0).is_ok());
+}

@@ -1,0 +1,256 @@
+//! RMF task API requests as a scenario's `requests:` (issue 38): what they become, what is
+//! refused, located problems, and the task and fleet states mapc writes in RMF's format,
+//! validated against rmf_api_msgs' schemas (../shared) with the `jsonschema` crate.
+
+use mapc_sim::{parse_scenario, parse_scenario_files, rmf_states, simulate, Report, RunOptions};
+#[path = "support/rmf_schemas.rs"]
+mod rmf_schemas;
+use rmf_schemas::validator;
+use serde_json::Value;
+use std::path::{Path, PathBuf};
+
+fn fixtures() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("../fixtures")
+}
+
+/// Runs the warehouse requests scenario; its report, task states and fleet state updates.
+fn run() -> (mapc_sim::Scenario, Report, Vec<Value>) {
+    let dir = fixtures().join("rmf");
+    let text = std::fs::read_to_string(dir.join("warehouse_requests.scenario.yaml")).unwrap();
+    let (s, d) = parse_scenario(mapc_ir::FileId(0), &text, &dir);
+    let s = s.unwrap_or_else(|| panic!("{d:#?}"));
+    let map = mapc_frontend::load(&fixtures().join("cartesian_warehouse.building.yaml")).unwrap();
+    let b = map.valid_building().unwrap();
+    let start = rmf_states::start_unix_millis(&s);
+    let mut fleet_states = Vec::new();
+    let mut observe = |p: &mapc_sim::msgs::Published| {
+        if let mapc_sim::msgs::Msg::FleetState(f) = &p.msg {
+            fleet_states.push(rmf_states::fleet_state_update(f, p.t, start));
+        }
+    };
+    let report = simulate(
+        b,
+        &s,
+        RunOptions {
+            observer: Some(&mut observe),
+            ..Default::default()
+        },
+    )
+    .unwrap_or_else(|e| panic!("{e:?}"));
+    (s, report, fleet_states)
+}
+
+#[test]
+fn requests_become_tasks_or_are_refused() {
+    let (_, r, fleet_states) = run();
+    let got: Vec<(usize, Option<&str>, Option<&str>)> = r
+        .requests
+        .iter()
+        .map(|q| (q.line, q.task_id.as_deref(), q.refused.as_deref()))
+        .collect();
+    assert_eq!(
+        got,
+        [
+            (1, Some("loop_0"), None),
+            (2, Some("go_to_place_0"), None),
+            (3, Some("delivery_0"), None),
+            (4, Some("go_to_place_1"), None),
+            (5, None, Some("no fleet is capable of clean tasks")),
+            (6, None, Some("no fleet is named `cleaners`")),
+            (
+                7,
+                None,
+                Some("cancel_task_request for `loop_0`: mapc does not cancel tasks")
+            ),
+            (8, Some("delivery_1"), None),
+            (
+                9,
+                None,
+                Some("mapc cannot simulate the action `teleop` (its robots go to places, deliver and clean)")
+            ),
+            (10, Some("go_to_place_2"), None),
+        ]
+    );
+    // The delivery may not start before its unix_millis_earliest_start_time (4 min after
+    // the run's start), though it arrived at 2 min.
+    let d = r.tasks.iter().find(|t| t.id == "delivery_0").unwrap();
+    assert_eq!(d.requested, Some(240.0));
+    assert_eq!(r.requests[2].at, 240.0);
+    for t in &r.tasks {
+        assert_eq!(t.result, "completed", "{t:?}");
+    }
+    // The robot task went to the robot's fleet.
+    let g = r.tasks.iter().find(|t| t.id == "go_to_place_1").unwrap();
+    assert_eq!(g.fleet, "movers");
+    assert!(!fleet_states.is_empty());
+}
+
+fn check(v: &jsonschema::Validator, x: &Value, what: &str) {
+    let errors: Vec<String> = v
+        .iter_errors(x)
+        .map(|e| format!("{e} at {}", e.instance_path()))
+        .collect();
+    assert!(errors.is_empty(), "{what}: {errors:#?}\n{x:#}");
+}
+
+#[test]
+fn requests_and_states_follow_rmf_api_schemas() {
+    let (Some(dispatch), Some(robot), Some(cancel), Some(task_state), Some(fleet_update)) = (
+        validator("dispatch_task_request.json"),
+        validator("robot_task_request.json"),
+        validator("cancel_task_request.json"),
+        validator("task_state.json"),
+        validator("fleet_state_update.json"),
+    ) else {
+        eprintln!("skipped: ../shared not found");
+        return;
+    };
+    let descriptions = |cat: &str| validator(&format!("task_description__{cat}.json"));
+    // The warehouse's requests and the office example's (docs/sim.md).
+    let text = ["warehouse_requests.jsonl", "office_requests.jsonl"]
+        .map(|f| std::fs::read_to_string(fixtures().join("rmf").join(f)).unwrap())
+        .concat();
+    for (i, line) in text.lines().enumerate() {
+        let v: Value = serde_json::from_str(line).unwrap();
+        let req = &v["request"];
+        let what = format!("request line {}", i + 1);
+        match req["type"].as_str().unwrap() {
+            "dispatch_task_request" => check(&dispatch, req, &what),
+            "robot_task_request" => check(&robot, req, &what),
+            "cancel_task_request" => check(&cancel, req, &what),
+            t => panic!("{t}"),
+        }
+        // The description against the fleet adapter's schema of its category.
+        if let Some(cat) = req["request"]["category"].as_str() {
+            let d = descriptions(cat).expect("a schema for each category used");
+            check(&d, &req["request"]["description"], &what);
+        }
+    }
+    let (s, r, fleet_states) = run();
+    let states = rmf_states::task_states(&s, &r);
+    assert_eq!(
+        states.len(),
+        r.tasks.len() + 4,
+        "tasks plus refused requests"
+    );
+    for st in &states {
+        check(&task_state, st, "task_state");
+    }
+    // The delivery: booked with its request's fields, done by a mover, times in unix ms.
+    let d = states
+        .iter()
+        .find(|s| s["booking"]["id"] == "delivery_0")
+        .unwrap();
+    let start = 1_767_225_600_000i64;
+    assert_eq!(
+        d["booking"]["unix_millis_earliest_start_time"],
+        start + 240_000
+    );
+    assert_eq!(d["booking"]["priority"]["value"], 1);
+    assert_eq!(d["category"], "delivery");
+    assert_eq!(d["status"], "completed");
+    assert_eq!(d["assigned_to"]["group"], "movers");
+    let t = r.tasks.iter().find(|t| t.id == "delivery_0").unwrap();
+    assert_eq!(
+        d["unix_millis_finish_time"],
+        start + (t.finished.unwrap() * 1000.0).round() as i64
+    );
+    let p = states
+        .iter()
+        .find(|s| s["booking"]["id"] == "loop_0")
+        .unwrap();
+    assert_eq!(p["category"], "patrol");
+    assert_eq!(p["booking"]["requester"], "rmf_demos_tasks");
+    let refused = states.iter().filter(|s| s["status"] == "failed").count();
+    assert_eq!(refused, 4);
+    for f in &fleet_states {
+        check(&fleet_update, f, "fleet_state_update");
+    }
+    let last = fleet_states.last().unwrap();
+    let b = last["data"]["robots"]["mover_1"]["battery"]
+        .as_f64()
+        .unwrap();
+    assert!(b > 0.9 && b <= 1.0, "{b}");
+}
+
+/// A requests file written next to a scenario in a scratch directory; the diagnostics.
+fn broken(lines: &str) -> Vec<(&'static str, u32, u32, u32)> {
+    let dir = std::env::temp_dir().join(format!("mapc-rmf-requests-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    std::fs::write(dir.join("r.jsonl"), lines).unwrap();
+    std::fs::copy(
+        fixtures().join("rmf/movers_config.yaml"),
+        dir.join("m.yaml"),
+    )
+    .unwrap();
+    let text = "duration: 1h\nfleets: [{config: m.yaml}]\nrequests: r.jsonl\n";
+    let p = parse_scenario_files(mapc_ir::FileId(0), text, &dir);
+    let mut out: Vec<_> = p
+        .diagnostics
+        .iter()
+        .map(|d| (d.code, d.span.file.0, d.span.line, d.span.col))
+        .collect();
+    if let Some(s) = p.scenario {
+        // Against the map: unknown places.
+        let map =
+            mapc_frontend::load(&fixtures().join("cartesian_warehouse.building.yaml")).unwrap();
+        if let Err(mapc_sim::SimError::Invalid(d)) =
+            simulate(map.valid_building().unwrap(), &s, RunOptions::default())
+        {
+            out.extend(
+                d.iter()
+                    .map(|d| (d.code, d.span.file.0, d.span.line, d.span.col)),
+            );
+        }
+    }
+    out
+}
+
+#[test]
+fn broken_requests_are_located() {
+    let ok = r#"{"at": 0, "request": {"type": "dispatch_task_request", "request": {"category": "patrol", "description": {"places": ["aisle_1"]}}}}"#;
+    // A truncated line (file 2: the requests, after the fleet config).
+    let d = broken(&format!("{ok}\n{}\n", &ok[..60]));
+    assert_eq!(d, [("S0313", 2, 2, 60)]);
+    // A wrong type: `rounds` must be an integer.
+    let d = broken(&format!(
+        "{ok}\n{}\n",
+        ok.replace("]}", "], \"rounds\": \"two\"}")
+    ));
+    assert_eq!(d, [("S0313", 2, 2, 139)], "{d:?}");
+    // Missing `description` (required by task_request).
+    let d = broken(&ok.replace(r#", "description": {"places": ["aisle_1"]}"#, ""));
+    assert_eq!(d, [("S0313", 2, 1, 11)], "{d:?}");
+    // A bad `at`.
+    let d = broken(&ok.replace(r#""at": 0"#, r#""at": "soon""#));
+    assert_eq!(d, [("S0313", 2, 1, 2)], "{d:?}");
+    // An unknown place: at the place, in the requests file.
+    let d = broken(&ok.replace("aisle_1", "aisle_7"));
+    assert_eq!(d, [("S0201", 2, 1, 118)], "{d:?}");
+    // A missing file.
+    std::fs::remove_file(
+        std::env::temp_dir()
+            .join(format!("mapc-rmf-requests-{}", std::process::id()))
+            .join("r.jsonl"),
+    )
+    .unwrap();
+    let dir = std::env::temp_dir().join(format!("mapc-rmf-requests-{}", std::process::id()));
+    let p = parse_scenario_files(
+        mapc_ir::FileId(0),
+        "duration: 1h\nfleets: [{config: m.yaml}]\nrequests: r.jsonl\n",
+        &dir,
+    );
+    assert_eq!(p.diagnostics[0].code, "S0004");
+    // Garbage never panics.
+    for g in [
+        "{",
+        "[]",
+        "null",
+        "{\"at\": 1}",
+        "\u{0}",
+        "{\"at\": -5, \"request\": {}}",
+    ] {
+        let d = broken(g);
+        assert!(d.iter().any(|x| x.0 == "S0313"), "{g}: {d:?}");
+    }
+}

@@ -1,0 +1,2 @@
+//! Shared by the sim crate's integration tests.
+pub mod gen;
