@@ -15,7 +15,6 @@ use commands::{
     sweep, world,
 };
 use driver::{signals, CliError};
-use std::path::Path;
 use std::process::ExitCode;
 
 #[derive(Parser)]
@@ -99,17 +98,6 @@ enum Command {
     Check(check::CheckArgs),
 }
 
-/// The map a command compiles, when it compiles one.
-fn single_map(c: &Command) -> Option<&Path> {
-    match c {
-        Command::Nav(a) => Some(a.input()),
-        Command::Gltf(a) => Some(a.input()),
-        Command::Meshes(a) => Some(a.input()),
-        Command::Gazebo(a) | Command::Ignition(a) | Command::Classic(a) => Some(a.input()),
-        _ => None,
-    }
-}
-
 /// `Cli::parse()`, with a shortcut for the drop-in world commands, which build loops run
 /// once per map: their own arguments are parsed without building every other subcommand's
 /// (about 0.4 ms of a 10 ms compile; BENCHMARKS.md). Anything but a successful parse (help,
@@ -139,24 +127,9 @@ fn parse_world_args(args: &[std::ffi::OsString]) -> Option<Cli> {
 
 fn main() -> ExitCode {
     let cli = parse_cli();
-    // Batch commands end within seconds: no memory is given back meanwhile (mapc_ir::heap);
-    // huge pages for the run of one map of the usual size.
-    if !matches!(
-        cli.command,
-        Command::Lsp(_) | Command::Sim(_) | Command::Sweep(_)
-    ) {
-        let small = single_map(&cli.command)
-            .and_then(|p| std::fs::metadata(p).ok())
-            .is_some_and(|m| m.len() <= mapc_ir::heap::HUGE_PAGES_UP_TO);
-        mapc_ir::heap::tune_for_batch(small);
-    }
     // `mapc sim` stops cooperatively on the first signal (it writes what ran); every other
     // command removes its temporaries and exits.
-    let first = match &cli.command {
-        Command::Gazebo(a) | Command::Ignition(a) | Command::Classic(a) => world::first_job(a),
-        _ => None,
-    };
-    signals::install(usize::from(matches!(cli.command, Command::Sim(_))), first);
+    signals::install(usize::from(matches!(cli.command, Command::Sim(_))));
     let result = match &cli.command {
         Command::Nav(args) => nav::run(args),
         Command::Gltf(args) => gltf::run(args),

@@ -14,6 +14,7 @@ mod obj;
 pub mod render;
 pub mod sdf;
 mod site;
+pub mod svg;
 mod texture;
 mod yaml;
 

@@ -7,7 +7,6 @@
 pub mod codes;
 pub mod crs;
 mod lower;
-mod lower_split;
 pub mod site;
 pub mod spelling;
 mod transform;
@@ -118,24 +117,6 @@ fn parse_and_lower(
     text: &str,
     diags: &mut Vec<Diagnostic>,
 ) -> Option<Building> {
-    // A deferred (huge) map's levels stay on one thread: two buildings' arenas, then their
-    // merge, would take memory its bound (10 times the file) does not allow for.
-    let threads = if defer {
-        lower_split::LevelThreads::One
-    } else {
-        lower_split::LevelThreads::Auto
-    };
-    parse_and_lower_with(defer, threads, file, text, diags)
-}
-
-/// [`parse_and_lower`], levels lowered on as many threads as `threads` says.
-fn parse_and_lower_with(
-    defer: bool,
-    threads: lower_split::LevelThreads,
-    file: FileId,
-    text: &str,
-    diags: &mut Vec<Diagnostic>,
-) -> Option<Building> {
     let parsed = if defer {
         yaml::parse_map(text, file)
     } else {
@@ -148,7 +129,7 @@ fn parse_and_lower_with(
             return None;
         }
     };
-    let mut b = lower::Lower { diags: &mut *diags }.building(&mut root, &lists, threads)?;
+    let mut b = lower::Lower { diags: &mut *diags }.building(&mut root, &lists)?;
     drop(root);
     transform::apply(&mut b, diags);
     Some(b)
@@ -326,9 +307,8 @@ mod lowering_paths {
 
     fn same_read(name: &str, text: &str) {
         let (mut d1, mut d2) = (Vec::new(), Vec::new());
-        let one = lower_split::LevelThreads::One;
-        let a = parse_and_lower_with(true, one, FileId(0), text, &mut d1);
-        let b = parse_and_lower_with(false, one, FileId(0), text, &mut d2);
+        let a = parse_and_lower(true, FileId(0), text, &mut d1);
+        let b = parse_and_lower(false, FileId(0), text, &mut d2);
         assert_eq!(
             format!("{a:?}"),
             format!("{b:?}"),
@@ -339,23 +319,6 @@ mod lowering_paths {
             format!("{d2:?}"),
             "{name}: diagnostics differ"
         );
-        // Levels lowered on two threads, cut before each level in turn: the same again.
-        let levels = b.as_ref().map_or(0, |b| b.levels.len());
-        for cut in 1..levels {
-            let mut d3 = Vec::new();
-            let threads = lower_split::LevelThreads::CutAt(cut);
-            let c = parse_and_lower_with(false, threads, FileId(0), text, &mut d3);
-            assert_eq!(
-                format!("{b:?}"),
-                format!("{c:?}"),
-                "{name}: buildings differ with the helper lowering levels {cut}.."
-            );
-            assert_eq!(
-                format!("{d2:?}"),
-                format!("{d3:?}"),
-                "{name}: diagnostics differ with the helper lowering levels {cut}.."
-            );
-        }
     }
 
     /// Single edits near structure (as the fast reader's differential test makes): the
@@ -399,8 +362,7 @@ mod lowering_paths {
     }
 
     /// Reading level lists again from the text gives the same building and diagnostics,
-    /// spans included, as lowering the whole tree, and so does lowering levels on two
-    /// threads (cut before each level in turn): on every fixture and demo map, and on
+    /// spans included, as lowering the whole tree: on every fixture and demo map, and on
     /// lists written in each way the reader knows (indentless, maps as items, comments,
     /// lists of other levels and of lifts beside them).
     #[test]

@@ -534,14 +534,8 @@ impl Lower<'_> {
     }
 
     /// The whole document.
-    /// The level lists may have been left out of the tree (`lists` reads them). Levels are
-    /// lowered on as many threads as `threads` says (`lower_split`).
-    pub fn building<'s>(
-        &mut self,
-        root: &mut Node<'s>,
-        lists: &Lists<'s>,
-        threads: crate::lower_split::LevelThreads,
-    ) -> Option<Building> {
+    /// The level lists may have been left out of the tree (`lists` reads them).
+    pub fn building<'s>(&mut self, root: &mut Node<'s>, lists: &Lists<'s>) -> Option<Building> {
         let root_entries = self.map(root, "the document root")?;
         self.unknown_keys(root_entries, ROOT_KEYS, "the building");
 
@@ -640,15 +634,11 @@ impl Lower<'_> {
         if let Some(entries) = root.get_mut("levels").and_then(Node::as_map_mut) {
             // `chosen` is in document order: each entry is taken once, as it comes.
             let mut chosen = chosen.into_iter().peekable();
-            let levels = entries
-                .iter_mut()
-                .enumerate()
-                .filter_map(|(i, (_, node))| {
-                    let (_, name, span) = chosen.next_if(|c| c.0 == i)?;
-                    Some((node, name, span))
-                })
-                .collect();
-            crate::lower_split::lower_levels(self, &mut b, levels, lists, threads);
+            for (i, (_, node)) in entries.iter_mut().enumerate() {
+                if let Some((_, name, span)) = chosen.next_if(|c| c.0 == i) {
+                    self.level(&mut b, &name, node, span, lists);
+                }
+            }
         }
         if b.levels.is_empty() {
             self.err(

@@ -23,11 +23,6 @@ impl<T> Handle<T> {
     pub fn index(self) -> usize {
         self.index as usize
     }
-    /// The handle of the same element once its arena is appended after `by` others
-    /// ([`Arena::append_arena`]).
-    pub(crate) fn shifted(self, by: usize) -> Self {
-        Handle::new(self.index() + by)
-    }
 }
 
 // Manual impls: derives would require `T: Clone` etc.
@@ -115,16 +110,6 @@ impl<T> Arena<T> {
             .iter_mut()
             .enumerate()
             .map(|(i, t)| (Handle::new(i), t))
-    }
-    /// Moves every element of `other` (spans included) to the end of this arena, in order,
-    /// after `relocate` has rewritten the handles it holds.
-    pub(crate) fn append_arena(&mut self, other: Arena<T>, mut relocate: impl FnMut(&mut T)) {
-        self.items.reserve_exact(other.items.len());
-        for mut item in other.items {
-            relocate(&mut item);
-            self.items.push(item);
-        }
-        self.spans.extend(other.spans);
     }
     /// Handle of the element at position `index`, if it exists.
     pub fn handle(&self, index: usize) -> Option<Handle<T>> {

@@ -168,3 +168,13 @@ impl DoorSim {
         }
     }
 }
+
+impl crate::truth::DoorControl for DoorSim {
+    fn command(&mut self, open: bool) {
+        DoorSim::command(self, open);
+    }
+
+    fn mode(&self) -> u32 {
+        self.mode
+    }
+}

@@ -20,6 +20,7 @@ mod slotcar;
 mod supervisor;
 mod trace;
 mod traffic;
+mod truth;
 mod workcell;
 mod world;
 

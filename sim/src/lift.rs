@@ -13,12 +13,11 @@
 //! - Payloads: robots whose origin is inside the cabin's box ride with it; items
 //!   attached to a robot follow the robot.
 
-use crate::door::DoorSim;
 use crate::msgs::{
     door_mode, lift_request, lift_state, LiftRequest, LiftState, Msg, Published, Time, Topic,
 };
 use crate::profile::{self, Limits};
-use crate::slotcar::Slotcar;
+use crate::truth::{Body, DoorControl};
 
 /// Generator values (§4.1).
 pub(crate) const CABIN: Limits = Limits {
@@ -159,13 +158,13 @@ impl LiftSim {
         best
     }
 
-    fn door_state(&self, cur: usize, doors: &[DoorSim]) -> u8 {
+    fn door_state(&self, cur: usize, doors: &[impl DoorControl]) -> u8 {
         let modes = || {
             self.floors[cur]
                 .doors
                 .iter()
                 .filter_map(|&d| doors.get(d))
-                .map(|d| d.mode)
+                .map(|d| d.mode())
         };
         if modes().all(|m| m == door_mode::OPEN) {
             lift_state::DOOR_OPEN
@@ -176,7 +175,7 @@ impl LiftSim {
         }
     }
 
-    fn compact(&self, cur: usize, doors: &[DoorSim]) -> Compact {
+    fn compact(&self, cur: usize, doors: &[impl DoorControl]) -> Compact {
         let (dest, motion) = match &self.active {
             Some(c) => {
                 let target = self.floors[c.dest].elevation;
@@ -249,8 +248,8 @@ impl LiftSim {
         &mut self,
         t: f64,
         dt: f64,
-        doors: &mut [DoorSim],
-        robots: &mut [Slotcar],
+        doors: &mut [impl DoorControl],
+        robots: &mut [impl Body],
         out: &mut Vec<Published>,
     ) {
         self.v = 0.0;
@@ -273,7 +272,7 @@ impl LiftSim {
             for &d in &self.floors[cur].doors {
                 if let Some(door) = doors.get_mut(d) {
                     door.command(door_open);
-                    all &= door.mode == want;
+                    all &= door.mode() == want;
                 }
             }
             finished = dest == cur && all;
@@ -282,7 +281,7 @@ impl LiftSim {
             for &d in &self.floors[cur].doors {
                 if let Some(door) = doors.get_mut(d) {
                     door.command(false);
-                    closed &= door.mode == door_mode::CLOSED;
+                    closed &= door.mode() == door_mode::CLOSED;
                 }
             }
             if closed {
@@ -297,11 +296,12 @@ impl LiftSim {
                     let [x0, x1, y0, y1] = self.aabb;
                     let (z0, z1) = (self.z - FLOOR_THICKNESS, self.z + CABIN_HEIGHT);
                     for r in robots.iter_mut() {
-                        if (x0..=x1).contains(&r.x)
-                            && (y0..=y1).contains(&r.y)
-                            && (z0..=z1).contains(&r.z)
+                        let [x, y, z, _] = r.pose();
+                        if (x0..=x1).contains(&x)
+                            && (y0..=y1).contains(&y)
+                            && (z0..=z1).contains(&z)
                         {
-                            r.vz = v;
+                            r.ride(v);
                         }
                     }
                 }

@@ -29,7 +29,7 @@ use crate::msgs::{
 };
 use crate::params::RobotParams;
 use crate::profile::{self, Limits};
-use crate::workcell::Item;
+use crate::truth::{Body, Item, People};
 use std::f64::consts::PI;
 
 const WAYPOINT_TOL: f64 = 0.02;
@@ -41,9 +41,6 @@ const INITIAL_DISTANCE: f64 = 1.0;
 const LEVEL_TOL: f64 = 0.1;
 const STATE_PERIOD: f64 = 0.5;
 const CART_ATTACH: f64 = 1.0;
-/// Height at which a dispensed item sits above the robot origin (the plugin's fallback
-/// when the robot's bounding box is unknown).
-pub(crate) const ITEM_HEIGHT: f64 = 0.5;
 
 /// Wraps an angle to (-π, π].
 #[inline]
@@ -216,7 +213,7 @@ pub(crate) struct Ctx<'a> {
     pub obstacles: &'a Obstacles,
     pub flags: ChargeFlags,
     /// People are obstacles too (upstream's crowd actors are not, runtime.md §1.8).
-    pub people: Option<&'a crate::crowd::Crowd>,
+    pub people: Option<&'a dyn People>,
 }
 
 #[derive(Debug)]
@@ -719,6 +716,18 @@ impl Slotcar {
             self.z += self.vz * dt;
             self.vz = 0.0;
         }
+    }
+}
+
+impl Body for Slotcar {
+    #[inline]
+    fn pose(&self) -> [f64; 4] {
+        [self.x, self.y, self.z, self.yaw]
+    }
+
+    #[inline]
+    fn ride(&mut self, vz: f64) {
+        self.vz = vz;
     }
 }
 

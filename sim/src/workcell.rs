@@ -18,75 +18,13 @@ use crate::msgs::{
     WorkcellState,
 };
 use crate::scenario::WorkcellKind;
-use crate::slotcar::Slotcar;
+use crate::truth::{Body, Item, ITEM_HEIGHT};
 use std::collections::BTreeMap;
 
 const VICINITY: f64 = 0.05;
 const STATE_PERIOD: i64 = 2;
 const RETURN_DELAY: i64 = 5;
 const PAYLOAD_RADIUS: f64 = 1.0;
-
-/// A movable model: a dispensable item, or a cart from the map.
-#[derive(Debug, Clone)]
-pub(crate) struct Item {
-    pub name: String,
-    pub pos: [f64; 3],
-    pub yaw: f64,
-    pub home: [f64; 3],
-    /// Robot it is fixed to, with its offset in the robot frame (x, y, z, yaw).
-    pub attached: Option<(usize, [f64; 4])>,
-}
-
-impl Item {
-    pub fn new(name: String, pos: [f64; 3], yaw: f64) -> Item {
-        Item {
-            name,
-            pos,
-            yaw,
-            home: pos,
-            attached: None,
-        }
-    }
-
-    pub fn distance(&self, p: [f64; 3]) -> f64 {
-        let (a, b, c) = (self.pos[0] - p[0], self.pos[1] - p[1], self.pos[2] - p[2]);
-        (a * a + b * b + c * c).sqrt()
-    }
-
-    /// Fixes the item to robot `robot` at pose `p`, `yaw`, keeping its current offset.
-    pub fn attach(&mut self, robot: usize, p: [f64; 3], yaw: f64) {
-        let (s, c) = yaw.sin_cos();
-        let (dx, dy) = (self.pos[0] - p[0], self.pos[1] - p[1]);
-        let off = [
-            c * dx + s * dy,
-            -s * dx + c * dy,
-            self.pos[2] - p[2],
-            self.yaw - yaw,
-        ];
-        self.attached = Some((robot, off));
-    }
-
-    /// Moves an attached item with its robot.
-    #[inline]
-    pub fn follow(&mut self, robots: &[Slotcar]) {
-        if let Some((r, off)) = self.attached {
-            if let Some(r) = robots.get(r) {
-                let (s, c) = r.yaw.sin_cos();
-                self.pos = [
-                    r.x + c * off[0] - s * off[1],
-                    r.y + s * off[0] + c * off[1],
-                    r.z + off[2],
-                ];
-                self.yaw = r.yaw + off[3];
-            }
-        }
-    }
-
-    fn teleport(&mut self, p: [f64; 3]) {
-        self.attached = None;
-        self.pos = p;
-    }
-}
 
 #[derive(Debug)]
 pub(crate) struct Workcell {
@@ -176,7 +114,7 @@ impl Workcell {
     pub fn update(
         &mut self,
         t: f64,
-        robots: &[Slotcar],
+        robots: &[impl Body],
         items: &mut [Item],
         fleets: &BTreeMap<String, Vec<usize>>,
         out: &mut Vec<Published>,
@@ -275,7 +213,7 @@ impl Workcell {
     fn nearest_robot(
         &self,
         req: &WorkcellRequest,
-        robots: &[Slotcar],
+        robots: &[impl Body],
         fleets: &BTreeMap<String, Vec<usize>>,
     ) -> Option<usize> {
         let members = fleets.get(&req.transporter_type)?;
@@ -283,7 +221,8 @@ impl Workcell {
             .iter()
             .filter_map(|&i| robots.get(i).map(|r| (i, r)))
             .map(|(i, r)| {
-                let (a, b, c) = (r.x - self.pos[0], r.y - self.pos[1], r.z - self.pos[2]);
+                let [x, y, z, _] = r.pose();
+                let (a, b, c) = (x - self.pos[0], y - self.pos[1], z - self.pos[2]);
                 (i, a * a + b * b + c * c)
             })
             .min_by(|a, b| a.1.total_cmp(&b.1))
@@ -293,7 +232,7 @@ impl Workcell {
     fn dispense(
         &mut self,
         req: &WorkcellRequest,
-        robots: &[Slotcar],
+        robots: &[impl Body],
         items: &mut [Item],
         fleets: &BTreeMap<String, Vec<usize>>,
     ) -> bool {
@@ -306,9 +245,10 @@ impl Workcell {
         let (Some(r), Some(it)) = (robots.get(ri), self.item.and_then(|i| items.get_mut(i))) else {
             return false;
         };
-        it.teleport([r.x, r.y, r.z + crate::slotcar::ITEM_HEIGHT]);
-        it.yaw = r.yaw;
-        it.attach(ri, [r.x, r.y, r.z], r.yaw);
+        let [x, y, z, yaw] = r.pose();
+        it.teleport([x, y, z + ITEM_HEIGHT]);
+        it.yaw = yaw;
+        it.attach(ri, [x, y, z], yaw);
         self.filled = false;
         true
     }
@@ -317,7 +257,7 @@ impl Workcell {
         &mut self,
         tsec: i64,
         req: &WorkcellRequest,
-        robots: &[Slotcar],
+        robots: &[impl Body],
         items: &mut [Item],
         fleets: &BTreeMap<String, Vec<usize>>,
     ) -> bool {
@@ -327,7 +267,8 @@ impl Workcell {
         let Some(r) = robots.get(ri) else {
             return false;
         };
-        let p = [r.x, r.y, r.z];
+        let [x, y, z, _] = r.pose();
+        let p = [x, y, z];
         let nearest = items
             .iter()
             .enumerate()

@@ -24,7 +24,10 @@ use crate::params::RobotParams;
 use crate::scenario::WorkcellKind;
 use crate::slotcar::{ChargeFlags, Ctx, Obstacles, Slotcar};
 use crate::supervisor::{DoorSupervisor, LiftSupervisor};
-use crate::workcell::{Item, Workcell};
+use crate::truth::Item;
+// Moved to `truth`; the old path stays for the code that names it here (report.rs).
+pub(crate) use crate::truth::RobotTruth;
+use crate::workcell::Workcell;
 use mapc_ir::{Building, DoorKind, Handle, Level};
 use std::collections::BTreeMap;
 
@@ -59,18 +62,6 @@ pub struct WorldSetup {
     /// added by `World::new`.
     pub workcells: Vec<WorkcellSpawn>,
     pub lifts_start_at_initial_floor: bool,
-}
-
-/// Ground truth of a robot, for the report (near misses) and tests.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct RobotTruth {
-    pub x: f64,
-    pub y: f64,
-    pub z: f64,
-    pub yaw: f64,
-    /// Forward speed command (m/s).
-    pub v: f64,
-    pub footprint: f64,
 }
 
 /// A robot, door or lift out of service over `[from, to)`.
@@ -514,7 +505,7 @@ impl World {
             chargers: &self.chargers,
             obstacles: &self.obstacles,
             flags: self.flags,
-            people: self.crowd.as_ref(),
+            people: self.crowd.as_ref().map(|c| c as &dyn crate::truth::People),
         };
         for (i, r) in self.robots.iter_mut().enumerate() {
             r.update(&ctx, i, &mut self.items, out);

@@ -23,12 +23,6 @@ pub(crate) struct GltfArgs {
     diag: DiagOpts,
 }
 
-impl GltfArgs {
-    pub(crate) fn input(&self) -> &std::path::Path {
-        &self.input
-    }
-}
-
 pub(crate) fn run(args: &GltfArgs) -> Result<Outcome, CliError> {
     let spec = Spec {
         name: "gltf",

@@ -20,12 +20,6 @@ pub(crate) struct MeshesArgs {
     diag: DiagOpts,
 }
 
-impl MeshesArgs {
-    pub(crate) fn input(&self) -> &std::path::Path {
-        &self.input
-    }
-}
-
 pub(crate) fn run(args: &MeshesArgs) -> Result<Outcome, CliError> {
     let spec = Spec {
         name: "meshes",

@@ -16,12 +16,6 @@ pub(crate) struct NavArgs {
     diag: DiagOpts,
 }
 
-impl NavArgs {
-    pub(crate) fn input(&self) -> &std::path::Path {
-        &self.input
-    }
-}
-
 pub(crate) fn run(args: &NavArgs) -> Result<Outcome, CliError> {
     let spec = Spec {
         name: "nav",

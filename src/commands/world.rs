@@ -51,18 +51,6 @@ pub(crate) struct WorldArgs {
     diag: DiagOpts,
 }
 
-impl WorldArgs {
-    pub(crate) fn input(&self) -> &Path {
-        &self.input
-    }
-}
-
-/// What the signal watcher runs first for a world command: the early flush of a first
-/// compile (`output::early_flush`).
-pub(crate) fn first_job(args: &WorldArgs) -> Option<output::FirstJob> {
-    output::early_flush(&args.output_model_dir)
-}
-
 pub(crate) fn run(flavour: Flavour, args: &WorldArgs) -> Result<Outcome, CliError> {
     sanity::world_outputs(&args.output_world, &args.output_model_dir)?;
     let template = match &args.template_world_file {
@@ -129,9 +117,6 @@ pub(crate) fn run(flavour: Flavour, args: &WorldArgs) -> Result<Outcome, CliErro
     .map(|w| (w[0], w[1]));
     let diagnostics = c.checked.diagnostics.len();
     let (label, meshes) = (c.label, c.count);
-    // The process ends here: freeing the map, its tree and every file's bytes one by one
-    // would only delay the exit.
-    std::mem::forget((c.checked, out.models, world, links));
     let (m, w) = result?;
     if !args.diag.quiet {
         let total = output::Written {
@@ -154,7 +139,7 @@ fn produce(
     opts: &WorldOptions,
     args: &WorldArgs,
 ) -> Product<(WorldFiles, Vec<output::LinkedFile>)> {
-    let (meshes, mut files, tree) = world_files_untextured(b, flavour, opts);
+    let (meshes, mut files) = world_files_untextured(b, flavour, opts);
     let names = mapc_backends::texture_names(meshes.iter().flat_map(|(_, m)| m.all()));
     // Found images are linked from where they are (below), so only their heads are
     // read, to tell a PNG from anything else; placeholders are whole.
@@ -193,8 +178,6 @@ fn produce(
         .iter()
         .filter(|f| f.path.extension().is_some_and(|e| e == "obj"))
         .count();
-    // The process ends soon: the tree and the meshes are not freed piece by piece.
-    std::mem::forget((tree, meshes, textures));
     Product {
         files: (files, links),
         diagnostics,

@@ -19,32 +19,25 @@ extern "C" fn on_signal(sig: libc::c_int) {
     COUNT.fetch_add(1, Ordering::SeqCst);
 }
 
-use super::output::FirstJob;
-
 /// Installs the handlers. After `grace` signals have been stopped cooperatively, the next one
-/// removes the temporaries and exits (`grace` 0: the first one does). The watcher thread runs
-/// `first` before watching: a signal that comes meanwhile is acted on when `first` ends
-/// (it takes milliseconds), and the temporaries it removes are there by then.
-pub fn install(grace: usize, first: Option<FirstJob>) {
+/// removes the temporaries and exits (`grace` 0: the first one does).
+pub fn install(grace: usize) {
     #[cfg(unix)]
     unsafe {
-        // SAFETY: the handler only touches atomics.
+        // SAFETY: the handler only touches atomics. std has no API to install a signal
+        // handler.
         let handler = on_signal as extern "C" fn(libc::c_int) as libc::sighandler_t;
         libc::signal(libc::SIGINT, handler);
         libc::signal(libc::SIGTERM, handler);
     }
-    // On another CPU from its first instruction: `first` (a `syncfs`) should overlap the
-    // command's work. Without a thread, `first` is dropped unrun (its owner is told so).
-    let _ = mapc_ir::par::spawn("signals", move || {
-        if let Some(first) = first {
-            first();
-        }
-        loop {
+    // The watcher, outside signal context: it may take locks and remove files.
+    let _ = std::thread::Builder::new()
+        .name("signals".into())
+        .spawn(move || loop {
             if COUNT.load(Ordering::SeqCst) > grace {
                 let sig = SIGNAL.load(Ordering::SeqCst);
                 super::output::remove_temporaries_and_exit(128 + sig);
             }
             std::thread::sleep(std::time::Duration::from_millis(20));
-        }
-    });
+        });
 }

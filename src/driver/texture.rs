@@ -197,7 +197,7 @@ mod tests {
         std::fs::create_dir(a.join("wood.png")).unwrap();
         let fifo = std::ffi::CString::new(b.join("wood.png").into_os_string().into_encoded_bytes())
             .unwrap();
-        // SAFETY: a valid NUL-terminated path.
+        // SAFETY: a valid NUL-terminated path. std cannot make a FIFO.
         assert_eq!(unsafe { libc::mkfifo(fifo.as_ptr(), 0o644) }, 0);
         let png = mapc_backends::placeholder_png();
         std::fs::write(c.join("wood.png"), &png).unwrap();

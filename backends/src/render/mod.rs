@@ -9,14 +9,13 @@
 
 mod locate;
 mod png;
-mod svg;
 
 pub use locate::{locate, Located};
 pub use png::svg_to_png;
 
+use crate::svg::{esc, num, Svg};
 use crate::OutputFile;
 use mapc_ir::{Building, Diagnostic, DoorKind, Handle, Level, Severity, Vec2};
-use svg::{esc, num, Svg};
 
 /// What to draw besides the map itself.
 #[derive(Debug, Clone, Copy, Default)]

@@ -6,7 +6,6 @@ pub mod doors;
 pub mod level;
 pub mod lifts;
 pub mod navmesh;
-mod schedule;
 #[rustfmt::skip]
 mod template_trees;
 pub mod world;
@@ -23,4 +22,4 @@ pub enum Flavour {
     Gz,
 }
 
-pub use schedule::world_files_untextured;
+pub use world::world_files_untextured;

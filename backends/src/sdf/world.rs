@@ -282,26 +282,11 @@ pub fn world(b: &Building, flavour: Flavour, opts: &WorldOptions) -> Element {
     world_with(b, flavour, opts, &mut |p| part_elements(b, p, flavour))
 }
 
-/// A door's or a lift's models in the world: the larger share of a world with many doors,
-/// and independent of the rest, so another thread may make them (`schedule`).
+/// A door's or a lift's models in the world.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub(crate) enum Part {
     Door(Handle<mapc_ir::Door>),
     Lift(Handle<mapc_ir::Lift>),
-}
-
-/// The world's parts in the order [`world_with`] asks for them.
-pub(crate) fn parts(b: &Building) -> Vec<Part> {
-    let doors = b
-        .levels
-        .iter()
-        .flat_map(|(_, lvl)| lvl.doors.iter().map(|&d| Part::Door(d)));
-    let lifts = b
-        .lifts
-        .iter()
-        .filter(|(_, l)| !l.level_doors.is_empty())
-        .map(|(h, _)| Part::Lift(h));
-    doors.chain(lifts).collect()
 }
 
 /// The model elements of one part (a door without a model has none).
@@ -534,6 +519,32 @@ pub fn world_files(
         models,
         crowd: super::crowd::crowd_files(b),
     }
+}
+
+/// [`world_files`] without the texture images in `models` (see
+/// [`crate::level_texture_paths`]: a caller that has the images on disk links them instead
+/// of holding a copy of their bytes per level), and the level meshes it made for them (one
+/// entry per level, document order).
+pub fn world_files_untextured(
+    b: &Building,
+    flavour: Flavour,
+    opts: &WorldOptions,
+) -> (Vec<(Handle<Level>, crate::LevelMeshes)>, WorldFiles) {
+    let meshes: Vec<(Handle<Level>, crate::LevelMeshes)> = b
+        .levels
+        .iter()
+        .map(|(h, _)| (h, crate::level_meshes(b, h)))
+        .collect();
+    let mut models = Vec::new();
+    for (h, m) in &meshes {
+        models.extend(super::level::level_model_files_untextured(b, *h, m));
+    }
+    let files = WorldFiles {
+        world: world_text(b, flavour, opts),
+        models,
+        crowd: super::crowd::crowd_files(b),
+    };
+    (meshes, files)
 }
 
 #[cfg(test)]

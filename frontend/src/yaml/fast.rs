@@ -44,43 +44,7 @@ struct P<'a> {
     ctx: Ctx,
     /// The level lists read but not kept, in document order.
     lists: Vec<List>,
-    /// Where a helper thread reads the rest of a mapping (see [`Split`]).
-    split: Option<Split<'a>>,
 }
-
-/// The rest of the `levels` mapping, or of one level, read on a helper thread while this
-/// one reads the rest of the document. Both read with the same code from the same state,
-/// so when this thread's mapping reaches the helper's first key it takes the helper's
-/// entries and position instead of reading them again. A wrong guess of where a key
-/// starts (the guess is a scan of lines, before any parsing) costs only the helper's work:
-/// a mapping that never reaches `at`, at the assumed indent and depth, reads on alone.
-struct Split<'a> {
-    /// Offset of the first key the helper reads.
-    at: usize,
-    depth: usize,
-    /// The helper's reading; taken back and done here if it has not started by then.
-    done: mapc_ir::par::Task<'a, R<Entries<'a>>>,
-}
-
-/// Mapping entries a helper read, and where it stopped.
-struct Entries<'a> {
-    items: Vec<(Node<'a>, Node<'a>)>,
-    nodes: usize,
-    pos: usize,
-    line: u32,
-    line_start: usize,
-    indent: Option<usize>,
-}
-
-/// Maps at least this large are read on two threads when their levels allow a split
-/// (below it, starting the helper costs about what it saves).
-const SPLIT_FROM: usize = 64 << 10;
-
-/// Depth of a level's mapping entry: the root mapping is 1, `levels` 2.
-const LEVELS_DEPTH: usize = 2;
-/// How much longer the helper takes for the same text in a split read: it starts later
-/// (its thread wakes) and fills a fresh heap arena.
-const HELPER_SLOWER: f64 = 1.2;
 
 /// The place of the node about to be read, as far as deferring level lists cares: the
 /// root mapping, the `levels` mapping, a level, a list of a level, anything else.
@@ -121,46 +85,12 @@ pub(super) fn parse_lists(text: &str, file: FileId, defer: bool) -> Option<(Node
     if text.starts_with('\u{feff}') || has_unprintable(text.as_bytes()) {
         return None;
     }
-    // A whole tree of a large map: its later levels on a helper thread.
-    let at = (!defer && text.len() >= SPLIT_FROM)
-        .then(|| split_point(text.as_bytes()))
-        .flatten();
-    match at {
-        Some((at, depth)) => parse_split(text, file, at, depth, move |t, f, at| {
-            entries_from(t, f, at, depth)
-        }),
-        None => parse_from_start(text, file, defer, None),
-    }
+    parse_from_start(text, file, defer)
 }
 
-/// The whole tree, the entries of the mapping at `depth` from `at` on read by `helper` on
-/// another thread.
-fn parse_split<'a>(
-    text: &'a str,
-    file: FileId,
-    at: usize,
-    depth: usize,
-    helper: impl FnOnce(&'a str, FileId, usize) -> R<Entries<'a>> + Send + 'a,
-) -> Option<(Node<'a>, Vec<List>)> {
-    let split = Split {
-        at,
-        depth,
-        done: mapc_ir::par::task(move || helper(text, file, at)),
-    };
-    // A split never joined is dropped with the reader, which waits for the helper if it
-    // runs (or cancels it if it never started).
-    parse_from_start(text, file, false, Some(split))
-}
-
-/// The reader over the whole text, with an optional [`Split`].
-fn parse_from_start<'a>(
-    text: &'a str,
-    file: FileId,
-    defer: bool,
-    split: Option<Split<'a>>,
-) -> Option<(Node<'a>, Vec<List>)> {
+/// The reader over the whole text.
+fn parse_from_start(text: &str, file: FileId, defer: bool) -> Option<(Node<'_>, Vec<List>)> {
     let mut p = P::new(text, file, 0, 1, None, max_nodes(text.len()));
-    p.split = split;
     let root = (|| {
         p.next_content()?;
         let indent = p.indent.ok_or(Bail)?;
@@ -241,113 +171,6 @@ impl<'a> Iterator for Items<'a> {
     fn size_hint(&self) -> (usize, Option<usize>) {
         (0, Some(self.left))
     }
-}
-
-/// The entries of a block mapping from the key at `at` to the mapping's end, read as the
-/// whole-text reader would read them at depth `depth` (the helper of a [`Split`]).
-fn entries_from(text: &str, file: FileId, at: usize, depth: usize) -> R<Entries<'_>> {
-    let b = text.as_bytes();
-    let line_start = b[..at]
-        .iter()
-        .rposition(|&c| c == b'\n')
-        .map_or(0, |i| i + 1);
-    let line = 1 + b[..at].iter().filter(|&&c| c == b'\n').count();
-    let indent = at - line_start;
-    let mut p = P::new(
-        text,
-        file,
-        at,
-        line as u32,
-        Some(indent),
-        max_nodes(text.len()),
-    );
-    p.line_start = line_start;
-    p.map_entries(indent, depth, Ctx::None)?;
-    Ok(Entries {
-        items: p.map_items,
-        nodes: p.nodes,
-        pos: p.pos,
-        line: p.line,
-        line_start: p.line_start,
-        indent: p.indent,
-    })
-}
-
-/// Where to split a map for [`Split`], and the depth of the mapping split there: a level
-/// key (the helper reads the `levels` mapping from it on) or a key inside a level (the
-/// helper reads the rest of that level), whichever should end the read soonest (bytes as
-/// the measure of time, the helper's [`HELPER_SLOWER`]); `None` without a `levels:` line
-/// at the root or when no split beats reading alone. A scan of lines, not a parse:
-/// [`Split`] says why a wrong guess is harmless.
-fn split_point(b: &[u8]) -> Option<(usize, usize)> {
-    let lines = || {
-        let mut start = 0;
-        std::iter::from_fn(move || {
-            if start >= b.len() {
-                return None;
-            }
-            let end = b[start..]
-                .iter()
-                .position(|&c| c == b'\n')
-                .map_or(b.len(), |i| start + i);
-            let line = (start, &b[start..end]);
-            start = end + 1;
-            Some(line)
-        })
-    };
-    let content = |l: &[u8]| {
-        let indent = l.iter().take_while(|&&c| c == b' ').count();
-        (indent < l.len() && l[indent] != b'#').then_some(indent)
-    };
-    let mut it = lines()
-        .skip_while(|(_, l)| !(l.starts_with(b"levels:") && content(&l[7..]).is_none()))
-        .skip(1);
-    // Level keys (line start, key), and keys inside each level (key, its level).
-    let mut levels: Vec<(usize, usize)> = Vec::new();
-    let mut inner: Vec<(usize, usize)> = Vec::new();
-    let mut level_indent = None;
-    let mut inner_indent = None;
-    let mut end = b.len();
-    for (start, l) in it.by_ref() {
-        let Some(indent) = content(l) else { continue };
-        let want = *level_indent.get_or_insert(indent);
-        if indent == 0 || indent < want {
-            end = start;
-            break;
-        }
-        if indent == want {
-            levels.push((start, start + indent));
-            inner_indent = None;
-            continue;
-        }
-        // Inside a level: its keys (not the items of a sequence written at their indent),
-        // but the first (from there the helper would read the whole level).
-        match inner_indent {
-            None => inner_indent = Some(indent),
-            Some(own) if indent == own && l[indent] != b'-' && !levels.is_empty() => {
-                inner.push((start + indent, levels.len() - 1));
-            }
-            Some(_) => {}
-        }
-    }
-    // The helper reads from a key to the end of its mapping while this thread reads up to
-    // the key; then this thread reads on from the end of that mapping, alone. The time is
-    // that of the longer of the first two, plus the third.
-    let level_end = |i: usize| levels.get(i + 1).map_or(end, |&(line, _)| line);
-    let at_levels = levels.iter().skip(1).map(|&(_, k)| (k, LEVELS_DEPTH, end));
-    let in_levels = inner
-        .iter()
-        .map(|&(k, i)| (k, LEVELS_DEPTH + 1, level_end(i)));
-    let cost = |&(k, _, stop): &(usize, usize, usize)| {
-        let theirs = (stop - k) as f64 * HELPER_SLOWER;
-        (k as f64).max(theirs) + (b.len() - stop) as f64
-    };
-    at_levels
-        .chain(in_levels)
-        .map(|c| (cost(&c), c))
-        .filter(|&(t, _)| t < b.len() as f64)
-        .min_by(|a, b| a.0.total_cmp(&b.0))
-        .map(|(_, (k, depth, _))| (k, depth))
 }
 
 /// Characters YAML does not allow in a stream (controls other than tab, LF and CR; C1
@@ -439,7 +262,6 @@ impl<'a> P<'a> {
             map_items: Vec::new(),
             ctx: Ctx::None,
             lists: Vec::new(),
-            split: None,
         }
     }
 
@@ -654,11 +476,6 @@ impl<'a> P<'a> {
     /// `map_items`, up to the first line indented less.
     fn map_entries(&mut self, indent: usize, depth: usize, ctx: Ctx) -> R<()> {
         loop {
-            if self.split.as_ref().is_some_and(|sp| sp.at == self.pos)
-                && self.join_split(indent, depth)?
-            {
-                break;
-            }
             let key = self.key()?;
             // Only an entry's own value may see the context; whatever it holds resets it.
             self.ctx = match (ctx, key.key_text()) {
@@ -735,44 +552,6 @@ impl<'a> P<'a> {
             }
         }
         Ok(())
-    }
-
-    /// At the first key of a [`Split`]: takes the helper's entries and position when it
-    /// read this very mapping (same indent, same depth) and succeeded; `false` (read on)
-    /// otherwise.
-    fn join_split(&mut self, indent: usize, depth: usize) -> R<bool> {
-        let Some(split) = self.split.take() else {
-            return Ok(false);
-        };
-        let col = self.pos - self.line_start;
-        if depth != split.depth || col != indent {
-            // Kept, never to match again, so the helper's end is waited for only when this
-            // reader ends, not now.
-            self.split = Some(Split {
-                at: usize::MAX,
-                ..split
-            });
-            return Ok(false);
-        }
-        // A panic of the helper is resumed here.
-        let Ok(e) = split.done.get() else {
-            return Ok(false);
-        };
-        self.nodes += e.nodes;
-        if self.nodes > self.node_limit {
-            return Err(Bail);
-        }
-        self.map_items.extend(e.items);
-        self.pos = e.pos;
-        self.line = e.line;
-        self.line_start = e.line_start;
-        self.indent = e.indent;
-        self.line_ascii = None;
-        // The helper stopped where the mapping ends.
-        if self.indent.is_some_and(|i| i >= indent) {
-            return Err(Bail);
-        }
-        Ok(true)
     }
 
     fn block_seq(&mut self, indent: usize, depth: usize) -> R<Node<'a>> {
@@ -1180,188 +959,5 @@ mod unprintable_tests {
         assert!(!has_unprintable(b""));
         // A sequence cut by the end of the text.
         assert!(!has_unprintable(b"ab\xef\xbf"));
-    }
-}
-
-#[cfg(test)]
-mod split_tests {
-    use super::*;
-
-    /// A map of `levels` levels of `vertices` vertices each, with keys before and after.
-    fn map(levels: usize, vertices: usize) -> String {
-        let mut s =
-            String::from("coordinate_system: reference_image\ncrowd_sim:\n  enable: 0\nlevels:\n");
-        for l in 0..levels {
-            s.push_str(&format!("  L{l}:\n    elevation: {l}\n    vertices:\n"));
-            for v in 0..vertices {
-                s.push_str(&format!(
-                    "      - [{v}.5, {}, 0, \"v{v}\", {{is_charger: [4, false]}}]\n",
-                    v * 2
-                ));
-            }
-            s.push_str("    # a comment\n    walls:\n      - [0, 1, {alpha: [3, 1]}]\n");
-        }
-        s.push_str("lifts: {}\nname: split\n");
-        s
-    }
-
-    /// Every level key but the first, and every key inside a level.
-    fn candidates(text: &str) -> Vec<(usize, usize)> {
-        let mut out = Vec::new();
-        let mut at = 0;
-        for l in text.split_inclusive('\n') {
-            if l.starts_with("  L") && !l.starts_with("  L0") {
-                out.push((at + 2, LEVELS_DEPTH));
-            } else if l.starts_with("    ") && !l.starts_with("     ") && !l.starts_with("    #") {
-                out.push((at + 4, LEVELS_DEPTH + 1));
-            }
-            at += l.len();
-        }
-        out
-    }
-
-    /// The split that ends soonest: inside the level when there is one level, at a level
-    /// key when there are many (this thread reads on alone after the helper's mapping).
-    #[test]
-    fn the_split_balances_the_text() {
-        // Levels of two lists alike, as real ones have several large lists.
-        let map = |levels: usize, n: usize| {
-            let mut s = String::from("levels:\n");
-            for l in 0..levels {
-                s.push_str(&format!("  L{l}:\n    elevation: {l}\n    lanes:\n"));
-                for v in 0..n {
-                    s.push_str(&format!(
-                        "      - [{v}, {}, {{bidirectional: [4, true]}}]\n",
-                        v + 1
-                    ));
-                }
-                s.push_str("    vertices:\n");
-                for v in 0..n {
-                    s.push_str(&format!("      - [{v}.5, {}, 0, \"v{v}\"]\n", v * 2));
-                }
-            }
-            s.push_str("lifts: {}\n");
-            s
-        };
-        // One level: its vertices (40 % of the text) to the helper, the lanes here. Two:
-        // the second. Eight: the last four (the helper's 50 % against 50 % here beats
-        // three, 37.5 % against 62.5 %, given that it is 1.2 times slower).
-        for (levels, n, share) in [(1, 300, 0.4), (2, 300, 0.5), (8, 40, 0.5)] {
-            let text = map(levels, n);
-            assert_eq!(
-                format!("{:?}", parse_lists(&text, FileId(0), false).map(|(r, _)| r)),
-                sequential(&text)
-            );
-            let (at, _) = split_point(text.as_bytes()).unwrap();
-            // Each case's helper reads on to the end of the levels.
-            let theirs = (text.find("lifts:").unwrap() - at) as f64 / text.len() as f64;
-            assert!((theirs - share).abs() < 0.02, "{levels} levels: {theirs}");
-        }
-        let one = map(1, 300);
-        let vertices = one.find("    vertices:").unwrap() + 4;
-        assert_eq!(
-            split_point(one.as_bytes()),
-            Some((vertices, LEVELS_DEPTH + 1))
-        );
-    }
-
-    fn sequential(text: &str) -> String {
-        format!(
-            "{:?}",
-            parse_from_start(text, FileId(0), false, None).map(|(r, _)| r)
-        )
-    }
-
-    #[test]
-    fn a_split_read_is_the_sequential_read() {
-        for (levels, vertices) in [(1, 50), (2, 3), (3, 400), (7, 20)] {
-            let text = map(levels, vertices);
-            let (at, depth) = split_point(text.as_bytes()).expect("a split point");
-            match depth {
-                LEVELS_DEPTH => {
-                    assert!(text[at..].starts_with('L') && text[..at].ends_with("\n  "))
-                }
-                _ => assert!(text[..at].ends_with("\n    ") && !text[at..].starts_with('-')),
-            }
-            let split = parse_split(&text, FileId(0), at, depth, move |t, f, at| {
-                entries_from(t, f, at, depth)
-            });
-            assert!(split.is_some());
-            assert_eq!(format!("{:?}", split.map(|(r, _)| r)), sequential(&text));
-            // Every candidate, not only the chosen one, reads the same tree.
-            for k in candidates(&text) {
-                let split = parse_split(&text, FileId(0), k.0, k.1, move |t, f, at| {
-                    entries_from(t, f, at, k.1)
-                });
-                assert_eq!(format!("{:?}", split.map(|(r, _)| r)), sequential(&text));
-            }
-        }
-        // Through the public path, above the size from which it splits.
-        let text = map(3, 1200);
-        assert!(text.len() >= SPLIT_FROM);
-        let whole = parse_lists(&text, FileId(0), false).map(|(r, _)| r);
-        assert_eq!(format!("{whole:?}"), sequential(&text));
-    }
-
-    /// The reader takes the helper's entries (here, on purpose, without the last level).
-    #[test]
-    fn the_helpers_entries_are_used() {
-        let text = map(3, 5);
-        let at = text.find("  L2:").unwrap() + 2;
-        let cut = parse_split(&text, FileId(0), at, LEVELS_DEPTH, |t, f, at| {
-            let mut e = entries_from(t, f, at, LEVELS_DEPTH)?;
-            e.items.pop();
-            Ok(e)
-        })
-        .unwrap()
-        .0;
-        let levels = cut.get("levels").unwrap();
-        let whole = parse_from_start(&text, FileId(0), false, None).unwrap().0;
-        let all = whole.get("levels").unwrap();
-        match (&levels.kind, &all.kind) {
-            (Kind::Map(a), Kind::Map(b)) => assert_eq!(a.len() + 1, b.len()),
-            _ => panic!("levels is not a mapping"),
-        }
-    }
-
-    /// A guess that is not a level key (a vertex's line; another indent), a helper that
-    /// gives up, a helper that panics: the tree is the sequential one (the panic resumed).
-    #[test]
-    fn a_wrong_guess_or_a_failed_helper_reads_on_alone() {
-        let text = map(3, 5);
-        let vertex = text.find("      - [2.5").unwrap() + 6;
-        let tree = |at, depth, bail: bool| {
-            parse_split(&text, FileId(0), at, depth, move |t, f, at| {
-                if bail {
-                    return Err(Bail);
-                }
-                entries_from(t, f, at, depth)
-            })
-            .map(|(r, _)| r)
-        };
-        assert_eq!(
-            format!("{:?}", tree(vertex, LEVELS_DEPTH, false)),
-            sequential(&text)
-        );
-        // A level key taken for a key inside a level, and the other way round.
-        let level = text.find("  L2:").unwrap() + 2;
-        let walls = text.find("    walls:").unwrap() + 4;
-        assert_eq!(
-            format!("{:?}", tree(level, LEVELS_DEPTH + 1, false)),
-            sequential(&text)
-        );
-        assert_eq!(
-            format!("{:?}", tree(walls, LEVELS_DEPTH, false)),
-            sequential(&text)
-        );
-        let (at, depth) = split_point(text.as_bytes()).unwrap();
-        assert_eq!(format!("{:?}", tree(at, depth, true)), sequential(&text));
-        let r = std::panic::catch_unwind(|| {
-            parse_split(&text, FileId(0), at, depth, |_, _, _| panic!("helper"))
-        });
-        assert!(r.is_err());
-        // No `levels:`, or nothing to split at: no split.
-        assert_eq!(split_point(b"name: x\n"), None);
-        assert_eq!(split_point(b"levels:\n  L1:\n    elevation: 0\n"), None);
     }
 }

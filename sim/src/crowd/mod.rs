@@ -28,7 +28,7 @@ mod tests;
 pub use stats::{compare_crowd, CrowdReport, FleetCompare, SpeedStats, Spread};
 
 use crate::msgs::{self, Msg, Published, Topic};
-use crate::world::RobotTruth;
+use crate::truth::{People, RobotTruth};
 use behaviour::{Fsm, Mind};
 use dodgy_2d::{Agent, AvoidanceOptions, Obstacle};
 use grid::Grid;
@@ -799,4 +799,10 @@ fn seg_dist(p: Vec2, a: Vec2, b: Vec2) -> f64 {
 
 fn round_mm(x: f64) -> f64 {
     (x * 1000.0).round() / 1000.0
+}
+
+impl People for Crowd {
+    fn any_within(&self, p: [f64; 3], r: f64) -> bool {
+        Crowd::any_within(self, p, r)
+    }
 }

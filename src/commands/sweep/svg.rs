@@ -10,6 +10,7 @@
 //! has no knee (throughput still grows in proportion).
 
 use super::collect::{PlanFile, Row};
+use mapc_backends::svg::Svg;
 use std::collections::BTreeMap;
 use std::fmt::Write;
 
@@ -288,13 +289,6 @@ fn fmt_x(x: f64) -> String {
     }
 }
 
-fn esc(s: &str) -> String {
-    s.replace('&', "&amp;")
-        .replace('<', "&lt;")
-        .replace('>', "&gt;")
-        .replace('"', "&quot;")
-}
-
 /// A round tick step giving about `n` ticks over `span`.
 fn tick_step(span: f64, n: f64) -> f64 {
     let raw = (span / n).max(1e-9);
@@ -315,6 +309,11 @@ fn tick_step(span: f64, n: f64) -> f64 {
 const COLOURS: &[&str] = &[
     "#1f77b4", "#d62728", "#2ca02c", "#9467bd", "#ff7f0e", "#8c564b", "#e377c2", "#17becf",
 ];
+
+/// A coordinate with one decimal, as the chart writes them.
+fn d1(v: f64) -> String {
+    format!("{v:.1}")
+}
 
 fn draw(series: &[Series], x_label: &str, per_point: usize) -> String {
     let (w, h) = (940.0, 520.0);
@@ -339,90 +338,119 @@ fn draw(series: &[Series], x_label: &str, per_point: usize) -> String {
     let xstep = tick_step(x1 - x0, 8.0).max(if x0.fract() == 0.0 { 1.0 } else { 0.0 });
     let sx = |x: f64| left + (x - x0) / (x1 - x0) * pw;
     let sy = |y: f64| top + ph - y / y1 * ph;
-    let mut s = String::new();
-    let _ = writeln!(
-        s,
-        r##"<svg xmlns="http://www.w3.org/2000/svg" width="{w}" height="{h}" viewBox="0 0 {w} {h}" font-family="DejaVu Sans, sans-serif" font-size="12">"##
+    let mut s = Svg::default();
+    s.begin(
+        "svg",
+        &[
+            ("xmlns", &"http://www.w3.org/2000/svg"),
+            ("width", &w),
+            ("height", &h),
+            ("viewBox", &format_args!("0 0 {w} {h}")),
+            ("font-family", &"DejaVu Sans, sans-serif"),
+            ("font-size", &12),
+        ],
     );
-    let _ = writeln!(s, r##"<rect width="{w}" height="{h}" fill="white"/>"##);
-    let _ = writeln!(
-        s,
-        r##"<text x="{left}" y="24" font-size="16" font-weight="bold">Capacity: throughput against {}</text>"##,
-        esc(x_label)
+    s.empty("rect", &[("width", &w), ("height", &h), ("fill", &"white")]);
+    s.leaf(
+        "text",
+        &[
+            ("x", &left),
+            ("y", &24),
+            ("font-size", &16),
+            ("font-weight", &"bold"),
+        ],
+        &format!("Capacity: throughput against {x_label}"),
     );
-    let _ = writeln!(
-        s,
-        r##"<text x="{left}" y="42" fill="#555">line: mean over {per_point} run(s) per point (seeds); band: min to max</text>"##
+    s.leaf(
+        "text",
+        &[("x", &left), ("y", &42), ("fill", &"#555")],
+        &format!("line: mean over {per_point} run(s) per point (seeds); band: min to max"),
     );
     // Grid and axes.
-    let _ = writeln!(s, r##"<g class="axes" stroke="#ccc">"##);
+    s.begin("g", &[("class", &"axes"), ("stroke", &"#ccc")]);
     let mut y = 0.0;
     while y <= y1 + 1e-9 {
-        let _ = writeln!(
-            s,
-            r##"<line x1="{left}" y1="{:.1}" x2="{:.1}" y2="{:.1}"/>"##,
-            sy(y),
-            left + pw,
-            sy(y)
+        s.empty(
+            "line",
+            &[
+                ("x1", &left),
+                ("y1", &d1(sy(y))),
+                ("x2", &d1(left + pw)),
+                ("y2", &d1(sy(y))),
+            ],
         );
         y += ystep;
     }
-    let _ = writeln!(s, "</g>");
-    let _ = writeln!(s, r##"<g class="ticks" fill="#333">"##);
+    s.close("g");
+    s.begin("g", &[("class", &"ticks"), ("fill", &"#333")]);
     let mut y = 0.0;
     while y <= y1 + 1e-9 {
-        let _ = writeln!(
-            s,
-            r##"<text x="{:.1}" y="{:.1}" text-anchor="end">{}</text>"##,
-            left - 6.0,
-            sy(y) + 4.0,
-            fmt_tick(y)
+        s.leaf(
+            "text",
+            &[
+                ("x", &d1(left - 6.0)),
+                ("y", &d1(sy(y) + 4.0)),
+                ("text-anchor", &"end"),
+            ],
+            &fmt_tick(y),
         );
         y += ystep;
     }
     let mut x = (x0 / xstep).ceil() * xstep;
     while x <= x1 + 1e-9 {
-        let _ = writeln!(
-            s,
-            r##"<text x="{:.1}" y="{:.1}" text-anchor="middle">{}</text>"##,
-            sx(x),
-            top + ph + 18.0,
-            fmt_tick(x)
+        s.leaf(
+            "text",
+            &[
+                ("x", &d1(sx(x))),
+                ("y", &d1(top + ph + 18.0)),
+                ("text-anchor", &"middle"),
+            ],
+            &fmt_tick(x),
         );
         x += xstep;
     }
-    let _ = writeln!(s, "</g>");
-    let _ = writeln!(
-        s,
-        r##"<path d="M{left} {top}V{:.1}H{:.1}" fill="none" stroke="#333"/>"##,
-        top + ph,
-        left + pw
+    s.close("g");
+    s.empty(
+        "path",
+        &[
+            (
+                "d",
+                &format_args!("M{left} {top}V{:.1}H{:.1}", top + ph, left + pw),
+            ),
+            ("fill", &"none"),
+            ("stroke", &"#333"),
+        ],
     );
-    let _ = writeln!(
-        s,
-        r##"<text x="{:.1}" y="{:.1}" text-anchor="middle">{}</text>"##,
-        left + pw / 2.0,
-        h - 16.0,
-        // x counts every robot of the run, not only the fleet whose count varies.
-        esc(&if x_label == "robots" {
-            "robots (all fleets)".to_string()
-        } else {
-            x_label.to_string()
-        })
+    // x counts every robot of the run, not only the fleet whose count varies.
+    let x_title = if x_label == "robots" {
+        "robots (all fleets)"
+    } else {
+        x_label
+    };
+    s.leaf(
+        "text",
+        &[
+            ("x", &d1(left + pw / 2.0)),
+            ("y", &d1(h - 16.0)),
+            ("text-anchor", &"middle"),
+        ],
+        x_title,
     );
-    let _ = writeln!(
-        s,
-        r##"<text transform="translate(18 {:.1}) rotate(-90)" text-anchor="middle">tasks completed per hour</text>"##,
-        top + ph / 2.0
+    s.leaf(
+        "text",
+        &[
+            (
+                "transform",
+                &format_args!("translate(18 {:.1}) rotate(-90)", top + ph / 2.0),
+            ),
+            ("text-anchor", &"middle"),
+        ],
+        "tasks completed per hour",
     );
     // The lines.
     for (i, se) in series.iter().enumerate() {
         let c = COLOURS[i % COLOURS.len()];
-        let _ = writeln!(
-            s,
-            r##"<g class="series" data-series="{}">"##,
-            esc(&se.label)
-        );
+        s.begin("g", &[("class", &"series"), ("data-series", &se.label)]);
         if se.points.iter().any(|p| p.max > p.min) {
             let mut d = String::new();
             for (k, p) in se.points.iter().enumerate() {
@@ -437,9 +465,16 @@ fn draw(series: &[Series], x_label: &str, per_point: usize) -> String {
             for p in se.points.iter().rev() {
                 let _ = write!(d, "L{:.1} {:.1}", sx(p.x), sy(p.min));
             }
-            let _ = writeln!(
-                s,
-                r##"<path class="spread" d="{d}Z" fill="{c}" fill-opacity="0.18" stroke="none"/>"##
+            d.push('Z');
+            s.empty(
+                "path",
+                &[
+                    ("class", &"spread"),
+                    ("d", &d),
+                    ("fill", &c),
+                    ("fill-opacity", &0.18),
+                    ("stroke", &"none"),
+                ],
             );
         }
         let pts: Vec<String> = se
@@ -447,32 +482,66 @@ fn draw(series: &[Series], x_label: &str, per_point: usize) -> String {
             .iter()
             .map(|p| format!("{:.1},{:.1}", sx(p.x), sy(p.mean)))
             .collect();
-        let _ = writeln!(
-            s,
-            r##"<polyline class="mean" points="{}" fill="none" stroke="{c}" stroke-width="2"/>"##,
-            pts.join(" ")
+        s.empty(
+            "polyline",
+            &[
+                ("class", &"mean"),
+                ("points", &pts.join(" ")),
+                ("fill", &"none"),
+                ("stroke", &c),
+                ("stroke-width", &2),
+            ],
         );
         for p in &se.points {
-            let _ = writeln!(
-                s,
-                r##"<circle class="point" cx="{:.1}" cy="{:.1}" r="3.5" fill="{c}"><title>{} {}: {:.2} tasks/h (min {:.2}, max {:.2})</title></circle>"##,
-                sx(p.x),
-                sy(p.mean),
-                fmt_x(p.x),
-                esc(x_label),
-                p.mean,
-                p.min,
-                p.max
+            s.begin(
+                "circle",
+                &[
+                    ("class", &"point"),
+                    ("cx", &d1(sx(p.x))),
+                    ("cy", &d1(sy(p.mean))),
+                    ("r", &3.5),
+                    ("fill", &c),
+                ],
             );
+            s.leaf(
+                "title",
+                &[],
+                &format!(
+                    "{} {}: {:.2} tasks/h (min {:.2}, max {:.2})",
+                    fmt_x(p.x),
+                    x_label,
+                    p.mean,
+                    p.min,
+                    p.max
+                ),
+            );
+            s.close("circle");
         }
         if let Some(k) = se.knee {
             let p = &se.points[k];
             let (kx, ky) = (sx(p.x), sy(p.mean));
-            let _ = writeln!(
-                s,
-                r##"<g class="knee" data-x="{}"><line x1="{kx:.1}" y1="{top}" x2="{kx:.1}" y2="{:.1}" stroke="{c}" stroke-dasharray="5 4"/><circle cx="{kx:.1}" cy="{ky:.1}" r="7" fill="none" stroke="{c}" stroke-width="2"/>"##,
-                fmt_x(p.x),
-                top + ph
+            s.begin("g", &[("class", &"knee"), ("data-x", &fmt_x(p.x))]);
+            s.empty(
+                "line",
+                &[
+                    ("x1", &d1(kx)),
+                    ("y1", &top),
+                    ("x2", &d1(kx)),
+                    ("y2", &d1(top + ph)),
+                    ("stroke", &c),
+                    ("stroke-dasharray", &"5 4"),
+                ],
+            );
+            s.empty(
+                "circle",
+                &[
+                    ("cx", &d1(kx)),
+                    ("cy", &d1(ky)),
+                    ("r", &7),
+                    ("fill", &"none"),
+                    ("stroke", &c),
+                    ("stroke-width", &2),
+                ],
             );
             let mut label = format!("knee: {} {}", fmt_x(p.x), x_label);
             if let Some((place, _)) = &se.saturates {
@@ -480,32 +549,43 @@ fn draw(series: &[Series], x_label: &str, per_point: usize) -> String {
             }
             let anchor = if kx > left + pw * 0.6 { "end" } else { "start" };
             let dx = if anchor == "end" { -10.0 } else { 10.0 };
-            let _ = writeln!(
-                s,
-                r##"<text x="{:.1}" y="{:.1}" text-anchor="{anchor}" fill="{c}" font-weight="bold">{}</text></g>"##,
-                kx + dx,
-                {
-                    knee_row += 1.0;
-                    top - 6.0 - 16.0 * (knee_row - 1.0)
-                },
-                esc(&label)
+            knee_row += 1.0;
+            s.leaf(
+                "text",
+                &[
+                    ("x", &d1(kx + dx)),
+                    ("y", &d1(top - 6.0 - 16.0 * (knee_row - 1.0))),
+                    ("text-anchor", &anchor),
+                    ("fill", &c),
+                    ("font-weight", &"bold"),
+                ],
+                &label,
             );
+            s.close("g");
         }
-        let _ = writeln!(s, "</g>");
+        s.close("g");
     }
     // Legend.
     let lx = left + pw + 20.0;
-    let _ = writeln!(s, r##"<g class="legend">"##);
+    s.begin("g", &[("class", &"legend")]);
     let mut ly = top + 6.0;
     for (i, se) in series.iter().enumerate() {
         let c = COLOURS[i % COLOURS.len()];
-        let _ = writeln!(
-            s,
-            r##"<line x1="{lx}" y1="{ly:.1}" x2="{:.1}" y2="{ly:.1}" stroke="{c}" stroke-width="2"/><text x="{:.1}" y="{:.1}">{}</text>"##,
-            lx + 18.0,
-            lx + 24.0,
-            ly + 4.0,
-            esc(&se.label)
+        s.empty(
+            "line",
+            &[
+                ("x1", &lx),
+                ("y1", &d1(ly)),
+                ("x2", &d1(lx + 18.0)),
+                ("y2", &d1(ly)),
+                ("stroke", &c),
+                ("stroke-width", &2),
+            ],
+        );
+        s.leaf(
+            "text",
+            &[("x", &d1(lx + 24.0)), ("y", &d1(ly + 4.0))],
+            &se.label,
         );
         ly += 18.0;
         let note = match (&se.knee, &se.saturates) {
@@ -518,13 +598,19 @@ fn draw(series: &[Series], x_label: &str, per_point: usize) -> String {
             (Some(_), None) => "knee; no task waited".to_string(),
             (None, None) => "no knee".to_string(),
         };
-        let _ = writeln!(
-            s,
-            r##"<text x="{:.1}" y="{:.1}" fill="#555" font-size="11">{}</text>"##,
-            lx + 24.0,
-            ly + 2.0,
-            esc(&note)
-        );
+        let small = |s: &mut Svg, ly: f64, text: &str| {
+            s.leaf(
+                "text",
+                &[
+                    ("x", &d1(lx + 24.0)),
+                    ("y", &d1(ly + 2.0)),
+                    ("fill", &"#555"),
+                    ("font-size", &11),
+                ],
+                text,
+            );
+        };
+        small(&mut s, ly, &note);
         ly += 16.0;
         if !se.causes.is_empty() {
             let by: Vec<String> = se
@@ -532,20 +618,14 @@ fn draw(series: &[Series], x_label: &str, per_point: usize) -> String {
                 .iter()
                 .map(|(c, f)| format!("{c} {:.0} %", 100.0 * f))
                 .collect();
-            let _ = writeln!(
-                s,
-                r##"<text x="{:.1}" y="{:.1}" fill="#555" font-size="11">waiting: {}</text>"##,
-                lx + 24.0,
-                ly + 2.0,
-                esc(&by.join(", "))
-            );
+            small(&mut s, ly, &format!("waiting: {}", by.join(", ")));
             ly += 16.0;
         }
         ly += 8.0;
     }
-    let _ = writeln!(s, "</g>");
-    let _ = writeln!(s, "</svg>");
-    s
+    s.close("g");
+    s.close("svg");
+    s.out
 }
 
 fn fmt_tick(v: f64) -> String {

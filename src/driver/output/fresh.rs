@@ -3,9 +3,8 @@
 //! writes that run at once in one process, as `mapc build`'s workers do, whose outputs
 //! may share a new top), its files written there
 //! under their own names (no temporary per file), made durable with the other outputs,
-//! and renamed into place at once. That saves a rename per file (airport_terminal: 183
-//! files, about 2.5 ms of a 20 ms compile; BENCHMARKS.md) and a reader sees the whole tree
-//! or nothing of it. The staging directory is a registered temporary: the signal watcher
+//! and renamed into place at once: a reader sees the whole tree or nothing of it, and no
+//! file needs a rename of its own. The staging directory is a registered temporary: the signal watcher
 //! removes it, and one left by a killed process is swept by the next first build there.
 
 use super::{alive, GATE, LIVE, TMP_MARK};

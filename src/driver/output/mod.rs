@@ -21,11 +21,6 @@ use std::sync::{Mutex, RwLock};
 
 use crate::ui::shown;
 
-/// A job for the start of a command that needs a thread of its own (the early flush);
-/// the signal watcher runs it before it starts watching, so that a short command starts
-/// one thread, not two.
-pub type FirstJob = Box<dyn FnOnce() + Send>;
-
 /// Temporaries that exist right now (created and not yet renamed or removed).
 static LIVE: Mutex<Vec<PathBuf>> = Mutex::new(Vec::new());
 /// Held shared while a temporary is created and registered (by several threads at once),
@@ -33,9 +28,6 @@ static LIVE: Mutex<Vec<PathBuf>> = Mutex::new(Vec::new());
 /// unregistered.
 static GATE: RwLock<()> = RwLock::new(());
 const TMP_MARK: &str = ".mapc-tmp-";
-/// The flush [`early_flush`] made a job of, waited for before the first batch is staged:
-/// its sender goes with the job, so receiving ends when the job has run or was dropped.
-static EARLY_FLUSH: Mutex<Option<std::sync::mpsc::Receiver<()>>> = Mutex::new(None);
 
 /// Resolves `rel` inside `root`, refusing anything that could escape it (absolute paths,
 /// `..`, drive prefixes, empty paths).
@@ -284,10 +276,6 @@ fn holds(path: &Path, contents: &[u8]) -> bool {
     }
 }
 
-/// Files from this size on have their write-back started as soon as they are staged.
-#[cfg(target_os = "linux")]
-const EARLY_WRITE_BACK: usize = 16 << 10;
-
 /// A new file staged as a temporary beside its target, renamed over it at commit.
 struct Staged {
     tmp: PathBuf,
@@ -331,16 +319,6 @@ fn stage(path: &Path, tmp: PathBuf, data: Data) -> std::io::Result<Staged> {
         release_temporary(&tmp);
         return Err(e);
     }
-    // A large file's write-back starts now, so its bytes move while the rest is staged; a
-    // small one's waits for the one `syncfs` after staging, which submits them in one
-    // batch (a request per file cost more than it saved on a virtual disk: BENCHMARKS.md,
-    // part 5, fourth pass).
-    #[cfg(target_os = "linux")]
-    if contents.len() >= EARLY_WRITE_BACK {
-        use std::os::fd::AsRawFd;
-        // SAFETY: a plain syscall on an open descriptor. Only a hint: errors are ignored.
-        unsafe { libc::sync_file_range(f.as_raw_fd(), 0, 0, libc::SYNC_FILE_RANGE_WRITE) };
-    }
     Ok(Staged {
         tmp,
         target: path.to_path_buf(),
@@ -369,104 +347,9 @@ fn unchanged(path: &Path, data: Data) -> bool {
     }
 }
 
-/// Runs `work` on every item, on up to two threads (file creation is kernel time that
-/// two cores share; more threads only contend for the same directory and group locks).
-/// Results come back in the items' order.
-fn parallel<T: Sync, R: Send>(items: &[T], work: impl Fn(&T) -> R + Sync) -> Vec<R> {
-    let threads = if items.len() < 16 {
-        1
-    } else {
-        mapc_ir::par::cpus().min(2)
-    };
-    if threads == 1 {
-        return items.iter().map(&work).collect();
-    }
-    // From both ends: the items are in directory order, and creating files in one
-    // directory takes turns on its lock. A panic in the helper is a bug: it surfaces here.
-    mapc_ir::par::map_ends(items, work)
-}
-
-/// The flush that [`write_dirs`] makes before staging a batch of new files (see
-/// [`clean_inode_tables`]), as a job for a thread that starts with a command about to write
-/// into `dir` (the signal watcher's): the file system then writes other processes' dirty
-/// pages (the reference generator's textures, a build step's objects) while the map is read
-/// and its files are made, rather than after. Only for a first compile (`dir` does not
-/// exist): a rerun whose outputs are unchanged writes nothing and needs no flush. Staging
-/// waits for the job to end (or to be dropped unrun); it only ever calls `syncfs`.
-pub fn early_flush(dir: &Path) -> Option<FirstJob> {
-    if dir.exists() {
-        return None;
-    }
-    // The nearest existing ancestor is on the file system the outputs will be on.
-    let mut on = dir.parent();
-    while let Some(d) = on {
-        let d = if d.as_os_str().is_empty() {
-            Path::new(".")
-        } else {
-            d
-        };
-        if d.is_dir() {
-            let d = d.to_path_buf();
-            let (ends, ended) = std::sync::mpsc::channel::<()>();
-            *EARLY_FLUSH.lock().unwrap_or_else(|e| e.into_inner()) = Some(ended);
-            return Some(Box::new(move || {
-                clean_inode_tables(&d);
-                drop(ends);
-            }));
-        }
-        on = d.parent();
-    }
-    None
-}
-
-/// Waits for the flush [`early_flush`] made a job of; whether there was one.
-fn join_early_flush() -> bool {
-    let ended = EARLY_FLUSH.lock().ok().and_then(|mut slot| slot.take());
-    match ended {
-        Some(e) => {
-            // Nothing is sent: this returns once the sender is gone.
-            let _ = e.recv();
-            true
-        }
-        None => false,
-    }
-}
-
-/// Before a batch of new files on ext2/3/4: one `syncfs`. Without a journal, ext4 avoids
-/// reusing an inode freed less than 5 s ago, or 5 min ago while its inode-table block is
-/// still dirty, and checks every free inode of the group from its start for each new file
-/// (the whole group when it holds no other free inode); after a busy minute of builds that
-/// is thousands of checks per file, most of a first compile's time (BENCHMARKS.md). Writing
-/// the dirty inode tables first narrows the window to 5 s. The dirty data it writes would
-/// otherwise wait for the flush after staging, so little is added; errors are ignored (the
-/// flush after staging is what makes the outputs durable).
-fn clean_inode_tables(root: &Path) {
-    #[cfg(target_os = "linux")]
-    {
-        use std::os::fd::AsRawFd;
-        const EXT_SUPER_MAGIC: libc::c_long = 0xEF53;
-        let Ok(f) = std::fs::File::open(root) else {
-            return;
-        };
-        // SAFETY: plain syscalls on an open descriptor, with a zeroed out-parameter.
-        unsafe {
-            let mut st: libc::statfs = std::mem::zeroed();
-            if libc::fstatfs(f.as_raw_fd(), &mut st) == 0
-                && st.f_type as libc::c_long == EXT_SUPER_MAGIC
-            {
-                libc::syncfs(f.as_raw_fd());
-            }
-        }
-    }
-    #[cfg(not(target_os = "linux"))]
-    let _ = root;
-}
-
 /// Makes the data of every written temporary durable, in one pass: on Linux one `syncfs`
-/// per file system (their write-back was started as they were written), elsewhere `fsync`
-/// of each file. Measured against `fdatasync` of each file on two threads
-/// (BENCHMARKS.md): one `syncfs` waits less, even though it also writes other processes'
-/// dirty pages, because each `fdatasync` also writes its inode and directory on its own.
+/// per file system, elsewhere `fsync` of each file.
+/// Kept for speed: on the 357 files of `mapc build` one `syncfs` took 0.1 s, an `fsync` each 0.7 s.
 fn flush(staged: &[Staged]) -> std::io::Result<()> {
     let written: Vec<&Staged> = staged.iter().filter(|s| s.written).collect();
     if written.is_empty() {
@@ -482,7 +365,7 @@ fn flush(staged: &[Staged]) -> std::io::Result<()> {
             // A stat per directory; a descriptor only for the first of each file system.
             if devices.insert(std::fs::metadata(d)?.dev()) {
                 let f = std::fs::File::open(d)?;
-                // SAFETY: a plain syscall on an open descriptor.
+                // SAFETY: a plain syscall on an open descriptor. std has no `syncfs`.
                 if unsafe { libc::syncfs(f.as_raw_fd()) } != 0 {
                     return Err(std::io::Error::last_os_error());
                 }
@@ -758,17 +641,14 @@ fn write_staged(
             });
         }
     }
-    // Measured: on a dozen files the extra flush costs more than it saves (BENCHMARKS.md).
-    // An early flush is joined whatever the batch: it has written what the flush after
-    // staging would otherwise wait for.
-    if !join_early_flush() && jobs.len() >= 32 {
-        clean_inode_tables(dirs[0].root);
-    }
     // Under a new top, a file is written in the staging directory under its own name.
-    let results = parallel(&jobs, |j| match fresh.staged(j.target) {
-        Some(at) => stage(j.target, at, j.data).map(|s| Staged { fresh: true, ..s }),
-        None => stage(j.target, temporary_name(j.target), j.data),
-    });
+    let results: Vec<std::io::Result<Staged>> = jobs
+        .iter()
+        .map(|j| match fresh.staged(j.target) {
+            Some(at) => stage(j.target, at, j.data).map(|s| Staged { fresh: true, ..s }),
+            None => stage(j.target, temporary_name(j.target), j.data),
+        })
+        .collect();
     let mut all: Vec<Staged> = Vec::with_capacity(jobs.len());
     let mut failed = None;
     for (j, r) in jobs.iter().zip(results) {
@@ -809,7 +689,7 @@ fn write_staged(
         }
     }
     // New top directories first, whole (their own manifests inside): the world refers to
-    // the models. Then the other outputs in any order (on two threads), and their
+    // the models. Then the other outputs, and their
     // manifests only once every output is in place.
     if let Err(e) = fresh.commit() {
         discard(&all);
@@ -820,7 +700,10 @@ fn write_staged(
     let (files, manifests) = all.split_at(outputs);
     let files: Vec<&Staged> = files.iter().filter(|s| !s.fresh).collect();
     let manifests: Vec<&Staged> = manifests.iter().filter(|s| !s.fresh).collect();
-    let renamed = parallel(&files, |s| std::fs::rename(&s.tmp, &s.target));
+    let renamed: Vec<std::io::Result<()>> = files
+        .iter()
+        .map(|s| std::fs::rename(&s.tmp, &s.target))
+        .collect();
     let mut failed = None;
     for (s, r) in files.iter().zip(&renamed) {
         if let Err(e) = r {
@@ -956,31 +839,6 @@ fn same_dir(a: &Path, b: &Path) -> bool {
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    /// Staging waits for the early flush's job until it has run, and not forever when the
-    /// job is dropped unrun (no watcher thread could start). A rerun (the directory exists)
-    /// gets no job. (Other tests that write may take the wait over: either way it ends.)
-    #[test]
-    fn the_early_flush_ends_run_or_dropped() {
-        let ends = |job: Option<FirstJob>| {
-            let (tx, rx) = std::sync::mpsc::channel();
-            std::thread::spawn(move || {
-                join_early_flush();
-                let _ = tx.send(());
-            });
-            if let Some(job) = job {
-                std::thread::spawn(job);
-            }
-            rx.recv_timeout(std::time::Duration::from_secs(20)).is_ok()
-        };
-        let missing = std::env::temp_dir().join(format!("mapc-no-such-{}", std::process::id()));
-        let job = early_flush(&missing).unwrap();
-        drop(job);
-        assert!(ends(None), "a job dropped unrun is waited for forever");
-        let job = early_flush(&missing).unwrap();
-        assert!(ends(Some(job)), "a job that ran is waited for forever");
-        assert!(early_flush(&std::env::temp_dir()).is_none());
-    }
 
     #[test]
     fn refuses_escapes() {

@@ -1,7 +1,9 @@
-//! A tiny SVG writer: elements appended to a string, numbers with two decimals (no `-0`),
-//! text escaped. Output is deterministic for the same calls.
+//! The one SVG writer of mapc, for both pictures: `mapc render`'s level maps and `mapc
+//! sweep`'s capacity chart. Elements are appended to a string, one per line; attribute
+//! values and text are escaped; the shape helpers write numbers with two decimals (no
+//! `-0`). Output is deterministic for the same calls.
 
-use std::fmt::Write;
+use std::fmt::{Display, Write};
 
 /// A number with at most two decimals, trailing zeros and `-0` removed.
 pub fn num(v: f64) -> String {
@@ -45,7 +47,37 @@ pub struct Svg {
     pub out: String,
 }
 
+/// An element's attributes: names and values (escaped when written).
+pub type Attrs<'a> = &'a [(&'a str, &'a dyn Display)];
+
 impl Svg {
+    /// Writes `<name a="v" ...` (no end).
+    fn start(&mut self, name: &str, attrs: Attrs) {
+        self.out.push('<');
+        self.out.push_str(name);
+        for (k, v) in attrs {
+            let _ = write!(self.out, r#" {k}="{}""#, esc(&v.to_string()));
+        }
+    }
+
+    /// `<name a="v" ...>` on a line of its own; [`Svg::close`] ends the element.
+    pub fn begin(&mut self, name: &str, attrs: Attrs) {
+        self.start(name, attrs);
+        self.out.push_str(">\n");
+    }
+
+    /// `<name a="v" .../>`: an element without content.
+    pub fn empty(&mut self, name: &str, attrs: Attrs) {
+        self.start(name, attrs);
+        self.out.push_str("/>\n");
+    }
+
+    /// `<name a="v" ...>text</name>`, the text escaped.
+    pub fn leaf(&mut self, name: &str, attrs: Attrs, text: &str) {
+        self.start(name, attrs);
+        let _ = writeln!(self.out, ">{}</{name}>", esc(text));
+    }
+
     pub fn raw(&mut self, s: &str) {
         self.out.push_str(s);
     }
@@ -138,5 +170,18 @@ mod tests {
     #[test]
     fn text_is_escaped() {
         assert_eq!(esc("a<b & \"c\"\u{1}"), "a&lt;b &amp; &quot;c&quot;?");
+    }
+
+    #[test]
+    fn elements_have_escaped_attributes_and_text() {
+        let mut s = Svg::default();
+        s.begin("g", &[("class", &"a&b")]);
+        s.empty("line", &[("x1", &1), ("y1", &format_args!("{:.1}", 2.0))]);
+        s.leaf("text", &[("x", &3.5)], "1 < 2");
+        s.close("g");
+        assert_eq!(
+            s.out,
+            "<g class=\"a&amp;b\">\n<line x1=\"1\" y1=\"2.0\"/>\n<text x=\"3.5\">1 &lt; 2</text>\n</g>\n"
+        );
     }
 }
