@@ -98,35 +98,8 @@ enum Command {
     Check(check::CheckArgs),
 }
 
-/// `Cli::parse()`, with a shortcut for the drop-in world commands, which build loops run
-/// once per map: their own arguments are parsed without building every other subcommand's
-/// (about 0.4 ms of a 10 ms compile; BENCHMARKS.md). Anything but a successful parse (help,
-/// `--version`, a mistake) goes through the whole parser, so every message is its own.
-fn parse_cli() -> Cli {
-    let args: Vec<std::ffi::OsString> = std::env::args_os().collect();
-    parse_world_args(&args).unwrap_or_else(Cli::parse)
-}
-
-/// The shortcut of [`parse_cli`]: `Some` only for a world command that parses.
-fn parse_world_args(args: &[std::ffi::OsString]) -> Option<Cli> {
-    use clap::{Args, FromArgMatches};
-    let (name, command): (&'static str, fn(world::WorldArgs) -> Command) =
-        match args.get(1)?.to_str()? {
-            "gazebo" | "gz" => ("gazebo", Command::Gazebo),
-            "ignition" => ("ignition", Command::Ignition),
-            "classic" => ("classic", Command::Classic),
-            _ => return None,
-        };
-    let parser = world::WorldArgs::augment_args(clap::Command::new(name));
-    let matches = parser.try_get_matches_from(&args[1..]).ok()?;
-    let world = world::WorldArgs::from_arg_matches(&matches).ok()?;
-    Some(Cli {
-        command: command(world),
-    })
-}
-
 fn main() -> ExitCode {
-    let cli = parse_cli();
+    let cli = Cli::parse();
     // `mapc sim` stops cooperatively on the first signal (it writes what ran); every other
     // command removes its temporaries and exits.
     signals::install(usize::from(matches!(cli.command, Command::Sim(_))));
@@ -166,15 +139,6 @@ mod cli_tests {
             .collect()
     }
 
-    fn world(cli: &Cli) -> (&'static str, String) {
-        match &cli.command {
-            Command::Gazebo(a) => ("gazebo", format!("{a:?}")),
-            Command::Ignition(a) => ("ignition", format!("{a:?}")),
-            Command::Classic(a) => ("classic", format!("{a:?}")),
-            _ => ("other", String::new()),
-        }
-    }
-
     /// One argument convention: an output positional (the drop-ins' form) or `-o`, never
     /// both and never neither.
     #[test]
@@ -198,37 +162,6 @@ mod cli_tests {
             "render m.building.yaml",
         ] {
             assert!(Cli::try_parse_from(argv(line)).is_err(), "{line}");
-        }
-    }
-
-    /// The world commands' shortcut gives what the whole parser gives, and leaves help,
-    /// versions, mistakes and other commands to it.
-    #[test]
-    fn the_world_shortcut_parses_as_the_whole_parser() {
-        for line in [
-            "gazebo m.building.yaml w.world models",
-            "gz m.building.yaml w.world models --quiet --texture-path a --texture-path b",
-            "ignition m.building.yaml w.world models -o x y -n --SKIP_CAMERA_POSE",
-            "classic m.building.yaml w.world models --TEMPLATE_WORLD_FILE t.sdf --format json",
-            "gazebo m.building.yaml w.world models --allow E0302 --deny warnings --max-diagnostics all",
-            "gazebo m.building.yaml w.world models --config mapc.toml -m p -c q --verbose",
-        ] {
-            let args = argv(line);
-            let fast = parse_world_args(&args).unwrap_or_else(|| panic!("{line}: no shortcut"));
-            let full = Cli::try_parse_from(&args).unwrap();
-            assert_eq!(world(&fast), world(&full), "{line}");
-        }
-        for line in [
-            "gazebo --help",
-            "gazebo -h",
-            "gazebo --version",
-            "gazebo m.building.yaml w.world",
-            "gazebo m.building.yaml w.world models --no-such-flag",
-            "gazebo m.building.yaml w.world models --format nope",
-            "nav m.building.yaml out",
-            "--version",
-        ] {
-            assert!(parse_world_args(&argv(line)).is_none(), "{line}");
         }
     }
 }
