@@ -153,6 +153,18 @@ impl TaskKind {
             TaskKind::GoToPlace { .. } => TaskCategory::GoToPlace,
         }
     }
+
+    /// The waypoints the task names, in order.
+    pub fn places(&self) -> Vec<&str> {
+        match self {
+            TaskKind::Loop { start, finish, .. } => vec![start, finish],
+            TaskKind::Delivery {
+                pickup, dropoff, ..
+            } => vec![pickup, dropoff],
+            TaskKind::Clean { zone } => vec![zone],
+            TaskKind::GoToPlace { place } => vec![place],
+        }
+    }
 }
 
 #[derive(Debug, Clone, PartialEq)]
@@ -179,6 +191,19 @@ pub struct GeneratorSpec {
     pub kind: TaskKind,
     pub fleet: Option<String>,
     pub span: Span,
+}
+
+impl GeneratorSpec {
+    /// The request times within a run of `duration` s: none for a generator whose times are
+    /// not finite or not increasing (validation reports those), at most a million.
+    pub fn times(&self, duration: f64) -> impl Iterator<Item = f64> + '_ {
+        let valid = self.every.is_finite() && self.start.is_finite() && self.every > 0.0;
+        let end = self.end.unwrap_or(duration).min(duration);
+        (0..=1_000_000u64)
+            .take_while(move |_| valid)
+            .map(move |k| self.start + k as f64 * self.every)
+            .take_while(move |&at| at <= end)
+    }
 }
 
 /// Switches for behaviours of the upstream plugins flagged as quirks in the runtime spec.

@@ -42,7 +42,7 @@ mod task;
 mod traffic;
 mod waits;
 
-use park::{choose_parks, waypoint_names, well_formed_warnings};
+use park::{choose_parks, well_formed_warnings};
 use traffic::NoPlan;
 
 /// Diagnostic codes of scenario/map mismatches.

@@ -29,7 +29,7 @@ fn required_of(nav: &Nav, scenario: &Scenario, spawns: &[usize], chargers: bool)
     let mut req = vec![vec![false; nav.vertices.len()]; nav.graphs.len()];
     for (slot, r) in req.iter_mut().enumerate() {
         for (kind, _, _) in task_kinds(scenario) {
-            for name in waypoint_names(kind) {
+            for name in kind.places() {
                 if let Some(v) = nav.find(slot, name) {
                     r[v] = true;
                 }
@@ -82,13 +82,13 @@ pub(super) fn well_formed_warnings(
     let mut seen: Vec<(usize, usize)> = Vec::new();
     for slot in 0..nav.graphs.len() {
         let mut places: Vec<usize> = task_kinds(scenario)
-            .flat_map(|(k, _, _)| waypoint_names(k))
+            .flat_map(|(k, _, _)| k.places())
             .filter_map(|n| nav.find(slot, n))
             .collect();
         places.sort_unstable();
         places.dedup();
         for (kind, _, span) in task_kinds(scenario) {
-            for name in waypoint_names(kind) {
+            for name in kind.places() {
                 let Some(v) = nav.find(slot, name) else {
                     continue;
                 };
@@ -121,15 +121,4 @@ pub(super) fn well_formed_warnings(
         }
     }
     out
-}
-
-pub(super) fn waypoint_names(kind: &TaskKind) -> Vec<&str> {
-    match kind {
-        TaskKind::Loop { start, finish, .. } => vec![start, finish],
-        TaskKind::Delivery {
-            pickup, dropoff, ..
-        } => vec![pickup, dropoff],
-        TaskKind::Clean { zone } => vec![zone],
-        TaskKind::GoToPlace { place } => vec![place],
-    }
 }

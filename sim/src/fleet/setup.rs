@@ -365,7 +365,7 @@ impl Fleets {
                 );
                 return;
             }
-            for name in waypoint_names(kind) {
+            for name in kind.places() {
                 let found: Vec<usize> = cands
                     .iter()
                     .filter_map(|f| nav.find(f.slot, name))
@@ -441,16 +441,7 @@ impl Fleets {
         let base = scenario.tasks.len();
         for (g, gen) in scenario.generators.iter().enumerate() {
             check(&gen.kind, &gen.fleet, gen.span, &mut diags);
-            if !(gen.every.is_finite() && gen.start.is_finite()) || gen.every <= 0.0 {
-                continue;
-            }
-            let end = gen.end.unwrap_or(scenario.duration).min(scenario.duration);
-            let mut k = 0u64;
-            loop {
-                let at = gen.start + k as f64 * gen.every;
-                if at > end || k > 1_000_000 {
-                    break;
-                }
+            for at in gen.times(scenario.duration) {
                 upcoming.push((
                     at,
                     base + g,
@@ -461,7 +452,6 @@ impl Fleets {
                         priority: 0,
                     },
                 ));
-                k += 1;
             }
         }
         if diags.iter().any(Diagnostic::is_error) {

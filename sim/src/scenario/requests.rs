@@ -403,18 +403,6 @@ fn task_kind(r: &TaskRequest) -> Result<(String, TaskKind), String> {
     Ok((r.category.clone(), kind))
 }
 
-/// The places a task kind names.
-fn places_of(k: &TaskKind) -> Vec<&str> {
-    match k {
-        TaskKind::Loop { start, finish, .. } => vec![start, finish],
-        TaskKind::Delivery {
-            pickup, dropoff, ..
-        } => vec![pickup, dropoff],
-        TaskKind::Clean { zone } => vec![zone],
-        TaskKind::GoToPlace { place } => vec![place],
-    }
-}
-
 /// Where in the line a serde message's offending value is: the quoted string of an
 /// `invalid type: string "x"` or `invalid value: string "x"`, when it is there once.
 fn locate(line: &str, msg: &str) -> Option<usize> {
@@ -450,7 +438,8 @@ fn task_of(
             return Err((e, at));
         }
     };
-    let places: Places = places_of(&kind)
+    let places: Places = kind
+        .places()
         .into_iter()
         .map(|p| (p.to_string(), find_str(text, p)))
         .collect();
@@ -711,18 +700,8 @@ pub(crate) fn task_ids(scenario: &super::Scenario) -> Vec<String> {
     }
     let base = scenario.tasks.len();
     for (g, gen) in scenario.generators.iter().enumerate() {
-        if !(gen.every.is_finite() && gen.start.is_finite()) || gen.every <= 0.0 {
-            continue;
-        }
-        let end = gen.end.unwrap_or(scenario.duration).min(scenario.duration);
-        let mut k = 0u64;
-        loop {
-            let at = gen.start + k as f64 * gen.every;
-            if at > end || k > 1_000_000 {
-                break;
-            }
+        for at in gen.times(scenario.duration) {
             order.push((at, base + g, None, gen.kind.category()));
-            k += 1;
         }
     }
     order.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
