@@ -270,20 +270,28 @@ impl Planner {
     /// [`Planner::plan`], ending on places only when `places`.
     fn search(&mut self, nav: &Nav, sched: &Schedule, q: &Query, places: bool) -> Option<Plan> {
         let conf = sched.conf();
-        // Keyed by the parking vertices too: making room plans with other sets of them.
+        // The parking vertices the plan may end on: those nobody else stays on for good
+        // (a heuristic towards taken ones sends the search round every vertex of a large
+        // building before it gives up on them). Keyed by that set: making room plans with
+        // other sets of them, and robots park and leave.
+        let parks: Vec<usize> = (0..nav.vertices.len())
+            .filter(|&v| {
+                (q.parks[v] == PARK || places && q.parks[v] == PARK_ON_PLACE)
+                    && conf.vertex[v]
+                        .iter()
+                        .all(|&x| sched.held_for_good(x, q.robot).is_none())
+            })
+            .collect();
         let key = (q.slot, q.kin.speed.to_bits(), {
             use std::hash::{Hash, Hasher};
             let mut h = std::collections::hash_map::DefaultHasher::new();
-            q.parks.hash(&mut h);
+            parks.hash(&mut h);
             h.finish()
         });
         if !self.park_dist.contains_key(&key) {
             if self.park_dist.len() >= 64 {
                 self.park_dist.clear();
             }
-            let parks: Vec<usize> = (0..nav.vertices.len())
-                .filter(|&v| q.parks[v] != 0)
-                .collect();
             let d = self.dist_to(nav, q.slot, &q.kin, &parks);
             self.park_dist.insert(key, d);
         }
