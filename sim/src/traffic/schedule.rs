@@ -90,6 +90,16 @@ pub struct Schedule {
     its: Vec<Itinerary>,
     /// A traversal began or ended since the last retime: the estimates are stale.
     stale: bool,
+    /// Changes with every change of the schedule, and no two schedules share one (see
+    /// [`Schedule::stamp`]).
+    stamp: u64,
+}
+
+/// The next stamp any schedule takes.
+static STAMPS: std::sync::atomic::AtomicU64 = std::sync::atomic::AtomicU64::new(1);
+
+fn new_stamp() -> u64 {
+    STAMPS.fetch_add(1, std::sync::atomic::Ordering::Relaxed)
 }
 
 impl Schedule {
@@ -124,7 +134,15 @@ impl Schedule {
             queues,
             its,
             stale: true,
+            stamp: new_stamp(),
         }
+    }
+
+    /// Identifies the schedule as it is: equal stamps, equal schedules (a clone shares
+    /// its original's until either changes). What is computed from a schedule may be
+    /// kept while its stamp stays.
+    pub fn stamp(&self) -> u64 {
+        self.stamp
     }
 
     pub fn conf(&self) -> &Conflicts {
@@ -183,6 +201,7 @@ impl Schedule {
     /// Traversals sent together are driven one after the other.
     pub fn begin(&mut self, r: usize, n: usize, t: f64) {
         self.stale = true;
+        self.stamp = new_stamp();
         let mut prev = t;
         for tr in self.its[r].travs.iter_mut().take(n) {
             if !tr.begun {
@@ -201,6 +220,7 @@ impl Schedule {
             return;
         };
         self.stale = true;
+        self.stamp = new_stamp();
 
         for &x in &self.conf.trav[tr.edge] {
             let q = &mut self.queues[x as usize];
@@ -221,6 +241,7 @@ impl Schedule {
     /// steps' times must fit the others' spans (the planner's result against this
     /// schedule as it is).
     pub fn install(&mut self, r: usize, keep: usize, steps: &[Step], ready: f64) {
+        self.stamp = new_stamp();
         let keep = keep.min(self.its[r].travs.len());
         let s0 = self.its[r].base + keep as u64;
         // Every resource robot `r` may hold a span on: its traversals' and its standing set.
@@ -381,6 +402,7 @@ impl Schedule {
     /// queues it needs has ended. Fails when the dependencies form a cycle.
     pub fn retime(&mut self, now: f64) -> Result<(), Cycle> {
         self.stale = false;
+        self.stamp = new_stamp();
         // Dependencies of each traversal on the last traversal of the span before its own.
         let nr = self.its.len();
         let offs: Vec<usize> = {

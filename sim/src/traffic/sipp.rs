@@ -186,6 +186,16 @@ impl PartialOrd for Open {
     }
 }
 
+/// Intervals from one schedule (see [`Schedule::stamp`]), per robot they are for.
+#[derive(Default)]
+struct Cache {
+    stamp: u64,
+    /// Per (robot, edge): the others' merged busy intervals on its traversal set.
+    edge_busy: Map<(usize, usize), Vec<(f64, f64)>>,
+    /// Per (robot, vertex): the safe intervals of its standing set.
+    vertex_free: Map<(usize, usize), Vec<(f64, f64)>>,
+}
+
 /// Reverse graphs and heuristic tables, reused across plans.
 pub struct Planner {
     /// Per slot, per vertex: incoming edges.
@@ -197,6 +207,9 @@ pub struct Planner {
     /// Time to a goal, per (slot, speed bits, goal vertex): tasks go to the same places
     /// again and again.
     goal_dist: Map<(usize, u64, usize), Vec<f64>>,
+    /// Busy and safe intervals computed from the schedule of `Cache::stamp`: the plans of
+    /// one dispatch round (several robots per task, most refused) meet the same ones.
+    cache: Cache,
     /// Plans made and states expanded, for the report.
     pub plans: u64,
     pub expanded: u64,
@@ -222,6 +235,7 @@ impl Planner {
             heading: (0..nav.edges.len()).map(|e| heading(nav, e)).collect(),
             park_dist: Map::default(),
             goal_dist: Map::default(),
+            cache: Cache::default(),
             plans: 0,
             expanded: 0,
             why: "",
@@ -269,6 +283,26 @@ impl Planner {
 
     /// [`Planner::plan`], ending on places only when `places`.
     fn search(&mut self, nav: &Nav, sched: &Schedule, q: &Query, places: bool) -> Option<Plan> {
+        if self.cache.stamp != sched.stamp() {
+            self.cache = Cache {
+                stamp: sched.stamp(),
+                ..Cache::default()
+            };
+        }
+        let mut cache = std::mem::take(&mut self.cache);
+        let plan = self.search_with(nav, sched, q, places, &mut cache);
+        self.cache = cache;
+        plan
+    }
+
+    fn search_with(
+        &mut self,
+        nav: &Nav,
+        sched: &Schedule,
+        q: &Query,
+        places: bool,
+        cache: &mut Cache,
+    ) -> Option<Plan> {
         let conf = sched.conf();
         // The parking vertices the plan may end on: those nobody else stays on for good
         // (a heuristic towards taken ones sends the search round every vertex of a large
@@ -347,7 +381,11 @@ impl Planner {
         let mut safe: Vec<Vec<(f64, f64)>> = Vec::new();
         let mut intervals = |v: usize, safe: &mut Vec<Vec<(f64, f64)>>| -> usize {
             *safe_at.entry(v).or_insert_with(|| {
-                safe.push(free_of(sched, &conf.vertex[v], r));
+                let free = cache
+                    .vertex_free
+                    .entry((r, v))
+                    .or_insert_with(|| free_of(sched, &conf.vertex[v], r));
+                safe.push(free.clone());
                 safe.len() - 1
             })
         };
@@ -369,7 +407,6 @@ impl Planner {
         let mut open = BinaryHeap::new();
         open.push(Open(q.t0 + h(q.from, 0), q.t0, 0));
         let mut expanded = 0usize;
-        let mut busy_cache: Map<usize, Vec<(f64, f64)>> = Map::default();
         while let Some(Open(_, _, id)) = open.pop() {
             let n = nodes[id];
             if best.get(&(n.v, n.iv, n.label)).is_some_and(|&t| t < n.t) {
@@ -440,8 +477,9 @@ impl Planner {
                 let prev = n.edge.map(|(p, _, _)| p);
                 let dur = q.kin.edge_time_with(nav, e, prev, |x| self.heading[x]);
 
-                let busy = busy_cache
-                    .entry(e)
+                let busy = cache
+                    .edge_busy
+                    .entry((r, e))
                     .or_insert_with(|| merged(sched, &conf.trav[e], r));
                 let wi_at = intervals(w, &mut safe);
                 let wivs = &safe[wi_at];

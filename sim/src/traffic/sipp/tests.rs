@@ -162,3 +162,27 @@ fn waits_are_taken_where_the_robot_stands_not_in_the_corridor() {
     sched.install(0, 0, &plan0.steps, 0.0);
     assert!(sched.check(0.0).is_ok());
 }
+
+#[test]
+fn intervals_kept_between_plans_are_dropped_when_the_schedule_changes() {
+    let nav = nav();
+    let conf = conflicts(&nav);
+    let mut sched = Schedule::new(conf, &[v(&nav, "a"), v(&nav, "d")], 0.0);
+    let mut planner = Planner::new(&nav);
+    let p = parks(&nav, &["p1", "p2", "a", "d"]);
+    let goals_q0 = [(v(&nav, "d"), 0.0)];
+    let q0 = query(0, v(&nav, "a"), &goals_q0, &p);
+    // Robot 0 plans (and its intervals are kept) before robot 1 comes down the corridor.
+    let before = planner.plan(&nav, &sched, &q0);
+    let goals_q1 = [(v(&nav, "p1"), 0.0)];
+    let plan1 = planner
+        .plan(&nav, &sched, &query(1, v(&nav, "d"), &goals_q1, &p))
+        .expect("robot 1 plans");
+    sched.install(1, 0, &plan1.steps, 0.0);
+    let again = planner.plan(&nav, &sched, &q0).expect("robot 0 plans");
+    let fresh = Planner::new(&nav)
+        .plan(&nav, &sched, &q0)
+        .expect("robot 0 plans");
+    assert_eq!(again, fresh);
+    assert_ne!(Some(again), before, "robot 1's spans count");
+}
