@@ -16,8 +16,8 @@
 //! number of robots (5, 20, 80).
 //!
 //! `warehouse_1000/<minutes>`: 1,000 tiny robots on a generated warehouse of 10,000
-//! waypoints, racks to stations faster than the fleet serves (issue 35 asks for at least
-//! 10× real time over an hour).
+//! waypoints, racks to stations faster than the fleet serves, for one simulated minute
+//! (issue 35 asks for an hour at least 10× real time; far from that, BENCHMARKS.md).
 //!
 //! Run with `cargo bench --bench sim`. The map and scenario are parsed before timing.
 
@@ -225,8 +225,8 @@ fn warehouse_scenario(rows: usize, cols: usize, robots: usize, minutes: usize) -
 
 /// 1,000 robots on a generated 10,000-waypoint warehouse (50 aisles of 200), every robot
 /// busy: issue 35 asks for at least 10× real time over an hour. `args` are simulated
-/// minutes.
-#[divan::bench(args = [2, 60], sample_count = 1, sample_size = 1)]
+/// minutes: one, for now, as a simulated minute takes minutes (BENCHMARKS.md).
+#[divan::bench(args = [1], sample_count = 1, sample_size = 1)]
 fn warehouse_1000(bencher: Bencher, minutes: usize) {
     let (building, scenario) = load(
         &warehouse_map(50, 200),
