@@ -365,6 +365,39 @@ impl Nav {
         self.tree_from(slot, from, speed).0
     }
 
+    /// Travel times to `to` from every vertex of slot `slot` (Dijkstra on the reversed
+    /// edges): one search serves every robot going there.
+    pub fn times_to(&self, slot: usize, to: usize, speed: f64) -> Vec<f64> {
+        let n = self.vertices.len();
+        let mut dist = vec![f64::INFINITY; n];
+        if to >= n || slot >= self.graphs.len() {
+            return dist;
+        }
+        let mut inn: Vec<Vec<usize>> = vec![Vec::new(); n];
+        for (e, edge) in self.edges.iter().enumerate() {
+            if edge.graph == slot {
+                inn[edge.to].push(e);
+            }
+        }
+        let mut heap = BinaryHeap::new();
+        dist[to] = 0.0;
+        heap.push(QItem(0.0, to));
+        while let Some(QItem(d, v)) = heap.pop() {
+            if d > dist[v] {
+                continue;
+            }
+            for &e in &inn[v] {
+                let u = self.edges[e].from;
+                let nd = d + self.edge_cost(e, speed);
+                if nd < dist[u] {
+                    dist[u] = nd;
+                    heap.push(QItem(nd, u));
+                }
+            }
+        }
+        dist
+    }
+
     /// Travel times from `from` to every vertex of slot `slot`, and the edge each vertex is
     /// reached by on a shortest route (ties broken as in [`Nav::plan`]).
     pub fn tree_from(

@@ -273,6 +273,8 @@ pub struct Fleets {
     robots: Vec<Robot>,
     by_name: BTreeMap<String, usize>,
     tasks: Vec<Task>,
+    /// Per (graph slot, speed, place): free-flow times to the place from every vertex.
+    eta_tables: BTreeMap<(usize, u64, usize), Vec<f64>>,
     /// Tasks no robot has taken yet, oldest first.
     pending: VecDeque<assign::Pending>,
     /// When the dispatcher runs next.

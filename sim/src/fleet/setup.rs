@@ -488,6 +488,7 @@ impl Fleets {
             robots,
             by_name,
             tasks: Vec::new(),
+            eta_tables: BTreeMap::new(),
             pending: VecDeque::new(),
             next_dispatch: f64::INFINITY,
             upcoming: upcoming.into(),
