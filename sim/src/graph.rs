@@ -369,9 +369,8 @@ impl Nav {
     /// edges): one search serves every robot going there.
     pub fn times_to(&self, slot: usize, to: usize, speed: f64) -> Vec<f64> {
         let n = self.vertices.len();
-        let mut dist = vec![f64::INFINITY; n];
-        if to >= n || slot >= self.graphs.len() {
-            return dist;
+        if slot >= self.graphs.len() {
+            return vec![f64::INFINITY; n];
         }
         let mut inn: Vec<Vec<usize>> = vec![Vec::new(); n];
         for (e, edge) in self.edges.iter().enumerate() {
@@ -379,23 +378,7 @@ impl Nav {
                 inn[edge.to].push(e);
             }
         }
-        let mut heap = BinaryHeap::new();
-        dist[to] = 0.0;
-        heap.push(QItem(0.0, to));
-        while let Some(QItem(d, v)) = heap.pop() {
-            if d > dist[v] {
-                continue;
-            }
-            for &e in &inn[v] {
-                let u = self.edges[e].from;
-                let nd = d + self.edge_cost(e, speed);
-                if nd < dist[u] {
-                    dist[u] = nd;
-                    heap.push(QItem(nd, u));
-                }
-            }
-        }
-        dist
+        self.dijkstra(&inn, to, speed, true, &|_| true).0
     }
 
     /// Travel times from `from` to every vertex of slot `slot`, and the edge each vertex is
@@ -417,27 +400,48 @@ impl Nav {
         speed: f64,
         allow: &dyn Fn(usize) -> bool,
     ) -> (Vec<f64>, Vec<Option<usize>>) {
+        match self.out.get(slot) {
+            Some(out) => self.dijkstra(out, from, speed, false, allow),
+            None => {
+                let n = self.vertices.len();
+                (vec![f64::INFINITY; n], vec![None; n])
+            }
+        }
+    }
+
+    /// Dijkstra from `start` over the edges `adj` lists per vertex (leaving it, or with
+    /// `reversed` arriving at it), using only the edges `allow` accepts: times, and the
+    /// edge each vertex is reached by. Ties are broken by vertex index.
+    fn dijkstra(
+        &self,
+        adj: &[Vec<usize>],
+        start: usize,
+        speed: f64,
+        reversed: bool,
+        allow: &dyn Fn(usize) -> bool,
+    ) -> (Vec<f64>, Vec<Option<usize>>) {
         let n = self.vertices.len();
         let mut dist = vec![f64::INFINITY; n];
         let mut prev: Vec<Option<usize>> = vec![None; n];
-        let Some(out) = self.out.get(slot) else {
-            return (dist, prev);
-        };
-        if from >= n {
+        if start >= n {
             return (dist, prev);
         }
         let mut heap = BinaryHeap::new();
-        dist[from] = 0.0;
-        heap.push(QItem(0.0, from));
+        dist[start] = 0.0;
+        heap.push(QItem(0.0, start));
         while let Some(QItem(d, v)) = heap.pop() {
             if d > dist[v] {
                 continue;
             }
-            for &e in &out[v] {
+            for &e in &adj[v] {
                 if !allow(e) {
                     continue;
                 }
-                let w = self.edges[e].to;
+                let w = if reversed {
+                    self.edges[e].from
+                } else {
+                    self.edges[e].to
+                };
                 let nd = d + self.edge_cost(e, speed);
                 if nd < dist[w] {
                     dist[w] = nd;
