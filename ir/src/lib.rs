@@ -25,4 +25,5 @@ pub use navmesh::{human_navmesh, NavMesh, DEFAULT_HUMAN_LANE_WIDTH};
 pub use params::{Param, ParamValue, Params};
 pub use span::{FileId, Span};
 pub use summary::summary;
+pub use validate::grid::BoxGrid;
 pub use validate::{rule, rules, validate, Context, Rule};

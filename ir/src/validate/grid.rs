@@ -60,7 +60,7 @@ impl PointGrid {
 /// box finds every box that overlaps it. The cell side is the median box side (at least
 /// `MIN_CELL`), so a typical box spans a few cells; only occupied cells are stored, and a
 /// query box larger than the occupied area scans the occupied cells instead.
-pub(crate) struct BoxGrid {
+pub struct BoxGrid {
     cell: f64,
     cells: HashMap<(i64, i64), Vec<u32>>,
     /// Per id, the last query that returned it (deduplicates boxes in several cells).
@@ -77,7 +77,7 @@ const MIN_CELL: f64 = 0.05;
 
 impl BoxGrid {
     /// A grid of the boxes `(min, max)`, ids `0..boxes.len()`.
-    pub(crate) fn new(boxes: &[(Vec2, Vec2)]) -> Self {
+    pub fn new(boxes: &[(Vec2, Vec2)]) -> Self {
         let mut sides: Vec<f64> = boxes
             .iter()
             .map(|(a, b)| (b.x - a.x).max(b.y - a.y))
@@ -120,7 +120,7 @@ impl BoxGrid {
     }
 
     /// The ids of the boxes that may overlap `(min, max)`, each once, in no set order.
-    pub(crate) fn candidates(&mut self, min: Vec2, max: Vec2) -> Vec<u32> {
+    pub fn candidates(&mut self, min: Vec2, max: Vec2) -> Vec<u32> {
         self.query = self.query.wrapping_add(1);
         let q = self.query;
         let mut out = Vec::new();

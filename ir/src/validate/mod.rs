@@ -10,7 +10,7 @@ mod context;
 mod crowd;
 mod doors;
 mod geometry;
-mod grid;
+pub(crate) mod grid;
 mod lanes;
 mod lifts;
 mod names;

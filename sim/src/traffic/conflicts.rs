@@ -7,6 +7,7 @@
 //! itself), so a small robot is not reserved as much room as the largest one.
 
 use crate::graph::{point_segment, segment_segment, EdgeKind, Nav};
+use mapc_ir::{BoxGrid, Vec2};
 use std::collections::BTreeMap;
 
 /// Clearance added to the footprint sum (m).
@@ -86,10 +87,32 @@ impl Conflicts {
         // would otherwise keep the lanes two junctions away free).
         let lane_list: Vec<(usize, (usize, usize, f64))> =
             lanes.iter().map(|(&l, &g)| (l, g)).collect();
+        // Candidate pairs from a grid of the lanes' boxes grown by half the largest gap:
+        // two lanes closer than a gap have boxes that overlap then (setup stays linear in
+        // the lanes of a large warehouse, not quadratic).
+        let grow = lane_list.iter().map(|l| l.1 .2).fold(0.0, f64::max) / 2.0;
+        let lane_box = |a: usize, z: usize, r: f64| {
+            let (pa, pz) = (nav.vertices[a].pos, nav.vertices[z].pos);
+            (
+                Vec2::new(pa.x.min(pz.x) - r, pa.y.min(pz.y) - r),
+                Vec2::new(pa.x.max(pz.x) + r, pa.y.max(pz.y) + r),
+            )
+        };
+        let boxes: Vec<(Vec2, Vec2)> = lane_list
+            .iter()
+            .map(|&(_, (a, z, _))| lane_box(a, z, grow))
+            .collect();
+        let mut lane_grid = BoxGrid::new(&boxes);
         let mut near: BTreeMap<usize, Vec<Res>> = BTreeMap::new();
         let mut n_pairs = 0;
         for (i, &(li, (a, z, gi))) in lane_list.iter().enumerate() {
-            for &(lj, (p, q, gj)) in &lane_list[i + 1..] {
+            let (lo, hi) = boxes[i];
+            for j in lane_grid.candidates(lo, hi) {
+                let j = j as usize;
+                if j <= i {
+                    continue;
+                }
+                let (lj, (p, q, gj)) = lane_list[j];
                 if !same_level(a, p) {
                     continue;
                 }
@@ -105,10 +128,27 @@ impl Conflicts {
         }
         let n_res = pair_base + n_pairs;
 
+        // Vertices near a point or a lane, from a grid of the vertices' boxes grown by half
+        // the largest reach of any test below.
+        let reach = per_slot
+            .iter()
+            .map(|c| c.stop_radius + 0.05)
+            .fold(body, f64::max);
+        let vertex_boxes: Vec<(Vec2, Vec2)> = nav
+            .vertices
+            .iter()
+            .map(|v| {
+                let r = Vec2::new(reach / 2.0, reach / 2.0);
+                (v.pos.minus(r), v.pos.plus(r))
+            })
+            .collect();
+        let mut vertex_grid = BoxGrid::new(&vertex_boxes);
         let mut vertex = Vec::with_capacity(nv);
         for (i, v) in nav.vertices.iter().enumerate() {
             let mut set = vec![i as Res];
-            for (j, w) in nav.vertices.iter().enumerate() {
+            let (lo, hi) = vertex_boxes[i];
+            for j in vertex_grid.candidates(lo, hi) {
+                let (j, w) = (j as usize, &nav.vertices[j as usize]);
                 if j != i && same_level(i, j) && w.pos.minus(v.pos).norm() < body {
                     set.push(j as Res);
                 }
@@ -144,7 +184,18 @@ impl Conflicts {
                         a.plus(h.scale(c.stop_distance)),
                         z.plus(h.scale(c.stop_distance)),
                     );
-                    for (j, w) in nav.vertices.iter().enumerate() {
+                    let (lo, hi) = (
+                        Vec2::new(
+                            a.x.min(z.x).min(pa.x).min(pz.x) - reach / 2.0,
+                            a.y.min(z.y).min(pa.y).min(pz.y) - reach / 2.0,
+                        ),
+                        Vec2::new(
+                            a.x.max(z.x).max(pa.x).max(pz.x) + reach / 2.0,
+                            a.y.max(z.y).max(pa.y).max(pz.y) + reach / 2.0,
+                        ),
+                    );
+                    for j in vertex_grid.candidates(lo, hi) {
+                        let (j, w) = (j as usize, &nav.vertices[j as usize]);
                         if !same_level(j, e.from) {
                             continue;
                         }
@@ -195,7 +246,109 @@ impl Conflicts {
 
 #[cfg(test)]
 mod tests {
+    use super::{Clearance, Conflicts, MARGIN};
+    use crate::graph::{point_segment, segment_segment, EdgeKind, Nav};
     use crate::traffic::test_map::{conflicts, e, nav};
+
+    /// A random map: `n` vertices scattered over 30 m × 30 m on two levels, random lanes.
+    fn random_nav(seed: u64, n: usize) -> Nav {
+        let mut rng = fastrand::Rng::with_seed(seed);
+        let mut yaml = String::from(
+            "coordinate_system: cartesian_meters\nname: r\nreference_level_name: L1\nlevels:\n",
+        );
+        for level in ["L1", "L2"] {
+            yaml += &format!("  {level}:\n    elevation: 0\n    vertices:\n");
+            for _ in 0..n {
+                let (x, y) = (rng.f64() * 30.0, rng.f64() * 30.0);
+                yaml += &format!("      - [{x:.3}, {y:.3}, 0, \"\"]\n");
+            }
+            yaml += "    lanes:\n";
+            for _ in 0..n {
+                let (a, z) = (rng.usize(0..n), rng.usize(0..n));
+                if a != z {
+                    yaml += &format!(
+                        "      - [{a}, {z}, {{bidirectional: [4, {}], graph_idx: [2, 0]}}]\n",
+                        rng.bool()
+                    );
+                }
+            }
+        }
+        let parsed = mapc_frontend::parse_str("r.building.yaml", &yaml);
+        Nav::build(parsed.valid_building().expect("random map loads"), &[0])
+    }
+
+    /// The sets hold exactly what the geometry says, however many elements the grid puts
+    /// in a cell: vertices closer than the body, and for a lane, the vertices near the
+    /// lane or its probe and the lanes closer than their gap (the grid only narrows the
+    /// candidates; it must never drop one).
+    #[test]
+    fn conflict_sets_are_the_geometric_ones() {
+        for seed in 0..40 {
+            let nav = random_nav(seed, 12 + seed as usize * 3);
+            let c = Clearance {
+                footprint: 0.2 + (seed % 5) as f64 * 0.2,
+                stop_distance: (seed % 3) as f64 * 0.5,
+                stop_radius: (seed % 4) as f64 * 0.6,
+            };
+            let conf = Conflicts::build(&nav, c);
+            let body = 2.0 * c.footprint + MARGIN;
+            let level = |v: usize| nav.vertices[v].level;
+            for i in 0..nav.vertices.len() {
+                for j in 0..nav.vertices.len() {
+                    let near = i == j
+                        || level(i) == level(j)
+                            && nav.vertices[i].pos.minus(nav.vertices[j].pos).norm() < body;
+                    let has = conf.vertex[i].binary_search(&(j as u32)).is_ok();
+                    assert_eq!(near, has, "seed {seed}: vertex {i} and {j}");
+                }
+            }
+            let gap = (2.0 * c.footprint + MARGIN).max(c.stop_radius);
+            let lane = |e: usize| (nav.edges[e].from, nav.edges[e].to);
+            for (k, ek) in nav.edges.iter().enumerate() {
+                if ek.kind != EdgeKind::Lane {
+                    continue;
+                }
+                let (a, z) = lane(k);
+                let (pa, pz) = (nav.vertices[a].pos, nav.vertices[z].pos);
+                let d = pz.minus(pa);
+                let h = d.scale(1.0 / d.norm().max(1e-9));
+                let (qa, qz) = (
+                    pa.plus(h.scale(c.stop_distance)),
+                    pz.plus(h.scale(c.stop_distance)),
+                );
+                for j in 0..nav.vertices.len() {
+                    let w = nav.vertices[j].pos;
+                    let near = level(j) == level(a)
+                        && (point_segment(w, pa, pz) < body
+                            || point_segment(w, qa, qz) < c.stop_radius + 0.05);
+                    // Its own ends' standing sets are in a traversal set anyway.
+                    let end = conf.vertex[a].contains(&(j as u32))
+                        || conf.vertex[z].contains(&(j as u32));
+                    let has = conf.trav[k].binary_search(&(j as u32)).is_ok();
+                    assert!(
+                        near || end || !has,
+                        "seed {seed}: lane {k} holds vertex {j}"
+                    );
+                    assert!(!near || has, "seed {seed}: lane {k} misses vertex {j}");
+                }
+                for (m, em) in nav.edges.iter().enumerate() {
+                    let (p, q) = lane(m);
+                    if em.kind != EdgeKind::Lane || ek.lane == em.lane || level(p) != level(a) {
+                        continue;
+                    }
+                    let close =
+                        segment_segment(pa, pz, nav.vertices[p].pos, nav.vertices[q].pos) < gap;
+                    let shared = conf.trav[k].iter().any(|x| {
+                        *x as usize >= nav.vertices.len() && conf.trav[m].binary_search(x).is_ok()
+                    });
+                    assert!(
+                        !close || shared,
+                        "seed {seed}: lanes {k} and {m} share nothing"
+                    );
+                }
+            }
+        }
+    }
 
     #[test]
     fn lanes_conflict_with_their_neighbours_only() {

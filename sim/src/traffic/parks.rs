@@ -13,6 +13,9 @@
 
 use super::conflicts::{Conflicts, Res};
 use crate::graph::Nav;
+use petgraph::algo::tarjan_scc;
+use petgraph::graph::{DiGraph, NodeIndex};
+use petgraph::visit::EdgeFiltered;
 
 /// Per graph slot, per vertex: 0 not a parking vertex, [`PARK`], or [`PARK_ON_PLACE`].
 #[derive(Debug, Clone, Default)]
@@ -38,11 +41,28 @@ pub struct Needs<'a> {
     pub want: &'a [usize],
 }
 
-/// Undirected neighbours and edge lists of one slot.
+/// Undirected neighbours and the edges into each vertex, of one slot.
 struct Slot {
     s: usize,
     nbrs: Vec<Vec<usize>>,
-    edges: Vec<usize>,
+    /// Per vertex: the slot's edges that end there.
+    inn: Vec<Vec<usize>>,
+    /// The slot's edges as a directed graph over all vertices (weights: edge indices).
+    graph: DiGraph<(), usize>,
+}
+
+/// The directed graph of slot `s`'s edges, one node per vertex of `nav`.
+fn digraph(nav: &Nav, s: usize) -> DiGraph<(), usize> {
+    let mut g = DiGraph::with_capacity(nav.vertices.len(), nav.edges.len());
+    for _ in &nav.vertices {
+        g.add_node(());
+    }
+    for (i, e) in nav.edges.iter().enumerate() {
+        if e.graph == s {
+            g.add_edge(NodeIndex::new(e.from), NodeIndex::new(e.to), i);
+        }
+    }
+    g
 }
 
 /// Chooses the parking vertices (see the module doc). Greedy in order of preference:
@@ -53,19 +73,24 @@ pub fn choose(nav: &Nav, conf: &Conflicts, needs: &Needs) -> Parks {
     let slots: Vec<Slot> = (0..nav.graphs.len())
         .map(|s| {
             let mut nbrs = vec![Vec::new(); nv];
-            let mut edges = Vec::new();
+            let mut inn = vec![Vec::new(); nv];
             for (i, e) in nav.edges.iter().enumerate() {
                 if e.graph == s {
                     nbrs[e.from].push(e.to);
                     nbrs[e.to].push(e.from);
-                    edges.push(i);
+                    inn[e.to].push(i);
                 }
             }
             for n in &mut nbrs {
                 n.sort_unstable();
                 n.dedup();
             }
-            Slot { s, nbrs, edges }
+            Slot {
+                s,
+                nbrs,
+                inn,
+                graph: digraph(nav, s),
+            }
         })
         .collect();
     // Per resource: the edges whose traversal needs it.
@@ -184,9 +209,9 @@ pub fn choose(nav: &Nav, conf: &Conflicts, needs: &Needs) -> Parks {
                     let outs = nav.out[t][p]
                         .iter()
                         .any(|&e| !blocked[e] && !absorbed[nav.edges[e].to]);
-                    let ins = slots[t].edges.iter().any(|&e| {
-                        nav.edges[e].to == p && !blocked[e] && !absorbed[nav.edges[e].from]
-                    });
+                    let ins = slots[t].inn[p]
+                        .iter()
+                        .any(|&e| !blocked[e] && !absorbed[nav.edges[e].from]);
                     nav.members[t].binary_search(&p).is_err() || (outs && ins)
                 })
             };
@@ -257,52 +282,48 @@ pub fn choose(nav: &Nav, conf: &Conflicts, needs: &Needs) -> Parks {
 
 /// The strongly connected parts of slot `s` without the `blocked` edges and `gone`
 /// vertices: per vertex, its part's id (its smallest member), or `usize::MAX` when it is
-/// alone (it cannot be left and reached again).
+/// alone (it cannot be left and reached again). Linear in the slot (Tarjan), since it runs
+/// once per parking candidate.
 fn parts(nav: &Nav, slot: &Slot, blocked: &[bool], gone: &[bool]) -> Vec<usize> {
-    let nv = nav.vertices.len();
-    let mut id = vec![usize::MAX; nv];
-    let mut seen = vec![false; nv];
-    let usable = |e: usize| {
-        let ed = &nav.edges[e];
-        !blocked[e] && !gone[ed.from] && !gone[ed.to]
+    let usable = |e: &usize| {
+        let ed = &nav.edges[*e];
+        !blocked[*e] && !gone[ed.from] && !gone[ed.to]
     };
-    for &root in &nav.members[slot.s] {
-        if seen[root] || gone[root] {
-            continue;
-        }
-        let fwd = reach(nav, slot, root, true, &usable);
-        let bwd = reach(nav, slot, root, false, &usable);
-        let part: Vec<usize> = (0..nv).filter(|&v| fwd[v] && bwd[v]).collect();
-        for &v in &part {
-            seen[v] = true;
-            if part.len() > 1 {
-                id[v] = root;
+    let g = EdgeFiltered::from_fn(&slot.graph, |e| usable(e.weight()));
+    let mut id = vec![usize::MAX; nav.vertices.len()];
+    for part in tarjan_scc(&g) {
+        if part.len() > 1 {
+            let first = part.iter().map(|n| n.index()).min().unwrap_or(usize::MAX);
+            for n in part {
+                id[n.index()] = first;
             }
         }
-        seen[root] = true;
     }
     id
 }
 
 /// Whether every part of `before` keeps its members (those not `gone`) together in `after`.
 fn kept_together(before: &[usize], after: &[usize], gone: &[bool]) -> bool {
+    // Part ids are vertex indices (a part's smallest member), so plain vectors index them.
     // A part left with one member has nothing to keep together (`parts` gives a lone
     // vertex no part).
-    let mut left: std::collections::HashMap<usize, usize> = std::collections::HashMap::new();
+    let mut left = vec![0usize; before.len()];
     for v in 0..before.len() {
         if before[v] != usize::MAX && !gone[v] {
-            *left.entry(before[v]).or_insert(0) += 1;
+            left[before[v]] += 1;
         }
     }
-    let mut to: std::collections::HashMap<usize, usize> = std::collections::HashMap::new();
+    let mut to = vec![usize::MAX; before.len()];
     for v in 0..before.len() {
-        if before[v] == usize::MAX || gone[v] || left[&before[v]] < 2 {
+        if before[v] == usize::MAX || gone[v] || left[before[v]] < 2 {
             continue;
         }
         if after[v] == usize::MAX {
             return false;
         }
-        if *to.entry(before[v]).or_insert(after[v]) != after[v] {
+        if to[before[v]] == usize::MAX {
+            to[before[v]] = after[v];
+        } else if to[before[v]] != after[v] {
             return false;
         }
     }
@@ -320,19 +341,11 @@ fn reach(
     let mut seen = vec![false; nv];
     seen[root] = true;
     let mut stack = vec![root];
-    // Reverse adjacency on demand: scan the slot's edges once into lists.
-    let mut inn: Vec<Vec<usize>> = Vec::new();
-    if !forward {
-        inn = vec![Vec::new(); nv];
-        for &e in &slot.edges {
-            inn[nav.edges[e].to].push(e);
-        }
-    }
     while let Some(v) = stack.pop() {
         let es: &[usize] = if forward {
             &nav.out[slot.s][v]
         } else {
-            &inn[v]
+            &slot.inn[v]
         };
         for &e in es {
             if !usable(e) {
@@ -357,13 +370,17 @@ fn reach(
 /// well-formedness warning).
 pub fn cut_by(nav: &Nav, conf: &Conflicts, s: usize, v: usize, of: &[usize]) -> Vec<usize> {
     let nv = nav.vertices.len();
-    let slot_edges: Vec<usize> = (0..nav.edges.len())
-        .filter(|&e| nav.edges[e].graph == s)
-        .collect();
+    let mut inn = vec![Vec::new(); nv];
+    for (i, e) in nav.edges.iter().enumerate() {
+        if e.graph == s {
+            inn[e.to].push(i);
+        }
+    }
     let slot = Slot {
         s,
         nbrs: Vec::new(),
-        edges: slot_edges,
+        inn,
+        graph: DiGraph::new(),
     };
     let set = &conf.vertex[v];
     let blocked: Vec<bool> = conf
