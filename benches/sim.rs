@@ -60,17 +60,29 @@ fn load(map_text: &str, scenario_text: &str) -> (mapc_ir::Building, mapc_sim::Sc
     (building, scenario)
 }
 
-/// Times whole runs of `scenario` (to its duration).
+/// Times whole runs of `scenario` (to its duration), and prints the planner's cost per
+/// decision (one robot's plan against the schedule): median and 99th percentile over
+/// every decision of every sample.
 fn run_whole(bencher: Bencher, building: &mapc_ir::Building, scenario: &mapc_sim::Scenario) {
+    let mut times: Vec<f64> = Vec::new();
     bencher.bench_local(|| {
         let opts = RunOptions {
-            until: None,
-            trace: None,
-            progress: None,
+            plan_times: Some(&mut times),
             ..Default::default()
         };
         simulate(building, scenario, opts).expect("runs")
     });
+    if !times.is_empty() {
+        times.sort_unstable_by(f64::total_cmp);
+        let at = |q: f64| times[((times.len() - 1) as f64 * q).round() as usize] * 1e6;
+        eprintln!(
+            "planner per decision: median {:.0} µs, p99 {:.0} µs, max {:.0} µs ({} decisions)",
+            at(0.5),
+            at(0.99),
+            at(1.0),
+            times.len()
+        );
+    }
 }
 
 #[divan::bench(sample_count = 3, sample_size = 1)]

@@ -68,6 +68,9 @@ pub struct RunOptions<'a> {
     /// Only the plugins run (slotcars, doors, lifts, workcells, as Gazebo would): the fleet
     /// layer sends nothing and the run lasts its whole duration; requests come from `inject`.
     pub plugins_only: bool,
+    /// Receives the wall-clock time (s) of every traffic decision (one robot's plan against
+    /// the schedule), for benchmarks; the run itself does not depend on it.
+    pub plan_times: Option<&'a mut Vec<f64>>,
 }
 
 /// Appends, at sim time `t`, the requests other nodes sent (see `RunOptions::inject`).
@@ -109,6 +112,9 @@ pub fn simulate(
         workcells: placement.workcells.clone(),
         lifts_start_at_initial_floor: scenario.options.lifts_start_at_initial_floor,
     };
+    if opts.plan_times.is_some() {
+        fleets.time_plans();
+    }
     let mut world = world::World::new(building, &setup);
     let unknown = world.set_faults(&scenario.faults);
     if !unknown.is_empty() {
@@ -240,6 +246,9 @@ pub fn simulate(
     }
     report.crowd = world.crowd().map(|c| c.report(world.time()));
     report.traffic = fleets.traffic_report();
+    if let Some(out) = opts.plan_times {
+        out.extend(fleets.plan_times());
+    }
     report.warnings = placement
         .warnings
         .iter()

@@ -278,6 +278,9 @@ pub struct TaskEvent {
     /// On `completed` and `failed`: where the task's robot waited, by cause.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub waits: Option<TaskWaits>,
+    /// On `assigned`: when the plan it was assigned with ends the task (sim time, s).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub planned_finish: Option<f64>,
 }
 
 /// Time (s) a task's robot spent waiting, by cause, and where (`places`: "lift Lift2",

@@ -118,6 +118,11 @@ pub struct TaskReport {
     pub detail: String,
     /// Where its robot waited, by cause (from the end event; null while unfinished).
     pub waits: Option<TaskWaits>,
+    /// When the plan it was (last) assigned with would have finished it (sim time, s).
+    pub planned_finish: Option<f64>,
+    /// `finished` − `planned_finish` for a completed task (s): what the plan did not foresee
+    /// (doors, lifts, workcells, people, replanning); `waits` says where the time went.
+    pub delay: Option<f64>,
 }
 
 fn is_zero(n: &usize) -> bool {
@@ -550,6 +555,9 @@ impl ReportBuilder {
             if e.waits.is_some() {
                 task.waits = e.waits.clone();
             }
+            if e.planned_finish.is_some() {
+                task.planned_finish = e.planned_finish;
+            }
         }
         match e.event.as_str() {
             "queued" => {
@@ -575,6 +583,9 @@ impl ReportBuilder {
             "completed" | "failed" | "cancelled" => {
                 self.tasks[i].finished = Some(t);
                 self.tasks[i].result = e.event.clone();
+                if e.event == "completed" {
+                    self.tasks[i].delay = self.tasks[i].planned_finish.map(|p| t - p);
+                }
                 let robot = self.tasks[i].robot.clone();
                 self.release(&robot, &e.task_id, t);
             }
@@ -1123,7 +1134,7 @@ mod tests {
                 fleet: fleet.into(),
                 robot: robot.into(),
                 detail: String::new(),
-                waits: None,
+                ..TaskEvent::default()
             }),
         }
     }

@@ -129,3 +129,28 @@ fn a_fault_needs_exactly_one_target() {
     assert_eq!(s.faults[0].target.kind(), "door");
     assert_eq!(s.faults[0].target.name(), "d1");
 }
+
+/// The report's per-task `planned_finish` and `delay`: alone and without faults a robot is
+/// never later than its plan (plans drive each lane from rest to rest and count doors and
+/// lift calls at their longest); paused for 100 s, it is about 100 s later than that.
+#[test]
+fn a_pause_shows_as_the_tasks_delay_over_its_plan() {
+    let delivery = |r: &Report| {
+        let t = r
+            .tasks
+            .iter()
+            .find(|t| t.category == "delivery" && t.result == "completed")
+            .expect("delivered")
+            .clone();
+        let planned = t.planned_finish.expect("a planned finish");
+        assert!(planned > t.assigned.expect("assigned"), "{t:?}");
+        assert_eq!(t.delay, Some(t.finished.expect("finished") - planned));
+        t.delay.expect("a delay")
+    };
+    let (clean, _) = clinic("").expect("runs");
+    let (paused, _) = clinic("faults:\n  - {at: 20s, for: 100s, robot: tinyRobot1}").expect("runs");
+    let (on_time, late) = (delivery(&clean), delivery(&paused));
+    eprintln!("delay without the fault {on_time:.1} s, with it {late:.1} s");
+    assert!(on_time <= 0.0, "{on_time}");
+    assert!((late - on_time - 100.0).abs() < 20.0, "{late} vs {on_time}");
+}

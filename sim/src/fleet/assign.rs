@@ -414,6 +414,12 @@ impl Fleets {
         t: f64,
         out: &mut Vec<(Topic, Msg)>,
     ) {
+        // When the plan ends the task: at its last place, after the work there.
+        let last_dwell = self.goals_of(ri, &steps).last().map_or(0.0, |g| g.1);
+        let planned = match plan.goal_at.last() {
+            Some(&0) | None => t0,
+            Some(&n) => plan.steps[n - 1].end,
+        } + last_dwell;
         self.install(ri, keep, plan, t0);
         let r = &mut self.robots[ri];
         r.task = Some(ti);
@@ -423,6 +429,9 @@ impl Fleets {
         r.dirty = true;
         r.wake = t;
         self.event(t, ti, "assigned", Some(ri), String::new(), out);
+        if let Some((_, Msg::TaskEvent(e))) = out.last_mut() {
+            e.planned_finish = Some(planned);
+        }
         self.event(t, ti, "started", Some(ri), String::new(), out);
     }
 

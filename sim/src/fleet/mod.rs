@@ -435,6 +435,16 @@ impl Fleets {
         self.next_wake = next;
     }
 
+    /// Records the wall-clock time of every plan from now on (see `RunOptions::plan_times`).
+    pub fn time_plans(&mut self) {
+        self.planner.times = Some(Vec::new());
+    }
+
+    /// The wall-clock time (s) of every plan since [`Fleets::time_plans`].
+    pub fn plan_times(&mut self) -> Vec<f64> {
+        self.planner.times.take().unwrap_or_default()
+    }
+
     /// The traffic planner's work so far.
     pub fn traffic_report(&self) -> crate::report::TrafficReport {
         let mut e = self.decisions.clone();
@@ -488,7 +498,7 @@ impl Fleets {
                 fleet,
                 robot,
                 detail,
-                waits: None,
+                ..TaskEvent::default()
             }),
         ));
     }

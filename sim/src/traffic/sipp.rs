@@ -215,6 +215,8 @@ pub struct Planner {
     pub expanded: u64,
     /// Why the last plan failed (for debugging).
     pub why: &'static str,
+    /// When set, the wall-clock time (s) of every plan, for benchmarks.
+    pub times: Option<Vec<f64>>,
 }
 
 impl Planner {
@@ -239,6 +241,7 @@ impl Planner {
             plans: 0,
             expanded: 0,
             why: "",
+            times: None,
         }
     }
 
@@ -271,14 +274,19 @@ impl Planner {
     /// be parked on (a robot there blocks the tasks going there until it is sent away).
     pub fn plan(&mut self, nav: &Nav, sched: &Schedule, q: &Query) -> Option<Plan> {
         self.plans += 1;
-        self.search(nav, sched, q, false).or_else(|| {
+        let started = self.times.is_some().then(std::time::Instant::now);
+        let plan = self.search(nav, sched, q, false).or_else(|| {
             let any_place = q.parks.contains(&PARK_ON_PLACE);
             if any_place {
                 self.search(nav, sched, q, true)
             } else {
                 None
             }
-        })
+        });
+        if let (Some(t), Some(times)) = (started, self.times.as_mut()) {
+            times.push(t.elapsed().as_secs_f64());
+        }
+        plan
     }
 
     /// [`Planner::plan`], ending on places only when `places`.

@@ -398,6 +398,7 @@ pub(crate) fn run(args: &SimArgs) -> Result<Outcome, CliError> {
         observer: if observing { Some(&mut observe) } else { None },
         inject: if injecting { Some(&mut inject) } else { None },
         plugins_only: args.ros2.plugins_only,
+        plan_times: None,
     };
     let result = mapc_sim::simulate(building, &scenario, opts);
     drop(bar);
