@@ -192,8 +192,33 @@ struct Cache {
     stamp: u64,
     /// Per (robot, edge): the others' merged busy intervals on its traversal set.
     edge_busy: Map<(usize, usize), Vec<(f64, f64)>>,
-    /// Per (robot, vertex): the safe intervals of its standing set.
-    vertex_free: Map<(usize, usize), Vec<(f64, f64)>>,
+    /// Per (robot, vertex): where in `free` the safe intervals of its standing set are.
+    vertex_free: Map<(usize, usize), usize>,
+    free: Vec<Vec<(f64, f64)>>,
+}
+
+/// Where the safe intervals of vertex `v` for robot `r` are in `free` (`Cache`'s fields;
+/// computed on first use).
+fn intervals(
+    vertex_free: &mut Map<(usize, usize), usize>,
+    free: &mut Vec<Vec<(f64, f64)>>,
+    sched: &Schedule,
+    r: usize,
+    v: usize,
+) -> usize {
+    *vertex_free.entry((r, v)).or_insert_with(|| {
+        free.push(free_of(sched, &sched.conf().vertex[v], r));
+        free.len() - 1
+    })
+}
+
+/// A search's buffers, kept between searches (cleared, not freed: a saturated run makes
+/// tens of thousands of searches).
+#[derive(Default)]
+struct Scratch {
+    nodes: Vec<Node>,
+    best: Map<(usize, usize, usize), f64>,
+    open: BinaryHeap<Open>,
 }
 
 /// Reverse graphs and heuristic tables, reused across plans.
@@ -210,6 +235,7 @@ pub struct Planner {
     /// Busy and safe intervals computed from the schedule of `Cache::stamp`: the plans of
     /// one dispatch round (several robots per task, most refused) meet the same ones.
     cache: Cache,
+    scratch: Scratch,
     /// Plans made and states expanded, for the report.
     pub plans: u64,
     pub expanded: u64,
@@ -238,6 +264,7 @@ impl Planner {
             park_dist: Map::default(),
             goal_dist: Map::default(),
             cache: Cache::default(),
+            scratch: Scratch::default(),
             plans: 0,
             expanded: 0,
             why: "",
@@ -298,8 +325,13 @@ impl Planner {
             };
         }
         let mut cache = std::mem::take(&mut self.cache);
-        let plan = self.search_with(nav, sched, q, places, &mut cache);
+        let mut scratch = std::mem::take(&mut self.scratch);
+        scratch.nodes.clear();
+        scratch.best.clear();
+        scratch.open.clear();
+        let plan = self.search_with(nav, sched, q, places, &mut cache, &mut scratch);
         self.cache = cache;
+        self.scratch = scratch;
         plan
     }
 
@@ -310,6 +342,7 @@ impl Planner {
         q: &Query,
         places: bool,
         cache: &mut Cache,
+        scratch: &mut Scratch,
     ) -> Option<Plan> {
         let conf = sched.conf();
         // The parking vertices the plan may end on: those nobody else stays on for good
@@ -384,25 +417,16 @@ impl Planner {
             return None;
         }
         let r = q.robot;
-        // Safe intervals per vertex, computed when first needed.
-        let mut safe_at: Map<usize, usize> = Map::default();
-        let mut safe: Vec<Vec<(f64, f64)>> = Vec::new();
-        let mut intervals = |v: usize, safe: &mut Vec<Vec<(f64, f64)>>| -> usize {
-            *safe_at.entry(v).or_insert_with(|| {
-                let free = cache
-                    .vertex_free
-                    .entry((r, v))
-                    .or_insert_with(|| free_of(sched, &conf.vertex[v], r));
-                safe.push(free.clone());
-                safe.len() - 1
-            })
-        };
-        let iv0 = intervals(q.from, &mut safe);
-        let Some(i0) = safe[iv0].iter().position(|&(a, b)| a <= q.t0 && q.t0 < b) else {
+        let iv0 = intervals(&mut cache.vertex_free, &mut cache.free, sched, r, q.from);
+        let Some(i0) = cache.free[iv0]
+            .iter()
+            .position(|&(a, b)| a <= q.t0 && q.t0 < b)
+        else {
             self.why = "start busy";
             return None;
         };
-        let mut nodes = vec![Node {
+        let Scratch { nodes, best, open } = scratch;
+        nodes.push(Node {
             v: q.from,
             iv: i0,
             label: 0,
@@ -410,9 +434,7 @@ impl Planner {
             parent: usize::MAX,
             edge: None,
             end: false,
-        }];
-        let mut best: Map<(usize, usize, usize), f64> = Map::default();
-        let mut open = BinaryHeap::new();
+        });
         open.push(Open(q.t0 + h(q.from, 0), q.t0, 0));
         let mut expanded = 0usize;
         while let Some(Open(_, _, id)) = open.pop() {
@@ -422,12 +444,12 @@ impl Planner {
             }
             if n.end {
                 self.expanded += expanded as u64;
-                let mut plan = unwind(nav, &nodes, n.parent, nl, expanded);
+                let mut plan = unwind(nav, nodes, n.parent, nl, expanded);
                 wait_early(sched, q.robot, &mut plan);
                 return Some(plan);
             }
-            let at = intervals(n.v, &mut safe);
-            let (_, hi) = safe[at][n.iv];
+            let at = intervals(&mut cache.vertex_free, &mut cache.free, sched, r, n.v);
+            let (_, hi) = cache.free[at][n.iv];
             let may_stay = q.stay == Some(n.v)
                 || q.parks[n.v] == PARK
                 || (places && q.parks[n.v] == PARK_ON_PLACE);
@@ -475,8 +497,8 @@ impl Planner {
                             end: false,
                             ..n
                         },
-                        &mut nodes,
-                        &mut open,
+                        nodes,
+                        open,
                     );
                 }
             }
@@ -489,8 +511,8 @@ impl Planner {
                     .edge_busy
                     .entry((r, e))
                     .or_insert_with(|| merged(sched, &conf.trav[e], r));
-                let wi_at = intervals(w, &mut safe);
-                let wivs = &safe[wi_at];
+                let wi_at = intervals(&mut cache.vertex_free, &mut cache.free, sched, r, w);
+                let wivs = &cache.free[wi_at];
                 // Each gap of the edge's resources wide enough, left while still in this
                 // vertex's safe interval; the first arrival in each of w's intervals.
                 let mut from = n.t;
@@ -514,8 +536,8 @@ impl Planner {
                                     edge: Some((e, d, a)),
                                     end: false,
                                 },
-                                &mut nodes,
-                                &mut open,
+                                nodes,
+                                open,
                             );
                         }
                     }
