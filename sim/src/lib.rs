@@ -33,10 +33,10 @@ pub use report::{
 };
 pub use scenario::{
     parse as parse_scenario, parse_duration, parse_files as parse_scenario_files,
-    parse_files_with as parse_scenario_files_with, CrowdOptions, FaultSpec, FaultTarget, Finishing,
-    FleetSpec, GeneratorSpec, Included, Parsed, RequestKind, RequestSpec, RequestedTask, RmfFleet,
-    RmfRobot, Scenario, SimOptions, SpawnSpec, TaskCategory, TaskKind, TaskSpec, WorkcellKind,
-    WorkcellSpec, MAX_DURATION,
+    parse_files_with as parse_scenario_files_with, CancelSpec, CrowdOptions, FaultSpec,
+    FaultTarget, Finishing, FleetSpec, GeneratorSpec, Included, Parsed, RequestKind, RequestSpec,
+    RequestedTask, RmfFleet, RmfRobot, Scenario, SimOptions, SpawnSpec, TaskCategory, TaskKind,
+    TaskSpec, WorkcellKind, WorkcellSpec, MAX_DURATION,
 };
 pub use trace::TraceFilter;
 
@@ -220,6 +220,7 @@ pub fn simulate(
     report.interrupted = interrupted;
     if !outcomes.is_empty() {
         let ids = scenario::task_ids(scenario);
+        let cancels = fleets.cancel_results();
         report.requests = scenario
             .requests
             .iter()
@@ -230,6 +231,12 @@ pub fn simulate(
                     at: r.at,
                     task_id: ids.get(i).cloned(),
                     refused: None,
+                },
+                scenario::RequestOutcome::Cancel(id, k) => report::RequestReport {
+                    line: r.line,
+                    at: r.at,
+                    task_id: Some(id),
+                    refused: cancels.get(k).and_then(|c| c.clone().err()),
                 },
                 scenario::RequestOutcome::Refused(why) => report::RequestReport {
                     line: r.line,

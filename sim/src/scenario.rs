@@ -35,6 +35,15 @@ pub struct Scenario {
     pub options: SimOptions,
     /// RMF task API requests (`requests:`, `requests.rs`), in file order.
     pub requests: Vec<RequestSpec>,
+    /// Tasks cancelled while the run goes (`cancel_task_request`s, once accepted).
+    pub cancels: Vec<CancelSpec>,
+}
+
+/// A task cancelled at `at` (s): taken off the queue, or stopped where its robot is.
+#[derive(Debug, Clone, PartialEq)]
+pub struct CancelSpec {
+    pub at: f64,
+    pub task_id: String,
 }
 
 #[derive(Debug, Clone, PartialEq)]
@@ -809,6 +818,7 @@ impl P<'_> {
             faults: faults?,
             options: options?,
             requests: requests?,
+            cancels: Vec::new(),
         })
     }
 

@@ -59,8 +59,8 @@ fn requests_become_tasks_or_are_refused() {
             (6, None, Some("no fleet is named `cleaners`")),
             (
                 7,
-                None,
-                Some("cancel_task_request for `loop_0`: mapc does not cancel tasks")
+                Some("loop_0"),
+                Some("cancel_task_request for `loop_0`: the task had already ended")
             ),
             (8, Some("delivery_1"), None),
             (
@@ -252,5 +252,80 @@ fn broken_requests_are_located() {
     ] {
         let d = broken(g);
         assert!(d.iter().any(|x| x.0 == "S0313"), "{g}: {d:?}");
+    }
+}
+
+/// `cancel_task_request`: the queued go_to_place leaves the queue, the 10-round patrol under
+/// way ends where its robot is at 1 min, and that robot takes the patrol asked at 2 min; a
+/// second cancel of the patrol and a cancel of a task that never comes are refused, and
+/// the task states say `canceled` (validated against RMF's schema).
+#[test]
+fn cancel_requests_stop_queued_and_running_tasks() {
+    let dir = fixtures().join("rmf");
+    let text = std::fs::read_to_string(dir.join("cancel_requests.scenario.yaml")).unwrap();
+    let (s, d) = parse_scenario(mapc_ir::FileId(0), &text, &dir);
+    let s = s.unwrap_or_else(|| panic!("{d:#?}"));
+    let map = mapc_frontend::load(&fixtures().join("cartesian_warehouse.building.yaml")).unwrap();
+    let r = simulate(map.valid_building().unwrap(), &s, RunOptions::default())
+        .unwrap_or_else(|e| panic!("{e:?}"));
+    let got: Vec<(usize, Option<&str>, Option<&str>)> = r
+        .requests
+        .iter()
+        .map(|q| (q.line, q.task_id.as_deref(), q.refused.as_deref()))
+        .collect();
+    assert_eq!(
+        got,
+        [
+            (1, Some("loop_0"), None),
+            (2, Some("loop_1"), None),
+            (3, Some("go_to_place_0"), None),
+            (4, Some("go_to_place_0"), None),
+            (5, Some("loop_0"), None),
+            (
+                6,
+                Some("loop_0"),
+                Some("cancel_task_request for `loop_0`: the task had already ended")
+            ),
+            (
+                7,
+                Some("loop_7"),
+                Some("cancel_task_request for `loop_7`: no task of that id arrived before the run ended")
+            ),
+            (8, Some("loop_2"), None),
+        ]
+    );
+    let task = |id: &str| r.tasks.iter().find(|t| t.id == id).unwrap();
+    let queued = task("go_to_place_0");
+    assert_eq!(
+        (
+            queued.result.as_str(),
+            queued.robot.as_str(),
+            queued.finished
+        ),
+        ("cancelled", "", Some(20.0))
+    );
+    assert_eq!(queued.assigned, None);
+    let patrol = task("loop_0");
+    assert_eq!(
+        (patrol.result.as_str(), patrol.finished),
+        ("cancelled", Some(60.0))
+    );
+    assert!(patrol.started.is_some_and(|t| t < 60.0), "{patrol:?}");
+    // The robot it had is free again: the patrol asked at 2 min is done, by either mover.
+    assert_eq!(task("loop_1").result, "completed", "{:#?}", r.tasks);
+    assert_eq!(task("loop_2").result, "completed");
+    assert!(r.contacts.is_empty());
+    let states = rmf_states::task_states(&s, &r);
+    let state = |id: &str| states.iter().find(|x| x["booking"]["id"] == id).unwrap();
+    assert_eq!(state("loop_0")["status"], "canceled");
+    assert_eq!(state("go_to_place_0")["status"], "canceled");
+    // The patrol's booking is its own request's, not the cancel's.
+    assert_eq!(state("loop_0")["category"], "patrol");
+    if let Some(v) = validator("task_state.json") {
+        for st in &states {
+            check(&v, st, "task_state");
+        }
+    } else {
+        eprintln!("skipped: ../shared not found (task_state schema)");
     }
 }

@@ -34,6 +34,7 @@ use mapc_ir::{Building, Diagnostic, Span};
 use std::collections::{BTreeMap, VecDeque};
 
 mod assign;
+mod cancel;
 mod drive;
 mod park;
 mod setup;
@@ -294,6 +295,12 @@ pub struct Fleets {
     clean_duration: f64,
     /// Per dispenser, when its item was last ingested (it then goes home by itself).
     ingested: BTreeMap<String, f64>,
+    /// Cancels still to come: (time, index in the scenario's cancels, task id), by time.
+    cancels: VecDeque<(f64, usize, String)>,
+    /// Cancels due whose task has not arrived yet.
+    awaiting_cancel: Vec<(usize, String)>,
+    /// Per cancel of the scenario: done, or why not.
+    cancel_results: Vec<Result<(), String>>,
 }
 
 impl Fleets {
@@ -369,6 +376,7 @@ impl Fleets {
                 self.request_task(t, new, out);
             }
         }
+        self.cancel_due(t, out);
         self.dispatch(t, out);
         // Robots with news or an expired timer; repeat while reservations were released
         // (a release can unblock robots that are waiting).
@@ -428,6 +436,9 @@ impl Fleets {
             .min(self.next_dispatch);
         if let Some(u) = self.upcoming.front() {
             next = next.min(u.0);
+        }
+        if let Some(c) = self.cancels.front() {
+            next = next.min(c.0);
         }
         for r in &self.robots {
             next = next.min(r.wake);

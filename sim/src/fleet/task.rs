@@ -12,6 +12,21 @@ impl Fleets {
         detail: String,
         out: &mut Vec<(Topic, Msg)>,
     ) {
+        let result = if ok { "completed" } else { "failed" };
+        self.end_task_as(i, t, result, detail, out);
+    }
+
+    /// Ends robot `i`'s task with `result` (`completed`, `failed` or `cancelled`); any but
+    /// `completed` drops the rest of its route.
+    pub(super) fn end_task_as(
+        &mut self,
+        i: usize,
+        t: f64,
+        result: &str,
+        detail: String,
+        out: &mut Vec<(Topic, Msg)>,
+    ) {
+        let ok = result == "completed";
         let Some(ti) = self.robots[i].task.take() else {
             return;
         };
@@ -20,14 +35,7 @@ impl Fleets {
         if let Some(tk) = self.tasks.get_mut(ti) {
             tk.ended = true;
         }
-        self.event(
-            t,
-            ti,
-            if ok { "completed" } else { "failed" },
-            Some(i),
-            detail,
-            out,
-        );
+        self.event(t, ti, result, Some(i), detail, out);
         let waits = self.take_waits(i, t);
         if let Some((_, Msg::TaskEvent(e))) = out.last_mut() {
             e.waits = Some(waits);

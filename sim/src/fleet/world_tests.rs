@@ -54,6 +54,7 @@ fn scenario(fleets: Vec<FleetSpec>, tasks: Vec<TaskSpec>) -> Scenario {
         faults: Vec::new(),
         options: SimOptions::default(),
         requests: Vec::new(),
+        cancels: Vec::new(),
     }
 }
 

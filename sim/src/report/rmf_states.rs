@@ -30,14 +30,15 @@ pub fn start_unix_millis(scenario: &Scenario) -> i64 {
 /// request; one JSON object each.
 pub fn task_states(scenario: &Scenario, report: &Report) -> Vec<Value> {
     let start = start_unix_millis(scenario);
-    // Task id -> the request it came from (its line in the file).
+    let request_of = |line: usize| scenario.requests.iter().find(|r| r.line == line);
+    // Task id -> the request it came from (its line in the file; not a cancel of it).
     let mut from_request = std::collections::BTreeMap::new();
     for r in &report.requests {
-        if let Some(id) = &r.task_id {
+        let cancel = request_of(r.line).is_some_and(|q| matches!(q.what, RequestKind::Cancel(_)));
+        if let (Some(id), false) = (&r.task_id, cancel) {
             from_request.insert(id.as_str(), r.line);
         }
     }
-    let request_of = |line: usize| scenario.requests.iter().find(|r| r.line == line);
     let mut out: Vec<Value> = report
         .tasks
         .iter()

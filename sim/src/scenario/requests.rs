@@ -566,6 +566,8 @@ pub(crate) enum RequestOutcome {
     Task(usize),
     /// Refused as RMF would refuse it (or as mapc cannot do it), and why.
     Refused(String),
+    /// A cancel of this task, as `scenario.cancels[i]`.
+    Cancel(String, usize),
 }
 
 /// The scenario with its accepted requests appended to `tasks`, and what became of each
@@ -603,9 +605,12 @@ pub(crate) fn accept_requests(
     for r in &scenario.requests {
         let t = match &r.what {
             RequestKind::Cancel(id) => {
-                outcomes.push(RequestOutcome::Refused(format!(
-                    "cancel_task_request for `{id}`: mapc does not cancel tasks"
-                )));
+                // What it does is known as the run goes (the fleet layer says).
+                outcomes.push(RequestOutcome::Cancel(id.clone(), out.cancels.len()));
+                out.cancels.push(super::CancelSpec {
+                    at: r.at,
+                    task_id: id.clone(),
+                });
                 continue;
             }
             RequestKind::Unsupported(why) => {
