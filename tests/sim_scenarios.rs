@@ -406,6 +406,7 @@ fn waypoints(s: &mapc_sim::Scenario) -> Vec<String> {
             } => out.extend([pickup.clone(), dropoff.clone()]),
             TaskKind::Clean { zone } => out.push(zone.clone()),
             TaskKind::GoToPlace { place } => out.push(place.clone()),
+            TaskKind::Patrol { places, .. } => out.extend(places.iter().cloned()),
         }
     }
     out

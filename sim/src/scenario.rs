@@ -151,12 +151,18 @@ pub enum TaskKind {
     GoToPlace {
         place: String,
     },
+    /// RMF's patrol of three places or more: each in order, `rounds` times (a loop of the
+    /// task category `loop`).
+    Patrol {
+        places: Vec<String>,
+        rounds: u32,
+    },
 }
 
 impl TaskKind {
     pub fn category(&self) -> TaskCategory {
         match self {
-            TaskKind::Loop { .. } => TaskCategory::Loop,
+            TaskKind::Loop { .. } | TaskKind::Patrol { .. } => TaskCategory::Loop,
             TaskKind::Delivery { .. } => TaskCategory::Delivery,
             TaskKind::Clean { .. } => TaskCategory::Clean,
             TaskKind::GoToPlace { .. } => TaskCategory::GoToPlace,
@@ -172,6 +178,7 @@ impl TaskKind {
             } => vec![pickup, dropoff],
             TaskKind::Clean { zone } => vec![zone],
             TaskKind::GoToPlace { place } => vec![place],
+            TaskKind::Patrol { places, .. } => places.iter().map(String::as_str).collect(),
         }
     }
 }

@@ -512,6 +512,14 @@ impl Fleets {
                 }
             }
             TaskKind::GoToPlace { place } => vec![Step::GoTo(v(place)?)],
+            TaskKind::Patrol { places, rounds } => {
+                let vs = places.iter().map(|p| v(p)).collect::<Option<Vec<_>>>()?;
+                let mut s = Vec::new();
+                for _ in 0..(*rounds).max(1) {
+                    s.extend(vs.iter().map(|&x| Step::GoTo(x)));
+                }
+                s
+            }
         })
     }
 }

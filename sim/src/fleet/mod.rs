@@ -99,7 +99,7 @@ pub struct Placement {
     pub(crate) parks: Parks,
 }
 
-#[derive(Debug, Clone)]
+#[derive(Debug, Clone, PartialEq)]
 enum Step {
     GoTo(usize),
     Dispense(String),

@@ -1184,3 +1184,38 @@ fn parse_map(name: &str, text: &str) -> Building {
     assert!(!parsed.has_errors(), "{:?}", parsed.diagnostics);
     parsed.building.expect("map parses")
 }
+
+/// RMF's patrol of three places: each place in order, every round; and done end to end.
+#[test]
+fn a_patrol_of_three_places_visits_them_in_order_each_round() {
+    let b = clinic();
+    let kind = TaskKind::Patrol {
+        places: vec!["lobby".into(), "pharmacy".into(), "corridor".into()],
+        rounds: 2,
+    };
+    let mut s = scenario(vec![fleet("tiny", 1, SpawnSpec::MapSpawnPoints)], vec![]);
+    s.tasks.push(TaskSpec {
+        at: 0.0,
+        kind: kind.clone(),
+        fleet: None,
+        robot: None,
+        priority: 0,
+        span: Span::UNKNOWN,
+    });
+    let (events, _, fleets) = run(&b, &s, 900.0);
+    let v = |n: &str| Step::GoTo(fleets.nav.find(fleets.fleets[0].slot, n).expect(n));
+    let steps = fleets.expand(0, &kind).expect("on the graph");
+    let round = [v("lobby"), v("pharmacy"), v("corridor")];
+    assert_eq!(steps, [round.clone(), round].concat());
+    let off = TaskKind::Patrol {
+        places: vec!["lobby".into(), "nowhere".into(), "corridor".into()],
+        rounds: 1,
+    };
+    assert_eq!(fleets.expand(0, &off), None);
+    let done: Vec<(&str, &str)> = events
+        .iter()
+        .filter(|e| e.event == "completed" || e.event == "failed")
+        .map(|e| (e.task_id.as_str(), e.event.as_str()))
+        .collect();
+    assert_eq!(done, [("loop_0", "completed")], "{events:?}");
+}

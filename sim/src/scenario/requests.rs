@@ -36,7 +36,7 @@ pub enum RequestKind {
     /// `cancel_task_request` for a task id.
     Cancel(String),
     /// A well-formed request for something mapc cannot simulate (an action other than
-    /// cleaning, a patrol of more than two places, ...): refused, and why.
+    /// cleaning, ...): refused, and why.
     Unsupported(String),
 }
 
@@ -361,12 +361,10 @@ fn task_kind(r: &TaskRequest) -> Result<(String, TaskKind), String> {
                     loops: rounds,
                 },
                 [] => return Err("the patrol lists no places".into()),
-                _ => {
-                    return Err(format!(
-                    "mapc cannot simulate a patrol of {} places (its loop goes between two places)",
-                    names.len()
-                ))
-                }
+                _ => TaskKind::Patrol {
+                    places: names,
+                    rounds,
+                },
             }
         }
         "delivery" => {
