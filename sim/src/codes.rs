@@ -835,8 +835,8 @@ pub const RMF_CONFIG_NO_FLEET: Code = Code {
 /// **What:** a line of the `requests:` file is not an RMF task API request mapc can read:
 /// not JSON (a truncated line), not `{"at": TIME, "request": {...}}`, a request that breaks
 /// rmf_api_msgs' schema (a missing `category` or `description`, a wrong type), or a task
-/// description mapc cannot simulate (a patrol of more than two places, a composition other
-/// than go_to_place, two places, a pickup then a dropoff, or a clean action).
+/// description mapc cannot simulate (a composition other than go_to_place, two places,
+/// a pickup then a dropoff, or a clean action).
 ///
 /// **Why it matters:** the task would be missing from the study.
 ///
