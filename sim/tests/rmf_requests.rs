@@ -147,6 +147,14 @@ fn requests_and_states_follow_rmf_api_schemas() {
         start + 240_000
     );
     assert_eq!(d["booking"]["priority"]["value"], 1);
+    // The requester's time of the request (1.5 min), not when it reached mapc (2 min).
+    assert_eq!(d["booking"]["unix_millis_request_time"], start + 90_000);
+    // A request without one: when it arrived.
+    let g = states
+        .iter()
+        .find(|s| s["booking"]["id"] == "go_to_place_0")
+        .unwrap();
+    assert_eq!(g["booking"]["unix_millis_request_time"], start + 60_000);
     assert_eq!(d["category"], "delivery");
     assert_eq!(d["status"], "completed");
     assert_eq!(d["assigned_to"]["group"], "movers");

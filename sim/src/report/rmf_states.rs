@@ -84,7 +84,9 @@ fn booking(
     if let Some(r) = req {
         // The task request inside the API request.
         let inner = &r.json["request"];
+        // The requester's own request time, when it gave one, as RMF keeps it.
         for key in [
+            "unix_millis_request_time",
             "unix_millis_earliest_start_time",
             "priority",
             "labels",
