@@ -15,8 +15,13 @@ fn fixtures() -> PathBuf {
 
 /// Runs the warehouse requests scenario; its report, task states and fleet state updates.
 fn run() -> (mapc_sim::Scenario, Report, Vec<Value>) {
+    run_file("warehouse_requests.scenario.yaml")
+}
+
+/// Runs `fixtures/rmf/<name>` on the warehouse; its report and fleet state updates.
+fn run_file(name: &str) -> (mapc_sim::Scenario, Report, Vec<Value>) {
     let dir = fixtures().join("rmf");
-    let text = std::fs::read_to_string(dir.join("warehouse_requests.scenario.yaml")).unwrap();
+    let text = std::fs::read_to_string(dir.join(name)).unwrap();
     let (s, d) = parse_scenario(mapc_ir::FileId(0), &text, &dir);
     let s = s.unwrap_or_else(|| panic!("{d:#?}"));
     let map = mapc_frontend::load(&fixtures().join("cartesian_warehouse.building.yaml")).unwrap();
@@ -40,16 +45,19 @@ fn run() -> (mapc_sim::Scenario, Report, Vec<Value>) {
     (s, report, fleet_states)
 }
 
+/// Per request: its line, the task it names, and why it was refused.
+fn outcomes(r: &Report) -> Vec<(usize, Option<&str>, Option<&str>)> {
+    r.requests
+        .iter()
+        .map(|q| (q.line, q.task_id.as_deref(), q.refused.as_deref()))
+        .collect()
+}
+
 #[test]
 fn requests_become_tasks_or_are_refused() {
     let (_, r, fleet_states) = run();
-    let got: Vec<(usize, Option<&str>, Option<&str>)> = r
-        .requests
-        .iter()
-        .map(|q| (q.line, q.task_id.as_deref(), q.refused.as_deref()))
-        .collect();
     assert_eq!(
-        got,
+        outcomes(&r),
         [
             (1, Some("loop_0"), None),
             (2, Some("go_to_place_0"), None),
@@ -269,20 +277,9 @@ fn broken_requests_are_located() {
 /// the task states say `canceled` (validated against RMF's schema).
 #[test]
 fn cancel_requests_stop_queued_and_running_tasks() {
-    let dir = fixtures().join("rmf");
-    let text = std::fs::read_to_string(dir.join("cancel_requests.scenario.yaml")).unwrap();
-    let (s, d) = parse_scenario(mapc_ir::FileId(0), &text, &dir);
-    let s = s.unwrap_or_else(|| panic!("{d:#?}"));
-    let map = mapc_frontend::load(&fixtures().join("cartesian_warehouse.building.yaml")).unwrap();
-    let r = simulate(map.valid_building().unwrap(), &s, RunOptions::default())
-        .unwrap_or_else(|e| panic!("{e:?}"));
-    let got: Vec<(usize, Option<&str>, Option<&str>)> = r
-        .requests
-        .iter()
-        .map(|q| (q.line, q.task_id.as_deref(), q.refused.as_deref()))
-        .collect();
+    let (s, r, _) = run_file("cancel_requests.scenario.yaml");
     assert_eq!(
-        got,
+        outcomes(&r),
         [
             (1, Some("loop_0"), None),
             (2, Some("loop_1"), None),
