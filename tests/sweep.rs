@@ -126,6 +126,16 @@ fn rows_equal_plain_sim_runs_and_reruns_redo_only_what_changed() {
             row[col(&header, "bottleneck")],
             report["bottleneck"]["place"].as_str().unwrap_or("")
         );
+        let bound = &report["throughput"];
+        assert_eq!(
+            num("bound_per_hour"),
+            bound["tasks_per_hour"].as_f64().unwrap()
+        );
+        assert_eq!(num("bound_share"), bound["share"].as_f64().unwrap());
+        assert_eq!(
+            row[col(&header, "bound_limited_by")],
+            bound["limited_by"].as_str().unwrap()
+        );
         let scenario = std::fs::read_to_string(dir.join("scenario.yaml")).unwrap();
         assert!(
             scenario.contains(&format!("    count: {}\n", row[1])),

@@ -378,7 +378,8 @@ impl Nav {
                 inn[edge.to].push(e);
             }
         }
-        self.dijkstra(&inn, to, speed, true, &|_| true).0
+        self.dijkstra(&inn, &[to], &|e| self.edge_cost(e, speed), true, &|_| true)
+            .0
     }
 
     /// Travel times from `from` to every vertex of slot `slot`, and the edge each vertex is
@@ -401,7 +402,7 @@ impl Nav {
         allow: &dyn Fn(usize) -> bool,
     ) -> (Vec<f64>, Vec<Option<usize>>) {
         match self.out.get(slot) {
-            Some(out) => self.dijkstra(out, from, speed, false, allow),
+            Some(out) => self.dijkstra(out, &[from], &|e| self.edge_cost(e, speed), false, allow),
             None => {
                 let n = self.vertices.len();
                 (vec![f64::INFINITY; n], vec![None; n])
@@ -409,26 +410,44 @@ impl Nav {
         }
     }
 
-    /// Dijkstra from `start` over the edges `adj` lists per vertex (leaving it, or with
-    /// `reversed` arriving at it), using only the edges `allow` accepts: times, and the
-    /// edge each vertex is reached by. Ties are broken by vertex index.
+    /// Like [`Nav::tree_from`] from the nearest of `from`, with each edge's time from
+    /// `cost`, using only the edges `allow` accepts.
+    pub fn tree_costed(
+        &self,
+        slot: usize,
+        from: &[usize],
+        cost: &dyn Fn(usize) -> f64,
+        allow: &dyn Fn(usize) -> bool,
+    ) -> (Vec<f64>, Vec<Option<usize>>) {
+        match self.out.get(slot) {
+            Some(out) => self.dijkstra(out, from, cost, false, allow),
+            None => {
+                let n = self.vertices.len();
+                (vec![f64::INFINITY; n], vec![None; n])
+            }
+        }
+    }
+
+    /// Dijkstra from the vertices `starts` over the edges `adj` lists per vertex (leaving
+    /// it, or with `reversed` arriving at it), each edge taking `cost(e)`, using only the
+    /// edges `allow` accepts: times, and the edge each vertex is reached by. Ties are
+    /// broken by vertex index.
     fn dijkstra(
         &self,
         adj: &[Vec<usize>],
-        start: usize,
-        speed: f64,
+        starts: &[usize],
+        cost: &dyn Fn(usize) -> f64,
         reversed: bool,
         allow: &dyn Fn(usize) -> bool,
     ) -> (Vec<f64>, Vec<Option<usize>>) {
         let n = self.vertices.len();
         let mut dist = vec![f64::INFINITY; n];
         let mut prev: Vec<Option<usize>> = vec![None; n];
-        if start >= n {
-            return (dist, prev);
-        }
         let mut heap = BinaryHeap::new();
-        dist[start] = 0.0;
-        heap.push(QItem(0.0, start));
+        for &start in starts.iter().filter(|&&s| s < n) {
+            dist[start] = 0.0;
+            heap.push(QItem(0.0, start));
+        }
         while let Some(QItem(d, v)) = heap.pop() {
             if d > dist[v] {
                 continue;
@@ -442,7 +461,7 @@ impl Nav {
                 } else {
                     self.edges[e].to
                 };
-                let nd = d + self.edge_cost(e, speed);
+                let nd = d + cost(e);
                 if nd < dist[w] {
                     dist[w] = nd;
                     prev[w] = Some(e);

@@ -253,6 +253,16 @@ pub fn simulate(
     }
     report.crowd = world.crowd().map(|c| c.report(world.time()));
     report.traffic = fleets.traffic_report();
+    let lanes = fleets.lane_series(report.end_time);
+    report.timeline.series.extend(lanes);
+    if !opts.plugins_only {
+        let broken_off = report
+            .tasks
+            .iter()
+            .any(|t| t.started.is_some() && (t.result == "failed" || t.result == "cancelled"));
+        report.throughput =
+            report::bound::throughput(&fleets.demands(broken_off), &report.tasks, report.end_time);
+    }
     if let Some(out) = opts.plan_times {
         out.extend(fleets.plan_times());
     }

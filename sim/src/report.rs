@@ -3,11 +3,14 @@
 //! would see. Every list is in a deterministic order (map order, first-seen order, or
 //! sorted), and every struct serialises its fields in declaration order.
 
+pub mod bound;
 pub mod rmf_states;
+pub mod timeline;
 use crate::msgs::{door_mode, lift_request, lift_state, robot_mode, Msg, TaskWaits, Topic};
 use crate::world::RobotTruth;
 use serde::Serialize;
 use std::collections::{BTreeMap, BTreeSet};
+use timeline::{Buckets, Timeline};
 
 /// Two robots closer than `footprint_a + footprint_b + NEAR_MISS_MARGIN` have a near miss.
 pub const NEAR_MISS_MARGIN: f64 = 0.3;
@@ -48,6 +51,12 @@ pub struct Report {
     pub waits: WaitTotals,
     /// The place tasks waited at longest (none when no task waited).
     pub bottleneck: Option<Bottleneck>,
+    /// An upper bound on the tasks per hour for this building, fleet and task mix, from its
+    /// busiest resource, and how close the run came to it (`report::bound`).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub throughput: Option<bound::ThroughputBound>,
+    /// Utilisation over time of the fleets, doors, lifts and busiest lanes.
+    pub timeline: Timeline,
     /// The run was stopped (Ctrl-C) before its end: everything above covers what ran.
     #[serde(skip_serializing_if = "std::ops::Not::not")]
     pub interrupted: bool,
@@ -271,7 +280,7 @@ struct RobotAcc {
     last: Option<(f64, f64)>,
     open_tasks: BTreeSet<String>,
     busy_since: Option<f64>,
-    busy_s: f64,
+    busy: Buckets,
     /// Where and since when the robot has been still (within STILL_TOLERANCE).
     anchor: Option<(f64, f64, f64)>,
     /// The still-since time already reported as stuck, and its entry in `stuck`.
@@ -286,7 +295,7 @@ struct DoorAcc {
     report: DoorReport,
     /// Since when the door has not been closed, and the time summed so far.
     open_since: Option<f64>,
-    open_s: f64,
+    open: Buckets,
     /// Open sessions by requester: the request time while waiting for the door to open.
     sessions: BTreeMap<String, Option<f64>>,
 }
@@ -296,7 +305,7 @@ struct LiftAcc {
     report: LiftReport,
     /// Since when the lift has been in a session, and the time summed so far.
     busy_since: Option<f64>,
-    busy_s: f64,
+    busy: Buckets,
     /// Open sessions: (request time, destination) while waiting, None once served.
     sessions: BTreeMap<String, Option<(f64, String)>>,
     moving: bool,
@@ -326,6 +335,8 @@ pub struct ReportBuilder {
     /// The latest episode of each (robot, event, detail), as an index into `stuck`.
     episodes: BTreeMap<(String, String, String), usize>,
     last_sample: Option<f64>,
+    /// Interval of the utilisation timeline (s).
+    period: f64,
 }
 
 fn slot<T: Default>(
@@ -368,6 +379,7 @@ impl ReportBuilder {
             stuck: Vec::new(),
             episodes: BTreeMap::new(),
             last_sample: None,
+            period: timeline::period_for(scenario.duration),
         };
         for r in &placement.robots {
             b.robot_index.insert(r.name.clone(), b.robots.len());
@@ -379,7 +391,7 @@ impl ReportBuilder {
                 last: None,
                 open_tasks: BTreeSet::new(),
                 busy_since: None,
-                busy_s: 0.0,
+                busy: Buckets::new(b.period),
                 anchor: None,
                 flagged: None,
                 charging: false,
@@ -395,20 +407,28 @@ impl ReportBuilder {
     }
 
     fn door(&mut self, name: &str) -> usize {
+        let period = self.period;
         slot(
             &mut self.doors,
             &mut self.door_index,
             name,
-            |d: &mut DoorAcc| d.report.name = name.to_string(),
+            |d: &mut DoorAcc| {
+                d.report.name = name.to_string();
+                d.open = Buckets::new(period);
+            },
         )
     }
 
     fn lift(&mut self, name: &str) -> usize {
+        let period = self.period;
         slot(
             &mut self.lifts,
             &mut self.lift_index,
             name,
-            |l: &mut LiftAcc| l.report.name = name.to_string(),
+            |l: &mut LiftAcc| {
+                l.report.name = name.to_string();
+                l.busy = Buckets::new(period);
+            },
         )
     }
 
@@ -439,7 +459,7 @@ impl ReportBuilder {
                 let closed = s.current_mode.value == door_mode::CLOSED;
                 match (closed, d.open_since) {
                     (true, Some(t0)) => {
-                        d.open_s += p.t - t0;
+                        d.open.add(t0, p.t);
                         d.open_since = None;
                     }
                     (false, None) => d.open_since = Some(p.t),
@@ -481,7 +501,7 @@ impl ReportBuilder {
                 }
                 match (s.session_id.is_empty(), l.busy_since) {
                     (true, Some(t0)) => {
-                        l.busy_s += p.t - t0;
+                        l.busy.add(t0, p.t);
                         l.busy_since = None;
                     }
                     (false, None) => l.busy_since = Some(p.t),
@@ -600,7 +620,7 @@ impl ReportBuilder {
         let robot = &mut self.robots[r];
         if robot.open_tasks.remove(task) && robot.open_tasks.is_empty() {
             if let Some(since) = robot.busy_since.take() {
-                robot.busy_s += t - since;
+                robot.busy.add(since, t);
             }
         }
     }
@@ -722,6 +742,50 @@ impl ReportBuilder {
         if self.last_sample.is_none_or(|s| s < t) {
             self.sample(t, robots);
         }
+        // What is still busy at the end is busy until the end.
+        for r in &mut self.robots {
+            if let Some(s) = r.busy_since.take() {
+                r.busy.add(s, t);
+            }
+        }
+        for d in &mut self.doors {
+            if let Some(s) = d.open_since.take() {
+                d.open.add(s, t);
+            }
+        }
+        for l in &mut self.lifts {
+            if let Some(s) = l.busy_since.take() {
+                l.busy.add(s, t);
+            }
+        }
+        let mut timeline = Timeline {
+            period_s: self.period,
+            series: Vec::new(),
+        };
+        for name in &self.fleets {
+            let mut busy = Buckets::new(self.period);
+            let mut n = 0;
+            for r in self.robots.iter().filter(|r| &r.fleet == name) {
+                busy.merge(&r.busy);
+                n += 1;
+            }
+            timeline.series.push(timeline::Series {
+                resource: format!("fleet {name}"),
+                busy: busy.shares(t, n as f64),
+            });
+        }
+        for d in &self.doors {
+            timeline.series.push(timeline::Series {
+                resource: format!("door {}", d.report.name),
+                busy: d.open.shares(t, 1.0),
+            });
+        }
+        for l in &self.lifts {
+            timeline.series.push(timeline::Series {
+                resource: format!("lift {}", l.report.name),
+                busy: l.busy.shares(t, 1.0),
+            });
+        }
         let open: Vec<_> = self.approaches.keys().copied().collect();
         for k in open {
             self.close(k);
@@ -741,7 +805,7 @@ impl ReportBuilder {
                 name: r.name.clone(),
                 fleet: r.fleet.clone(),
                 distance_m: r.distance,
-                busy_s: r.busy_s + r.busy_since.map_or(0.0, |s| t - s),
+                busy_s: r.busy.total(),
                 battery_soc: 1.0,
             })
             .collect();
@@ -782,7 +846,7 @@ impl ReportBuilder {
             .into_iter()
             .map(|mut d| {
                 d.report.wait.unserved += d.sessions.values().filter(|p| p.is_some()).count();
-                d.report.utilisation = share(d.open_s + d.open_since.map_or(0.0, |s| t - s));
+                d.report.utilisation = share(d.open.total());
                 d.report
             })
             .collect();
@@ -791,7 +855,7 @@ impl ReportBuilder {
             .into_iter()
             .map(|mut l| {
                 l.report.wait.unserved += l.sessions.values().filter(|p| p.is_some()).count();
-                l.report.utilisation = share(l.busy_s + l.busy_since.map_or(0.0, |s| t - s));
+                l.report.utilisation = share(l.busy.total());
                 l.report
             })
             .collect();
@@ -808,6 +872,8 @@ impl ReportBuilder {
             stuck: self.stuck,
             waits,
             bottleneck,
+            throughput: None,
+            timeline,
             interrupted: false,
             crowd: None,
             traffic: TrafficReport::default(),
@@ -971,6 +1037,26 @@ impl Report {
                 "bottleneck: {} ({} of waiting there, {:.0} % of all task waits)",
                 b.place,
                 hms(b.wait_s),
+                100.0 * b.share
+            );
+        }
+        if let Some(b) = &self.throughput {
+            let _ = write!(
+                s,
+                "throughput bound: {:.1} tasks/h, set by {}",
+                b.tasks_per_hour, b.limited_by
+            );
+            if let Some(r) = b.resources.iter().find(|r| r.resource == b.limited_by) {
+                let _ = write!(
+                    s,
+                    " ({} × 3600 s / {:.1} s a task at least)",
+                    r.capacity, r.demand_s
+                );
+            }
+            let _ = writeln!(
+                s,
+                "; this run {:.1} tasks/h ({:.0} % of it)",
+                b.achieved_per_hour,
                 100.0 * b.share
             );
         }

@@ -110,6 +110,15 @@ fn problems(name: &str, runs: &[Run]) -> Vec<String> {
         if r.traffic.cycles > 0 {
             out.push(format!("{what}: {} dependency cycles", r.traffic.cycles));
         }
+        // The throughput bound's demands are lower bounds (sim/src/report/bound.rs).
+        for x in r.throughput.iter().flat_map(|b| &b.resources) {
+            if x.used > 1.0 + 1e-9 {
+                out.push(format!(
+                    "{what}: the completed tasks needed {:.3} of {}'s capacity",
+                    x.used, x.resource
+                ));
+            }
+        }
         let still: Vec<_> = r.stuck.iter().filter(|s| s.reason == "no_motion").collect();
         if let Some(s) = still.first() {
             out.push(format!(

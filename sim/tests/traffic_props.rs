@@ -73,6 +73,28 @@ fn check_safe(r: &Report, what: &str) {
     assert!(failed.is_empty(), "{what}: failed tasks {failed:?}");
     assert!(r.contacts.is_empty(), "{what}: contacts {:?}", r.contacts);
     assert_eq!(r.traffic.cycles, 0, "{what}: dependency cycles");
+    check_bound(r, what);
+}
+
+/// The throughput bound's demands are lower bounds: what the completed tasks needed of a
+/// resource at least never exceeds its capacity over the run, and no run beats the rate
+/// tasks arrived at.
+fn check_bound(r: &Report, what: &str) {
+    let Some(b) = &r.throughput else {
+        return;
+    };
+    for x in &b.resources {
+        assert!(
+            x.used <= 1.0 + 1e-9,
+            "{what}: the completed tasks needed {:.3} of {}'s capacity",
+            x.used,
+            x.resource
+        );
+    }
+    assert!(
+        b.achieved_per_hour <= b.arrivals_per_hour + 1e-9,
+        "{what}: {b:?}"
+    );
 }
 
 /// Checks one building at every size: the completed counts, and what broke the rule: a
@@ -94,6 +116,14 @@ fn check_building(seed: u64, sizes: &[usize], minutes: f64) -> (Vec<usize>, Vec<
         }
         done.push(completed(&r));
         robots_on_floor.push(r.robots.len());
+        if std::env::var_os("MAPC_TRAFFIC_VERBOSE").is_some() {
+            if let Some(b) = &r.throughput {
+                eprintln!(
+                    "bound {seed} {n}: {:.1} tasks/h by {}, achieved {:.1} ({:.2})",
+                    b.tasks_per_hour, b.limited_by, b.achieved_per_hour, b.share
+                );
+            }
+        }
     }
     // A bigger fleet completes at least 95 % of what any smaller one did (same stream).
     for i in 0..sizes.len() {

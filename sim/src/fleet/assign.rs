@@ -140,7 +140,7 @@ impl Fleets {
 
     /// (fleet, its steps for the task) of every fleet that may do task `ti` and has a
     /// robot that can reach the task's places in order.
-    fn fleets_for(&self, ti: usize) -> Vec<(usize, Vec<Step>)> {
+    pub(super) fn fleets_for(&self, ti: usize) -> Vec<(usize, Vec<Step>)> {
         let task = &self.tasks[ti];
         let mut out = Vec::new();
         for (fi, f) in self.fleets.iter().enumerate() {

@@ -45,9 +45,25 @@ impl Fleets {
     }
 
     pub(super) fn reach_next(&mut self, i: usize, t: f64, out: &mut Vec<(Topic, Msg)>) {
-        let Some(to) = self.sched.itinerary(i).travs.front().map(|tr| tr.to) else {
+        let Some((to, edge, begun_at)) = self
+            .sched
+            .itinerary(i)
+            .travs
+            .front()
+            .map(|tr| (tr.to, tr.edge, tr.begun_at))
+        else {
             return;
         };
+        if let Some(lane) = self.nav.edges[edge].lane {
+            // On the lane from when it left the lane before (or was sent, if later).
+            let since = begun_at.max(self.robots[i].reached_at);
+            let period = self.period;
+            self.lane_use
+                .entry(lane)
+                .or_insert_with(|| crate::report::timeline::Buckets::new(period))
+                .add(since, t);
+        }
+        self.robots[i].reached_at = t;
         self.sched.complete_front(i, t);
         if cfg!(debug_assertions) {
             if let Err(e) = self.sched.check(t) {

@@ -34,6 +34,7 @@ use mapc_ir::{Building, Diagnostic, Span};
 use std::collections::{BTreeMap, VecDeque};
 
 mod assign;
+mod bound;
 mod cancel;
 mod drive;
 mod park;
@@ -194,6 +195,8 @@ struct Robot {
     item_from: Option<String>,
     /// When the current task started.
     task_started: f64,
+    /// When it reached the end of its last traversal.
+    reached_at: f64,
     /// Not on a parking vertex yet (a spawn elsewhere): plans its way there when idle.
     park_pending: bool,
     /// What it waits for now (cause, place, since) and the waits of its current task.
@@ -214,6 +217,10 @@ struct FleetRt {
     name: String,
     slot: usize,
     speed: f64,
+    /// Its slotcars speed up at `accel` and brake at up to `max_accel` (m/s²): lower bounds
+    /// of drive times.
+    accel: f64,
+    max_accel: f64,
     /// How its robots drive (traversal times in plans).
     kin: crate::traffic::sipp::Kinematics,
     recharge_threshold: f64,
@@ -301,6 +308,10 @@ pub struct Fleets {
     awaiting_cancel: Vec<(usize, String)>,
     /// Per cancel of the scenario: done, or why not.
     cancel_results: Vec<Result<(), String>>,
+    /// Per IR lane: when robots drove it (the report's timeline).
+    lane_use: BTreeMap<usize, crate::report::timeline::Buckets>,
+    /// The timeline's interval (s).
+    period: f64,
 }
 
 impl Fleets {
@@ -454,6 +465,38 @@ impl Fleets {
     /// The wall-clock time (s) of every plan since [`Fleets::time_plans`].
     pub fn plan_times(&mut self) -> Vec<f64> {
         self.planner.times.take().unwrap_or_default()
+    }
+
+    /// The ten lanes robots drove longest, each with its busy share per interval of a run
+    /// of `end` seconds (the report's timeline).
+    pub fn lane_series(&self, end: f64) -> Vec<crate::report::timeline::Series> {
+        let mut lanes: Vec<(&usize, &crate::report::timeline::Buckets)> =
+            self.lane_use.iter().collect();
+        lanes.sort_by(|a, b| b.1.total().total_cmp(&a.1.total()).then(a.0.cmp(b.0)));
+        lanes
+            .into_iter()
+            .take(10)
+            .filter_map(|(&lane, busy)| {
+                let e = self.nav.edges.iter().find(|e| e.lane == Some(lane))?;
+                let name = |v: usize| {
+                    let x = &self.nav.vertices[v];
+                    if x.name.is_empty() {
+                        format!("({:.1}, {:.1})", x.pos.x, x.pos.y)
+                    } else {
+                        x.name.clone()
+                    }
+                };
+                Some(crate::report::timeline::Series {
+                    resource: format!(
+                        "lane {} – {} on {}",
+                        name(e.from),
+                        name(e.to),
+                        self.nav.vertices[e.from].level_name
+                    ),
+                    busy: busy.shares(end, 1.0),
+                })
+            })
+            .collect()
     }
 
     /// The traffic planner's work so far.

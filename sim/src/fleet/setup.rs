@@ -268,6 +268,12 @@ impl Fleets {
                 name: f.name.clone(),
                 slot,
                 speed: f.robot.nominal_drive_speed.max(0.05),
+                accel: f.robot.nominal_drive_acceleration.max(0.01),
+                max_accel: f
+                    .robot
+                    .max_drive_acceleration
+                    .max(f.robot.nominal_drive_acceleration)
+                    .max(0.01),
                 kin: crate::traffic::sipp::Kinematics {
                     speed: f.robot.nominal_drive_speed.max(0.05),
                     accel: f.robot.nominal_drive_acceleration.max(0.01),
@@ -327,6 +333,7 @@ impl Fleets {
                     carrying: None,
                     item_from: None,
                     task_started: 0.0,
+                    reached_at: 0.0,
                     park_pending: false,
                     waiting_for: None,
                     waits: TaskWaits::default(),
@@ -514,6 +521,8 @@ impl Fleets {
             cancels,
             awaiting_cancel: Vec::new(),
             cancel_results: vec![Err(String::new()); scenario.cancels.len()],
+            lane_use: BTreeMap::new(),
+            period: crate::report::timeline::period_for(scenario.duration),
         })
     }
 }

@@ -39,8 +39,9 @@ pub struct Trav {
     /// Estimated start and end (the planner's, then retimed).
     pub start: f64,
     pub end: f64,
-    /// The robot has been sent along it.
+    /// The robot has been sent along it, and when.
     pub begun: bool,
+    pub begun_at: f64,
 }
 
 /// A robot's hold on one resource, over its traversals `first..=last`.
@@ -206,6 +207,7 @@ impl Schedule {
         for tr in self.its[r].travs.iter_mut().take(n) {
             if !tr.begun {
                 tr.begun = true;
+                tr.begun_at = t;
                 tr.start = prev.max(t);
                 tr.end = tr.start + tr.dur;
             }
@@ -278,6 +280,7 @@ impl Schedule {
                 start: st.start,
                 end: st.end,
                 begun: false,
+                begun_at: 0.0,
             });
         }
         // 2. Spans of the new steps: runs of consecutive steps needing a resource.

@@ -60,6 +60,9 @@ pub(crate) const COLUMNS: &[&str] = &[
     "bottleneck_cause",
     "bottleneck_wait_s",
     "bottleneck_share",
+    "bound_per_hour",
+    "bound_limited_by",
+    "bound_share",
 ];
 
 /// One row: a run and, when it is done, its headline numbers (same order as `COLUMNS`).
@@ -127,6 +130,9 @@ fn headline(report: &Value) -> Vec<Value> {
         b["cause"].clone(),
         b["wait_s"].clone(),
         b["share"].clone(),
+        report["throughput"]["tasks_per_hour"].clone(),
+        report["throughput"]["limited_by"].clone(),
+        report["throughput"]["share"].clone(),
     ]
 }
 
