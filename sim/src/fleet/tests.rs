@@ -1218,4 +1218,28 @@ fn a_patrol_of_three_places_visits_them_in_order_each_round() {
         .map(|e| (e.task_id.as_str(), e.event.as_str()))
         .collect();
     assert_eq!(done, [("loop_0", "completed")], "{events:?}");
+    // A `phase` event per place reached, in order; the `started` event names them all.
+    let names: Vec<String> = ["lobby", "pharmacy", "corridor"]
+        .iter()
+        .cycle()
+        .take(6)
+        .map(|p| format!("go_to_place {p}"))
+        .collect();
+    let at = |ev: &str| {
+        let e = events.iter().find(|e| e.event == ev).expect(ev);
+        (e.time.as_secs(), e)
+    };
+    let (started, e) = at("started");
+    assert_eq!(e.phases.as_ref(), Some(&names));
+    let phases: Vec<&TaskEvent> = events.iter().filter(|e| e.event == "phase").collect();
+    let details: Vec<&str> = phases.iter().map(|e| e.detail.as_str()).collect();
+    assert_eq!(details, names, "{events:#?}");
+    assert!(phases
+        .iter()
+        .all(|p| p.task_id == "loop_0" && p.robot == e.robot && !p.robot.is_empty()));
+    // Each place after the one before (they are apart), the last when the task ends.
+    let times: Vec<f64> = phases.iter().map(|e| e.time.as_secs()).collect();
+    assert!(started <= times[0], "{started} {times:?}");
+    assert!(times.windows(2).all(|w| w[0] < w[1]), "{times:?}");
+    assert_eq!(times.last().copied(), Some(at("completed").0));
 }
