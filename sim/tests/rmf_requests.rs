@@ -404,7 +404,7 @@ fn a_delivery_has_a_timed_phase_per_step() {
         "Go to [place:pickup]",
         "Pick up",
         "Go to [place:dropoff]",
-        "Drop off",
+        "Drop Off",
     ]
     .iter()
     .zip(&t.phases)

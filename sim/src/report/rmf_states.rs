@@ -155,7 +155,7 @@ fn phase_category(detail: &str) -> String {
     match kind {
         "go_to_place" => format!("Go to [place:{rest}]"),
         "pickup" => "Pick up".into(),
-        "dropoff" => "Drop off".into(),
+        "dropoff" => "Drop Off".into(),
         "clean" => "Clean".into(),
         _ => detail.into(),
     }
@@ -296,7 +296,7 @@ mod tests {
         assert_eq!(p["2"]["unix_millis_finish_time"], 16000);
         assert_eq!(p["2"]["events"]["0"]["status"], "failed");
         assert_eq!(p["2"]["final_event_id"], 0);
-        assert_eq!(p["4"]["category"], "Drop off");
+        assert_eq!(p["4"]["category"], "Drop Off");
         assert_eq!(
             p["3"],
             json!({"id": 3, "category": "Go to [place:b]", "detail": "go_to_place b"})
