@@ -28,8 +28,8 @@ pub use crowd::{compare_crowd, CrowdReport, FleetCompare, SpeedStats, Spread};
 pub use params::RobotParams;
 pub use report::rmf_states;
 pub use report::{
-    DoorReport, Encounter, FleetReport, LiftReport, Report, RequestReport, RobotReport,
-    ScenarioWarning, StuckReport, TaskReport, TrafficReport, Waits,
+    DoorReport, Encounter, FleetReport, LiftReport, PhaseReport, Report, RequestReport,
+    RobotReport, ScenarioWarning, StuckReport, TaskReport, TrafficReport, Waits,
 };
 pub use scenario::{
     parse as parse_scenario, parse_duration, parse_files as parse_scenario_files,

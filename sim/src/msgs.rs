@@ -264,8 +264,8 @@ pub struct WorkcellState {
 }
 
 /// A task event of the fleet layer (not an RMF message; RMF reports task progress through
-/// its task API). `event` is one of `queued`, `assigned`, `started`, `phase`, `completed`,
-/// `failed`.
+/// its task API). `event` is one of `queued`, `assigned`, `started`, `phase` (a step of the
+/// task done; `detail` names it), `completed`, `failed`, `cancelled`, `stuck`.
 #[derive(Debug, Clone, PartialEq, Default, Serialize)]
 pub struct TaskEvent {
     pub time: Time,
@@ -281,6 +281,9 @@ pub struct TaskEvent {
     /// On `assigned`: when the plan it was assigned with ends the task (sim time, s).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub planned_finish: Option<f64>,
+    /// On `started`: the task's phases in order, named as their `phase` events name them.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub phases: Option<Vec<String>>,
 }
 
 /// Time (s) a task's robot spent waiting, by cause, and where (`places`: "lift Lift2",

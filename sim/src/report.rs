@@ -132,6 +132,66 @@ pub struct TaskReport {
     /// `finished` − `planned_finish` for a completed task (s): what the plan did not foresee
     /// (doors, lifts, workcells, people, replanning); `waits` says where the time went.
     pub delay: Option<f64>,
+    /// Its phases in order, from its `started` event on (none for a task that never
+    /// started): one per step of its robot, timed by the `phase` events.
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub phases: Vec<PhaseReport>,
+}
+
+/// A phase of a task: a step its robot does (go to a place, pick up, drop off, clean).
+#[derive(Debug, Clone, Default, PartialEq, Serialize)]
+pub struct PhaseReport {
+    /// `go_to_place <place>`, `pickup at <place> from <dispenser>`, `dropoff at <place>
+    /// into <ingestor>` or `clean <zone>`, as its `phase` event names it.
+    pub detail: String,
+    /// Sim times (s): when the phase before it ended (the task's start for the first), and
+    /// when it ended (the task's end for the phase a failure or cancel ended).
+    pub started: Option<f64>,
+    pub finished: Option<f64>,
+    /// `completed`; `failed` or `cancelled` (the task ended during it); `unfinished` (under
+    /// way when the run ended); `pending` (not reached).
+    pub result: String,
+}
+
+impl TaskReport {
+    /// The task's robot ended the phase `detail` at `t`; the next one starts.
+    fn phase_done(&mut self, t: f64, detail: &str) {
+        match self.phases.iter().position(|p| p.finished.is_none()) {
+            Some(k) => {
+                let p = &mut self.phases[k];
+                if p.started.is_none() {
+                    p.started = Some(t);
+                }
+                p.finished = Some(t);
+                p.result = "completed".into();
+                if p.detail != detail {
+                    p.detail = detail.to_string();
+                }
+                if let Some(next) = self.phases.get_mut(k + 1) {
+                    next.started = Some(t);
+                    next.result = "unfinished".into();
+                }
+            }
+            // Phases the `started` event did not name (or more of them).
+            None => {
+                let started = self.phases.last().and_then(|p| p.finished).or(self.started);
+                self.phases.push(PhaseReport {
+                    detail: detail.to_string(),
+                    started,
+                    finished: Some(t),
+                    result: "completed".into(),
+                });
+            }
+        }
+    }
+
+    /// The task ended at `t` with `result`: so did its phase under way.
+    fn phases_end(&mut self, t: f64, result: &str) {
+        if let Some(p) = self.phases.iter_mut().find(|p| p.result == "unfinished") {
+            p.finished = Some(t);
+            p.result = result.to_string();
+        }
+    }
 }
 
 fn is_zero(n: &usize) -> bool {
@@ -557,6 +617,10 @@ impl ReportBuilder {
             r.id = e.task_id.clone();
             r.result = "unfinished".into();
         });
+        if e.event == "phase" {
+            self.tasks[i].phase_done(t, &e.detail);
+            return;
+        }
         let previous_robot = self.tasks[i].robot.clone();
         {
             let task = &mut self.tasks[i];
@@ -598,9 +662,25 @@ impl ReportBuilder {
                 }
             }
             "started" => {
-                self.tasks[i].started.get_or_insert(t);
+                let task = &mut self.tasks[i];
+                task.started.get_or_insert(t);
+                if let Some(names) = &e.phases {
+                    task.phases = names
+                        .iter()
+                        .map(|d| PhaseReport {
+                            detail: d.clone(),
+                            result: "pending".into(),
+                            ..PhaseReport::default()
+                        })
+                        .collect();
+                    if let Some(p) = task.phases.first_mut() {
+                        p.started = Some(t);
+                        p.result = "unfinished".into();
+                    }
+                }
             }
             "completed" | "failed" | "cancelled" => {
+                self.tasks[i].phases_end(t, &e.event);
                 self.tasks[i].finished = Some(t);
                 self.tasks[i].result = e.event.clone();
                 if e.event == "completed" {
@@ -1223,6 +1303,49 @@ mod tests {
                 ..TaskEvent::default()
             }),
         }
+    }
+
+    /// A task's phases: named by its `started` event, each ended by a `phase` event (which
+    /// leaves the task's detail alone); a failure ends the phase under way, the rest stay
+    /// pending.
+    #[test]
+    fn phases_are_timed_by_phase_events_and_end_with_the_task() {
+        let mut b = builder();
+        let names = ["go_to_place a", "pickup at a from d", "go_to_place b"];
+        let mut send = |t: f64, ev: &str, detail: &str, phases: Option<&[&str]>| {
+            let mut p = event(t, "delivery_0", ev, "a0", "a");
+            if let Msg::TaskEvent(e) = &mut p.msg {
+                e.detail = detail.into();
+                e.phases = phases.map(|n| n.iter().map(|s| s.to_string()).collect());
+            }
+            b.observe(&p);
+        };
+        send(1.0, "queued", "", None);
+        send(2.0, "assigned", "", None);
+        send(2.0, "started", "", Some(&names));
+        send(10.0, "phase", "go_to_place a", None);
+        send(15.0, "failed", "d failed", None);
+        let r = b.finish(20.0, &[]);
+        let t = &r.tasks[0];
+        assert_eq!(
+            (t.result.as_str(), t.detail.as_str()),
+            ("failed", "d failed")
+        );
+        let got: Vec<_> = t
+            .phases
+            .iter()
+            .map(|p| (p.detail.as_str(), p.started, p.finished, p.result.as_str()))
+            .collect();
+        assert_eq!(
+            got,
+            [
+                ("go_to_place a", Some(2.0), Some(10.0), "completed"),
+                ("pickup at a from d", Some(10.0), Some(15.0), "failed"),
+                ("go_to_place b", None, None, "pending"),
+            ]
+        );
+        let j = serde_json::to_value(t).unwrap();
+        assert_eq!(j["phases"][1]["result"], "failed");
     }
 
     #[test]

@@ -334,3 +334,172 @@ fn cancel_requests_stop_queued_and_running_tasks() {
         eprintln!("skipped: ../shared not found (task_state schema)");
     }
 }
+
+/// An RMF phase: its category, the status of its event, its start and finish (unix ms).
+type RmfPhase = (String, Option<String>, Option<i64>, Option<i64>);
+
+/// The phases of a task state, in id order.
+fn rmf_phases(st: &Value) -> Vec<RmfPhase> {
+    let phases = st["phases"].as_object().expect("phases");
+    (1..=phases.len())
+        .map(|id| {
+            let p = &phases[&id.to_string()];
+            assert_eq!(p["id"], id);
+            (
+                p["category"].as_str().unwrap().to_string(),
+                p["events"]["0"]["status"].as_str().map(str::to_string),
+                p["unix_millis_start_time"].as_i64(),
+                p["unix_millis_finish_time"].as_i64(),
+            )
+        })
+        .collect()
+}
+
+/// A delivery's phases are its robot's steps (to the pickup, the pickup, to the drop-off,
+/// the drop-off), as RMF's own delivery has them: each starts when the one before ends,
+/// the first when the task starts and the last ends when the task does; in the task
+/// state, each a completed phase with those times in unix ms.
+#[test]
+fn a_delivery_has_a_timed_phase_per_step() {
+    let (s, r, _) = run();
+    let t = r.tasks.iter().find(|t| t.id == "delivery_0").unwrap();
+    let details: Vec<&str> = t.phases.iter().map(|p| p.detail.as_str()).collect();
+    assert_eq!(
+        details,
+        [
+            "go_to_place pickup",
+            "pickup at pickup from dispenser_1",
+            "go_to_place dropoff",
+            "dropoff at dropoff into ingestor_1"
+        ],
+        "{t:#?}"
+    );
+    assert!(t.phases.iter().all(|p| p.result == "completed"), "{t:#?}");
+    let (started, finished) = (t.started.unwrap(), t.finished.unwrap());
+    assert_eq!(t.phases[0].started, Some(started));
+    assert_eq!(t.phases.last().unwrap().finished, Some(finished));
+    for w in t.phases.windows(2) {
+        assert_eq!(w[1].started, w[0].finished, "{t:#?}");
+    }
+    // Each takes time: the drives several seconds, the workcells less than one (the
+    // teleport plugins answer at once; the robot reads the answer in the next step).
+    for (k, p) in t.phases.iter().enumerate() {
+        let (a, b) = (p.started.unwrap(), p.finished.unwrap());
+        assert!(started <= a && a < b && b <= finished, "{p:?} in {t:#?}");
+        if k % 2 == 0 {
+            assert!(b - a > 5.0, "{p:?}");
+        } else {
+            assert!(b - a < 1.0, "{p:?}");
+        }
+    }
+    // In RMF's format.
+    let states = rmf_states::task_states(&s, &r);
+    let d = states
+        .iter()
+        .find(|x| x["booking"]["id"] == "delivery_0")
+        .unwrap();
+    let start = 1_767_225_600_000i64;
+    let ms = |x: Option<f64>| x.map(|x| start + (x * 1000.0).round() as i64);
+    let want: Vec<_> = [
+        "Go to [place:pickup]",
+        "Pick up",
+        "Go to [place:dropoff]",
+        "Drop Off",
+    ]
+    .iter()
+    .zip(&t.phases)
+    .map(|(c, p)| {
+        (
+            c.to_string(),
+            Some("completed".to_string()),
+            ms(p.started),
+            ms(p.finished),
+        )
+    })
+    .collect();
+    assert_eq!(rmf_phases(d), want);
+    assert_eq!(d["completed"], serde_json::json!([1, 2, 3, 4]));
+    assert_eq!(d["pending"], serde_json::json!([]));
+    assert!(d.get("active").is_none());
+    assert_eq!(
+        d["phases"]["1"]["unix_millis_start_time"],
+        d["unix_millis_start_time"]
+    );
+    assert_eq!(
+        d["phases"]["4"]["unix_millis_finish_time"],
+        d["unix_millis_finish_time"]
+    );
+    assert_eq!(
+        d["phases"]["2"]["detail"],
+        "pickup at pickup from dispenser_1"
+    );
+    // The compose delivery (rmf_demos' perform_action pickup and dropoff) alike.
+    let c = r.tasks.iter().find(|t| t.id == "delivery_1").unwrap();
+    assert_eq!(c.phases.len(), 4, "{c:#?}");
+    assert_eq!(c.phases[3].finished, c.finished);
+}
+
+/// A patrol cancelled under way: the places it reached are completed phases, the one it was
+/// going to is canceled at the cancel's time, the rest are pending.
+#[test]
+fn a_cancelled_patrol_shows_its_completed_and_interrupted_phases() {
+    let (s, r, _) = run_file("cancel_requests.scenario.yaml");
+    let t = r.tasks.iter().find(|t| t.id == "loop_0").unwrap();
+    // 10 rounds of hold_a, pickup.
+    assert_eq!(t.phases.len(), 20, "{t:#?}");
+    for (k, p) in t.phases.iter().enumerate() {
+        let place = if k % 2 == 0 { "hold_a" } else { "pickup" };
+        assert_eq!(p.detail, format!("go_to_place {place}"));
+    }
+    let done = t
+        .phases
+        .iter()
+        .take_while(|p| p.result == "completed")
+        .count();
+    assert!(done >= 1, "{t:#?}");
+    let cut = &t.phases[done];
+    assert_eq!(cut.result, "cancelled");
+    assert_eq!(cut.started, t.phases[done - 1].finished);
+    assert_eq!(cut.finished, Some(60.0));
+    assert!(t.phases[..done]
+        .iter()
+        .all(|p| p.finished.is_some_and(|f| f <= 60.0)));
+    assert!(t.phases[done + 1..]
+        .iter()
+        .all(|p| p.result == "pending" && p.started.is_none() && p.finished.is_none()));
+    let states = rmf_states::task_states(&s, &r);
+    let st = states
+        .iter()
+        .find(|x| x["booking"]["id"] == "loop_0")
+        .unwrap();
+    let phases = rmf_phases(st);
+    let start = 1_767_225_600_000i64;
+    for (k, (category, status, a, b)) in phases.iter().enumerate() {
+        let place = if k % 2 == 0 { "hold_a" } else { "pickup" };
+        assert_eq!(*category, format!("Go to [place:{place}]"));
+        let want = match k.cmp(&done) {
+            std::cmp::Ordering::Less => Some("completed"),
+            std::cmp::Ordering::Equal => Some("canceled"),
+            std::cmp::Ordering::Greater => None,
+        };
+        assert_eq!(status.as_deref(), want, "phase {}", k + 1);
+        assert_eq!(a.is_some(), k <= done);
+        assert_eq!(b.is_some(), k <= done);
+    }
+    assert_eq!(phases[done].3, Some(start + 60_000));
+    assert_eq!(
+        st["completed"],
+        serde_json::json!((1..=done + 1).collect::<Vec<_>>())
+    );
+    assert_eq!(
+        st["pending"],
+        serde_json::json!((done + 2..=20).collect::<Vec<_>>())
+    );
+    assert!(st.get("active").is_none());
+    // The queued task it cancelled never started: no phases.
+    let q = states
+        .iter()
+        .find(|x| x["booking"]["id"] == "go_to_place_0")
+        .unwrap();
+    assert!(q.get("phases").is_none(), "{q:#}");
+}

@@ -538,6 +538,11 @@ impl Fleets {
         let Some(tk) = self.tasks.get(task) else {
             return;
         };
+        // A task starting names its phases (the steps its robot was given).
+        let phases = match robot.and_then(|r| self.robots.get(r)) {
+            Some(r) if event == "started" => Some(self.phase_names(task, &r.steps)),
+            _ => None,
+        };
         let (fleet, robot) = robot
             .and_then(|r| self.robots.get(r))
             .map(|r| (self.fleets[r.fleet].name.clone(), r.name.clone()))
@@ -552,6 +557,7 @@ impl Fleets {
                 fleet,
                 robot,
                 detail,
+                phases,
                 ..TaskEvent::default()
             }),
         ));

@@ -195,6 +195,7 @@ impl Fleets {
                 }
             };
             if done {
+                self.phase_done(i, t, out);
                 if matches!(self.robots[i].cur, Cur::Charge { .. }) {
                     let r = &mut self.robots[i];
                     if let Some(c) = r.charger.take() {
@@ -204,6 +205,63 @@ impl Fleets {
                 self.robots[i].cur = Cur::None;
             }
         }
+    }
+
+    /// Robot `i` has done the step in `cur`: a `phase` event when it ends a phase of its
+    /// task (steps outside a task, such as taking back an item, are no phase).
+    fn phase_done(&self, i: usize, t: f64, out: &mut Vec<(Topic, Msg)>) {
+        let r = &self.robots[i];
+        let Some(ti) = r.task else {
+            return;
+        };
+        let step = match &r.cur {
+            Cur::None => return,
+            Cur::GoTo { goal, .. } => Step::GoTo(*goal),
+            Cur::Workcell {
+                target, dispenser, ..
+            } if *dispenser => Step::Dispense(target.clone()),
+            Cur::Workcell { target, .. } => Step::Ingest(target.clone()),
+            Cur::Dwell { .. } => Step::Dwell(0.0),
+            Cur::Charge { pct, .. } => Step::Charge(*pct),
+        };
+        if let Some(name) = self.phase_name(ti, &step, r.steps.is_empty()) {
+            self.event(t, ti, "phase", Some(i), name, out);
+        }
+    }
+
+    /// The phases of task `ti` whose robot has `steps` to do, in order (see `phase_name`).
+    pub(super) fn phase_names(&self, ti: usize, steps: &VecDeque<Step>) -> Vec<String> {
+        let n = steps.len();
+        steps
+            .iter()
+            .enumerate()
+            .filter_map(|(k, s)| self.phase_name(ti, s, k + 1 == n))
+            .collect()
+    }
+
+    /// The phase of task `ti` that `step` ends (`last`: no step of the task follows), or
+    /// None when the step does not end one: `go_to_place <place>`, `pickup at <place> from
+    /// <dispenser>`, `dropoff at <place> into <ingestor>`, `clean <zone>` (the wait in the
+    /// zone, or the trip along its docking lane and back, which ends at the return).
+    fn phase_name(&self, ti: usize, step: &Step, last: bool) -> Option<String> {
+        let kind = &self.tasks.get(ti)?.kind;
+        let place = |v: usize| &self.nav.vertices[v].name;
+        Some(match (step, kind) {
+            (Step::GoTo(v), TaskKind::Clean { zone }) if place(*v) != zone => return None,
+            (Step::GoTo(_), TaskKind::Clean { zone }) if last => format!("clean {zone}"),
+            (Step::GoTo(v), _) => format!("go_to_place {}", place(*v)),
+            (Step::Dispense(d), TaskKind::Delivery { pickup, .. }) => {
+                format!("pickup at {pickup} from {d}")
+            }
+            (Step::Dispense(d), _) => format!("pickup from {d}"),
+            (Step::Ingest(x), TaskKind::Delivery { dropoff, .. }) => {
+                format!("dropoff at {dropoff} into {x}")
+            }
+            (Step::Ingest(x), _) => format!("dropoff into {x}"),
+            (Step::Dwell(_), TaskKind::Clean { zone }) => format!("clean {zone}"),
+            (Step::Dwell(_), _) => "wait".to_string(),
+            (Step::Charge(_), _) => "charge".to_string(),
+        })
     }
 
     /// Starts the next step (or task). False when there is nothing to do.

@@ -825,12 +825,62 @@ fn clean_without_dock_waits_clean_duration() {
     let t = done[0].time.as_secs();
     let expect = 3.0 / 0.5 + 13.0 / 0.5 + 30.0;
     assert!(t >= expect - 1e-6 && t <= expect + 1.0, "{t} vs {expect}");
+    // Two phases: to the zone, then the clean (its 30 s), which ends with the task.
+    let phases: Vec<(&str, f64)> = events
+        .iter()
+        .filter(|e| e.event == "phase")
+        .map(|e| (e.detail.as_str(), e.time.as_secs()))
+        .collect();
+    assert_eq!(phases.len(), 2, "{events:#?}");
+    assert_eq!((phases[0].0, phases[1].0), ("go_to_place e", "clean e"));
+    assert!((phases[1].1 - phases[0].1 - 30.0).abs() < 1.0, "{phases:?}");
+    assert_eq!(phases[1].1, t);
     // Then it parks on the nearest parking vertex off the task places: park_e, beside e.
     assert_eq!(f.sched.end_vertex(0), vertex(&f.nav, "park_e"));
     assert_eq!(
         f.parks.per_slot[0][vertex(&f.nav, "park_e")],
         crate::traffic::parks::PARK
     );
+}
+
+/// A clean with a docking lane: two phases, to the zone and the clean (into the dock and
+/// back, one phase), which ends with the task.
+#[test]
+fn clean_with_dock_is_two_phases() {
+    let text = CROSS.replace(
+        "    lanes:\n",
+        "      - [10, 2, 0, e_dock, {dock_name: [1, e_dock]}]\n    lanes:\n      - [1, 8, {bidirectional: [4, true], graph_idx: [2, 0]}]\n",
+    );
+    let b = parse_map("cross_dock", &text);
+    let s = scenario(
+        vec![fleet("a", 1, SpawnSpec::Waypoints(vec!["park_w".into()]))],
+        vec![task(0.5, TaskKind::Clean { zone: "e".into() })],
+    );
+    let (events, _, f) = run(&b, &s, 300.0);
+    let steps = f
+        .expand(0, &TaskKind::Clean { zone: "e".into() })
+        .expect("on the graph");
+    let (e, d) = (vertex(&f.nav, "e"), vertex(&f.nav, "e_dock"));
+    assert_eq!(steps, [Step::GoTo(e), Step::GoTo(d), Step::GoTo(e)]);
+    let names = ["go_to_place e", "clean e"];
+    let started = events
+        .iter()
+        .find(|e| e.event == "started")
+        .expect("started");
+    assert_eq!(started.phases, Some(names.map(String::from).to_vec()));
+    let phases: Vec<(&str, f64)> = events
+        .iter()
+        .filter(|e| e.event == "phase")
+        .map(|e| (e.detail.as_str(), e.time.as_secs()))
+        .collect();
+    assert_eq!(phases.iter().map(|p| p.0).collect::<Vec<_>>(), names);
+    // Into the dock and back: 3 m each way.
+    assert!(phases[1].1 - phases[0].1 > 6.0 / 0.5, "{phases:?}");
+    let done = events
+        .iter()
+        .find(|e| e.event == "completed")
+        .expect("done");
+    assert_eq!(phases[1].1, done.time.as_secs());
 }
 
 #[test]
@@ -1218,4 +1268,28 @@ fn a_patrol_of_three_places_visits_them_in_order_each_round() {
         .map(|e| (e.task_id.as_str(), e.event.as_str()))
         .collect();
     assert_eq!(done, [("loop_0", "completed")], "{events:?}");
+    // A `phase` event per place reached, in order; the `started` event names them all.
+    let names: Vec<String> = ["lobby", "pharmacy", "corridor"]
+        .iter()
+        .cycle()
+        .take(6)
+        .map(|p| format!("go_to_place {p}"))
+        .collect();
+    let at = |ev: &str| {
+        let e = events.iter().find(|e| e.event == ev).expect(ev);
+        (e.time.as_secs(), e)
+    };
+    let (started, e) = at("started");
+    assert_eq!(e.phases.as_ref(), Some(&names));
+    let phases: Vec<&TaskEvent> = events.iter().filter(|e| e.event == "phase").collect();
+    let details: Vec<&str> = phases.iter().map(|e| e.detail.as_str()).collect();
+    assert_eq!(details, names, "{events:#?}");
+    assert!(phases
+        .iter()
+        .all(|p| p.task_id == "loop_0" && p.robot == e.robot && !p.robot.is_empty()));
+    // Each place after the one before (they are apart), the last when the task ends.
+    let times: Vec<f64> = phases.iter().map(|e| e.time.as_secs()).collect();
+    assert!(started <= times[0], "{started} {times:?}");
+    assert!(times.windows(2).all(|w| w[0] < w[1]), "{times:?}");
+    assert_eq!(times.last().copied(), Some(at("completed").0));
 }

@@ -144,35 +144,72 @@ fn task_state(t: &TaskReport, req: Option<&crate::scenario::RequestSpec>, start:
         json!({"status": "queued"})
     };
     s.insert("dispatch".into(), dispatch);
-    // One phase: the task as mapc runs it, with one event (its outcome).
-    let mut phase = Map::new();
-    phase.insert("id".into(), json!(1));
-    phase.insert("category".into(), json!(category));
-    phase.insert("detail".into(), json!(t.detail));
-    if let Some(a) = t.started {
-        phase.insert("unix_millis_start_time".into(), json!(millis(start, a)));
-    }
-    if let Some(f) = t.finished {
-        phase.insert("unix_millis_finish_time".into(), json!(millis(start, f)));
-    }
-    phase.insert("final_event_id".into(), json!(0));
-    phase.insert(
-        "events".into(),
-        json!({"0": {"id": 0, "status": status, "name": t.category, "detail": t.detail}}),
-    );
-    s.insert("phases".into(), json!({"1": Value::Object(phase)}));
-    match status {
-        "completed" | "failed" | "canceled" => {
-            s.insert("completed".into(), json!([1]));
-        }
-        "underway" => {
-            s.insert("active".into(), json!(1));
-        }
-        _ => {
-            s.insert("pending".into(), json!([1]));
-        }
-    }
+    phases(&mut s, t, start);
     Value::Object(s)
+}
+
+/// RMF's category of a phase (what RMF's own phases of the kind are called), from its
+/// detail as the fleet layer names it.
+fn phase_category(detail: &str) -> String {
+    let (kind, rest) = detail.split_once(' ').unwrap_or((detail, ""));
+    match kind {
+        "go_to_place" => format!("Go to [place:{rest}]"),
+        "pickup" => "Pick up".into(),
+        "dropoff" => "Drop Off".into(),
+        "clean" => "Clean".into(),
+        _ => detail.into(),
+    }
+}
+
+/// One RMF phase per phase of the task (ids from 1), each with one event: `completed`
+/// once done, the task's status for the phase it ended in or is under way in; phases not
+/// reached have no times and no event and are `pending`.
+fn phases(s: &mut Map<String, Value>, t: &TaskReport, start: i64) {
+    if t.phases.is_empty() {
+        return;
+    }
+    let (mut phases, mut completed, mut active, mut pending) =
+        (Map::new(), Vec::new(), None, Vec::new());
+    for (k, p) in t.phases.iter().enumerate() {
+        let id = k + 1;
+        let category = phase_category(&p.detail);
+        let mut phase = Map::new();
+        phase.insert("id".into(), json!(id));
+        phase.insert("category".into(), json!(category));
+        phase.insert("detail".into(), json!(p.detail));
+        if let Some(a) = p.started {
+            phase.insert("unix_millis_start_time".into(), json!(millis(start, a)));
+        }
+        if let Some(f) = p.finished {
+            phase.insert("unix_millis_finish_time".into(), json!(millis(start, f)));
+        }
+        let status = match p.result.as_str() {
+            "completed" => "completed",
+            "failed" => "failed",
+            "cancelled" => "canceled",
+            "unfinished" => "underway",
+            _ => "",
+        };
+        match status {
+            "" => pending.push(id),
+            "underway" => active = Some(id),
+            _ => completed.push(id),
+        }
+        if !status.is_empty() {
+            phase.insert("final_event_id".into(), json!(0));
+            phase.insert(
+                "events".into(),
+                json!({"0": {"id": 0, "status": status, "name": category, "detail": p.detail}}),
+            );
+        }
+        phases.insert(id.to_string(), Value::Object(phase));
+    }
+    s.insert("phases".into(), Value::Object(phases));
+    s.insert("completed".into(), json!(completed));
+    if let Some(a) = active {
+        s.insert("active".into(), json!(a));
+    }
+    s.insert("pending".into(), json!(pending));
 }
 
 /// A `fleet_state_update` of a fleet state the fleet layer published at `t`.
@@ -205,4 +242,78 @@ pub fn fleet_state_update(f: &FleetState, t: f64, start_unix_millis: i64) -> Val
         );
     }
     json!({"type": "fleet_state_update", "data": {"name": f.name, "robots": robots}})
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::report::PhaseReport;
+
+    fn phase(
+        detail: &str,
+        started: Option<f64>,
+        finished: Option<f64>,
+        result: &str,
+    ) -> PhaseReport {
+        PhaseReport {
+            detail: detail.into(),
+            started,
+            finished,
+            result: result.into(),
+        }
+    }
+
+    /// A failed task: the phase it failed in is `failed` and among the completed ones;
+    /// the ones not reached are pending, without times or events. A task under way at the
+    /// end: its phase under way is the active one.
+    #[test]
+    fn phases_say_where_the_task_ended() {
+        let mut t = TaskReport {
+            id: "delivery_0".into(),
+            category: "delivery".into(),
+            started: Some(2.0),
+            finished: Some(15.0),
+            result: "failed".into(),
+            phases: vec![
+                phase("go_to_place a", Some(2.0), Some(10.0), "completed"),
+                phase("pickup at a from d", Some(10.0), Some(15.0), "failed"),
+                phase("go_to_place b", None, None, "pending"),
+                phase("dropoff at b into i", None, None, "pending"),
+            ],
+            ..TaskReport::default()
+        };
+        let s = task_state(&t, None, 1000);
+        assert_eq!(s["status"], "failed");
+        assert_eq!(s["completed"], json!([1, 2]));
+        assert_eq!(s["pending"], json!([3, 4]));
+        assert!(s.get("active").is_none());
+        let p = &s["phases"];
+        assert_eq!(p["1"]["category"], "Go to [place:a]");
+        assert_eq!(p["1"]["unix_millis_start_time"], 3000);
+        assert_eq!(p["1"]["unix_millis_finish_time"], 11000);
+        assert_eq!(p["1"]["events"]["0"]["status"], "completed");
+        assert_eq!(p["2"]["category"], "Pick up");
+        assert_eq!(p["2"]["unix_millis_finish_time"], 16000);
+        assert_eq!(p["2"]["events"]["0"]["status"], "failed");
+        assert_eq!(p["2"]["final_event_id"], 0);
+        assert_eq!(p["4"]["category"], "Drop Off");
+        assert_eq!(
+            p["3"],
+            json!({"id": 3, "category": "Go to [place:b]", "detail": "go_to_place b"})
+        );
+        // Under way when the run ended.
+        t.result = "unfinished".into();
+        t.finished = None;
+        t.phases[1] = phase("pickup at a from d", Some(10.0), None, "unfinished");
+        let s = task_state(&t, None, 1000);
+        assert_eq!(s["status"], "underway");
+        assert_eq!(s["completed"], json!([1]));
+        assert_eq!(s["active"], 2);
+        assert_eq!(s["pending"], json!([3, 4]));
+        assert_eq!(s["phases"]["2"]["events"]["0"]["status"], "underway");
+        assert!(s["phases"]["2"].get("unix_millis_finish_time").is_none());
+        // Never started: no phases.
+        let q = task_state(&TaskReport::default(), None, 0);
+        assert!(q.get("phases").is_none() && q.get("completed").is_none());
+    }
 }
