@@ -337,14 +337,15 @@ fn capacity_svg_draws_the_mean_over_seeds_against_robots() {
             quick_xml::events::Event::Eof => break,
             quick_xml::events::Event::Start(e) | quick_xml::events::Event::Empty(e) => {
                 if e.name().as_ref() == b"polyline" {
-                    let pts = e
-                        .try_get_attribute("points")
-                        .unwrap()
-                        .unwrap()
-                        .unescape_value()
-                        .unwrap()
-                        .into_owned();
-                    polylines.push(pts);
+                    let attr = |k: &str| {
+                        e.try_get_attribute(k)
+                            .unwrap()
+                            .unwrap()
+                            .unescape_value()
+                            .unwrap()
+                            .into_owned()
+                    };
+                    polylines.push((attr("class"), attr("points")));
                 }
                 in_title = e.name().as_ref() == b"title";
             }
@@ -355,14 +356,27 @@ fn capacity_svg_draws_the_mean_over_seeds_against_robots() {
             _ => {}
         }
     }
-    assert_eq!(polylines.len(), 1, "{svg}");
-    let pts: Vec<(f64, f64)> = polylines[0]
-        .split(' ')
-        .map(|p| {
-            let (x, y) = p.split_once(',').unwrap();
-            (x.parse().unwrap(), y.parse().unwrap())
-        })
-        .collect();
+    // The mean line, and the dashed throughput bound above it.
+    assert_eq!(polylines.len(), 2, "{svg}");
+    let points = |class: &str| -> Vec<(f64, f64)> {
+        let (_, pts) = polylines.iter().find(|(c, _)| c == class).unwrap();
+        pts.split(' ')
+            .map(|p| {
+                let (x, y) = p.split_once(',').unwrap();
+                (x.parse().unwrap(), y.parse().unwrap())
+            })
+            .collect()
+    };
+    let pts = points("mean");
+    let bound = points("bound");
+    assert_eq!(bound.len(), 3);
+    for (b, m) in bound.iter().zip(&pts) {
+        assert_eq!(b.0, m.0);
+        assert!(
+            b.1 <= m.1,
+            "the bound is drawn below the throughput: {bound:?} {pts:?}"
+        );
+    }
     assert_eq!(pts.len(), 3);
     assert!(pts[0].0 < pts[1].0 && pts[1].0 < pts[2].0, "{pts:?}");
     // Equal x steps for 1, 2, 3 robots.

@@ -7,7 +7,9 @@
 //! numeric axis other than `seed`. The knee is found with Kneedle
 //! (Satopää et al., 2011): on the curve scaled to the unit square, the point farthest above
 //! the chord from the first to the last point; a curve that stays within 0.1 of its chord
-//! has no knee (throughput still grows in proportion).
+//! has no knee (throughput still grows in proportion). A dashed line in the same colour is
+//! the reports' throughput bound (the mean over seeds of `bound_per_hour`): what no planning
+//! could beat with that building, fleet and task mix (sim.md, Throughput bound).
 
 use super::collect::{PlanFile, Row};
 use mapc_backends::svg::Svg;
@@ -26,6 +28,8 @@ struct Point {
     mean: f64,
     min: f64,
     max: f64,
+    /// The mean throughput bound of the runs there, when they have one.
+    bound: Option<f64>,
 }
 
 struct Series {
@@ -36,6 +40,8 @@ struct Series {
     saturates: Option<(String, f64)>,
     /// All task waiting there by cause, largest first (shares).
     causes: Vec<(String, f64)>,
+    /// What sets the throughput bound of the runs at the largest x (most of them).
+    bound_by: Option<String>,
 }
 
 /// The report's waits by cause: (results.csv column, name).
@@ -142,12 +148,18 @@ pub(crate) fn capacity(plan: &PlanFile, rows: &[Row]) -> Option<Chart> {
                 let mean = ys.iter().sum::<f64>() / ys.len().max(1) as f64;
                 let min = ys.iter().copied().fold(f64::INFINITY, f64::min);
                 let max = ys.iter().copied().fold(f64::NEG_INFINITY, f64::max);
+                let bounds: Vec<f64> = rs
+                    .iter()
+                    .filter_map(|r| r.number("bound_per_hour"))
+                    .collect();
                 Point {
                     x: f64::from_bits(bits),
                     ys,
                     mean,
                     min,
                     max,
+                    bound: (!bounds.is_empty())
+                        .then(|| bounds.iter().sum::<f64>() / bounds.len() as f64),
                 }
             })
             .collect();
@@ -180,6 +192,16 @@ pub(crate) fn capacity(plan: &PlanFile, rows: &[Row]) -> Option<Chart> {
                 }
             }
         }
+        let mut by: BTreeMap<&str, usize> = BTreeMap::new();
+        for r in by_x.values().next_back().into_iter().flatten() {
+            if let Some(b) = r.text("bound_limited_by") {
+                *by.entry(b).or_default() += 1;
+            }
+        }
+        let bound_by = by
+            .into_iter()
+            .max_by(|a, b| a.1.cmp(&b.1).then(b.0.cmp(a.0)))
+            .map(|(b, _)| b.to_string());
         let saturates = waits
             .into_iter()
             .max_by(|a, b| a.1.total_cmp(&b.1).then(b.0.cmp(&a.0)))
@@ -203,6 +225,7 @@ pub(crate) fn capacity(plan: &PlanFile, rows: &[Row]) -> Option<Chart> {
                 .into_iter()
                 .map(|(c, f)| (c.to_string(), f))
                 .collect(),
+            bound_by,
         });
     }
     let seeds = rows.iter().filter(|r| r.numbers.is_some()).count().max(1);
@@ -228,17 +251,18 @@ fn summary(series: &[Series], x_label: &str, per_point: usize) -> String {
         );
         let _ = writeln!(
             s,
-            "  {:>8}  {:>9}  {:>9}  {:>9}",
-            x_label, "mean", "min", "max"
+            "  {:>8}  {:>9}  {:>9}  {:>9}  {:>9}",
+            x_label, "mean", "min", "max", "bound"
         );
         for p in &se.points {
             let _ = writeln!(
                 s,
-                "  {:>8}  {:>9.2}  {:>9.2}  {:>9.2}",
+                "  {:>8}  {:>9.2}  {:>9.2}  {:>9.2}  {:>9}",
                 fmt_x(p.x),
                 p.mean,
                 p.min,
-                p.max
+                p.max,
+                p.bound.map_or("-".to_string(), |b| format!("{b:.2}"))
             );
         }
         match se.knee {
@@ -272,6 +296,13 @@ fn summary(series: &[Series], x_label: &str, per_point: usize) -> String {
                     .map(|(c, f)| format!("{c} {:.0} %", 100.0 * f))
                     .collect();
                 let _ = writeln!(s, "  task waiting there by cause: {}", by.join(", "));
+                if let (Some(by), Some(b)) = (&se.bound_by, se.points.last().and_then(|p| p.bound))
+                {
+                    let _ = writeln!(
+                        s,
+                        "  throughput bound at the largest fleet: {b:.2} tasks/h, set by {by}"
+                    );
+                }
             }
             None => {
                 let _ = writeln!(s, "; no task waited");
@@ -327,7 +358,7 @@ fn draw(series: &[Series], x_label: &str, per_point: usize) -> String {
     for p in all {
         x0 = x0.min(p.x);
         x1 = x1.max(p.x);
-        y1 = y1.max(p.max);
+        y1 = y1.max(p.max).max(p.bound.unwrap_or(0.0));
     }
     if x1 <= x0 {
         x0 -= 1.0;
@@ -364,7 +395,9 @@ fn draw(series: &[Series], x_label: &str, per_point: usize) -> String {
     s.leaf(
         "text",
         &[("x", &left), ("y", &42), ("fill", &"#555")],
-        &format!("line: mean over {per_point} run(s) per point (seeds); band: min to max"),
+        &format!(
+            "line: mean over {per_point} run(s) per point (seeds); band: min to max; dashed: throughput bound"
+        ),
     );
     // Grid and axes.
     s.begin("g", &[("class", &"axes"), ("stroke", &"#ccc")]);
@@ -474,6 +507,24 @@ fn draw(series: &[Series], x_label: &str, per_point: usize) -> String {
                     ("fill", &c),
                     ("fill-opacity", &0.18),
                     ("stroke", &"none"),
+                ],
+            );
+        }
+        let bound: Vec<String> = se
+            .points
+            .iter()
+            .filter_map(|p| Some(format!("{:.1},{:.1}", sx(p.x), sy(p.bound?))))
+            .collect();
+        if !bound.is_empty() {
+            s.empty(
+                "polyline",
+                &[
+                    ("class", &"bound"),
+                    ("points", &bound.join(" ")),
+                    ("fill", &"none"),
+                    ("stroke", &c),
+                    ("stroke-width", &1.5),
+                    ("stroke-dasharray", &"6 4"),
                 ],
             );
         }
@@ -620,6 +671,13 @@ fn draw(series: &[Series], x_label: &str, per_point: usize) -> String {
                 .collect();
             small(&mut s, ly, &format!("waiting: {}", by.join(", ")));
             ly += 16.0;
+        }
+        if let (Some(by), Some(p)) = (&se.bound_by, se.points.last()) {
+            if let Some(b) = p.bound {
+                let text = format!("bound at {}: {b:.1} tasks/h, set by {by}", fmt_x(p.x));
+                small(&mut s, ly, &text);
+                ly += 16.0;
+            }
         }
         ly += 8.0;
     }
