@@ -1248,6 +1248,7 @@ mod tests {
             needed: Vec::new(),
             warnings: Vec::new(),
             parks: Default::default(),
+            finishes: Vec::new(),
         };
         ReportBuilder::new(&building, &scenario, &placement)
     }
@@ -1751,6 +1752,7 @@ mod sweep_tests {
             needed: Vec::new(),
             warnings: Vec::new(),
             parks: Default::default(),
+            finishes: Vec::new(),
         };
         let mut b = ReportBuilder::new(&building, &scenario.unwrap(), &placement);
         let mut rng = fastrand::Rng::with_seed(11);

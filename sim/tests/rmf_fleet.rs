@@ -11,7 +11,9 @@ fn run(dir: &Path, text: &str, map: &Path) -> (Report, Vec<Value>) {
     let (scenario, diags) = parse_scenario(mapc_ir::FileId(0), text, dir);
     let scenario = scenario.unwrap_or_else(|| panic!("{diags:#?}"));
     let map = mapc_frontend::load(map).expect("map");
-    let building = map.valid_building().expect("valid map");
+    let building = map
+        .valid_building()
+        .unwrap_or_else(|| panic!("invalid map: {:#?}", map.diagnostics));
     let mut trace = Vec::new();
     let report = simulate(
         building,
@@ -194,4 +196,135 @@ fn battery_drain_follows_rmf_battery_by_hand() {
         (got - want).abs() < 0.01 * want,
         "ΔSoC {got} vs {want} by hand ({t} s, {d} m)"
     );
+}
+
+/// Per robot, its last RobotState: (x, y, mode, battery percent).
+fn last_states(trace: &[Value]) -> std::collections::BTreeMap<String, [f64; 4]> {
+    let mut out = std::collections::BTreeMap::new();
+    for v in trace {
+        let m = &v["msg"];
+        let l = &m["location"];
+        let now = [
+            l["x"].as_f64().unwrap(),
+            l["y"].as_f64().unwrap(),
+            m["mode"]["mode"].as_f64().unwrap(),
+            m["battery_percent"].as_f64().unwrap(),
+        ];
+        out.insert(m["name"].as_str().unwrap().to_string(), now);
+    }
+    out
+}
+
+/// A scenario on fixtures/rmf/finishing.building.yaml with the fleet of `config` and
+/// `tasks`, run for `duration`.
+fn run_finishing(config: &str, count: usize, tasks: &str, duration: &str) -> (Report, Vec<Value>) {
+    let dir = fixtures().join("rmf");
+    let text = format!(
+        "map: finishing.building.yaml\nseed: 1\nduration: {duration}\nfleets:\n  - {{config: {config}, graph: 0, count: {count}}}\ntasks:\n{tasks}"
+    );
+    run(&dir, &text, &dir.join("finishing.building.yaml"))
+}
+
+fn completed(report: &Report) -> usize {
+    report
+        .tasks
+        .iter()
+        .filter(|t| t.result == "completed")
+        .count()
+}
+
+fn at(s: &[f64; 4], x: f64, y: f64) -> bool {
+    (s[0] - x).hypot(s[1] - y) < 0.1
+}
+
+#[test]
+fn charge_and_park_finishing_requests_end_at_the_robots_spots() {
+    // bot_1 (`charge`, the fleet's) starts at charger_1 (5, -4), bot_2 (`park` at
+    // park_spot, its own) at charger_2 (15, -4); one loop each to the far ends.
+    let (report, trace) = run_finishing(
+        "finishing_config.yaml",
+        2,
+        "  - {at: 0, loop: {start: east_end, finish: west_end, loops: 1}}\n  - {at: 0, loop: {start: west_end, finish: east_end, loops: 1}}\n",
+        "10min",
+    );
+    assert_eq!(completed(&report), 2, "{:#?}", report.tasks);
+    let s = last_states(&trace);
+    let soc = |n: &str| {
+        report
+            .robots
+            .iter()
+            .find(|r| r.name == n)
+            .unwrap()
+            .battery_soc
+    };
+    let b1 = s["bot_1"];
+    // Back on its charger, charging (robot_mode CHARGING = 1): its battery is full again
+    // (20 W for 10 min alone is 1.2 % of its 288 Wh).
+    assert!(at(&b1, 5.0, -4.0), "bot_1 ends at {b1:?}");
+    assert_eq!(b1[2], 1.0, "bot_1's mode");
+    assert!(soc("bot_1") > 0.9999, "bot_1's battery {}", soc("bot_1"));
+    // On its parking spot (10, 4), which is no charger: idle, its battery drained.
+    let b2 = s["bot_2"];
+    assert!(at(&b2, 10.0, 4.0), "bot_2 ends at {b2:?}");
+    assert_ne!(b2[2], 1.0, "bot_2's mode");
+    assert!(soc("bot_2") < 0.99, "bot_2's battery {}", soc("bot_2"));
+}
+
+#[test]
+fn nothing_stays_on_a_dead_end_place_no_route_needs() {
+    // bay_e (15, 4) is a dead end beside the corridor: the robot stays there. (Without a
+    // config it would drive on to the nearest parking vertex, east_end.)
+    let (report, trace) = run_finishing(
+        "nothing_config.yaml",
+        1,
+        "  - {at: 0, loop: {start: west_end, finish: bay_e, loops: 1}}\n",
+        "10min",
+    );
+    assert_eq!(completed(&report), 1, "{:#?}", report.tasks);
+    let b1 = last_states(&trace)["bot_1"];
+    assert!(at(&b1, 15.0, 4.0), "bot_1 ends at {b1:?}");
+}
+
+#[test]
+fn nothing_moves_off_a_corridor_place_others_need() {
+    // `middle` (10, 0) is the only way between the corridor's halves: the robot whose
+    // task ends there moves off, and the other's loops through it all complete.
+    let (report, trace) = run_finishing(
+        "nothing_config.yaml",
+        2,
+        "  - {at: 0, loop: {start: bay_w, finish: middle, loops: 1}}\n  - {at: 0, loop: {start: west_end, finish: east_end, loops: 3}}\n  - {at: 4min, loop: {start: east_end, finish: west_end, loops: 2}}\n",
+        "20min",
+    );
+    assert_eq!(completed(&report), 3, "{:#?}", report.tasks);
+    let s = last_states(&trace);
+    for (name, b) in &s {
+        assert!(!at(b, 10.0, 0.0), "{name} ends on `middle`: {b:?}");
+    }
+    assert!(report.stuck.is_empty(), "{:#?}", report.stuck);
+}
+
+#[test]
+fn a_parking_spot_on_a_corridor_is_refused_with_a_warning() {
+    // bot_1 asks to park on `middle`: a robot standing there would cut the corridor, so
+    // it parks where no route needs it, and the report says why (S0210).
+    let (report, trace) = run_finishing(
+        "corridor_park_config.yaml",
+        1,
+        "  - {at: 0, loop: {start: west_end, finish: east_end, loops: 1}}\n",
+        "10min",
+    );
+    assert_eq!(completed(&report), 1, "{:#?}", report.tasks);
+    let w: Vec<_> = report
+        .warnings
+        .iter()
+        .filter(|w| w.code == "S0210" && w.message.contains("`bot_1`"))
+        .collect();
+    assert_eq!(w.len(), 1, "{:#?}", report.warnings);
+    assert!(
+        w[0].message.contains("`middle`") && w[0].message.contains("only way to"),
+        "{}",
+        w[0].message
+    );
+    let b1 = last_states(&trace)["bot_1"];
+    assert!(!at(&b1, 10.0, 0.0), "bot_1 ends on `middle`: {b1:?}");
 }

@@ -296,17 +296,24 @@ impl Fleets {
                     failed = true;
                     continue;
                 }
-                let q = Query {
-                    robot: ri,
-                    slot: f.slot,
-                    kin: f.kin,
-                    from,
-                    t0,
-                    goals: &goals,
-                    parks: &self.parks.per_slot[f.slot],
-                    stay,
-                };
-                let Some(plan) = self.planner.plan(&self.nav, &self.sched, &q) else {
+                let mut found = None;
+                for (own, stay) in self.ends(ri, &goals, from, stay) {
+                    let q = Query {
+                        robot: ri,
+                        slot: f.slot,
+                        kin: f.kin,
+                        from,
+                        t0,
+                        goals: &goals,
+                        parks: own.as_deref().unwrap_or(&self.parks.per_slot[f.slot]),
+                        stay,
+                    };
+                    found = self.planner.plan(&self.nav, &self.sched, &q);
+                    if found.is_some() {
+                        break;
+                    }
+                }
+                let Some(plan) = found else {
                     failed = true;
                     continue;
                 };

@@ -44,7 +44,8 @@ mod task;
 mod traffic;
 mod waits;
 
-use park::{choose_parks, well_formed_warnings};
+pub(crate) use park::Finish;
+use park::{choose_parks, finish_of, well_formed_warnings};
 use traffic::NoPlan;
 
 /// Diagnostic codes of scenario/map mismatches.
@@ -98,6 +99,9 @@ pub struct Placement {
     pub warnings: Vec<Diagnostic>,
     /// Where robots may stand for good.
     pub(crate) parks: Parks,
+    /// Per robot (as `robots`): what it does when it has no more tasks (default
+    /// [`Finish::Park`]).
+    pub(crate) finishes: Vec<Finish>,
 }
 
 #[derive(Debug, Clone, PartialEq)]
@@ -199,6 +203,9 @@ struct Robot {
     reached_at: f64,
     /// Not on a parking vertex yet (a spawn elsewhere): plans its way there when idle.
     park_pending: bool,
+    /// What it does when it has no more tasks (its fleet adapter config's
+    /// `finishing_request`).
+    finish: Finish,
     /// What it waits for now (cause, place, since) and the waits of its current task.
     waiting_for: Option<(WaitCause, waits::Place, f64)>,
     waits: TaskWaits,

@@ -3,7 +3,176 @@
 //! (`crate::traffic::parks`), and the warning for task waypoints that cut the graph.
 
 use super::*;
-use crate::traffic::parks::{self, Needs};
+use crate::scenario::{Finishing, RequestKind};
+use crate::traffic::parks::{self, Needs, PARK_HOME};
+
+/// What a robot does when it has no more tasks: its fleet adapter config's
+/// `finishing_request` (the robot's own, else its fleet's), as mapc can do it without
+/// giving up that an idle robot blocks no route.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub(crate) enum Finish {
+    /// Plans end on the nearest free parking vertex (fleets without a config, and robots
+    /// whose requested spot would be in the way).
+    #[default]
+    Park,
+    /// Plans end at this vertex (its charger, or its parking spot), a [`PARK_HOME`]; the
+    /// nearest free parking vertex when another robot holds it or it cannot be reached.
+    Home(usize),
+    /// `nothing`: the robot stays where its last task ended when that vertex is a parking
+    /// vertex of any kind (a task place that is a [`PARK_HOME`]: no route needs it), else as
+    /// [`Finish::Park`].
+    Stay,
+}
+
+/// What robot `k` of fleet `fi` asks for when it has no more tasks (unchecked: a home is
+/// the vertex it names), and the name of the vertex.
+pub(super) fn wanted_finish(
+    nav: &Nav,
+    scenario: &Scenario,
+    fi: usize,
+    k: usize,
+) -> (Finish, Option<String>) {
+    let f = &scenario.fleets[fi];
+    let (Some(rmf), Some(slot)) = (f.rmf.as_ref(), nav.slot(f.graph)) else {
+        return (Finish::Park, None);
+    };
+    let robot = rmf.robots.get(k);
+    let request = robot
+        .and_then(|r| r.finishing_request.clone())
+        .unwrap_or_else(|| rmf.finishing_request.clone());
+    let charger = robot.and_then(|r| r.charger.clone());
+    // RMF's `park` without a waypoint (rmf_task's ParkRobotFactory) returns the robot to
+    // its charging waypoint and leaves it idle there.
+    let name = match request {
+        Finishing::Nothing => return (Finish::Stay, None),
+        Finishing::Charge | Finishing::Park(None) => charger,
+        Finishing::Park(Some(wp)) => Some(wp),
+    };
+    match name.as_deref().and_then(|n| nav.find(slot, n)) {
+        Some(v) => (Finish::Home(v), name),
+        None => (Finish::Park, name),
+    }
+}
+
+/// The vertices asked for as [`PARK_HOME`]s, in order: the homes of the config fleets'
+/// robots, their chargers, then the task places on the graphs of fleets with robots that
+/// stay where their tasks end. Empty without fleet adapter configs.
+fn wanted_homes(nav: &Nav, scenario: &Scenario) -> Vec<(usize, usize)> {
+    let mut homes = Vec::new();
+    let mut stay_slots = Vec::new();
+    for (fi, f) in scenario.fleets.iter().enumerate() {
+        let (Some(_), Some(slot)) = (f.rmf.as_ref(), nav.slot(f.graph)) else {
+            continue;
+        };
+        for k in 0..f.count {
+            match wanted_finish(nav, scenario, fi, k).0 {
+                Finish::Home(v) if !homes.contains(&(slot, v)) => homes.push((slot, v)),
+                Finish::Stay if !stay_slots.contains(&slot) => stay_slots.push(slot),
+                _ => {}
+            }
+        }
+    }
+    // Then their chargers, where they start: they wait there for their first task.
+    for f in &scenario.fleets {
+        let (Some(rmf), Some(slot)) = (f.rmf.as_ref(), nav.slot(f.graph)) else {
+            continue;
+        };
+        for r in rmf.robots.iter().take(f.count) {
+            if let Some(v) = r.charger.as_deref().and_then(|n| nav.find(slot, n)) {
+                if !homes.contains(&(slot, v)) {
+                    homes.push((slot, v));
+                }
+            }
+        }
+    }
+    let requested = scenario.requests.iter().filter_map(|r| match &r.what {
+        RequestKind::Task(t) => Some(&t.kind),
+        _ => None,
+    });
+    let kinds: Vec<&TaskKind> = task_kinds(scenario).map(|k| k.0).chain(requested).collect();
+    for &slot in &stay_slots {
+        for kind in &kinds {
+            for name in kind.places() {
+                if let Some(v) = nav.find(slot, name) {
+                    if !homes.contains(&(slot, v)) {
+                        homes.push((slot, v));
+                    }
+                }
+            }
+        }
+    }
+    homes
+}
+
+/// Robot `k` of fleet `fi`'s finish once the parking vertices are chosen, and a warning
+/// when the spot it asks for would be in the way (S0210): it then parks as robots without
+/// a config do.
+pub(super) fn finish_of(
+    nav: &Nav,
+    conf: &Conflicts,
+    parks: &Parks,
+    scenario: &Scenario,
+    (fi, k): (usize, usize),
+    robot: &str,
+) -> (Finish, Option<Diagnostic>) {
+    let (want, name) = wanted_finish(nav, scenario, fi, k);
+    let f = &scenario.fleets[fi];
+    let Finish::Home(v) = want else {
+        return (want, None);
+    };
+    let Some(slot) = nav.slot(f.graph) else {
+        return (Finish::Park, None);
+    };
+    if parks.per_slot[slot][v] == PARK_HOME {
+        return (want, None);
+    }
+    let span = f
+        .rmf
+        .as_ref()
+        .and_then(|r| r.robots.get(k))
+        .map_or(f.span, |r| r.span);
+    let name = name.unwrap_or_default();
+    let mut of: Vec<usize> = nav.members[slot]
+        .iter()
+        .copied()
+        .filter(|&w| parks.per_slot[slot][w] != 0 || nav.vertices[w].roles.is_charger)
+        .collect();
+    of.extend(
+        task_kinds(scenario)
+            .flat_map(|(k, _, _)| k.places())
+            .filter_map(|n| nav.find(slot, n)),
+    );
+    of.sort_unstable();
+    of.dedup();
+    let cut = parks::cut_by(nav, conf, slot, v, &of);
+    let why = if cut.is_empty() {
+        "a robot standing there for good would be in the way of a task place, a charger, another robot's spot or a lift".to_string()
+    } else {
+        let names: Vec<String> = cut
+            .iter()
+            .take(5)
+            .map(|&w| format!("`{}`", nav.vertices[w].name))
+            .collect();
+        format!(
+            "it is the only way to {}{}",
+            names.join(", "),
+            if cut.len() > 5 {
+                format!(" and {} more", cut.len() - 5)
+            } else {
+                String::new()
+            }
+        )
+    };
+    let d = Diagnostic::warning(
+        codes::NOT_WELL_FORMED,
+        span,
+        format!(
+            "robot `{robot}` would stay at `{name}` when it has no more tasks, but {why}: it parks where no route needs it instead"
+        ),
+    )
+    .with_help("give it a charger or parking spot off the corridors (a dead end beside them)");
+    (Finish::Park, Some(d))
+}
 
 /// Every task kind of the scenario (tasks and generators), with its fleet and span.
 fn task_kinds(scenario: &Scenario) -> impl Iterator<Item = (&TaskKind, &Option<String>, Span)> {
@@ -60,6 +229,7 @@ pub(super) fn choose_parks(
     // Task places, chargers and named spawns may be parking vertices of the second kind.
     let places = required_of(nav, scenario, spawns, true);
     let want: Vec<usize> = robots.iter().map(|&n| 2 * n + 4).collect();
+    let homes = wanted_homes(nav, scenario);
     parks::choose(
         nav,
         conf,
@@ -67,6 +237,7 @@ pub(super) fn choose_parks(
             required: &req,
             places: &places,
             want: &want,
+            homes: &homes,
         },
     )
 }

@@ -130,6 +130,7 @@ impl Fleets {
             explicit[a.fleet] = Some(vs.into_iter().map(|v| (v, None)).collect());
         }
         let mut warnings = well_formed_warnings(&nav, &conf, scenario);
+        let mut finishes = Vec::new();
         for (fi, f) in scenario.fleets.iter().enumerate() {
             let (Some(chosen), Some(slot)) = (explicit[fi].take(), nav.slot(f.graph)) else {
                 continue;
@@ -180,6 +181,17 @@ impl Fleets {
                 );
             }
             for (i, (v, name)) in chosen.into_iter().enumerate() {
+                let robot_name = f
+                    .rmf
+                    .as_ref()
+                    .and_then(|r| r.robots.get(i))
+                    .map(|r| r.name.clone())
+                    .or_else(|| name.clone())
+                    .unwrap_or_else(|| format!("{}_{i}", f.name));
+                let (finish, warning) =
+                    finish_of(&nav, &conf, &parks, scenario, (fi, i), &robot_name);
+                finishes.push(finish);
+                warnings.extend(warning);
                 let nv = &nav.vertices[v];
                 // A fleet config's robots are named as in the config.
                 let own = f
@@ -245,6 +257,7 @@ impl Fleets {
             needed: Vec::new(),
             warnings,
             parks,
+            finishes,
         })
     }
 
@@ -286,7 +299,12 @@ impl Fleets {
                 kinds: f.task_kinds.clone(),
                 robots: Vec::new(),
             };
-            for spawn in placement.robots.iter().filter(|s| s.fleet == f.name) {
+            for (si, spawn) in placement
+                .robots
+                .iter()
+                .enumerate()
+                .filter(|(_, s)| s.fleet == f.name)
+            {
                 let at = nav.members[slot].iter().copied().find(|&v| {
                     let nv = &nav.vertices[v];
                     nv.level == spawn.level && (nv.pos.x - spawn.x).hypot(nv.pos.y - spawn.y) < 1e-6
@@ -335,6 +353,7 @@ impl Fleets {
                     task_started: 0.0,
                     reached_at: 0.0,
                     park_pending: false,
+                    finish: placement.finishes.get(si).copied().unwrap_or_default(),
                     waiting_for: None,
                     waits: TaskWaits::default(),
                 });
@@ -484,7 +503,12 @@ impl Fleets {
         // A robot that does not start on a parking vertex drives to one first.
         let parks = placement.parks.clone();
         for r in robots.iter_mut() {
-            r.park_pending = parks.per_slot[r.slot][r.at] == 0;
+            // (A config's robot starting on its charger waits there for its first task
+            // when the charger is in nobody's way: it is then a parking vertex of its own.)
+            r.park_pending = match r.finish {
+                Finish::Home(h) => r.at != h && parks.per_slot[r.slot][r.at] == 0,
+                _ => parks.per_slot[r.slot][r.at] == 0,
+            };
         }
         let starts: Vec<usize> = robots.iter().map(|r| r.at).collect();
         let planner = Planner::new(&nav);

@@ -9,7 +9,7 @@
 //! schedule's order, and that order is acyclic: waits end.
 
 use super::*;
-use crate::traffic::parks::PARK_ON_PLACE;
+use crate::traffic::parks::{PARK, PARK_ON_PLACE};
 use crate::traffic::sipp::{Plan, Query};
 use crate::traffic::Res;
 
@@ -17,6 +17,13 @@ use crate::traffic::Res;
 const REPLAN_AFTER: f64 = 2.0;
 /// A waiting robot whose turn is put off by more than this (s) plans again.
 const REPLAN_DELAY: f64 = 30.0;
+/// A robot made to leave its home (`Finish::Home`) while idle tries to go back after this
+/// long (s).
+const HOME_AGAIN: f64 = 60.0;
+
+/// Where a plan may end, tried in order by [`Fleets::ends`]: parking vertices of the
+/// robot's own (None: the graph's), and a vertex where it may stay.
+pub(super) type End = (Option<Vec<u8>>, Option<usize>);
 
 /// Why a leg could not be planned.
 pub(super) enum NoPlan {
@@ -66,6 +73,35 @@ impl Fleets {
             .and_then(|ti| self.tasks.get(ti))
             .is_some_and(|tk| matches!(tk.kind, TaskKind::GoToPlace { .. }));
         (go_to && r.steps.iter().all(|s| !matches!(s, Step::GoTo(_)))).then_some(last)
+    }
+
+    /// Where robot `i`'s plan to `goals` from `from` may end, in order of preference:
+    /// `stay` (a go-to-place's place) and the graph's parking vertices for robots without
+    /// a config; its home first for a robot with one ([`Finish::Home`]); the vertex its
+    /// last goal is (or `from`) when it stays where its task ends and that vertex is a
+    /// parking vertex nobody has as a home ([`Finish::Stay`]).
+    pub(super) fn ends(
+        &self,
+        i: usize,
+        goals: &[(usize, f64)],
+        from: usize,
+        stay: Option<usize>,
+    ) -> Vec<End> {
+        let r = &self.robots[i];
+        match r.finish {
+            Finish::Park => vec![(None, stay)],
+            Finish::Home(h) => {
+                let mut only = vec![0u8; self.nav.vertices.len()];
+                only[h] = PARK;
+                vec![(Some(only), None), (None, stay)]
+            }
+            Finish::Stay => {
+                let last = goals.last().map_or(from, |g| g.0);
+                let free = self.parks.per_slot[r.slot][last] != 0
+                    && !self.robots.iter().any(|o| o.finish == Finish::Home(last));
+                vec![(None, if free { Some(last) } else { stay })]
+            }
+        }
     }
 
     /// Installs `plan` as robot `i`'s itinerary after its first `keep` traversals, and
@@ -216,7 +252,14 @@ impl Fleets {
                 if leg {
                     self.robots[o].leg = Some(l);
                 }
-                self.robots[o].dirty = true;
+                let r = &mut self.robots[o];
+                r.dirty = true;
+                if matches!(r.finish, Finish::Home(_)) && r.idle() {
+                    // Made to leave its home while idle: back there a while later.
+                    r.park_pending = true;
+                    r.replan_at = t + HOME_AGAIN;
+                    r.wake = r.wake.min(r.replan_at);
+                }
                 moved = true;
             }
         }
@@ -247,17 +290,31 @@ impl Fleets {
                 return Err(NoPlan::Unreachable);
             }
         }
-        let q = Query {
-            robot: i,
-            slot,
-            kin,
-            from,
-            t0,
-            goals,
-            parks: parks.unwrap_or(&self.parks.per_slot[slot]),
-            stay: self.stays_at(i, goals),
+        let stay = self.stays_at(i, goals);
+        let ends = match parks {
+            Some(_) => vec![(None, stay)],
+            None => self.ends(i, goals, from, stay),
         };
-        let found = self.planner.plan(&self.nav, &self.sched, &q);
+        let mut found = None;
+        for (own, stay) in &ends {
+            let q = Query {
+                robot: i,
+                slot,
+                kin,
+                from,
+                t0,
+                goals,
+                parks: own
+                    .as_deref()
+                    .or(parks)
+                    .unwrap_or(&self.parks.per_slot[slot]),
+                stay: *stay,
+            };
+            found = self.planner.plan(&self.nav, &self.sched, &q);
+            if found.is_some() {
+                break;
+            }
+        }
         let Some(plan) = found else {
             return Err(NoPlan::Busy);
         };

@@ -17,7 +17,8 @@ use petgraph::algo::tarjan_scc;
 use petgraph::graph::{DiGraph, NodeIndex};
 use petgraph::visit::EdgeFiltered;
 
-/// Per graph slot, per vertex: 0 not a parking vertex, [`PARK`], or [`PARK_ON_PLACE`].
+/// Per graph slot, per vertex: 0 not a parking vertex, [`PARK`], [`PARK_ON_PLACE`] or
+/// [`PARK_HOME`].
 #[derive(Debug, Clone, Default)]
 pub struct Parks {
     pub per_slot: Vec<Vec<u8>>,
@@ -28,6 +29,11 @@ pub const PARK: u8 = 1;
 /// A task place where a robot may also park (it cuts nothing), when the building has too
 /// few others: a robot parked there is sent elsewhere when a task needs the place.
 pub const PARK_ON_PLACE: u8 = 2;
+/// A vertex asked for by name ([`Needs::homes`]: a robot's own charger or parking spot, or
+/// a place where a robot may stay after its task) that keeps the building well-formed like
+/// any parking vertex. Not in the common pool: only the robots it was asked for end their
+/// plans there.
+pub const PARK_HOME: u8 = 3;
 
 /// Vertices a graph must keep reachable, and vertices that must not be parked on.
 pub struct Needs<'a> {
@@ -39,6 +45,10 @@ pub struct Needs<'a> {
     pub places: &'a [Vec<bool>],
     /// At most this many parking vertices per slot (enough for the robots and spares).
     pub want: &'a [usize],
+    /// (slot, vertex) asked for as [`PARK_HOME`]s, tried in this order before the slot's
+    /// other candidates (not counted in `want`). Empty for scenarios without fleet adapter
+    /// configs: then the choice is exactly as without them.
+    pub homes: &'a [(usize, usize)],
 }
 
 /// Undirected neighbours and the edges into each vertex, of one slot.
@@ -172,9 +182,24 @@ pub fn choose(nav: &Nav, conf: &Conflicts, needs: &Needs) -> Parks {
         };
         // Task places last, and only as many as still wanted.
         cands.sort_by_key(|&v| (place(v), class(v), v));
+        // Homes asked for first, on the same terms (but they may be required vertices).
+        let homes: Vec<(usize, bool)> = needs
+            .homes
+            .iter()
+            .filter(|&&(hs, v)| {
+                hs == s
+                    && Some(main[s][v]) == biggest
+                    && nav.vertices[v].carried_by.is_none()
+                    && nav.members[s].binary_search(&v).is_ok()
+            })
+            .map(|&(_, v)| (v, true))
+            .collect();
         let mut taken = 0;
-        for v in cands {
-            if taken >= want {
+        for (v, home) in homes
+            .into_iter()
+            .chain(cands.into_iter().map(|v| (v, false)))
+        {
+            if !home && taken >= want {
                 break;
             }
             let set: &[Res] = &conf.vertex[v];
@@ -272,8 +297,12 @@ pub fn choose(nav: &Nav, conf: &Conflicts, needs: &Needs) -> Parks {
             for &x in set {
                 held[x as usize] = true;
             }
-            parks.per_slot[s][v] = if place(v) { PARK_ON_PLACE } else { PARK };
             taken_parks.push(v);
+            if home {
+                parks.per_slot[s][v] = PARK_HOME;
+                continue;
+            }
+            parks.per_slot[s][v] = if place(v) { PARK_ON_PLACE } else { PARK };
             taken += 1;
         }
     }

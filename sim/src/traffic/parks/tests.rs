@@ -16,6 +16,7 @@ fn dead_ends_are_parks_and_corridors_are_not() {
             required: &none,
             places: &none,
             want: &[10],
+            homes: &[],
         },
     );
     let names: Vec<&str> = (0..n)
@@ -41,6 +42,7 @@ fn task_places_park_only_as_the_second_kind() {
             required: &places,
             places: &places,
             want: &[10],
+            homes: &[],
         },
     );
     assert_eq!(parks.per_slot[0][v(&nav, "a")], PARK_ON_PLACE);
@@ -53,6 +55,7 @@ fn task_places_park_only_as_the_second_kind() {
             required: &places,
             places: &places,
             want: &[1],
+            homes: &[],
         },
     );
     assert_eq!(one.per_slot[0].iter().filter(|&&p| p != 0).count(), 1);
@@ -69,4 +72,39 @@ fn a_robot_working_in_the_corridor_cuts_it() {
     assert!(!cut.is_empty());
     // Working at a (a dead end) cuts nothing.
     assert!(cut_by(&nav, &conf, 0, v(&nav, "a"), &places).is_empty());
+}
+
+#[test]
+fn homes_are_taken_first_where_they_cut_nothing() {
+    let nav = nav();
+    let conf = conflicts(&nav);
+    let n = nav.vertices.len();
+    // a and p1 are task places (a charger, a robot's parking spot, ...), asked for as homes
+    // with b (the corridor) and e (past a one-way lane: no way back).
+    let mut places = vec![vec![false; n]];
+    places[0][v(&nav, "a")] = true;
+    places[0][v(&nav, "p1")] = true;
+    let homes = [
+        (0, v(&nav, "b")),
+        (0, v(&nav, "a")),
+        (0, v(&nav, "p1")),
+        (0, v(&nav, "e")),
+    ];
+    let parks = choose(
+        &nav,
+        &conf,
+        &Needs {
+            required: &places,
+            places: &places,
+            want: &[10],
+            homes: &homes,
+        },
+    );
+    let kind = |x: &str| parks.per_slot[0][v(&nav, x)];
+    assert_eq!(
+        [kind("b"), kind("a"), kind("p1"), kind("e")],
+        [0, PARK_HOME, PARK_HOME, 0]
+    );
+    // The others as without homes, around them: d and p2 (b and c cut the corridor).
+    assert_eq!([kind("d"), kind("p2"), kind("c")], [PARK, PARK, 0]);
 }
