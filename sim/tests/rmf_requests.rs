@@ -324,6 +324,18 @@ fn cancel_requests_stop_queued_and_running_tasks() {
     let state = |id: &str| states.iter().find(|x| x["booking"]["id"] == id).unwrap();
     assert_eq!(state("loop_0")["status"], "canceled");
     assert_eq!(state("go_to_place_0")["status"], "canceled");
+    // RMF's record of the cancel request: when it came (unix ms, the run's start plus
+    // 1 min and 20 s) and its labels; a task that was not cancelled has none.
+    let t0 = rmf_states::start_unix_millis(&s);
+    assert_eq!(
+        state("loop_0")["cancellation"],
+        serde_json::json!({"unix_millis_request_time": t0 + 60_000, "labels": ["app=dashboard"]})
+    );
+    assert_eq!(
+        state("go_to_place_0")["cancellation"],
+        serde_json::json!({"unix_millis_request_time": t0 + 20_000, "labels": []})
+    );
+    assert!(state("loop_1").get("cancellation").is_none());
     // The patrol's booking is its own request's, not the cancel's.
     assert_eq!(state("loop_0")["category"], "patrol");
     if let Some(v) = validator("task_state.json") {

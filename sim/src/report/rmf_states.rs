@@ -33,10 +33,18 @@ pub fn task_states(scenario: &Scenario, report: &Report) -> Vec<Value> {
     let request_of = |line: usize| scenario.requests.iter().find(|r| r.line == line);
     // Task id -> the request it came from (its line in the file; not a cancel of it).
     let mut from_request = std::collections::BTreeMap::new();
+    // Task id -> the cancel request that ended it (the first one accepted).
+    let mut cancelled_by = std::collections::BTreeMap::new();
     for r in &report.requests {
         let cancel = request_of(r.line).is_some_and(|q| matches!(q.what, RequestKind::Cancel(_)));
-        if let (Some(id), false) = (&r.task_id, cancel) {
-            from_request.insert(id.as_str(), r.line);
+        match (&r.task_id, cancel) {
+            (Some(id), false) => {
+                from_request.insert(id.as_str(), r.line);
+            }
+            (Some(id), true) if r.refused.is_none() => {
+                cancelled_by.entry(id.as_str()).or_insert(r);
+            }
+            _ => {}
         }
     }
     let mut out: Vec<Value> = report
@@ -44,7 +52,18 @@ pub fn task_states(scenario: &Scenario, report: &Report) -> Vec<Value> {
         .iter()
         .map(|t| {
             let req = from_request.get(t.id.as_str()).and_then(|&l| request_of(l));
-            task_state(t, req, start)
+            let mut state = task_state(t, req, start);
+            // What RMF keeps of the cancel request: when it came, and its labels.
+            if let (Some(c), "cancelled") = (cancelled_by.get(t.id.as_str()), t.result.as_str()) {
+                let labels = request_of(c.line)
+                    .and_then(|q| q.json.get("labels").cloned())
+                    .unwrap_or_else(|| json!([]));
+                state["cancellation"] = json!({
+                    "unix_millis_request_time": millis(start, c.at),
+                    "labels": labels,
+                });
+            }
+            state
         })
         .collect();
     for r in report.requests.iter().filter(|r| r.refused.is_some()) {
