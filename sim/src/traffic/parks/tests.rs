@@ -3,22 +3,34 @@
 use super::*;
 use crate::traffic::test_map::{conflicts, nav, v};
 
+/// The parking vertices for `want` robots on graph 0, with `places` the task places (all
+/// required to stay reachable) and `homes` asked for by name.
+fn choose_for(
+    nav: &crate::graph::Nav,
+    conf: &crate::traffic::conflicts::Conflicts,
+    places: &[Vec<bool>],
+    want: usize,
+    homes: &[(usize, usize)],
+) -> Parks {
+    choose(
+        nav,
+        conf,
+        &Needs {
+            required: places,
+            places,
+            want: &[want],
+            homes,
+        },
+    )
+}
+
 #[test]
 fn dead_ends_are_parks_and_corridors_are_not() {
     let nav = nav();
     let conf = conflicts(&nav);
     let n = nav.vertices.len();
     let none = vec![vec![false; n]];
-    let parks = choose(
-        &nav,
-        &conf,
-        &Needs {
-            required: &none,
-            places: &none,
-            want: &[10],
-            homes: &[],
-        },
-    );
+    let parks = choose_for(&nav, &conf, &none, 10, &[]);
     let names: Vec<&str> = (0..n)
         .filter(|&x| parks.per_slot[0][x] != 0)
         .map(|x| nav.vertices[x].name.as_str())
@@ -35,29 +47,11 @@ fn task_places_park_only_as_the_second_kind() {
     let n = nav.vertices.len();
     let mut places = vec![vec![false; n]];
     places[0][v(&nav, "a")] = true;
-    let parks = choose(
-        &nav,
-        &conf,
-        &Needs {
-            required: &places,
-            places: &places,
-            want: &[10],
-            homes: &[],
-        },
-    );
+    let parks = choose_for(&nav, &conf, &places, 10, &[]);
     assert_eq!(parks.per_slot[0][v(&nav, "a")], PARK_ON_PLACE);
     assert_eq!(parks.per_slot[0][v(&nav, "p1")], PARK);
     // Wanting one: the best kind first.
-    let one = choose(
-        &nav,
-        &conf,
-        &Needs {
-            required: &places,
-            places: &places,
-            want: &[1],
-            homes: &[],
-        },
-    );
+    let one = choose_for(&nav, &conf, &places, 1, &[]);
     assert_eq!(one.per_slot[0].iter().filter(|&&p| p != 0).count(), 1);
     assert_eq!(one.per_slot[0][v(&nav, "p1")], PARK);
 }
@@ -90,16 +84,7 @@ fn homes_are_taken_first_where_they_cut_nothing() {
         (0, v(&nav, "p1")),
         (0, v(&nav, "e")),
     ];
-    let parks = choose(
-        &nav,
-        &conf,
-        &Needs {
-            required: &places,
-            places: &places,
-            want: &[10],
-            homes: &homes,
-        },
-    );
+    let parks = choose_for(&nav, &conf, &places, 10, &homes);
     let kind = |x: &str| parks.per_slot[0][v(&nav, x)];
     assert_eq!(
         [kind("b"), kind("a"), kind("p1"), kind("e")],
