@@ -99,6 +99,9 @@ pub struct TrafficReport {
     pub expanded_p99: u64,
     /// Dependency cycles found in the schedule (the guarantee says 0).
     pub cycles: u64,
+    /// Task plans undone because a robot they would have gone before on its way to
+    /// parking found no way behind them (the task was then planned around it).
+    pub soft_undone: u64,
 }
 
 /// A located warning about the scenario.

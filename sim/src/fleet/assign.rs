@@ -65,6 +65,9 @@ pub(super) struct Pending {
     /// The robots last planned for it, whose plans all waited too long, and when planning for the same robots again may first succeed (see
     /// [`Fleets::dispatch`]).
     pub backoff: Option<(Vec<usize>, f64)>,
+    /// Its plans keep clear of the others' ways to parking too (one that went before them
+    /// was undone: see [`Fleets::install`]).
+    pub hard: bool,
 }
 
 impl Fleets {
@@ -127,6 +130,7 @@ impl Fleets {
             passed_over: None,
             displaced_at: f64::NEG_INFINITY,
             backoff: None,
+            hard: false,
         };
         // Oldest first within a priority; a higher priority before every lower one.
         let at = self
@@ -273,6 +277,8 @@ impl Fleets {
                 .map(|p| p + PATIENCE)
                 .filter(|&p| t < p)
                 .unwrap_or(f64::INFINITY);
+            // Task plans go through the others' ways to parking (see `schedule`).
+            let soft = !self.pending[k].hard;
             let mut best: Option<(f64, usize, Vec<Step>, Plan, usize, f64)> = None;
             let mut failed = false;
             // When the first of the plans that waited too long could fit.
@@ -291,7 +297,7 @@ impl Fleets {
                 if goals.iter().any(|&(g, _)| {
                     conf.vertex[g]
                         .iter()
-                        .any(|&x| self.sched.held_for_good(x, ri).is_some())
+                        .any(|&x| self.sched.held_for_good(x, ri, soft).is_some())
                 }) {
                     failed = true;
                     continue;
@@ -307,6 +313,7 @@ impl Fleets {
                         goals: &goals,
                         parks: own.as_deref().unwrap_or(&self.parks.per_slot[f.slot]),
                         stay,
+                        soft,
                     };
                     found = self.planner.plan(&self.nav, &self.sched, &q);
                     if found.is_some() {
@@ -362,12 +369,18 @@ impl Fleets {
                 k += 1;
                 continue;
             };
+            let soft_at = soft.then_some(t);
+            if !self.start_task(ri, ti, steps, plan, (keep, t0, soft_at), t, out) {
+                // A robot it went before on its way to parking found no way behind it.
+                self.pending[k].hard = true;
+                k += 1;
+                continue;
+            }
             self.pending.remove(k);
             for p in self.pending.iter_mut().take(k) {
                 p.passed_over.get_or_insert(t);
             }
             free.retain(|f| f.0 != ri);
-            self.start_task(ri, ti, steps, plan, (keep, t0), t, out);
         }
         if !self.pending.is_empty() {
             self.next_dispatch = t + DISPATCH_EVERY;
@@ -398,7 +411,7 @@ impl Fleets {
             for s in steps {
                 let Step::GoTo(g) = s else { continue };
                 for &x in &conf.vertex[*g] {
-                    if let Some(o) = self.sched.held_for_good(x, usize::MAX) {
+                    if let Some(o) = self.sched.held_for_good(x, usize::MAX, false) {
                         if free.iter().any(|f| f.0 == o) && !out.contains(&o) {
                             out.push(o);
                         }
@@ -409,7 +422,9 @@ impl Fleets {
         out
     }
 
-    /// Robot `ri` takes task `ti` with its plan (against the schedule as it is now).
+    /// Robot `ri` takes task `ti` with its plan (against the schedule as it is now, after
+    /// its first `keep` traversals, from `t0`; through soft spans when `soft_at`). False
+    /// when the plan could not be installed (see [`Fleets::install`]): nothing changed.
     #[allow(clippy::too_many_arguments)]
     fn start_task(
         &mut self,
@@ -417,19 +432,23 @@ impl Fleets {
         ti: usize,
         steps: Vec<Step>,
         plan: Plan,
-        (keep, t0): (usize, f64),
+        (keep, t0, soft_at): (usize, f64, Option<f64>),
         t: f64,
         out: &mut Vec<(Topic, Msg)>,
-    ) {
+    ) -> bool {
         // When the plan ends the task: at its last place, after the work there.
         let last_dwell = self.goals_of(ri, &steps).last().map_or(0.0, |g| g.1);
         let planned = match plan.goal_at.last() {
             Some(&0) | None => t0,
             Some(&n) => plan.steps[n - 1].end,
         } + last_dwell;
-        self.install(ri, keep, plan, t0);
+        // Its way to parking is soft from the start: the robot has the task.
+        self.robots[ri].task = Some(ti);
+        if !self.install(ri, keep, plan, t0, soft_at) {
+            self.robots[ri].task = None;
+            return false;
+        }
         let r = &mut self.robots[ri];
-        r.task = Some(ti);
         r.task_started = t;
         r.steps = steps.into();
         r.park_pending = false;
@@ -440,6 +459,7 @@ impl Fleets {
             e.planned_finish = Some(planned);
         }
         self.event(t, ti, "started", Some(ri), String::new(), out);
+        true
     }
 
     /// The places of `steps` in order, each with how long robot `i` stays there (the

@@ -282,6 +282,9 @@ pub struct Fleets {
     released: bool,
     /// Dependency cycles found (never expected; counted for the tests).
     cycles: u64,
+    /// Task plans undone because a robot they went before on its way to parking could not
+    /// plan again behind them.
+    soft_undone: u64,
     /// States the planner expanded, per plan made.
     decisions: Vec<u32>,
     fleets: Vec<FleetRt>,
@@ -523,6 +526,7 @@ impl Fleets {
             expanded_median: pick(0.5),
             expanded_p99: pick(0.99),
             cycles: self.cycles,
+            soft_undone: self.soft_undone,
         }
     }
 

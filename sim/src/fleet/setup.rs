@@ -522,6 +522,7 @@ impl Fleets {
             parks,
             retimed_at: f64::NAN,
             cycles: 0,
+            soft_undone: 0,
             decisions: Vec::new(),
             fleets,
             robots,

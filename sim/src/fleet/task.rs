@@ -30,6 +30,8 @@ impl Fleets {
         let Some(ti) = self.robots[i].task.take() else {
             return;
         };
+        // Its way to parking is what it drives next: nobody's plan goes before it now.
+        self.sched.harden(i);
         // The robot is free (once its steps are done): waiting tasks may go to it.
         self.next_dispatch = self.next_dispatch.min(t);
         if let Some(tk) = self.tasks.get_mut(ti) {

@@ -194,8 +194,8 @@ fn crossing_lanes_conflict_and_far_ones_do_not() {
     };
     let starts = [nav.edges[we].from, nav.edges[sn].from];
     let mut sched = Schedule::new(conf, &starts, 0.0);
-    sched.install(0, 0, &[step(we, 0.0)], 0.0);
-    sched.install(1, 0, &[step(sn, 10.0)], 0.0);
+    sched.install(0, 0, &[step(we, 0.0)], 0.0, None);
+    sched.install(1, 0, &[step(sn, 10.0)], 0.0, None);
     assert!(sched.check(0.0).is_ok());
     assert!(sched.granted(0, 0));
     assert!(!sched.granted(1, 0));

@@ -105,10 +105,40 @@ impl Fleets {
     }
 
     /// Installs `plan` as robot `i`'s itinerary after its first `keep` traversals, and
-    /// remembers where each of its places is reached (`Robot::legs`).
-    pub(super) fn install(&mut self, i: usize, keep: usize, plan: Plan, t0: f64) {
+    /// remembers where each of its places is reached (`Robot::legs`). For a robot with a
+    /// task, the way to parking after the last place is soft until the task is done.
+    ///
+    /// `soft_at`: the time now, when the plan was made through the others' soft spans
+    /// (`Query::soft`). The robots it went before plan their ways to parking again behind
+    /// it ([`Fleets::park_again`]); when one cannot, or the order would have a cycle,
+    /// nothing changes and this returns false.
+    pub(super) fn install(
+        &mut self,
+        i: usize,
+        keep: usize,
+        plan: Plan,
+        t0: f64,
+        soft_at: Option<f64>,
+    ) -> bool {
+        let before = soft_at.map(|_| self.sched.clone());
+        let soft = self.robots[i]
+            .task
+            .and_then(|_| plan.goal_at.last().copied());
+        let jumped = self.sched.install(i, keep, &plan.steps, t0, soft);
+        if let (Some(now), Some(before)) = (soft_at, before) {
+            // Every robot it went before plans again behind it, and the order stays
+            // acyclic; else nothing changes.
+            let kept = jumped.is_empty()
+                || (jumped.iter().all(|&o| self.park_again(o, now))
+                    && self.sched.retime(now).is_ok());
+            if !kept {
+                self.sched = before;
+                self.soft_undone += 1;
+                return false;
+            }
+        }
+        debug_assert!(jumped.is_empty() || soft_at.is_some(), "a hard plan jumped");
         self.decisions.push(plan.expanded as u32);
-        self.sched.install(i, keep, &plan.steps, t0);
         if cfg!(debug_assertions) {
             if let Err(e) = self.sched.check(t0) {
                 self.cycles += 1;
@@ -127,6 +157,51 @@ impl Fleets {
                 n
             })
             .collect();
+        true
+    }
+
+    /// Plans robot `o`'s way to parking again after its task's last place (its soft
+    /// traversals, which another robot's task plan went before), through nobody's spans.
+    /// False when there is no way now.
+    fn park_again(&mut self, o: usize, now: f64) -> bool {
+        let Some(keep) = self.sched.soft_keep(o) else {
+            return false;
+        };
+        let it = self.sched.itinerary(o);
+        // From its last place, after the work there.
+        let (from, t0, work) = match keep.checked_sub(1).and_then(|k| it.travs.get(k)) {
+            Some(tr) => (
+                tr.to,
+                tr.end.max(now),
+                it.travs.get(keep).map_or(0.0, |n| n.hold),
+            ),
+            None => (it.at, it.ready.max(now), 0.0),
+        };
+        let goals = [(from, work)];
+        let f = &self.fleets[self.robots[o].fleet];
+        let (slot, kin) = (f.slot, f.kin);
+        let stay = self.stays_at(o, &goals);
+        for (own, stay) in self.ends(o, &goals, from, stay) {
+            let q = Query {
+                robot: o,
+                slot,
+                kin,
+                from,
+                t0,
+                goals: &goals,
+                parks: own.as_deref().unwrap_or(&self.parks.per_slot[slot]),
+                stay,
+                soft: false,
+            };
+            if let Some(plan) = self.planner.plan(&self.nav, &self.sched, &q) {
+                let soft = plan.goal_at.last().copied();
+                let jumped = self.sched.install(o, keep, &plan.steps, t0, soft);
+                debug_assert!(jumped.is_empty(), "a hard plan jumped {jumped:?}");
+                self.robots[o].dirty = true;
+                return true;
+            }
+        }
+        false
     }
 
     /// Plans robot `i` to `goals` (then a parking vertex) from where its committed
@@ -309,6 +384,7 @@ impl Fleets {
                     .or(parks)
                     .unwrap_or(&self.parks.per_slot[slot]),
                 stay: *stay,
+                soft: false,
             };
             found = self.planner.plan(&self.nav, &self.sched, &q);
             if found.is_some() {
@@ -319,7 +395,7 @@ impl Fleets {
             return Err(NoPlan::Busy);
         };
         let all = keep + plan.steps.len();
-        self.install(i, keep, plan, t0);
+        self.install(i, keep, plan, t0, None);
         // The first place's leg is the current GoTo's; the others wait in `legs`.
         Ok(match self.robots[i].legs.pop_front() {
             Some(n) => n,

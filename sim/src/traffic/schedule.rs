@@ -17,6 +17,13 @@
 //! Every itinerary ends where its robot may stand for good (a span with `last ==
 //! FOREVER`); the planner never plans through such a span, so a robot that has nothing to do
 //! blocks nobody's plan.
+//!
+//! The part of an itinerary after a task's last place (its way to parking) may be *soft*
+//! (`Itinerary::soft`): until the task is done, another robot's task plan may ignore those
+//! spans and go before them in the queues ([`Schedule::install`] says whose it went
+//! before); the fleet then plans those robots' ways to parking again behind it. A robot
+//! rarely drives that way while tasks wait (it takes the next task first), so it should not
+//! hold up the plans of tasks.
 
 use super::conflicts::{Conflicts, Res};
 use std::collections::VecDeque;
@@ -64,6 +71,30 @@ pub struct Itinerary {
     /// Traversals still to drive or being driven; `travs[k].seq == base + k`.
     pub travs: VecDeque<Trav>,
     base: u64,
+    /// The running number of its first soft traversal (see the module's doc), if any.
+    soft: Option<u64>,
+}
+
+impl Itinerary {
+    /// Whether a span of this robot from its traversal `first` on is soft: it lies after
+    /// the soft mark, and the robot has not set off on its soft traversals.
+    fn soft_in(&self, first: u64) -> bool {
+        let Some(mark) = self.soft else { return false };
+        first >= mark
+            && mark
+                .checked_sub(self.base)
+                .is_some_and(|k| self.travs.get(k as usize).is_none_or(|t| !t.begun))
+    }
+
+    /// Whether the robot holds a span from its traversal `first` on now (it has driven or
+    /// is driving the traversal).
+    fn held_in(&self, first: u64) -> bool {
+        first < self.base
+            || self
+                .travs
+                .front()
+                .is_some_and(|t| t.begun && first <= t.seq)
+    }
 }
 
 /// What a plan hands to [`Schedule::install`].
@@ -128,6 +159,7 @@ impl Schedule {
                 ready: t0,
                 travs: VecDeque::new(),
                 base: 1,
+                soft: None,
             });
         }
         Schedule {
@@ -241,9 +273,21 @@ impl Schedule {
     /// Replaces robot `r`'s traversals after the first `keep` with `steps` (which start
     /// where the kept ones end); `ready`: the earliest the first new step may start. The
     /// steps' times must fit the others' spans (the planner's result against this
-    /// schedule as it is).
-    pub fn install(&mut self, r: usize, keep: usize, steps: &[Step], ready: f64) {
+    /// schedule as it is), or overlap only soft ones (a plan that ignored them). The
+    /// steps from `soft` on are soft.
+    ///
+    /// Returns the robots whose soft spans the new spans went before where they overlap
+    /// them: their soft traversals no longer fit, and must be planned again.
+    pub fn install(
+        &mut self,
+        r: usize,
+        keep: usize,
+        steps: &[Step],
+        ready: f64,
+        soft: Option<usize>,
+    ) -> Vec<usize> {
         self.stamp = new_stamp();
+        let mut jumped: Vec<usize> = Vec::new();
         let keep = keep.min(self.its[r].travs.len());
         let s0 = self.its[r].base + keep as u64;
         // Every resource robot `r` may hold a span on: its traversals' and its standing set.
@@ -267,6 +311,7 @@ impl Schedule {
         }
         let it = &mut self.its[r];
         it.travs.truncate(keep);
+        it.soft = soft.map(|k| s0 + k as u64);
         if keep == 0 {
             it.ready = ready;
         }
@@ -321,31 +366,41 @@ impl Schedule {
                 f.start <= ready + 1e-9 || self.conf.vertex[f.from].binary_search(&x).is_ok()
             });
             if a == 0 && straight_on {
-                if let Some(s) = q
-                    .iter_mut()
-                    .find(|s| s.robot as usize == r && s.last == s0 - 1)
+                if let Some(w) = q
+                    .iter()
+                    .position(|s| s.robot as usize == r && s.last == s0 - 1)
                 {
-                    s.last = last;
-                    s.end = end;
+                    q[w].last = last;
+                    q[w].end = end;
+                    // Soft spans after it that it now overlaps go after it.
+                    for s in q.iter().skip(w + 1) {
+                        let o = s.robot as usize;
+                        if s.start < end && self.its[o].soft_in(s.first) && !jumped.contains(&o) {
+                            jumped.push(o);
+                        }
+                    }
                     continue;
                 }
             }
             // Elsewhere: before the first span of another robot that starts after it ends
-            // (queues are in time order; the planner kept clear of the others' spans), but
-            // never before a span whose robot holds the resource now.
+            // (queues are in time order; the planner kept clear of the others' hard
+            // spans) or is soft and overlaps it, but never before a span whose robot holds
+            // the resource now.
             let its = &self.its;
-            let held = |s: &Span| {
-                let it = &its[s.robot as usize];
-                s.first < it.base
-                    || it
-                        .travs
-                        .front()
-                        .is_some_and(|t| t.begun && s.first <= t.seq)
-            };
+            let soft_span = |s: &Span| its[s.robot as usize].soft_in(s.first);
             let pos = q
                 .iter()
-                .position(|s| s.robot as usize != r && s.start >= end && !held(s))
+                .position(|s| {
+                    s.robot as usize != r
+                        && !its[s.robot as usize].held_in(s.first)
+                        && (s.start >= end || soft_span(s) && s.end > start)
+                })
                 .unwrap_or(q.len());
+            for s in q.iter().skip(pos) {
+                if s.start < end && soft_span(s) && !jumped.contains(&(s.robot as usize)) {
+                    jumped.push(s.robot as usize);
+                }
+            }
             q.insert(
                 pos,
                 Span {
@@ -377,21 +432,50 @@ impl Schedule {
                 self.queues[x as usize].retain(|s| !(s.robot as usize == r && s.last == s0 - 1));
             }
         }
+        jumped.sort_unstable();
+        jumped
     }
 
-    /// The robot other than `r` that holds resource `x` for good (stays there), if any.
-    pub fn held_for_good(&self, x: Res, r: usize) -> Option<usize> {
+    /// How many of robot `r`'s remaining traversals come before its soft ones, when it has
+    /// soft ones it has not set off on.
+    pub fn soft_keep(&self, r: usize) -> Option<usize> {
+        let it = &self.its[r];
+        let mark = it.soft?;
+        it.soft_in(mark).then(|| (mark - it.base) as usize)
+    }
+
+    /// Robot `r`'s soft traversals become hard (its task is done: its way to parking is
+    /// what it drives next).
+    pub fn harden(&mut self, r: usize) {
+        if self.its[r].soft.take().is_some() {
+            self.stamp = new_stamp();
+        }
+    }
+
+    /// Whether robot other than `r` has a soft span on resource `x`.
+    pub fn soft_on(&self, x: Res, r: usize) -> bool {
+        self.queues[x as usize]
+            .iter()
+            .any(|s| s.robot as usize != r && self.its[s.robot as usize].soft_in(s.first))
+    }
+
+    /// The robot other than `r` that holds resource `x` for good (stays there), if any;
+    /// when `soft`, not one that would stay there only at the end of soft traversals.
+    pub fn held_for_good(&self, x: Res, r: usize, soft: bool) -> Option<usize> {
         self.queues[x as usize]
             .back()
             .filter(|s| s.last == FOREVER && s.robot as usize != r)
+            .filter(|s| !(soft && self.its[s.robot as usize].soft_in(s.first)))
             .map(|s| s.robot as usize)
     }
 
-    /// Busy intervals `[start, end)` of resource `x` for anybody but robot `r`.
-    pub fn busy(&self, x: Res, r: usize) -> impl Iterator<Item = (f64, f64)> + '_ {
+    /// Busy intervals `[start, end)` of resource `x` for anybody but robot `r`; when
+    /// `soft`, without the others' soft spans.
+    pub fn busy(&self, x: Res, r: usize, soft: bool) -> impl Iterator<Item = (f64, f64)> + '_ {
         self.queues[x as usize]
             .iter()
             .filter(move |s| s.robot as usize != r)
+            .filter(move |s| !(soft && self.its[s.robot as usize].soft_in(s.first)))
             .map(|s| (s.start, s.end))
     }
 

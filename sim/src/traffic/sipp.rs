@@ -142,6 +142,9 @@ pub struct Query<'a> {
     /// the place a robot was sent to (it stays there, as after RMF's go-to-place; when it is
     /// in somebody's way later, it is sent on to a parking vertex).
     pub stay: Option<usize>,
+    /// Plan through the others' soft spans (their ways to parking while their tasks go
+    /// on: see `schedule`), but not to stay for good where one is.
+    pub soft: bool,
 }
 
 /// A plan: its steps, and after how many steps each goal is reached.
@@ -190,6 +193,8 @@ impl PartialOrd for Open {
 #[derive(Default)]
 struct Cache {
     stamp: u64,
+    /// Whether the intervals leave out soft spans (`Query::soft`).
+    soft: bool,
     /// Per (robot, edge): the others' merged busy intervals on its traversal set.
     edge_busy: Map<(usize, usize), Vec<(f64, f64)>>,
     /// Per (robot, vertex): where in `free` the safe intervals of its standing set are.
@@ -203,11 +208,11 @@ fn intervals(
     vertex_free: &mut Map<(usize, usize), usize>,
     free: &mut Vec<Vec<(f64, f64)>>,
     sched: &Schedule,
-    r: usize,
+    (r, soft): (usize, bool),
     v: usize,
 ) -> usize {
     *vertex_free.entry((r, v)).or_insert_with(|| {
-        free.push(free_of(sched, &sched.conf().vertex[v], r));
+        free.push(free_of(sched, &sched.conf().vertex[v], r, soft));
         free.len() - 1
     })
 }
@@ -318,9 +323,10 @@ impl Planner {
 
     /// [`Planner::plan`], ending on places only when `places`.
     fn search(&mut self, nav: &Nav, sched: &Schedule, q: &Query, places: bool) -> Option<Plan> {
-        if self.cache.stamp != sched.stamp() {
+        if self.cache.stamp != sched.stamp() || self.cache.soft != q.soft {
             self.cache = Cache {
                 stamp: sched.stamp(),
+                soft: q.soft,
                 ..Cache::default()
             };
         }
@@ -354,7 +360,7 @@ impl Planner {
                 (q.parks[v] == PARK || places && q.parks[v] == PARK_ON_PLACE)
                     && conf.vertex[v]
                         .iter()
-                        .all(|&x| sched.held_for_good(x, q.robot).is_none())
+                        .all(|&x| sched.held_for_good(x, q.robot, false).is_none())
             })
             .collect();
         let key = (q.slot, q.kin.speed.to_bits(), {
@@ -417,7 +423,8 @@ impl Planner {
             return None;
         }
         let r = q.robot;
-        let iv0 = intervals(&mut cache.vertex_free, &mut cache.free, sched, r, q.from);
+        let rs = (r, q.soft);
+        let iv0 = intervals(&mut cache.vertex_free, &mut cache.free, sched, rs, q.from);
         let Some(i0) = cache.free[iv0]
             .iter()
             .position(|&(a, b)| a <= q.t0 && q.t0 < b)
@@ -445,15 +452,18 @@ impl Planner {
             if n.end {
                 self.expanded += expanded as u64;
                 let mut plan = unwind(nav, nodes, n.parent, nl, expanded);
-                wait_early(sched, q.robot, &mut plan);
+                wait_early(sched, q, &mut plan);
                 return Some(plan);
             }
-            let at = intervals(&mut cache.vertex_free, &mut cache.free, sched, r, n.v);
+            let at = intervals(&mut cache.vertex_free, &mut cache.free, sched, rs, n.v);
             let (_, hi) = cache.free[at][n.iv];
             let may_stay = q.stay == Some(n.v)
                 || q.parks[n.v] == PARK
                 || (places && q.parks[n.v] == PARK_ON_PLACE);
-            if n.label == nl && may_stay && hi == f64::INFINITY {
+            // Not for good where another robot's soft span is: that robot's way to parking
+            // could not be planned behind a stay for good.
+            let soft_here = || q.soft && conf.vertex[n.v].iter().any(|&x| sched.soft_on(x, r));
+            if n.label == nl && may_stay && hi == f64::INFINITY && !soft_here() {
                 // Staying here for good: a candidate end, ranked with its penalty.
                 let pen = if q.parks[n.v] == PARK_ON_PLACE && q.stay != Some(n.v) {
                     PLACE_PENALTY
@@ -510,8 +520,8 @@ impl Planner {
                 let busy = cache
                     .edge_busy
                     .entry((r, e))
-                    .or_insert_with(|| merged(sched, &conf.trav[e], r));
-                let wi_at = intervals(&mut cache.vertex_free, &mut cache.free, sched, r, w);
+                    .or_insert_with(|| merged(sched, &conf.trav[e], r, q.soft));
+                let wi_at = intervals(&mut cache.vertex_free, &mut cache.free, sched, rs, w);
                 let wivs = &cache.free[wi_at];
                 // Each gap of the edge's resources wide enough, left while still in this
                 // vertex's safe interval; the first arrival in each of w's intervals.
@@ -557,9 +567,10 @@ impl Planner {
     }
 }
 
-/// The merged busy intervals of `set` for anybody but robot `r`, sorted.
-fn merged(sched: &Schedule, set: &[Res], r: usize) -> Vec<(f64, f64)> {
-    let mut all: Vec<(f64, f64)> = set.iter().flat_map(|&x| sched.busy(x, r)).collect();
+/// The merged busy intervals of `set` for anybody but robot `r` (without soft spans when
+/// `soft`), sorted.
+fn merged(sched: &Schedule, set: &[Res], r: usize, soft: bool) -> Vec<(f64, f64)> {
+    let mut all: Vec<(f64, f64)> = set.iter().flat_map(|&x| sched.busy(x, r, soft)).collect();
     all.sort_by(|a, b| a.0.total_cmp(&b.0));
     let mut out: Vec<(f64, f64)> = Vec::with_capacity(all.len());
     for (a, b) in all {
@@ -575,8 +586,8 @@ fn merged(sched: &Schedule, set: &[Res], r: usize) -> Vec<(f64, f64)> {
 }
 
 /// The safe intervals of `set` for robot `r`: the gaps between the others' spans.
-fn free_of(sched: &Schedule, set: &[Res], r: usize) -> Vec<(f64, f64)> {
-    let busy = merged(sched, set, r);
+fn free_of(sched: &Schedule, set: &[Res], r: usize, soft: bool) -> Vec<(f64, f64)> {
+    let busy = merged(sched, set, r, soft);
     let mut out = Vec::with_capacity(busy.len() + 1);
     let mut from = f64::NEG_INFINITY;
     for (a, b) in busy {
@@ -596,10 +607,17 @@ fn free_of(sched: &Schedule, set: &[Res], r: usize) -> Vec<(f64, f64)> {
 /// parking vertex, a task place) rather than in a corridor, and leaves when its way is
 /// clear. A traversal is only delayed into a gap of the others' spans that fits it, while
 /// the robot may still stand where it starts.
-fn wait_early(sched: &Schedule, r: usize, plan: &mut Plan) {
+///
+/// Not the way to parking after a task's last place: waiting early there would keep the
+/// robot standing on a task place, in the way of the next tasks, when it could wait for
+/// its parking vertex further on.
+fn wait_early(sched: &Schedule, q: &Query, plan: &mut Plan) {
+    let (r, soft) = (q.robot, q.soft);
     let conf = sched.conf();
     let mut bounds = plan.goal_at.clone();
-    bounds.push(plan.steps.len());
+    if q.goals.is_empty() {
+        bounds.push(plan.steps.len());
+    }
     let mut l0 = 0;
     for &l1 in &bounds {
         for k in (l0..l1.saturating_sub(1)).rev() {
@@ -609,10 +627,10 @@ fn wait_early(sched: &Schedule, r: usize, plan: &mut Plan) {
                 continue;
             }
             let start = latest_end - st.dur;
-            let clear = merged(sched, &conf.trav[st.edge], r)
+            let clear = merged(sched, &conf.trav[st.edge], r, soft)
                 .iter()
                 .all(|&(a, b)| b <= start || a >= latest_end);
-            let stays = free_of(sched, &conf.vertex[st.from], r)
+            let stays = free_of(sched, &conf.vertex[st.from], r, soft)
                 .iter()
                 .any(|&(a, b)| a <= st.start && start <= b);
             if clear && stays {

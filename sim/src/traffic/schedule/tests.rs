@@ -28,6 +28,7 @@ fn two_robots() -> (crate::graph::Nav, Schedule) {
             step(&nav, e(&nav, "b", "p1"), 10.0, 10.0),
         ],
         0.0,
+        None,
     );
     s.install(
         1,
@@ -38,6 +39,7 @@ fn two_robots() -> (crate::graph::Nav, Schedule) {
             step(&nav, e(&nav, "b", "a"), 40.0, 10.0),
         ],
         0.0,
+        None,
     );
     (nav, s)
 }
@@ -86,16 +88,16 @@ fn retiming_pushes_the_later_robot_back_by_the_delay() {
 fn replanning_drops_the_old_spans_and_keeps_the_standing_set() {
     let (nav, mut s) = two_robots();
     // Robot 1 gives up its plan before starting: it stays at p2 for good.
-    s.install(1, 0, &[], 0.0);
+    s.install(1, 0, &[], 0.0, None);
     assert!(s.check(0.0).is_ok());
     assert!(s.itinerary(1).travs.is_empty());
     // Nobody else holds b's resources now, and p2's are robot 1's for good.
     for &x in &s.conf().vertex[v(&nav, "b")] {
-        assert_eq!(s.busy(x, 0).count(), 0);
+        assert_eq!(s.busy(x, 0, false).count(), 0);
     }
     for &x in &s.conf().vertex[v(&nav, "p2")] {
         assert_eq!(
-            s.busy(x, 0).collect::<Vec<_>>(),
+            s.busy(x, 0, false).collect::<Vec<_>>(),
             vec![(f64::NEG_INFINITY, f64::INFINITY)]
         );
     }
@@ -130,6 +132,7 @@ fn a_robot_that_sets_off_early_makes_the_estimates_stale_until_retimed() {
             step(&nav, e(&nav, "b", "p1"), 110.0, 10.0),
         ],
         0.0,
+        None,
     );
     assert!(!s.stale(), "a plan alone changes no estimate");
     assert!(s.granted(0, 0));
@@ -141,7 +144,7 @@ fn a_robot_that_sets_off_early_makes_the_estimates_stale_until_retimed() {
     let first_busy = |s: &Schedule| {
         s.conf().vertex[b]
             .iter()
-            .flat_map(|&x| s.busy(x, 1).map(|(a, _)| a).collect::<Vec<_>>())
+            .flat_map(|&x| s.busy(x, 1, false).map(|(a, _)| a).collect::<Vec<_>>())
             .fold(f64::INFINITY, f64::min)
     };
     assert_eq!(first_busy(&s), 100.0);
@@ -171,6 +174,7 @@ fn a_span_whose_first_traversal_is_done_is_busy_from_now() {
             step(&nav, e(&nav, "b", "p1"), 60.0, 10.0),
         ],
         50.0,
+        None,
     );
     s.retime(0.0).expect("acyclic");
     s.begin(0, 1, 1.0);
@@ -178,10 +182,106 @@ fn a_span_whose_first_traversal_is_done_is_busy_from_now() {
     s.retime(11.0).expect("acyclic");
     let mut seen = 0;
     for &x in &at_b {
-        for (start, end) in s.busy(x, 1) {
+        for (start, end) in s.busy(x, 1, false) {
             seen += 1;
             assert!(start <= 11.0 && start <= end, "busy [{start}, {end}) at b");
         }
     }
     assert!(seen > 0, "robot 0 holds b's resources");
+}
+
+/// Robot 0 at a goes to its last place b, then (soft) b→c→p2 to park over [10, 30).
+fn with_a_soft_way_to_parking(nav: &crate::graph::Nav, starts: &[&str]) -> Schedule {
+    let conf = conflicts(nav);
+    let starts: Vec<usize> = starts.iter().map(|n| v(nav, n)).collect();
+    let mut s = Schedule::new(conf, &starts, 0.0);
+    let jumped = s.install(
+        0,
+        0,
+        &[
+            step(nav, e(nav, "a", "b"), 0.0, 10.0),
+            step(nav, e(nav, "b", "c"), 10.0, 10.0),
+            step(nav, e(nav, "c", "p2"), 20.0, 10.0),
+        ],
+        0.0,
+        Some(1),
+    );
+    assert!(jumped.is_empty());
+    s
+}
+
+#[test]
+fn a_way_to_parking_is_soft_until_the_task_is_done() {
+    let nav = nav();
+    let mut s = with_a_soft_way_to_parking(&nav, &["a", "d"]);
+    assert_eq!(s.soft_keep(0), Some(1), "soft after its first traversal");
+    let at_c = s.conf().vertex[v(&nav, "c")].clone();
+    let at_p2 = s.conf().vertex[v(&nav, "p2")].clone();
+    // A task plan (soft) does not see robot 0 at c or its stay at p2; others do.
+    for &x in &at_c {
+        assert!(s.soft_on(x, 1));
+        assert_eq!(s.busy(x, 1, true).count(), 0);
+        assert!(s.busy(x, 1, false).count() > 0);
+    }
+    for &x in &at_p2 {
+        assert_eq!(s.held_for_good(x, 1, false), Some(0));
+        assert_eq!(s.held_for_good(x, 1, true), None);
+    }
+    // Robot 0's last place is hard: its span at b began with its task's traversal.
+    for &x in &s.conf().vertex[v(&nav, "b")] {
+        assert!(!s.soft_on(x, 1));
+    }
+    // Robot 1 at d, planned through c over [0, 16) (overlapping robot 0's soft span
+    // there): it goes before robot 0 at c, and says so.
+    let jumped = s.install(
+        1,
+        0,
+        &[
+            step(&nav, e(&nav, "d", "c"), 0.0, 8.0),
+            step(&nav, e(&nav, "c", "d"), 8.0, 8.0),
+        ],
+        0.0,
+        None,
+    );
+    assert_eq!(jumped, vec![0]);
+    s.retime(0.0).expect("acyclic");
+    let it0 = s.itinerary(0);
+    assert_eq!(
+        it0.travs[1].start, 16.0,
+        "robot 0 leaves b after robot 1 left c"
+    );
+    // Its task done, robot 0's way to parking is hard: everybody plans around it.
+    s.harden(0);
+    assert_eq!(s.soft_keep(0), None);
+    for &x in &at_c {
+        assert!(!s.soft_on(x, 1));
+        assert!(s.busy(x, 1, true).count() > 0);
+    }
+}
+
+#[test]
+fn a_plan_that_fits_goes_before_nobody() {
+    let nav = nav();
+    let mut s = with_a_soft_way_to_parking(&nav, &["a", "d"]);
+    // Robot 1 through c after robot 0 is parked at p2 (30 s): nobody's plan is broken.
+    let jumped = s.install(
+        1,
+        0,
+        &[
+            step(&nav, e(&nav, "d", "c"), 40.0, 8.0),
+            step(&nav, e(&nav, "c", "d"), 48.0, 8.0),
+        ],
+        40.0,
+        None,
+    );
+    assert!(jumped.is_empty());
+    s.check(0.0).expect("consistent");
+    // Once robot 0 sets off on its way to parking, the way is hard.
+    s.begin(0, 1, 0.0);
+    s.complete_front(0, 10.0);
+    s.begin(0, 1, 10.0);
+    assert_eq!(s.soft_keep(0), None);
+    for &x in &s.conf().vertex[v(&nav, "c")] {
+        assert!(!s.soft_on(x, 1));
+    }
 }

@@ -22,6 +22,7 @@ fn query<'a>(robot: usize, from: usize, goals: &'a [(usize, f64)], parks: &'a [u
         goals,
         parks,
         stay: None,
+        soft: false,
     }
 }
 
@@ -83,13 +84,13 @@ fn it_waits_for_a_robot_planned_through_first() {
     let goals_q1 = [(v(&nav, "p1"), 0.0)];
     let q1 = query(1, v(&nav, "d"), &goals_q1, &p);
     let plan1 = planner.plan(&nav, &sched, &q1).expect("robot 1 plans");
-    sched.install(1, 0, &plan1.steps, 0.0);
+    sched.install(1, 0, &plan1.steps, 0.0, None);
     let arrive_p1 = plan1.done;
     // Robot 0 wants d: it cannot be in the corridor while robot 1 comes down it.
     let goals_q0 = [(v(&nav, "d"), 0.0)];
     let q0 = query(0, v(&nav, "a"), &goals_q0, &p);
     let plan0 = planner.plan(&nav, &sched, &q0).expect("robot 0 plans");
-    sched.install(0, 0, &plan0.steps, 0.0);
+    sched.install(0, 0, &plan0.steps, 0.0, None);
     assert!(sched.check(0.0).is_ok());
     // It reaches b only after robot 1 has left it for p1.
     let b = v(&nav, "b");
@@ -134,7 +135,7 @@ fn waits_are_taken_where_the_robot_stands_not_in_the_corridor() {
     let goals_q1 = [(c, 20.0)];
     let q1 = query(1, c, &goals_q1, &p);
     let plan1 = planner.plan(&nav, &sched, &q1).expect("robot 1 plans");
-    sched.install(1, 0, &plan1.steps, 0.0);
+    sched.install(1, 0, &plan1.steps, 0.0, None);
     let c_free = plan1.steps[0].end;
     assert!(c_free > 20.0, "{plan1:?}");
     // Robot 0 goes a → b → c → d: it cannot pass c before robot 1 has left it. The search
@@ -159,7 +160,7 @@ fn waits_are_taken_where_the_robot_stands_not_in_the_corridor() {
         (plan0.steps[2].start - b_to_c.end).abs() < 1e-9,
         "{plan0:?}"
     );
-    sched.install(0, 0, &plan0.steps, 0.0);
+    sched.install(0, 0, &plan0.steps, 0.0, None);
     assert!(sched.check(0.0).is_ok());
 }
 
@@ -178,11 +179,65 @@ fn intervals_kept_between_plans_are_dropped_when_the_schedule_changes() {
     let plan1 = planner
         .plan(&nav, &sched, &query(1, v(&nav, "d"), &goals_q1, &p))
         .expect("robot 1 plans");
-    sched.install(1, 0, &plan1.steps, 0.0);
+    sched.install(1, 0, &plan1.steps, 0.0, None);
     let again = planner.plan(&nav, &sched, &q0).expect("robot 0 plans");
     let fresh = Planner::new(&nav)
         .plan(&nav, &sched, &q0)
         .expect("robot 0 plans");
     assert_eq!(again, fresh);
     assert_ne!(Some(again), before, "robot 1's spans count");
+}
+
+#[test]
+fn a_task_plan_goes_through_a_way_to_parking_but_does_not_stay_on_it() {
+    let nav = nav();
+    let conf = conflicts(&nav);
+    // Robot 0 finished its task at b; its way to parking is soft: b→c→p2 over [10, 30).
+    let mut sched = Schedule::new(conf, &[v(&nav, "b"), v(&nav, "d")], 0.0);
+    let step = |a: &str, z: &str, start: f64| {
+        let edge = e(&nav, a, z);
+        Step {
+            edge,
+            from: v(&nav, a),
+            to: v(&nav, z),
+            dur: 10.0,
+            hold: 0.0,
+            start,
+            end: start + 10.0,
+        }
+    };
+    sched.install(
+        0,
+        0,
+        &[step("b", "c", 10.0), step("c", "p2", 20.0)],
+        10.0,
+        Some(0),
+    );
+    // Robot 1 at d goes to c and parks: a hard plan waits until robot 0 is in p2.
+    let p = parks(&nav, &["p1", "p2"]);
+    let goals = [(v(&nav, "c"), 0.0)];
+    let mut planner = Planner::new(&nav);
+    let hard = planner
+        .plan(&nav, &sched, &query(1, v(&nav, "d"), &goals, &p))
+        .expect("a hard plan");
+    let at_c = |plan: &Plan| plan.steps[plan.goal_at[0] - 1].end;
+    assert!(at_c(&hard) >= 30.0, "hard: at c at {}", at_c(&hard));
+    // A task plan goes first: at c after 4 m (10.5 s), no wait.
+    let soft = planner
+        .plan(
+            &nav,
+            &sched,
+            &Query {
+                soft: true,
+                ..query(1, v(&nav, "d"), &goals, &p)
+            },
+        )
+        .expect("a soft plan");
+    assert!(
+        (at_c(&soft) - 10.5).abs() < 1e-9,
+        "soft: at c at {}",
+        at_c(&soft)
+    );
+    // Not to stay for good at p2, where robot 0 is to park: at p1.
+    assert_eq!(soft.steps.last().map(|s| s.to), Some(v(&nav, "p1")));
 }
