@@ -559,6 +559,7 @@ type Spawn = (usize, Option<String>);
 fn conflicts(nav: &Nav, scenario: &Scenario) -> Conflicts {
     let zero = Clearance {
         footprint: 0.0,
+        vicinity: 0.0,
         stop_distance: 0.0,
         stop_radius: 0.0,
     };
@@ -568,6 +569,9 @@ fn conflicts(nav: &Nav, scenario: &Scenario) -> Conflicts {
         footprint = footprint.max(f.robot.footprint);
         if let Some(c) = nav.slot(f.graph).and_then(|s| per_slot.get_mut(s)) {
             c.footprint = c.footprint.max(f.robot.footprint);
+            if let Some(r) = &f.rmf {
+                c.vicinity = c.vicinity.max(r.vicinity);
+            }
             c.stop_distance = c.stop_distance.max(f.robot.stop_distance);
             c.stop_radius = c.stop_radius.max(f.robot.stop_radius);
         }

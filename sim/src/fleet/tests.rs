@@ -162,6 +162,7 @@ fn crossing_lanes_conflict_and_far_ones_do_not() {
     let nav = Nav::build(&b, &[0]);
     let c = Clearance {
         footprint: 0.3,
+        vicinity: 0.0,
         stop_distance: 0.75,
         stop_radius: 0.75,
     };

@@ -22,8 +22,8 @@ pub struct RmfFleet {
     /// The config's robots, in file order (robots spawn at their start waypoint, else at
     /// their charger).
     pub robots: Vec<RmfRobot>,
-    /// `profile.vicinity` (m). Read for completeness; mapc's contact check uses the
-    /// footprint.
+    /// `profile.vicinity` (m): traffic planning keeps other robots' footprints out of it
+    /// (the contact check in the report still uses the footprints).
     pub vicinity: f64,
     /// Fleet-wide `finishing_request`.
     pub finishing_request: Finishing,

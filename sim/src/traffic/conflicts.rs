@@ -17,6 +17,9 @@ pub const MARGIN: f64 = 0.25;
 #[derive(Debug, Clone, Copy)]
 pub struct Clearance {
     pub footprint: f64,
+    /// RMF's `profile.vicinity` (m, 0 when not given): another robot's footprint keeps out
+    /// of it, as in rmf_traffic's conflict check (footprint against vicinity).
+    pub vicinity: f64,
     pub stop_distance: f64,
     pub stop_radius: f64,
 }
@@ -63,11 +66,20 @@ impl Conflicts {
         // One robot passes a door at a time: the door opens and closes for each.
         let door_base = mutex_base + mutexes.len();
         let pair_base = door_base + nav.doors.len();
-        let body = 2.0 * footprint + MARGIN;
+        // The vicinity of the robots with the largest one (RMF: another's footprint keeps
+        // out of it); with none given, the footprint sum and margin decide alone.
+        let vicinity = per_slot.iter().map(|c| c.vicinity).fold(0.0, f64::max);
+        let separation = |c: &Clearance| {
+            (footprint + c.footprint.min(footprint) + MARGIN)
+                .max(footprint + c.vicinity)
+                .max(c.footprint.min(footprint) + vicinity)
+        };
+        let body = (2.0 * footprint + MARGIN).max(footprint + vicinity);
         let same_level = |a: usize, b: usize| nav.vertices[a].level == nav.vertices[b].level;
         let clearance = |graph: usize| {
             per_slot.get(graph).copied().unwrap_or(Clearance {
                 footprint,
+                vicinity: 0.0,
                 stop_distance: 0.0,
                 stop_radius: 0.0,
             })
@@ -78,7 +90,7 @@ impl Conflicts {
         for e in &nav.edges {
             if let (Some(l), EdgeKind::Lane) = (e.lane, e.kind) {
                 let c = clearance(e.graph);
-                let gap = (footprint + c.footprint.min(footprint) + MARGIN).max(c.stop_radius);
+                let gap = separation(&c).max(c.stop_radius);
                 lanes.entry(l).or_insert((e.from, e.to, gap));
             }
         }
@@ -174,7 +186,7 @@ impl Conflicts {
                 EdgeKind::Lift(l) => set.push((lift_base + l) as Res),
                 EdgeKind::Lane => {
                     let c = clearance(e.graph);
-                    let body = footprint + c.footprint.min(footprint) + MARGIN;
+                    let body = separation(&c);
                     let (a, z) = (nav.vertices[e.from].pos, nav.vertices[e.to].pos);
                     let d = z.minus(a);
                     let len = d.norm();
@@ -287,11 +299,14 @@ mod tests {
             let nav = random_nav(seed, 12 + seed as usize * 3);
             let c = Clearance {
                 footprint: 0.2 + (seed % 5) as f64 * 0.2,
+                // None, one within the footprint and margin, one beyond them.
+                vicinity: [0.0, 0.5, 2.5][(seed / 2 % 3) as usize],
                 stop_distance: (seed % 3) as f64 * 0.5,
                 stop_radius: (seed % 4) as f64 * 0.6,
             };
             let conf = Conflicts::build(&nav, c);
-            let body = 2.0 * c.footprint + MARGIN;
+            // RMF: one's footprint keeps out of the other's vicinity.
+            let body = (2.0 * c.footprint + MARGIN).max(c.footprint + c.vicinity);
             let level = |v: usize| nav.vertices[v].level;
             for i in 0..nav.vertices.len() {
                 for j in 0..nav.vertices.len() {
@@ -302,7 +317,7 @@ mod tests {
                     assert_eq!(near, has, "seed {seed}: vertex {i} and {j}");
                 }
             }
-            let gap = (2.0 * c.footprint + MARGIN).max(c.stop_radius);
+            let gap = body.max(c.stop_radius);
             let lane = |e: usize| (nav.edges[e].from, nav.edges[e].to);
             for (k, ek) in nav.edges.iter().enumerate() {
                 if ek.kind != EdgeKind::Lane {
@@ -368,5 +383,35 @@ mod tests {
         assert!(!shared(e(&nav, "a", "b"), e(&nav, "d", "c")));
         // The parking bays off b and c, 4 m apart, are as independent.
         assert!(!shared(e(&nav, "b", "p1"), e(&nav, "c", "p2")));
+    }
+
+    #[test]
+    fn a_vicinity_wider_than_the_footprints_keeps_other_robots_out() {
+        let nav = nav();
+        let (b, c) = (
+            crate::traffic::test_map::v(&nav, "b"),
+            crate::traffic::test_map::v(&nav, "c"),
+        );
+        let with = |vicinity: f64| {
+            Conflicts::build(
+                &nav,
+                Clearance {
+                    footprint: 0.3,
+                    vicinity,
+                    stop_distance: 0.0,
+                    stop_radius: 0.0,
+                },
+            )
+        };
+        // b and c are 4 m apart: far for 0.3 m robots, within a 4 m vicinity (0.3 + 4 m).
+        let apart = |conf: &Conflicts| conf.vertex[b].binary_search(&(c as u32)).is_err();
+        assert!(apart(&with(0.0)));
+        assert!(apart(&with(3.6)), "0.3 + 3.6 m is under 4 m");
+        assert!(!apart(&with(4.0)));
+        // Driving b→c then holds what stands at d, 4 m past c, too.
+        let d = crate::traffic::test_map::v(&nav, "d");
+        let bc = e(&nav, "b", "c");
+        assert!(with(0.0).trav[bc].binary_search(&(d as u32)).is_err());
+        assert!(with(4.0).trav[bc].binary_search(&(d as u32)).is_ok());
     }
 }

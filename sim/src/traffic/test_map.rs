@@ -40,6 +40,7 @@ pub fn conflicts(nav: &Nav) -> Conflicts {
         nav,
         Clearance {
             footprint: 0.3,
+            vicinity: 0.0,
             stop_distance: 0.75,
             stop_radius: 0.75,
         },
