@@ -225,6 +225,7 @@ impl Fleets {
             })
             .collect();
         let mut budget = PLANS_PER_ROUND;
+        let mut displaced = false;
         let mut k = 0;
         let mut scanned = 0;
         while k < self.pending.len() && budget > 0 && !free.is_empty() && scanned < SCAN_PER_ROUND {
@@ -353,7 +354,10 @@ impl Fleets {
                 if !failed && retry.is_finite() {
                     self.pending[k].backoff = Some((tried, retry.min(turns_patient)));
                 }
-                if failed && t >= self.pending[k].displaced_at + DISPLACE_EVERY {
+                // Room is made for one task per round, the oldest that needs it: for two
+                // tasks in turn, the same robot would be sent back and forth between them.
+                if failed && !displaced && t >= self.pending[k].displaced_at + DISPLACE_EVERY {
+                    displaced = true;
                     self.pending[k].displaced_at = t;
                     // Maybe a robot stays for good where the task must go: it makes room.
                     let found = self.pending[k].steps.iter().find_map(|(fi, st)| {

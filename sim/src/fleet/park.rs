@@ -216,6 +216,11 @@ fn required_of(nav: &Nav, scenario: &Scenario, spawns: &[usize], chargers: bool)
     req
 }
 
+/// Per graph slot, per vertex: the waypoints tasks name.
+fn task_places(nav: &Nav, scenario: &Scenario) -> Vec<Vec<bool>> {
+    required_of(nav, scenario, &[], false)
+}
+
 /// The parking vertices for `robots` robots per slot (and spares), around what the
 /// scenario needs.
 pub(super) fn choose_parks(
@@ -226,8 +231,10 @@ pub(super) fn choose_parks(
     robots: &[usize],
 ) -> Parks {
     let req = required(nav, scenario, spawns);
-    // Task places, chargers and named spawns may be parking vertices of the second kind.
+    // Task places, chargers and named spawns may be parking vertices after the others;
+    // task places of the second kind.
     let places = required_of(nav, scenario, spawns, true);
+    let tasks = task_places(nav, scenario);
     let want: Vec<usize> = robots.iter().map(|&n| 2 * n + 4).collect();
     let homes = wanted_homes(nav, scenario);
     parks::choose(
@@ -236,6 +243,7 @@ pub(super) fn choose_parks(
         &Needs {
             required: &req,
             places: &places,
+            tasks: &tasks,
             want: &want,
             homes: &homes,
         },

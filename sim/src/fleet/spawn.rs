@@ -2,7 +2,8 @@
 //!
 //! Every robot asked is put on the floor, each on a parking vertex of its fleet's graph
 //! (`crate::traffic::parks`: a waypoint where a standing robot blocks no route, away from
-//! task waypoints, chargers and lift cabins), so that a robot without work never stands in
+//! task waypoints, chargers and lift cabins; chargers themselves only when the others are
+//! taken), so that a robot without work never stands in
 //! the way of one with work, and every robot has a parking vertex of its own to end its
 //! plans on (Token Passing's condition). Only on a graph with no parking vertex off the
 //! task places do robots start on task places that cut nothing, on at most half of them (a
@@ -91,6 +92,8 @@ pub(super) fn auto_spawn(
             let tier = parks.per_slot[slot][v];
             (
                 tier,
+                // Chargers last: they are parking too, but for robots that need them.
+                ro.is_charger,
                 on_level.get(&nav.vertices[v].level).copied().unwrap_or(0),
                 class,
                 v,

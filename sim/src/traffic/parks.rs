@@ -7,9 +7,12 @@
 //!
 //! Not parking vertices: where a lift would carry a robot (its cabins, and around a rotated
 //! cabin some vertices just outside), and vertices whose standing set reaches a task
-//! waypoint, a charger or a spawn point (a robot there would be in their way). Task
-//! waypoints and chargers themselves are parking vertices of a second kind, taken only when
-//! the others are too few: a robot parked there is sent elsewhere when another needs it.
+//! waypoint, a charger or a spawn point (a robot there would be in their way). Chargers and
+//! spawn points themselves are parking vertices, taken after the others (a robot parked on
+//! a charger is sent elsewhere when another comes to charge, as RMF robots park at their
+//! chargers); task waypoints are parking vertices of a second kind, taken only when the
+//! others are too few: a plan ending there holds the place, and is sent elsewhere when a
+//! task needs it.
 
 use super::conflicts::{Conflicts, Res};
 use crate::graph::Nav;
@@ -40,9 +43,13 @@ pub struct Needs<'a> {
     /// Per slot, per vertex: task waypoints, chargers, spawn points (not parking vertices,
     /// nor in a parking vertex's standing set).
     pub required: &'a [Vec<bool>],
-    /// Per slot, per vertex: task waypoints, which may still be parking vertices of the
-    /// second kind ([`PARK_ON_PLACE`]) when there are too few of the first.
+    /// Per slot, per vertex: task waypoints, chargers and spawn points, which may still be
+    /// parking vertices when there are too few others (chosen after them).
     pub places: &'a [Vec<bool>],
+    /// Per slot, per vertex: the task waypoints among `places`: parking there is of the
+    /// second kind ([`PARK_ON_PLACE`]); a charger or spawn point no task names is a
+    /// [`PARK`] (a robot parked there is sent elsewhere when one comes to charge).
+    pub tasks: &'a [Vec<bool>],
     /// At most this many parking vertices per slot (enough for the robots and spares).
     pub want: &'a [usize],
     /// (slot, vertex) asked for as [`PARK_HOME`]s, tried in this order before the slot's
@@ -180,8 +187,17 @@ pub fn choose(nav: &Nav, conf: &Conflicts, needs: &Needs) -> Parks {
                 3 + slots[s].nbrs[v].len()
             }
         };
-        // Task places last, and only as many as still wanted.
-        cands.sort_by_key(|&v| (place(v), class(v), v));
+        let task = |v: usize| {
+            needs
+                .tasks
+                .get(s)
+                .and_then(|r| r.get(v))
+                .copied()
+                .unwrap_or(false)
+        };
+        // Chargers and spawn points after the others, task places last, and only as many
+        // as still wanted.
+        cands.sort_by_key(|&v| (task(v), place(v), class(v), v));
         // Homes asked for first, on the same terms (but they may be required vertices).
         let homes: Vec<(usize, bool)> = needs
             .homes
@@ -302,7 +318,7 @@ pub fn choose(nav: &Nav, conf: &Conflicts, needs: &Needs) -> Parks {
                 parks.per_slot[s][v] = PARK_HOME;
                 continue;
             }
-            parks.per_slot[s][v] = if place(v) { PARK_ON_PLACE } else { PARK };
+            parks.per_slot[s][v] = if task(v) { PARK_ON_PLACE } else { PARK };
             taken += 1;
         }
     }

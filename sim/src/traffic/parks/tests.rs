@@ -18,6 +18,7 @@ fn choose_for(
         &Needs {
             required: places,
             places,
+            tasks: places,
             want: &[want],
             homes,
         },
@@ -92,4 +93,45 @@ fn homes_are_taken_first_where_they_cut_nothing() {
     );
     // The others as without homes, around them: d and p2 (b and c cut the corridor).
     assert_eq!([kind("d"), kind("p2"), kind("c")], [PARK, PARK, 0]);
+}
+
+#[test]
+fn a_charger_no_task_names_is_parking_and_a_task_place_of_the_second_kind() {
+    let nav = nav();
+    let conf = conflicts(&nav);
+    let n = nav.vertices.len();
+    // p1 is a charger (required, may be parked on), a a task place.
+    let mut places = vec![vec![false; n]];
+    places[0][v(&nav, "p1")] = true;
+    places[0][v(&nav, "a")] = true;
+    let mut tasks = vec![vec![false; n]];
+    tasks[0][v(&nav, "a")] = true;
+    let parks = choose(
+        &nav,
+        &conf,
+        &Needs {
+            required: &places,
+            places: &places,
+            tasks: &tasks,
+            want: &[10],
+            homes: &[],
+        },
+    );
+    let kind = |name: &str| parks.per_slot[0][v(&nav, name)];
+    assert_eq!(kind("p1"), PARK);
+    assert_eq!(kind("a"), PARK_ON_PLACE);
+    assert_eq!((kind("p2"), kind("d")), (PARK, PARK));
+    // The charger is chosen after the other parking vertices: with room for two, not it.
+    let two = choose(
+        &nav,
+        &conf,
+        &Needs {
+            required: &places,
+            places: &places,
+            tasks: &tasks,
+            want: &[2],
+            homes: &[],
+        },
+    );
+    assert_eq!(two.per_slot[0][v(&nav, "p1")], 0);
 }
