@@ -370,7 +370,7 @@ impl P<'_> {
             None => Some(false),
             Some(b) => self.bool(b, "`responsive_wait`"),
         };
-        let actions = match f.get("actions") {
+        let mut actions = match f.get("actions") {
             None => Some(Vec::new()),
             Some(a) if a.is_null() => Some(Vec::new()),
             Some(a) => self.seq(a, "`actions`", |p, n| p.name(n, "an action")),
@@ -381,7 +381,14 @@ impl P<'_> {
         };
         let mut kinds = vec![TaskCategory::GoToPlace];
         if let Some(tc) = f.get("task_capabilities") {
-            let known = ["loop", "patrol", "delivery", "clean", "finishing_request"];
+            let known = [
+                "loop",
+                "patrol",
+                "delivery",
+                "clean",
+                "finishing_request",
+                "action",
+            ];
             match self.config_entries(tc, "`task_capabilities`", &known, &[]) {
                 Some(e) => {
                     // `patrol` is what RMF's task API calls a loop.
@@ -397,6 +404,18 @@ impl P<'_> {
                                 Some(false) => {}
                                 None => ok = false,
                             }
+                        }
+                    }
+                    // The older template listed the custom actions here too.
+                    if let Some(a) = e.get("action").filter(|a| !a.is_null()) {
+                        match (
+                            self.seq(a, "`task_capabilities.action`", |p, n| {
+                                p.name(n, "an action")
+                            }),
+                            &mut actions,
+                        ) {
+                            (Some(more), Some(all)) => all.extend(more),
+                            _ => ok = false,
                         }
                     }
                     // The older template put the finishing request here.
@@ -651,8 +670,10 @@ mod tests {
         assert_eq!(f.spawn, SpawnSpec::Waypoints(vec!["hold_a".into()]));
         let r = f.rmf.expect("rmf");
         assert_eq!(r.robots[0].charger.as_deref(), Some("charger_a"));
-        // `finishing_request` inside `task_capabilities`, as that template had it.
+        // `finishing_request` and `action` inside `task_capabilities`, as that template
+        // had them.
         assert_eq!(r.finishing_request, Finishing::Nothing);
+        assert_eq!(r.actions, vec!["teleop".to_string()]);
         // Drain not accounted for: never sent to charge on a low battery.
         assert!(!r.account_for_battery_drain);
         assert_eq!(f.recharge_threshold, 0.0);
