@@ -15,7 +15,9 @@
 //! still break the 95 % rule: triple_H, clinic_go and airport_terminal; issue 35). Long on
 //! demand: `MAPC_DEMO_SIZES=2,4,8,16,32,64 MAPC_DEMO_MINUTES=120 cargo test -p mapc-sim
 //! --release --test traffic_demo_maps -- --nocapture` (`MAPC_DEMO_ONLY=clinic` picks runs
-//! by name, `MAPC_DEMO_DUMP=DIR` writes each run's scenario there).
+//! by name, `MAPC_DEMO_DUMP=DIR` writes each run's scenario there, `MAPC_DEMO_MAPS=DIR`
+//! takes the maps from DIR/<name>/<name>.building.yaml instead, skipping invalid ones: your
+//! own buildings under the same rule).
 
 #[path = "support/places.rs"]
 mod places;
@@ -184,8 +186,9 @@ fn stream(places: &[String], graph: i64, robots: usize, minutes: f64, seed: u64)
     out
 }
 
-fn demo_maps(shared: &Path) -> Vec<PathBuf> {
-    let mut maps: Vec<PathBuf> = std::fs::read_dir(shared.join("maps"))
+/// The maps in `dir`: each `<name>/<name>.building.yaml`.
+fn demo_maps(dir: &Path) -> Vec<PathBuf> {
+    let mut maps: Vec<PathBuf> = std::fs::read_dir(dir)
         .expect("maps")
         .filter_map(|e| e.ok())
         .map(|e| e.path())
@@ -201,15 +204,33 @@ fn demo_maps(shared: &Path) -> Vec<PathBuf> {
 
 #[test]
 fn demo_maps_take_every_fleet_size() {
-    let Some(shared) = places::shared("maps") else {
+    let own = std::env::var_os("MAPC_DEMO_MAPS").map(PathBuf::from);
+    let Some(dir) = own
+        .clone()
+        .or_else(|| places::shared("maps").map(|s| s.join("maps")))
+    else {
         eprintln!("skipped: ../shared not found");
         return;
     };
     let mut all = Vec::new();
     let mut runs_done = 0;
-    for path in demo_maps(&shared) {
-        let map = mapc_frontend::load(&path).expect("map");
-        let building = map.valid_building().expect("valid demo map");
+    for path in demo_maps(&dir) {
+        let map = match (mapc_frontend::load(&path), &own) {
+            (Ok(m), _) => m,
+            (Err(e), Some(_)) => {
+                eprintln!("{}: {e:?}, skipped", path.display());
+                continue;
+            }
+            (Err(e), None) => panic!("{}: {e:?}", path.display()),
+        };
+        let building = match (map.valid_building(), &own) {
+            (Some(b), _) => b,
+            (None, Some(_)) => {
+                eprintln!("{}: not a valid map, skipped", path.display());
+                continue;
+            }
+            (None, None) => panic!("{}: not a valid demo map", path.display()),
+        };
         let stem = path
             .file_stem()
             .unwrap()
