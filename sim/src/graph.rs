@@ -196,7 +196,15 @@ impl Nav {
             m.sort_unstable();
             m.dedup();
         }
-        // Lift rides: every pair of cabin vertices of one lift on different levels.
+        // Lift rides: every pair of cabin vertices of one lift on different levels that it
+        // serves (has doors on). The nav graph marks cabin waypoints on every level the
+        // shaft passes, as the reference does, but the cabin stops only where it has doors:
+        // a ride to another level would wait for a lift that never comes.
+        let served: Vec<Vec<Handle<Level>>> = b
+            .lifts
+            .iter()
+            .map(|(_, l)| l.level_doors.iter().map(|d| d.level).collect())
+            .collect();
         for slot in 0..graphs.len() {
             let cabins: Vec<usize> = nav.members[slot]
                 .iter()
@@ -210,6 +218,9 @@ impl Nav {
                         continue;
                     }
                     let Some(l) = va.lift else { continue };
+                    if !(served[l].contains(&va.level) && served[l].contains(&vz.level)) {
+                        continue;
+                    }
                     nav.edges.push(NavEdge {
                         graph: slot,
                         from: a,
@@ -525,4 +536,73 @@ pub fn segment_segment(a: Vec2, b: Vec2, p: Vec2, q: Vec2) -> f64 {
         .min(point_segment(b, p, q))
         .min(point_segment(p, a, b))
         .min(point_segment(q, a, b))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Three levels; the lift's shaft passes all three but it has doors on L1 and L2 only.
+    const THREE_LEVELS: &str = r#"coordinate_system: cartesian_meters
+name: shaft
+graphs:
+  0: {name: g, default_lane_width: 0.5}
+levels:
+  L1:
+    elevation: 0
+    lanes:
+      - [0, 1, {bidirectional: [4, true], graph_idx: [2, 0]}]
+    vertices:
+      - [4, 5, 0, lobby_1]
+      - [10, 5, 0, cabin_1, {lift_cabin: [1, lift_1]}]
+  L2:
+    elevation: 3.5
+    lanes:
+      - [0, 1, {bidirectional: [4, true], graph_idx: [2, 0]}]
+    vertices:
+      - [4, 5, 0, lobby_2]
+      - [10, 5, 0, cabin_2, {lift_cabin: [1, lift_1]}]
+  L3:
+    elevation: 7
+    lanes:
+      - [0, 1, {bidirectional: [4, true], graph_idx: [2, 0]}]
+    vertices:
+      - [4, 5, 0, lobby_3]
+      - [10, 5, 0, cabin_3, {lift_cabin: [1, lift_1]}]
+lifts:
+  lift_1:
+    depth: 2
+    width: 2
+    x: 10
+    y: 5
+    yaw: 0
+    doors:
+      front: {door_type: 2, motion_axis_orientation: 1.5708, width: 1, x: -1, y: 0}
+    level_doors:
+      L1: [front]
+      L2: [front]
+    plugins: true
+    reference_floor_name: L1
+reference_level_name: L1
+"#;
+
+    #[test]
+    fn lifts_ride_only_between_the_floors_they_have_doors_on() {
+        let parsed = mapc_frontend::parse_str("shaft.building.yaml", THREE_LEVELS);
+        let b = parsed.valid_building().expect("map loads");
+        let nav = Nav::build(b, &[0]);
+        let v = |n: &str| nav.find(0, n).unwrap_or_else(|| panic!("{n}"));
+        let rides: Vec<(usize, usize)> = nav
+            .edges
+            .iter()
+            .filter(|e| matches!(e.kind, EdgeKind::Lift(_)))
+            .map(|e| (e.from, e.to))
+            .collect();
+        let (c1, c2, c3) = (v("cabin_1"), v("cabin_2"), v("cabin_3"));
+        assert_eq!(rides, vec![(c1, c2), (c2, c1)]);
+        // The cabin waypoint on L3 is still in the shaft (nobody parks or works there).
+        assert!(nav.vertices[c3].lift.is_some());
+        assert!(!nav.times_reachable(0, v("lobby_1"), v("lobby_3")));
+        assert!(nav.times_reachable(0, v("lobby_1"), v("lobby_2")));
+    }
 }

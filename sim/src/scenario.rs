@@ -1156,7 +1156,9 @@ impl P<'_> {
             (None, None) => Some(1.0),
             (Some(t), _) => self.recharge_soc(t),
         };
-        if let (Some(t), Some(s)) = (threshold, soc) {
+        // A config's own pair is made consistent where it is read (`rmf_config`).
+        let own_pair = e.get("recharge_soc").is_some() || e.get("recharge_threshold").is_some();
+        if let (Some(t), Some(s), true) = (threshold, soc, own_pair || cfg.is_none()) {
             if t >= s {
                 let span = e
                     .get("recharge_soc")

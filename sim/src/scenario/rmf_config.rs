@@ -87,6 +87,7 @@ const FLEET_KEYS: &[&str] = &[
     "mechanical_system",
     "ambient_system",
     "tool_system",
+    "cleaning_system",
     "recharge_threshold",
     "recharge_soc",
     "account_for_battery_drain",
@@ -115,6 +116,19 @@ const FLEET_IGNORED: &[&str] = &[
     "lift_emergency_level",
     "use_simulated_clock",
     "default_responsive_wait",
+    // Read by rmf_ros2's EasyFullControl: graph merging and lane handling, emergency
+    // levels, map transforms; and adapters' logging and topic names.
+    "strict_lanes",
+    "max_merge_waypoint_distance",
+    "max_merge_lane_distance",
+    "min_lane_length",
+    "lift_emergency_levels",
+    "transforms",
+    "debug",
+    "fleet_state_topic",
+    "fleet_state_publish_frequency",
+    "waypoint_merge_distance",
+    "max_waypoint_merge_distance",
 ];
 const ROBOT_KEYS: &[&str] = &["charger", "finishing_request", "responsive_wait", "start"];
 const ROBOT_IGNORED: &[&str] = &[
@@ -344,23 +358,41 @@ impl P<'_> {
             },
         );
         // RMF drains the battery by the ambient and the tool power sinks alike (W each).
-        let (mut ambient, mut tool) = (None, None);
+        let (mut ambient, mut tool, mut cleaning) = (None, None, None);
         ok &= self.config_block(&f, "ambient_system", &[("power", false)], |_, x| {
             ambient = Some(x)
         });
         ok &= self.config_block(&f, "tool_system", &[("power", false)], |_, x| {
             tool = Some(x)
         });
-        if ambient.is_some() || tool.is_some() {
-            p.nominal_power = ambient.unwrap_or(0.0) + tool.unwrap_or(0.0);
+        // fleet_adapter_mir's older configs name their tool's sink `cleaning_system`.
+        ok &= self.config_block(&f, "cleaning_system", &[("power", false)], |_, x| {
+            cleaning = Some(x)
+        });
+        if ambient.is_some() || tool.is_some() || cleaning.is_some() {
+            p.nominal_power =
+                ambient.unwrap_or(0.0) + tool.unwrap_or(0.0) + cleaning.unwrap_or(0.0);
         }
         let threshold = match f.get("recharge_threshold") {
             None => Some(0.2),
             Some(t) => self.recharge_threshold(t),
         };
+        // RMF takes any fraction in [0, 1] (0: a charge that ends at once).
         let soc = match f.get("recharge_soc") {
             None => Some(1.0),
-            Some(t) => self.recharge_soc(t),
+            Some(t) => self.number(t, "`recharge_soc`").and_then(|x| {
+                if (0.0..=1.0).contains(&x) {
+                    Some(x)
+                } else {
+                    self.error(
+                        codes::OUT_OF_RANGE,
+                        t.span,
+                        format!("`recharge_soc` is {x}; it must be in [0, 1]"),
+                    );
+                    self.help("it is a fraction of the battery: 1.0 means full");
+                    None
+                }
+            }),
         };
         let drain = match f.get("account_for_battery_drain") {
             None => Some(true),
@@ -388,6 +420,7 @@ impl P<'_> {
                 "clean",
                 "finishing_request",
                 "action",
+                "action_categories",
             ];
             match self.config_entries(tc, "`task_capabilities`", &known, &[]) {
                 Some(e) => {
@@ -406,16 +439,18 @@ impl P<'_> {
                             }
                         }
                     }
-                    // The older template listed the custom actions here too.
-                    if let Some(a) = e.get("action").filter(|a| !a.is_null()) {
-                        match (
-                            self.seq(a, "`task_capabilities.action`", |p, n| {
-                                p.name(n, "an action")
-                            }),
-                            &mut actions,
-                        ) {
-                            (Some(more), Some(all)) => all.extend(more),
-                            _ => ok = false,
+                    // The older template listed the custom actions here too (rmf_demos:
+                    // `action`; fleet_adapter_mir and others: `action_categories`).
+                    for key in ["action", "action_categories"] {
+                        if let Some(a) = e.get(key).filter(|a| !a.is_null()) {
+                            let what = format!("`task_capabilities.{key}`");
+                            match (
+                                self.seq(a, &what, |p, n| p.name(n, "an action")),
+                                &mut actions,
+                            ) {
+                                (Some(more), Some(all)) => all.extend(more),
+                                _ => ok = false,
+                            }
                         }
                     }
                     // The older template put the finishing request here.
@@ -458,7 +493,12 @@ impl P<'_> {
         Some(ConfigFleet {
             name: name?,
             robot: p,
-            recharge_threshold: if drain? { threshold? } else { 0.0 },
+            // Not accounting for drain, or charging to no more than the threshold: never
+            // sent to charge for a low battery (a charge would end where it began).
+            recharge_threshold: match (drain?, threshold?, soc?) {
+                (true, t, s) if s > t => t,
+                _ => 0.0,
+            },
             recharge_soc: soc?,
             task_kinds: kinds,
             rmf: RmfFleet {
@@ -599,6 +639,59 @@ mod tests {
         let p = parse_files(FileId(0), &text, &dir);
         assert!(p.scenario.is_none() || !mapc_ir::has_errors(&p.diagnostics));
         p.diagnostics
+    }
+
+    /// Values and keys that deployments' configs have and RMF (or their adapter) reads:
+    /// a `recharge_soc` of 0, actions under `task_capabilities.action_categories`, a
+    /// `cleaning_system` power sink, RMF's merge and lane settings. Read, no warning.
+    #[test]
+    fn deployments_keys_and_values_are_read_quietly() {
+        let dir = std::env::temp_dir().join(format!("mapc-rmf-deploy-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).expect("scratch dir");
+        let config = "rmf_fleet:
+  name: scrubbers
+  limits: {linear: [0.5, 0.3], angular: [0.6, 1.0]}
+  profile: {footprint: 0.5, vicinity: 0.7}
+  ambient_system: {power: 20.0}
+  tool_system: {power: 30.0}
+  cleaning_system: {power: 650.0}
+  recharge_threshold: 0.2
+  recharge_soc: 0.0
+  account_for_battery_drain: True
+  strict_lanes: False
+  max_merge_waypoint_distance: 0.3
+  lift_emergency_levels: {lift_1: L1}
+  fleet_state_topic: fleet_states
+  debug: False
+  task_capabilities: {loop: True, action_categories: [custom_mission_1]}
+robots:
+  scrubber_1:
+    rmf_config:
+      start: {map_name: L1, waypoint: null, orientation: null}
+      charger: {waypoint: charger_a}
+";
+        std::fs::write(dir.join("deploy.yaml"), config).expect("write config");
+        let text = "duration: 1h\nfleets:\n  - {config: deploy.yaml}\n";
+        let p = parse_files(FileId(0), text, &dir);
+        assert!(p.diagnostics.is_empty(), "{:#?}", p.diagnostics);
+        let f = p.scenario.expect("scenario").fleets[0].clone();
+        // Every power sink drains: 20 + 30 + 650 W.
+        assert_eq!(f.robot.nominal_power, 700.0);
+        // Charging to 0 % would end at once: never sent to charge for a low battery.
+        assert_eq!((f.recharge_threshold, f.recharge_soc), (0.0, 0.0));
+        let r = f.rmf.expect("rmf");
+        assert_eq!(r.actions, vec!["custom_mission_1".to_string()]);
+        // No start waypoint (null): it starts on its charger.
+        assert_eq!(f.spawn, SpawnSpec::Waypoints(vec!["charger_a".into()]));
+        // Out of RMF's range is still an error.
+        let d = broken(
+            "soc.yaml",
+            &config.replace("recharge_soc: 0.0", "recharge_soc: 1.5"),
+        );
+        assert!(
+            d.iter().any(|d| d.code == codes::OUT_OF_RANGE.code),
+            "{d:#?}"
+        );
     }
 
     #[test]
