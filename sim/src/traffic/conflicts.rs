@@ -259,35 +259,8 @@ impl Conflicts {
 #[cfg(test)]
 mod tests {
     use super::{Clearance, Conflicts, MARGIN};
-    use crate::graph::{point_segment, segment_segment, EdgeKind, Nav};
-    use crate::traffic::test_map::{conflicts, e, nav};
-
-    /// A random map: `n` vertices scattered over 30 m × 30 m on two levels, random lanes.
-    fn random_nav(seed: u64, n: usize) -> Nav {
-        let mut rng = fastrand::Rng::with_seed(seed);
-        let mut yaml = String::from(
-            "coordinate_system: cartesian_meters\nname: r\nreference_level_name: L1\nlevels:\n",
-        );
-        for level in ["L1", "L2"] {
-            yaml += &format!("  {level}:\n    elevation: 0\n    vertices:\n");
-            for _ in 0..n {
-                let (x, y) = (rng.f64() * 30.0, rng.f64() * 30.0);
-                yaml += &format!("      - [{x:.3}, {y:.3}, 0, \"\"]\n");
-            }
-            yaml += "    lanes:\n";
-            for _ in 0..n {
-                let (a, z) = (rng.usize(0..n), rng.usize(0..n));
-                if a != z {
-                    yaml += &format!(
-                        "      - [{a}, {z}, {{bidirectional: [4, {}], graph_idx: [2, 0]}}]\n",
-                        rng.bool()
-                    );
-                }
-            }
-        }
-        let parsed = mapc_frontend::parse_str("r.building.yaml", &yaml);
-        Nav::build(parsed.valid_building().expect("random map loads"), &[0])
-    }
+    use crate::graph::{point_segment, segment_segment, EdgeKind};
+    use crate::traffic::test_map::{conflicts, e, nav, random_nav};
 
     /// The sets hold exactly what the geometry says, however many elements the grid puts
     /// in a cell: vertices closer than the body, and for a lane, the vertices near the

@@ -257,7 +257,15 @@ pub fn choose(nav: &Nav, conf: &Conflicts, needs: &Needs) -> Parks {
                 })
             };
             let own_ok = access(v, &blocked, &absorbed) && {
-                // With v taken, the others keep theirs.
+                // With v taken (and the lanes past it blocked), the others keep theirs.
+                let past: Vec<usize> = blk
+                    .iter()
+                    .copied()
+                    .filter(|&e| nav.edges[e].from != v && nav.edges[e].to != v)
+                    .collect();
+                for &e in &past {
+                    blocked[e] = true;
+                }
                 absorbed[v] = true;
                 let ok = taken_parks.iter().all(|&p| {
                     absorbed[p] = false;
@@ -266,6 +274,9 @@ pub fn choose(nav: &Nav, conf: &Conflicts, needs: &Needs) -> Parks {
                     ok
                 });
                 absorbed[v] = false;
+                for &e in &past {
+                    blocked[e] = false;
+                }
                 ok
             };
             if !own_ok {
@@ -276,11 +287,14 @@ pub fn choose(nav: &Nav, conf: &Conflicts, needs: &Needs) -> Parks {
                 .iter()
                 .all(|&e| nav.edges[e].from == v || nav.edges[e].to == v);
             let leaf = own_only && slots[s].nbrs[v].len() <= 1;
+            // Set for the check and undone after: only what is not set already (another
+            // park's standing room stays absorbed).
+            let fresh: Vec<usize> = abs.iter().copied().filter(|&w| !absorbed[w]).collect();
             let ok = leaf || {
                 for &e in &blk {
                     blocked[e] = true;
                 }
-                for &w in &abs {
+                for &w in &fresh {
                     absorbed[w] = true;
                 }
                 absorbed[v] = true;
@@ -292,7 +306,7 @@ pub fn choose(nav: &Nav, conf: &Conflicts, needs: &Needs) -> Parks {
                 for &e in &blk {
                     blocked[e] = false;
                 }
-                for &w in &abs {
+                for &w in &fresh {
                     absorbed[w] = false;
                 }
                 absorbed[v] = false;
@@ -314,6 +328,9 @@ pub fn choose(nav: &Nav, conf: &Conflicts, needs: &Needs) -> Parks {
                 held[x as usize] = true;
             }
             taken_parks.push(v);
+            // A taken park is occupied for every later check (not only after a check
+            // that happened to visit it: a later park must not shut it in).
+            absorbed[v] = true;
             if home {
                 parks.per_slot[s][v] = PARK_HOME;
                 continue;

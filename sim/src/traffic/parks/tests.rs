@@ -135,3 +135,41 @@ fn a_charger_no_task_names_is_parking_and_a_task_place_of_the_second_kind() {
     );
     assert_eq!(two.per_slot[0][v(&nav, "p1")], 0);
 }
+
+/// With a robot on every other parking vertex, each parking vertex keeps a way out and a
+/// way in: an edge to (and one from) a vertex clear of the others' standing room whose
+/// traversal needs none of it. Over random maps; a park shut in by later ones once left a
+/// robot unable to plan for a whole run (a corridor of parks, each between two others).
+#[test]
+fn every_park_keeps_a_way_out_and_in_with_all_parks_taken() {
+    use crate::traffic::test_map::random_nav;
+    for seed in 0..80 {
+        let nav = random_nav(seed, 8 + (seed as usize % 24));
+        let conf = conflicts(&nav);
+        let n = nav.vertices.len();
+        let none = vec![vec![false; n]];
+        let parks = choose_for(&nav, &conf, &none, n, &[]);
+        let taken: Vec<usize> = (0..n).filter(|&p| parks.per_slot[0][p] != 0).collect();
+        for &p in &taken {
+            let mut others: Vec<u32> = taken
+                .iter()
+                .filter(|&&q| q != p)
+                .flat_map(|&q| conf.vertex[q].iter().copied())
+                .collect();
+            others.sort_unstable();
+            let hit = |set: &[u32]| set.iter().any(|x| others.binary_search(x).is_ok());
+            let clear = |e: usize| {
+                let ed = &nav.edges[e];
+                let w = if ed.from == p { ed.to } else { ed.from };
+                !hit(&conf.vertex[w]) && !hit(&conf.trav[e])
+            };
+            let edges = || (0..nav.edges.len()).filter(|&e| nav.edges[e].graph == 0);
+            let out = edges().any(|e| nav.edges[e].from == p && clear(e));
+            let inn = edges().any(|e| nav.edges[e].to == p && clear(e));
+            assert!(
+                out && inn,
+                "seed {seed}: park {p} shut in (out {out}, in {inn}) among {taken:?}"
+            );
+        }
+    }
+}
