@@ -11,6 +11,7 @@ mod lane_between_lifts;
 mod level_without_waypoint;
 mod range_inverted;
 mod unknown_door;
+mod waypoint_on_unserved_level;
 mod waypoints_misaligned;
 
 pub(super) static RULES: &[&Rule] = &[
@@ -24,4 +25,5 @@ pub(super) static RULES: &[&Rule] = &[
     &initial_floor_not_served::RULE,
     &lane_between_lifts::RULE,
     &door_never_opens::RULE,
+    &waypoint_on_unserved_level::RULE,
 ];
