@@ -209,9 +209,6 @@ pub struct FleetReport {
     /// route): they stayed in the depot and are not in `robots`.
     #[serde(skip_serializing_if = "is_zero")]
     pub reserve: usize,
-    /// For auto spawn: the robots the fleet's task stream keeps busy, the most it places.
-    #[serde(skip_serializing_if = "is_zero")]
-    pub needed: usize,
     pub tasks_completed: usize,
     pub tasks_failed: usize,
     pub tasks_unfinished: usize,
@@ -382,7 +379,6 @@ struct Approach {
 pub struct ReportBuilder {
     fleets: Vec<String>,
     reserve: BTreeMap<String, usize>,
-    needed: BTreeMap<String, usize>,
     robots: Vec<RobotAcc>,
     robot_index: BTreeMap<String, usize>,
     tasks: Vec<TaskReport>,
@@ -427,7 +423,6 @@ impl ReportBuilder {
         let mut b = ReportBuilder {
             fleets: scenario.fleets.iter().map(|f| f.name.clone()).collect(),
             reserve: placement.reserve.iter().cloned().collect(),
-            needed: placement.needed.iter().cloned().collect(),
             robots: Vec::new(),
             robot_index: BTreeMap::new(),
             tasks: Vec::new(),
@@ -905,7 +900,6 @@ impl ReportBuilder {
                     name: name.clone(),
                     robots: mine.len(),
                     reserve: self.reserve.get(name).copied().unwrap_or(0),
-                    needed: self.needed.get(name).copied().unwrap_or(0),
                     tasks_completed: completed,
                     tasks_failed: count("failed"),
                     tasks_unfinished: count("unfinished"),
@@ -1030,12 +1024,7 @@ impl Report {
             count("unfinished")
         );
         for f in &self.fleets {
-            let reserve = if f.reserve > 0 && f.needed > 0 && f.robots >= f.needed {
-                format!(
-                    " (+{} in reserve: its tasks keep {} busy)",
-                    f.reserve, f.needed
-                )
-            } else if f.reserve > 0 {
+            let reserve = if f.reserve > 0 {
                 format!(" (+{} in reserve: no home on the floor)", f.reserve)
             } else {
                 String::new()
@@ -1248,7 +1237,6 @@ mod tests {
             ],
             workcells: Vec::new(),
             reserve: Vec::new(),
-            needed: Vec::new(),
             warnings: Vec::new(),
             parks: Default::default(),
             finishes: Vec::new(),
@@ -1752,7 +1740,6 @@ mod sweep_tests {
                 .collect(),
             workcells: Vec::new(),
             reserve: Vec::new(),
-            needed: Vec::new(),
             warnings: Vec::new(),
             parks: Default::default(),
             finishes: Vec::new(),

@@ -93,8 +93,6 @@ pub struct Placement {
     /// Per fleet, robots that auto spawn found no room for: the building has fewer
     /// parking vertices (`crate::traffic::parks`) than robots asked.
     pub reserve: Vec<(String, usize)>,
-    /// Unused (kept for the report's shape): auto spawn places every robot it has room for.
-    pub needed: Vec<(String, usize)>,
     /// Warnings about the scenario on this map (not well-formed places, rooms short).
     pub warnings: Vec<Diagnostic>,
     /// Where robots may stand for good.

@@ -254,7 +254,6 @@ impl Fleets {
             robots,
             workcells,
             reserve,
-            needed: Vec::new(),
             warnings,
             parks,
             finishes,
