@@ -82,53 +82,45 @@ fn check(ctx: &Context, out: &mut Vec<Diagnostic>) {
 #[cfg(test)]
 mod tests {
     use crate::validate::tests::TestMap;
-    use crate::Vec2;
+    use crate::{Diagnostic, Vec2};
+
+    /// Lift LA at (10, 5) with doors on L1 and L2; on each of L1..L3 a lane from a
+    /// waypoint in the shaft to one outside; `top` (when set) the lift's highest level.
+    fn three_levels(extra_on_l3: bool, top: Option<usize>) -> Vec<Diagnostic> {
+        let mut m = TestMap::new();
+        let mut levels = vec![m.level];
+        for (k, name) in ["L1", "L2", "L3"].iter().enumerate() {
+            if k > 0 {
+                levels.push(m.level(name, 3.0 * k as f64));
+            }
+            let a = m.vertex(&format!("in{}", k + 1), 10.0, 5.0);
+            let b = m.vertex(&format!("out{}", k + 1), 10.0, 2.0);
+            m.lane(a, b, 0, true);
+            if extra_on_l3 && k == 2 {
+                let c = m.vertex("in3b", 10.2, 5.0);
+                m.lane(c, b, 0, true);
+            }
+        }
+        let lift = m.lift("LA", Vec2::new(10.0, 5.0), 2.0, 2.0, &levels[..2]);
+        m.b.lifts[lift].highest_level = top.map(|k| levels[k]);
+        crate::validate(&m.b)
+            .into_iter()
+            .filter(|d| d.code == "W0411")
+            .collect()
+    }
 
     #[test]
     fn a_lane_vertex_in_the_shaft_on_a_level_without_doors() {
-        let mut m = TestMap::new();
-        let l1 = m.level;
-        let a = m.vertex("in1", 10.0, 5.0);
-        let b = m.vertex("out1", 10.0, 2.0);
-        m.lane(a, b, 0, true);
-        let l2 = m.level("L2", 3.0);
-        let c = m.vertex("in2", 10.0, 5.0);
-        let d = m.vertex("out2", 10.0, 2.0);
-        m.lane(c, d, 0, true);
-        m.level("L3", 6.0);
-        let e = m.vertex("in3", 10.0, 5.0);
-        let f = m.vertex("out3", 10.0, 2.0);
-        m.lane(e, f, 0, true);
         // A second vertex in the shaft on L3: still one warning for the level.
-        let g = m.vertex("in3b", 10.2, 5.0);
-        m.lane(g, f, 0, true);
-        m.lift("LA", Vec2::new(10.0, 5.0), 2.0, 2.0, &[l1, l2]);
-        let diags = crate::validate(&m.b);
-        let w: Vec<_> = diags.iter().filter(|d| d.code == "W0411").collect();
+        let w = three_levels(true, None);
         assert_eq!(w.len(), 1, "{w:#?}");
         assert!(w[0].message.contains("`in3`") && w[0].message.contains("`L3`"));
         assert!(w[0].message.contains("`L1`, `L2`"), "{}", w[0].message);
     }
 
     #[test]
-    fn served_levels_and_levels_past_the_shaft_are_fine() {
-        let mut m = TestMap::new();
-        let l1 = m.level;
-        let a = m.vertex("in1", 10.0, 5.0);
-        let b = m.vertex("out1", 10.0, 2.0);
-        m.lane(a, b, 0, true);
-        let l2 = m.level("L2", 3.0);
-        let c = m.vertex("in2", 10.0, 5.0);
-        let d = m.vertex("out2", 10.0, 2.0);
-        m.lane(c, d, 0, true);
+    fn levels_past_the_shaft_are_fine() {
         // L3 is above the shaft (highest floor L2): not the lift's business.
-        m.level("L3", 6.0);
-        let e = m.vertex("in3", 10.0, 5.0);
-        let f = m.vertex("out3", 10.0, 2.0);
-        m.lane(e, f, 0, true);
-        let lift = m.lift("LA", Vec2::new(10.0, 5.0), 2.0, 2.0, &[l1, l2]);
-        m.b.lifts[lift].highest_level = Some(l2);
-        let diags = crate::validate(&m.b);
-        assert!(!diags.iter().any(|d| d.code == "W0411"), "{diags:#?}");
+        assert!(three_levels(false, Some(1)).is_empty());
     }
 }

@@ -12,13 +12,25 @@ fn choose_for(
     want: usize,
     homes: &[(usize, usize)],
 ) -> Parks {
+    choose_among(nav, conf, (places, places), want, homes)
+}
+
+/// [`choose_for`] where `tasks` are the task places among the `places` that must stay
+/// reachable (the others: chargers, spawn points).
+fn choose_among(
+    nav: &crate::graph::Nav,
+    conf: &crate::traffic::conflicts::Conflicts,
+    (places, tasks): (&[Vec<bool>], &[Vec<bool>]),
+    want: usize,
+    homes: &[(usize, usize)],
+) -> Parks {
     choose(
         nav,
         conf,
         &Needs {
             required: places,
             places,
-            tasks: places,
+            tasks,
             want: &[want],
             homes,
         },
@@ -106,33 +118,13 @@ fn a_charger_no_task_names_is_parking_and_a_task_place_of_the_second_kind() {
     places[0][v(&nav, "a")] = true;
     let mut tasks = vec![vec![false; n]];
     tasks[0][v(&nav, "a")] = true;
-    let parks = choose(
-        &nav,
-        &conf,
-        &Needs {
-            required: &places,
-            places: &places,
-            tasks: &tasks,
-            want: &[10],
-            homes: &[],
-        },
-    );
+    let parks = choose_among(&nav, &conf, (&places, &tasks), 10, &[]);
     let kind = |name: &str| parks.per_slot[0][v(&nav, name)];
     assert_eq!(kind("p1"), PARK);
     assert_eq!(kind("a"), PARK_ON_PLACE);
     assert_eq!((kind("p2"), kind("d")), (PARK, PARK));
     // The charger is chosen after the other parking vertices: with room for two, not it.
-    let two = choose(
-        &nav,
-        &conf,
-        &Needs {
-            required: &places,
-            places: &places,
-            tasks: &tasks,
-            want: &[2],
-            homes: &[],
-        },
-    );
+    let two = choose_among(&nav, &conf, (&places, &tasks), 2, &[]);
     assert_eq!(two.per_slot[0][v(&nav, "p1")], 0);
 }
 
