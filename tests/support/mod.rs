@@ -22,7 +22,7 @@ pub struct Run {
 /// least the parent's peak. `VmHWM` is that of mapc's own memory and only grows, so a
 /// sample taken after the peak sees it; only growth in the last few milliseconds before
 /// exit can be missed.
-fn vm_hwm(pid: u32) -> Option<u64> {
+pub fn vm_hwm(pid: u32) -> Option<u64> {
     let status = std::fs::read_to_string(format!("/proc/{pid}/status")).ok()?;
     let line = status.lines().find(|l| l.starts_with("VmHWM:"))?;
     let kb: u64 = line.split_whitespace().nth(1)?.parse().ok()?;

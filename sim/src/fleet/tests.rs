@@ -1294,3 +1294,37 @@ fn a_patrol_of_three_places_visits_them_in_order_each_round() {
     assert!(times.windows(2).all(|w| w[0] < w[1]), "{times:?}");
     assert_eq!(times.last().copied(), Some(at("completed").0));
 }
+
+/// More robots than parking vertices (a fleet config's start waypoints): a robot standing
+/// off the parking vertices, with every parking vertex taken for good, plans its task to end
+/// back where it stands. Before, no plan could end anywhere and it never moved.
+#[test]
+fn a_robot_with_no_parking_vertex_left_ends_its_plan_where_it_stands() {
+    let b = cross();
+    let s = scenario(
+        vec![fleet(
+            "a",
+            3,
+            SpawnSpec::Waypoints(vec!["park_w".into(), "park_e".into(), "w".into()]),
+        )],
+        vec![TaskSpec {
+            robot: Some("a_2".into()),
+            ..task(
+                0.5,
+                TaskKind::Loop {
+                    start: "e".into(),
+                    finish: "w".into(),
+                    loops: 1,
+                },
+            )
+        }],
+    );
+    let (events, _, f) = run(&b, &s, 300.0);
+    assert_eq!(
+        ended(&events),
+        vec![("loop_0".to_string(), "completed".to_string())],
+        "{events:#?}"
+    );
+    let i = f.by_name["a_2"];
+    assert_eq!(f.nav.vertices[f.sched.end_vertex(i)].name, "w");
+}

@@ -88,7 +88,7 @@ impl Fleets {
         stay: Option<usize>,
     ) -> Vec<End> {
         let r = &self.robots[i];
-        match r.finish {
+        let mut ends = match r.finish {
             Finish::Park => vec![(None, stay)],
             Finish::Home(h) => {
                 let mut only = vec![0u8; self.nav.vertices.len()];
@@ -101,7 +101,15 @@ impl Fleets {
                     && !self.robots.iter().any(|o| o.finish == Finish::Home(last));
                 vec![(None, if free { Some(last) } else { stay })]
             }
+        };
+        // Last: back where it stands for good now, when that is no parking vertex (a
+        // config's start waypoint, or where it was sent to make room). With more robots
+        // than parking vertices no plan could end otherwise, and it stands there already.
+        let here = self.sched.end_vertex(i);
+        if self.parks.per_slot[r.slot][here] == 0 && stay != Some(here) {
+            ends.push((None, Some(here)));
         }
+        ends
     }
 
     /// Installs `plan` as robot `i`'s itinerary after its first `keep` traversals, and
