@@ -571,7 +571,8 @@ impl Planner {
 /// `soft`), sorted.
 fn merged(sched: &Schedule, set: &[Res], r: usize, soft: bool) -> Vec<(f64, f64)> {
     let mut all: Vec<(f64, f64)> = set.iter().flat_map(|&x| sched.busy(x, r, soft)).collect();
-    all.sort_by(|a, b| a.0.total_cmp(&b.0));
+    // Unstable: the union does not depend on the order of equal starts.
+    all.sort_unstable_by(|a, b| a.0.total_cmp(&b.0));
     let mut out: Vec<(f64, f64)> = Vec::with_capacity(all.len());
     for (a, b) in all {
         if b <= a {
