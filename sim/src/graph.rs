@@ -144,6 +144,20 @@ impl Nav {
                 nav.vertices.len() - 1
             })
         };
+        // The levels each lift serves (has doors on). The nav graph marks cabin waypoints on
+        // every level the shaft passes, as the reference does, but the cabin stops only where
+        // it has doors: a robot driving into the shaft elsewhere, or riding there, would wait
+        // for a cabin that never comes (W0411 says so when checking the map). Such waypoints
+        // get no lanes and no rides.
+        let served: Vec<Vec<Handle<Level>>> = b
+            .lifts
+            .iter()
+            .map(|(_, l)| l.level_doors.iter().map(|d| d.level).collect())
+            .collect();
+        let dead_shaft = |nav: &Nav, v: usize| {
+            let x = &nav.vertices[v];
+            x.lift.is_some_and(|l| !served[l].contains(&x.level))
+        };
         let mut per_graph_lanes: Vec<Vec<(Handle<Lane>, &Lane)>> = vec![Vec::new(); graphs.len()];
         for (lh, lane) in b.lanes.iter() {
             if let Some(slot) = graphs.iter().position(|&g| g == lane.graph) {
@@ -154,6 +168,9 @@ impl Nav {
             for &(lh, lane) in lanes {
                 let s = add_vertex(&mut nav, lane.start);
                 let e = add_vertex(&mut nav, lane.end);
+                if dead_shaft(&nav, s) || dead_shaft(&nav, e) {
+                    continue;
+                }
                 let dirs: &[bool] = if lane.bidirectional {
                     &[false, true]
                 } else {
@@ -197,14 +214,7 @@ impl Nav {
             m.dedup();
         }
         // Lift rides: every pair of cabin vertices of one lift on different levels that it
-        // serves (has doors on). The nav graph marks cabin waypoints on every level the
-        // shaft passes, as the reference does, but the cabin stops only where it has doors:
-        // a ride to another level would wait for a lift that never comes.
-        let served: Vec<Vec<Handle<Level>>> = b
-            .lifts
-            .iter()
-            .map(|(_, l)| l.level_doors.iter().map(|d| d.level).collect())
-            .collect();
+        // serves (see `served`).
         for slot in 0..graphs.len() {
             let cabins: Vec<usize> = nav.members[slot]
                 .iter()
@@ -598,11 +608,12 @@ reference_level_name: L1
             .filter(|e| matches!(e.kind, EdgeKind::Lift(_)))
             .map(|e| (e.from, e.to))
             .collect();
-        let (c1, c2, c3) = (v("cabin_1"), v("cabin_2"), v("cabin_3"));
+        let (c1, c2) = (v("cabin_1"), v("cabin_2"));
         assert_eq!(rides, vec![(c1, c2), (c2, c1)]);
-        // The cabin waypoint on L3 is still in the shaft (nobody parks or works there).
-        assert!(nav.vertices[c3].lift.is_some());
-        assert!(!nav.times_reachable(0, v("lobby_1"), v("lobby_3")));
+        // The cabin waypoint on L3 is in the shaft where the cabin never stops: no lane leads
+        // into it, so neither it nor the lobby only it reaches is on the graph.
+        assert_eq!(nav.find(0, "cabin_3"), None);
+        assert_eq!(nav.find(0, "lobby_3"), None);
         assert!(nav.times_reachable(0, v("lobby_1"), v("lobby_2")));
     }
 }
