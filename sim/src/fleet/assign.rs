@@ -8,9 +8,10 @@
 //! one whose plan arrives first takes the task. A plan that would wait long for traffic
 //! is not taken while the task is young: robots stay parked rather than queue in the
 //! corridors, so a bigger fleet does not jam a building that a smaller one serves.
-//! Such a task is not planned again for the same robots until one of their plans could
-//! first fit (the least excess wait, at most `MAX_BACKOFF`): with a saturating stream hundreds of tasks
-//! wait, and planning each again at every round cost 95 % of a run.
+//! Such a task is not planned again for the same robot until its plan could first fit
+//! (its excess wait, at most `MAX_BACKOFF`), whatever the task's other candidates found:
+//! with a saturating stream hundreds of tasks wait, and planning each again at every round
+//! cost 95 % of a run.
 
 use super::*;
 use crate::traffic::sipp::{Plan, Query};
@@ -62,9 +63,9 @@ pub(super) struct Pending {
     pub passed_over: Option<f64>,
     /// When robots were last asked to make room for it.
     pub displaced_at: f64,
-    /// The robots last planned for it, whose plans all waited too long, and when planning for the same robots again may first succeed (see
-    /// [`Fleets::dispatch`]).
-    pub backoff: Option<(Vec<usize>, f64)>,
+    /// Robots whose plans for it waited too long, each with when planning for it again
+    /// may first succeed (see [`Fleets::dispatch`]).
+    pub backoff: Vec<(usize, f64)>,
     /// Its plans keep clear of the others' ways to parking too (one that went before them
     /// was undone: see [`Fleets::install`]).
     pub hard: bool,
@@ -129,7 +130,7 @@ impl Fleets {
             priority,
             passed_over: None,
             displaced_at: f64::NEG_INFINITY,
-            backoff: None,
+            backoff: Vec::new(),
             hard: false,
         };
         // Oldest first within a priority; a higher priority before every lower one.
@@ -262,16 +263,6 @@ impl Fleets {
                 .filter(|(n, c)| *n < CANDIDATES || holders.contains(&c.1))
                 .map(|(_, c)| c)
                 .collect();
-            // Planning again for the same robots before the backoff ends cannot succeed
-            // unless the others got ahead of their plans: a later start shortens a plan's
-            // waits by at most the delay, and the plans installed since only add spans.
-            let tried: Vec<usize> = near.iter().map(|n| n.1).collect();
-            if let Some((robots, until)) = &self.pending[k].backoff {
-                if *robots == tried && t < *until {
-                    k += 1;
-                    continue;
-                }
-            }
             // Not past the moment the task turns patient (its plans may then wait longer).
             let turns_patient = self.pending[k]
                 .passed_over
@@ -282,9 +273,18 @@ impl Fleets {
             let soft = !self.pending[k].hard;
             let mut best: Option<(f64, usize, Vec<Step>, Plan, usize, f64)> = None;
             let mut failed = false;
-            // When the first of the plans that waited too long could fit.
-            let mut retry = f64::INFINITY;
+            // Robots whose plans for it waited too long now and will, planned again.
+            let mut refused: Vec<(usize, f64)> = Vec::new();
             for (_, ri, steps) in near {
+                // Planning again for a robot before its backoff ends cannot succeed unless
+                // the others got ahead of their plans: a later start shortens a plan's
+                // waits by at most the delay, and the plans installed since only add spans.
+                if let Some(&(_, until)) = self.pending[k].backoff.iter().find(|b| b.0 == ri) {
+                    if t < until {
+                        refused.push((ri, until));
+                        continue;
+                    }
+                }
                 budget = budget.saturating_sub(1);
                 let goals = self.goals_of(ri, &steps);
                 let stay = matches!(self.tasks[ti].kind, TaskKind::GoToPlace { .. })
@@ -342,7 +342,8 @@ impl Fleets {
                 let over = (planned_wait(&plan, t0) - (most + WAIT_SHARE * length))
                     .max(longest_wait(&plan, t0) - LONGEST_WAIT);
                 if over > 0.0 {
-                    retry = retry.min(t + over.clamp(DISPATCH_EVERY, MAX_BACKOFF));
+                    let until = (t + over.clamp(DISPATCH_EVERY, MAX_BACKOFF)).min(turns_patient);
+                    refused.push((ri, until));
                     continue;
                 }
                 if best.as_ref().is_none_or(|b| arrive < b.0) {
@@ -350,10 +351,9 @@ impl Fleets {
                 }
             }
             let Some((_, ri, steps, plan, keep, t0)) = best else {
-                // A robot that found no way may find one as soon as others make room.
-                if !failed && retry.is_finite() {
-                    self.pending[k].backoff = Some((tried, retry.min(turns_patient)));
-                }
+                // Robots that found no way are planned for again next round: they may find
+                // one as soon as others make room.
+                self.pending[k].backoff = refused;
                 // Room is made for one task per round, the oldest that needs it: for two
                 // tasks in turn, the same robot would be sent back and forth between them.
                 if failed && !displaced && t >= self.pending[k].displaced_at + DISPLACE_EVERY {
