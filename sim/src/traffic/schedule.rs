@@ -115,7 +115,7 @@ pub struct Cycle {
     pub robots: Vec<usize>,
 }
 
-#[derive(Debug, Clone)]
+#[derive(Debug)]
 pub struct Schedule {
     conf: Conflicts,
     queues: Vec<VecDeque<Span>>,
@@ -125,6 +125,25 @@ pub struct Schedule {
     /// Changes with every change of the schedule, and no two schedules share one (see
     /// [`Schedule::stamp`]).
     stamp: u64,
+    /// Per resource: the stamp of the last change of what [`Schedule::busy`] says of it.
+    changed: Vec<u64>,
+    /// New for every copy: what was computed from one copy says nothing of another (see
+    /// [`Schedule::lineage`]).
+    lineage: u64,
+}
+
+impl Clone for Schedule {
+    fn clone(&self) -> Schedule {
+        Schedule {
+            conf: self.conf.clone(),
+            queues: self.queues.clone(),
+            its: self.its.clone(),
+            stale: self.stale,
+            stamp: self.stamp,
+            changed: self.changed.clone(),
+            lineage: new_stamp(),
+        }
+    }
 }
 
 /// The next stamp any schedule takes.
@@ -162,12 +181,15 @@ impl Schedule {
                 soft: None,
             });
         }
+        let stamp = new_stamp();
         Schedule {
+            changed: vec![stamp; conf.n_res],
             conf,
             queues,
             its,
             stale: true,
-            stamp: new_stamp(),
+            stamp,
+            lineage: new_stamp(),
         }
     }
 
@@ -176,6 +198,37 @@ impl Schedule {
     /// kept while its stamp stays.
     pub fn stamp(&self) -> u64 {
         self.stamp
+    }
+
+    /// Identifies this copy of the schedule: while it stays, intervals computed from
+    /// resources at one stamp hold for as long as [`Schedule::changed_since`] says none of
+    /// them changed.
+    pub fn lineage(&self) -> u64 {
+        self.lineage
+    }
+
+    /// Whether what [`Schedule::busy`] says of any of `set` changed after stamp `at`.
+    pub fn changed_since(&self, set: &[Res], at: u64) -> bool {
+        set.iter().any(|&x| self.changed[x as usize] > at)
+    }
+
+    /// Every resource robot `r` may hold a span on: its standing set and its traversals'.
+    fn resources_of(&self, r: usize) -> Vec<Res> {
+        let it = &self.its[r];
+        let mut out: Vec<Res> = self.conf.vertex[it.at].clone();
+        for t in &it.travs {
+            out.extend_from_slice(&self.conf.trav[t.edge]);
+        }
+        out.sort_unstable();
+        out.dedup();
+        out
+    }
+
+    /// Marks `set` changed now.
+    fn mark(&mut self, set: &[Res]) {
+        for &x in set {
+            self.changed[x as usize] = self.stamp;
+        }
     }
 
     pub fn conf(&self) -> &Conflicts {
@@ -235,6 +288,14 @@ impl Schedule {
     pub fn begin(&mut self, r: usize, n: usize, t: f64) {
         self.stale = true;
         self.stamp = new_stamp();
+        // Setting off on its soft traversals makes them hard.
+        let it = &self.its[r];
+        if let Some(k) = it.soft.and_then(|m| m.checked_sub(it.base)) {
+            if (k as usize) < n && it.travs.get(k as usize).is_some_and(|t| !t.begun) {
+                let set = self.resources_of(r);
+                self.mark(&set);
+            }
+        }
         let mut prev = t;
         for tr in self.its[r].travs.iter_mut().take(n) {
             if !tr.begun {
@@ -262,6 +323,7 @@ impl Schedule {
                 .is_some_and(|s| s.robot as usize == r && s.last == tr.seq)
             {
                 q.pop_front();
+                self.changed[x as usize] = self.stamp;
             }
         }
         let it = &mut self.its[r];
@@ -295,8 +357,12 @@ impl Schedule {
         for t in &self.its[r].travs {
             touched.extend_from_slice(&self.conf.trav[t.edge]);
         }
+        for st in steps {
+            touched.extend_from_slice(&self.conf.trav[st.edge]);
+        }
         touched.sort_unstable();
         touched.dedup();
+        self.mark(&touched);
         // 1. Cut the itinerary after `keep`: spans wholly after go, spans reaching past end
         //    at the last kept traversal (they are extended below where the new steps need
         //    the resource straight on).
@@ -447,8 +513,11 @@ impl Schedule {
     /// Robot `r`'s soft traversals become hard (its task is done: its way to parking is
     /// what it drives next).
     pub fn harden(&mut self, r: usize) {
-        if self.its[r].soft.take().is_some() {
+        if self.its[r].soft.is_some() {
             self.stamp = new_stamp();
+            let set = self.resources_of(r);
+            self.mark(&set);
+            self.its[r].soft = None;
         }
     }
 
@@ -509,7 +578,10 @@ impl Schedule {
             let k = seq.checked_sub(it.base)? as usize;
             (k < it.travs.len()).then(|| offs[r] + k)
         };
-        let mut deps: Vec<Vec<usize>> = vec![Vec::new(); total];
+        // The dependencies between queues (the last traversal of a span before the first of
+        // the next), as one list of users per traversal (CSR: a saturated run retimes
+        // thousands of times, and a vector per traversal cost most of it).
+        let mut edges: Vec<(u32, u32)> = Vec::new();
         for q in &self.queues {
             for w in 1..q.len() {
                 let (p, s) = (&q[w - 1], &q[w]);
@@ -526,25 +598,38 @@ impl Schedule {
                 ) else {
                     continue;
                 };
-                deps[b].push(a);
+                edges.push((a as u32, b as u32));
             }
         }
-        for (r, it) in self.its.iter().enumerate() {
-            for k in 1..it.travs.len() {
-                deps[offs[r] + k].push(offs[r] + k - 1);
+        let mut indeg = vec![0u32; total];
+        let mut first = vec![0u32; total + 1];
+        for &(a, b) in &edges {
+            first[a as usize + 1] += 1;
+            indeg[b as usize] += 1;
+        }
+        for k in 0..total {
+            first[k + 1] += first[k];
+        }
+        let mut users = vec![0u32; edges.len()];
+        {
+            let mut at = first.clone();
+            for &(a, b) in &edges {
+                users[at[a as usize] as usize] = b;
+                at[a as usize] += 1;
+            }
+        }
+        // Each robot's own order: a traversal after the one before it.
+        for it_off in offs.windows(2) {
+            for d in indeg.iter_mut().take(it_off[1]).skip(it_off[0] + 1) {
+                *d += 1;
             }
         }
         // Kahn's algorithm: a node whose dependencies are all timed is timed.
-        let mut indeg: Vec<usize> = deps.iter().map(Vec::len).collect();
-        let mut users: Vec<Vec<usize>> = vec![Vec::new(); total];
-        for (b, ds) in deps.iter().enumerate() {
-            for &a in ds {
-                users[a].push(b);
-            }
-        }
         let mut ready: Vec<usize> = (0..total).filter(|&b| indeg[b] == 0).collect();
         let mut end = vec![0.0f64; total];
         let mut start = vec![0.0f64; total];
+        // The latest end of the other robots' traversals each waits for.
+        let mut after = vec![f64::NEG_INFINITY; total];
         let robot_of = |b: usize| offs.partition_point(|&o| o <= b) - 1;
         let mut done = 0;
         while let Some(b) = ready.pop() {
@@ -562,17 +647,22 @@ impl Schedule {
                 } else {
                     end[b - 1] + tr.hold
                 };
-                let mut s = now.max(own);
-                for &a in &deps[b] {
-                    s = s.max(end[a]);
-                }
+                let s = now.max(own).max(after[b]);
                 start[b] = s;
                 end[b] = s + tr.dur;
             }
-            for &u in &users[b] {
+            for &u in &users[first[b] as usize..first[b + 1] as usize] {
+                let u = u as usize;
+                after[u] = after[u].max(end[b]);
                 indeg[u] -= 1;
                 if indeg[u] == 0 {
                     ready.push(u);
+                }
+            }
+            if k + 1 < it.travs.len() {
+                indeg[b + 1] -= 1;
+                if indeg[b + 1] == 0 {
+                    ready.push(b + 1);
                 }
             }
         }
@@ -589,8 +679,10 @@ impl Schedule {
             }
         }
         let its = &self.its;
-        for q in &mut self.queues {
+        for (x, q) in self.queues.iter_mut().enumerate() {
+            let mut moved = false;
             for s in q.iter_mut() {
+                let was = (s.start, s.end);
                 let r = s.robot as usize;
                 if let Some(b) = node(its, r, s.first) {
                     s.start = start[b];
@@ -613,6 +705,10 @@ impl Schedule {
                 } else {
                     s.end
                 };
+                moved |= (s.start, s.end) != was;
+            }
+            if moved {
+                self.changed[x] = self.stamp;
             }
         }
         Ok(())

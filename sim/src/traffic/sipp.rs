@@ -189,32 +189,130 @@ impl PartialOrd for Open {
     }
 }
 
-/// Intervals from one schedule (see [`Schedule::stamp`]), per robot they are for.
+/// Intervals computed from the schedule, per robot they are for, kept while the resources
+/// they come from do not change (`Schedule::changed_since`): a saturated run makes
+/// thousands of plans between changes of most of the building. Every list lives in one
+/// arena, so that starting again frees no small vectors.
 #[derive(Default)]
 struct Cache {
-    stamp: u64,
-    /// Whether the intervals leave out soft spans (`Query::soft`).
-    soft: bool,
-    /// Per (robot, edge): the others' merged busy intervals on its traversal set.
-    edge_busy: Map<(usize, usize), Vec<(f64, f64)>>,
-    /// Per (robot, vertex): where in `free` the safe intervals of its standing set are.
-    vertex_free: Map<(usize, usize), usize>,
-    free: Vec<Vec<(f64, f64)>>,
+    /// The copy of the schedule they come from (`Schedule::lineage`).
+    lineage: u64,
+    /// Per (robot, edge, without soft spans): the others' merged busy intervals on the
+    /// edge's traversal set.
+    edge_busy: Map<(usize, usize, bool), Entry>,
+    /// Per (robot, vertex, without soft spans): the safe intervals of its standing set.
+    vertex_free: Map<(usize, usize, bool), Entry>,
+    arena: Vec<(f64, f64)>,
+    /// The busy intervals being merged (a buffer).
+    tmp: Vec<(f64, f64)>,
 }
 
-/// Where the safe intervals of vertex `v` for robot `r` are in `free` (`Cache`'s fields;
-/// computed on first use).
-fn intervals(
-    vertex_free: &mut Map<(usize, usize), usize>,
-    free: &mut Vec<Vec<(f64, f64)>>,
+/// Intervals kept: where in `Cache::arena` (start, length), the stamp they were computed
+/// at, and the last stamp they were found to hold at.
+#[derive(Clone, Copy)]
+struct Entry {
+    at: (u32, u32),
+    made: u64,
+    checked: u64,
+}
+
+/// Entries of `Cache::arena` (16 bytes each) after which it starts again.
+const ARENA_MAX: usize = 1 << 20;
+
+impl Cache {
+    /// Ready for `sched`: emptied when it is another copy, or the arena is full.
+    fn follow(&mut self, sched: &Schedule) {
+        if self.lineage != sched.lineage() || self.arena.len() > ARENA_MAX {
+            self.lineage = sched.lineage();
+            self.edge_busy.clear();
+            self.vertex_free.clear();
+            self.arena.clear();
+        }
+    }
+
+    fn get(&self, (a, n): (u32, u32)) -> &[(f64, f64)] {
+        &self.arena[a as usize..(a + n) as usize]
+    }
+
+    /// The safe intervals of vertex `v` for robot `r`.
+    fn intervals(&mut self, sched: &Schedule, (r, soft): (usize, bool), v: usize) -> (u32, u32) {
+        let set = &sched.conf().vertex[v];
+        if let Some(at) = still(&mut self.vertex_free, (r, v, soft), sched, set) {
+            #[cfg(debug_assertions)]
+            {
+                let (mut busy, mut free) = (Vec::new(), Vec::new());
+                merge_busy(sched, set, r, soft, &mut busy);
+                gaps(&busy, &mut free);
+                assert_eq!(self.get(at), &free[..], "safe intervals kept of vertex {v}");
+            }
+            return at;
+        }
+        merge_busy(sched, set, r, soft, &mut self.tmp);
+        let start = self.arena.len();
+        gaps(&self.tmp, &mut self.arena);
+        let at = (start as u32, (self.arena.len() - start) as u32);
+        self.vertex_free.insert((r, v, soft), made(at, sched));
+        at
+    }
+
+    /// The others' merged busy intervals on edge `e`'s traversal set for robot `r`.
+    fn busy(&mut self, sched: &Schedule, (r, soft): (usize, bool), e: usize) -> (u32, u32) {
+        let set = &sched.conf().trav[e];
+        if let Some(at) = still(&mut self.edge_busy, (r, e, soft), sched, set) {
+            #[cfg(debug_assertions)]
+            {
+                let mut busy = Vec::new();
+                merge_busy(sched, set, r, soft, &mut busy);
+                assert_eq!(self.get(at), &busy[..], "busy intervals kept of edge {e}");
+            }
+            return at;
+        }
+        merge_busy(sched, set, r, soft, &mut self.tmp);
+        let start = self.arena.len();
+        self.arena.extend_from_slice(&self.tmp);
+        let at = (start as u32, self.tmp.len() as u32);
+        self.edge_busy.insert((r, e, soft), made(at, sched));
+        at
+    }
+}
+
+/// The gaps between sorted disjoint `busy` intervals, appended to `out`.
+fn gaps(busy: &[(f64, f64)], out: &mut Vec<(f64, f64)>) {
+    let mut from = f64::NEG_INFINITY;
+    for &(a, b) in busy {
+        if a > from {
+            out.push((from, a));
+        }
+        from = b;
+    }
+    if from < f64::INFINITY {
+        out.push((from, f64::INFINITY));
+    }
+}
+
+fn made(at: (u32, u32), sched: &Schedule) -> Entry {
+    Entry {
+        at,
+        made: sched.stamp(),
+        checked: sched.stamp(),
+    }
+}
+
+/// The entry kept for `key` if none of `set` changed since it was computed.
+fn still(
+    map: &mut Map<(usize, usize, bool), Entry>,
+    key: (usize, usize, bool),
     sched: &Schedule,
-    (r, soft): (usize, bool),
-    v: usize,
-) -> usize {
-    *vertex_free.entry((r, v)).or_insert_with(|| {
-        free.push(free_of(sched, &sched.conf().vertex[v], r, soft));
-        free.len() - 1
-    })
+    set: &[Res],
+) -> Option<(u32, u32)> {
+    let e = map.get_mut(&key)?;
+    if e.checked != sched.stamp() {
+        if sched.changed_since(set, e.made) {
+            return None;
+        }
+        e.checked = sched.stamp();
+    }
+    Some(e.at)
 }
 
 /// A search's buffers, kept between searches (cleared, not freed: a saturated run makes
@@ -237,8 +335,9 @@ pub struct Planner {
     /// Time to a goal, per (slot, speed bits, goal vertex): tasks go to the same places
     /// again and again.
     goal_dist: Map<(usize, u64, usize), Vec<f64>>,
-    /// Busy and safe intervals computed from the schedule of `Cache::stamp`: the plans of
-    /// one dispatch round (several robots per task, most refused) meet the same ones.
+    /// Busy and safe intervals computed from the schedule: the plans of one dispatch round
+    /// (several robots per task, most refused) meet the same ones, and so do the next
+    /// rounds' where the schedule did not change.
     cache: Cache,
     scratch: Scratch,
     /// Plans made and states expanded, for the report.
@@ -323,13 +422,7 @@ impl Planner {
 
     /// [`Planner::plan`], ending on places only when `places`.
     fn search(&mut self, nav: &Nav, sched: &Schedule, q: &Query, places: bool) -> Option<Plan> {
-        if self.cache.stamp != sched.stamp() || self.cache.soft != q.soft {
-            self.cache = Cache {
-                stamp: sched.stamp(),
-                soft: q.soft,
-                ..Cache::default()
-            };
-        }
+        self.cache.follow(sched);
         let mut cache = std::mem::take(&mut self.cache);
         let mut scratch = std::mem::take(&mut self.scratch);
         scratch.nodes.clear();
@@ -424,8 +517,9 @@ impl Planner {
         }
         let r = q.robot;
         let rs = (r, q.soft);
-        let iv0 = intervals(&mut cache.vertex_free, &mut cache.free, sched, rs, q.from);
-        let Some(i0) = cache.free[iv0]
+        let iv0 = cache.intervals(sched, rs, q.from);
+        let Some(i0) = cache
+            .get(iv0)
             .iter()
             .position(|&(a, b)| a <= q.t0 && q.t0 < b)
         else {
@@ -452,11 +546,11 @@ impl Planner {
             if n.end {
                 self.expanded += expanded as u64;
                 let mut plan = unwind(nav, nodes, n.parent, nl, expanded);
-                wait_early(sched, q, &mut plan);
+                wait_early(sched, q, &mut plan, cache);
                 return Some(plan);
             }
-            let at = intervals(&mut cache.vertex_free, &mut cache.free, sched, rs, n.v);
-            let (_, hi) = cache.free[at][n.iv];
+            let at = cache.intervals(sched, rs, n.v);
+            let (_, hi) = cache.get(at)[n.iv];
             let may_stay = q.stay == Some(n.v)
                 || q.parks[n.v] == PARK
                 || (places && q.parks[n.v] == PARK_ON_PLACE);
@@ -517,12 +611,9 @@ impl Planner {
                 let prev = n.edge.map(|(p, _, _)| p);
                 let dur = q.kin.edge_time_with(nav, e, prev, |x| self.heading[x]);
 
-                let busy = cache
-                    .edge_busy
-                    .entry((r, e))
-                    .or_insert_with(|| merged(sched, &conf.trav[e], r, q.soft));
-                let wi_at = intervals(&mut cache.vertex_free, &mut cache.free, sched, rs, w);
-                let wivs = &cache.free[wi_at];
+                let busy_at = cache.busy(sched, rs, e);
+                let wi_at = cache.intervals(sched, rs, w);
+                let (busy, wivs) = (cache.get(busy_at), cache.get(wi_at));
                 // Each gap of the edge's resources wide enough, left while still in this
                 // vertex's safe interval; the first arrival in each of w's intervals.
                 let mut from = n.t;
@@ -568,39 +659,27 @@ impl Planner {
 }
 
 /// The merged busy intervals of `set` for anybody but robot `r` (without soft spans when
-/// `soft`), sorted.
-fn merged(sched: &Schedule, set: &[Res], r: usize, soft: bool) -> Vec<(f64, f64)> {
-    let mut all: Vec<(f64, f64)> = set.iter().flat_map(|&x| sched.busy(x, r, soft)).collect();
+/// `soft`), sorted, into `out`.
+fn merge_busy(sched: &Schedule, set: &[Res], r: usize, soft: bool, out: &mut Vec<(f64, f64)>) {
+    out.clear();
+    out.extend(set.iter().flat_map(|&x| sched.busy(x, r, soft)));
     // Unstable: the union does not depend on the order of equal starts.
-    all.sort_unstable_by(|a, b| a.0.total_cmp(&b.0));
-    let mut out: Vec<(f64, f64)> = Vec::with_capacity(all.len());
-    for (a, b) in all {
+    out.sort_unstable_by(|a, b| a.0.total_cmp(&b.0));
+    // Merged in place: `w` intervals kept so far.
+    let mut w = 0;
+    for i in 0..out.len() {
+        let (a, b) = out[i];
         if b <= a {
             continue;
         }
-        match out.last_mut() {
-            Some(l) if a <= l.1 => l.1 = l.1.max(b),
-            _ => out.push((a, b)),
+        if w > 0 && a <= out[w - 1].1 {
+            out[w - 1].1 = out[w - 1].1.max(b);
+        } else {
+            out[w] = (a, b);
+            w += 1;
         }
     }
-    out
-}
-
-/// The safe intervals of `set` for robot `r`: the gaps between the others' spans.
-fn free_of(sched: &Schedule, set: &[Res], r: usize, soft: bool) -> Vec<(f64, f64)> {
-    let busy = merged(sched, set, r, soft);
-    let mut out = Vec::with_capacity(busy.len() + 1);
-    let mut from = f64::NEG_INFINITY;
-    for (a, b) in busy {
-        if a > from {
-            out.push((from, a));
-        }
-        from = b;
-    }
-    if from < f64::INFINITY {
-        out.push((from, f64::INFINITY));
-    }
-    out
+    out.truncate(w);
 }
 
 /// Moves each leg's waits (from a place to the next, and to the parking vertex) to its
@@ -612,9 +691,8 @@ fn free_of(sched: &Schedule, set: &[Res], r: usize, soft: bool) -> Vec<(f64, f64
 /// Not the way to parking after a task's last place: waiting early there would keep the
 /// robot standing on a task place, in the way of the next tasks, when it could wait for
 /// its parking vertex further on.
-fn wait_early(sched: &Schedule, q: &Query, plan: &mut Plan) {
-    let (r, soft) = (q.robot, q.soft);
-    let conf = sched.conf();
+fn wait_early(sched: &Schedule, q: &Query, plan: &mut Plan, cache: &mut Cache) {
+    let rs = (q.robot, q.soft);
     let mut bounds = plan.goal_at.clone();
     if q.goals.is_empty() {
         bounds.push(plan.steps.len());
@@ -628,10 +706,16 @@ fn wait_early(sched: &Schedule, q: &Query, plan: &mut Plan) {
                 continue;
             }
             let start = latest_end - st.dur;
-            let clear = merged(sched, &conf.trav[st.edge], r, soft)
+            let (busy, free) = (
+                cache.busy(sched, rs, st.edge),
+                cache.intervals(sched, rs, st.from),
+            );
+            let clear = cache
+                .get(busy)
                 .iter()
                 .all(|&(a, b)| b <= start || a >= latest_end);
-            let stays = free_of(sched, &conf.vertex[st.from], r, soft)
+            let stays = cache
+                .get(free)
                 .iter()
                 .any(|&(a, b)| a <= st.start && start <= b);
             if clear && stays {
