@@ -6,6 +6,8 @@
 
 use mapc_ros2::cdr;
 use mapc_ros2::msgs::{self, *};
+use mapc_sim::msgs::{ItemType, WorkcellRequest, WorkcellResult, WorkcellState};
+use serde::{de::DeserializeOwned, Serialize};
 use serde_json::{json, Value};
 use std::path::{Path, PathBuf};
 use std::process::Command;
@@ -97,11 +99,21 @@ struct Case {
 }
 
 fn case<T: RosMsg + std::fmt::Debug + PartialEq + 'static>(gen: &mut Gen) -> Case {
-    let value: T = serde_json::from_value(gen.value(T::NAME)).expect("sample fits the type");
+    case_as::<T>(T::NAME, gen)
+}
+
+/// A case of ROS type `name`, sent as `T` (where one runtime type stands for several ROS
+/// types of the same fields: Time for Duration, a workcell's messages for a dispenser's and
+/// an ingestor's).
+fn case_as<T>(name: &'static str, gen: &mut Gen) -> Case
+where
+    T: Serialize + DeserializeOwned + std::fmt::Debug + PartialEq + 'static,
+{
+    let value: T = serde_json::from_value(gen.value(name)).expect("sample fits the type");
     let mapc = cdr::encode(&value);
     let json = serde_json::to_value(&value).expect("json");
     Case {
-        name: T::NAME,
+        name,
         value: json,
         mapc,
         check: Box::new(move |cyclone: &[u8]| {
@@ -120,10 +132,10 @@ fn cases() -> Vec<Case> {
     let g = &mut g;
     vec![
         case::<builtin_interfaces::Time>(g),
-        case::<builtin_interfaces::Duration>(g),
+        case_as::<builtin_interfaces::Time>("builtin_interfaces/msg/Duration", g),
         case::<std_msgs::String>(g),
         case::<std_msgs::Header>(g),
-        case::<geometry_msgs::Point>(g),
+        case_as::<geometry_msgs::Vector3>("geometry_msgs/msg/Point", g),
         case::<geometry_msgs::Vector3>(g),
         case::<geometry_msgs::Quaternion>(g),
         case::<geometry_msgs::Pose>(g),
@@ -147,14 +159,14 @@ fn cases() -> Vec<Case> {
         case::<rmf_door_msgs::SupervisorHeartbeat>(g),
         case::<rmf_lift_msgs::LiftRequest>(g),
         case::<rmf_lift_msgs::LiftState>(g),
-        case::<rmf_dispenser_msgs::DispenserRequestItem>(g),
-        case::<rmf_dispenser_msgs::DispenserRequest>(g),
-        case::<rmf_dispenser_msgs::DispenserResult>(g),
-        case::<rmf_dispenser_msgs::DispenserState>(g),
-        case::<rmf_ingestor_msgs::IngestorRequestItem>(g),
-        case::<rmf_ingestor_msgs::IngestorRequest>(g),
-        case::<rmf_ingestor_msgs::IngestorResult>(g),
-        case::<rmf_ingestor_msgs::IngestorState>(g),
+        case_as::<ItemType>("rmf_dispenser_msgs/msg/DispenserRequestItem", g),
+        case_as::<WorkcellRequest>("rmf_dispenser_msgs/msg/DispenserRequest", g),
+        case_as::<WorkcellResult>("rmf_dispenser_msgs/msg/DispenserResult", g),
+        case_as::<WorkcellState>("rmf_dispenser_msgs/msg/DispenserState", g),
+        case_as::<ItemType>("rmf_ingestor_msgs/msg/IngestorRequestItem", g),
+        case_as::<WorkcellRequest>("rmf_ingestor_msgs/msg/IngestorRequest", g),
+        case_as::<WorkcellResult>("rmf_ingestor_msgs/msg/IngestorResult", g),
+        case_as::<WorkcellState>("rmf_ingestor_msgs/msg/IngestorState", g),
         case::<rmf_building_map_msgs::Param>(g),
         case::<rmf_building_map_msgs::GraphNode>(g),
         case::<rmf_building_map_msgs::GraphEdge>(g),

@@ -1,11 +1,37 @@
-//! RMF messages (rmf_internal_msgs 4.1.0) with their field names, so that a trace line maps
-//! 1:1 to a ROS message. Floats are f64 here (RMF uses float32 for x, y, yaw); the trace
-//! therefore carries more digits than ROS would, never fewer.
+//! RMF messages (rmf_internal_msgs 4.1.0): the one set of types the runtime, the trace, MCAP
+//! and DDS share. Each struct is its ROS message: field names and field order are the
+//! `.msg`'s (CDR writes fields in declaration order; mapc-ros2 holds the `.msg` texts and
+//! checks the order). Floats are f64 here, also where RMF says float32 (x, y, yaw, ...):
+//! those fields carry `#[serde(with = "float32")]`, so the trace (JSON) keeps every f64
+//! digit while CDR writes the float32 ROS expects.
 
-use serde::Serialize;
+use serde::{Deserialize, Serialize};
+
+/// A float32 field of a ROS message held as f64: f64 for human-readable formats (the JSON
+/// trace), f32 for binary ones (CDR, whose serde codec reports `is_human_readable() ==
+/// false`): rounded to the nearest f32 on the way out, exact on the way in.
+pub mod float32 {
+    use serde::{Deserialize, Deserializer, Serializer};
+
+    pub fn serialize<S: Serializer>(v: &f64, s: S) -> Result<S::Ok, S::Error> {
+        if s.is_human_readable() {
+            s.serialize_f64(*v)
+        } else {
+            s.serialize_f32(*v as f32)
+        }
+    }
+
+    pub fn deserialize<'de, D: Deserializer<'de>>(d: D) -> Result<f64, D::Error> {
+        if d.is_human_readable() {
+            f64::deserialize(d)
+        } else {
+            f32::deserialize(d).map(f64::from)
+        }
+    }
+}
 
 /// builtin_interfaces/Time.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
 pub struct Time {
     pub sec: i32,
     pub nanosec: u32,
@@ -33,13 +59,17 @@ impl Time {
     }
 }
 
-#[derive(Debug, Clone, PartialEq, Default, Serialize)]
+#[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
 pub struct Location {
     pub t: Time,
+    #[serde(with = "float32")]
     pub x: f64,
+    #[serde(with = "float32")]
     pub y: f64,
+    #[serde(with = "float32")]
     pub yaw: f64,
     pub obey_approach_speed_limit: bool,
+    #[serde(with = "float32")]
     pub approach_speed_limit: f64,
     pub level_name: String,
     pub index: u64,
@@ -60,32 +90,33 @@ pub mod robot_mode {
     pub const ACTION_COMPLETED: u32 = 11;
 }
 
-#[derive(Debug, Clone, PartialEq, Default, Serialize)]
+#[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
 pub struct RobotMode {
     pub mode: u32,
     pub mode_request_id: u64,
     pub performing_action: String,
 }
 
-#[derive(Debug, Clone, PartialEq, Default, Serialize)]
+#[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
 pub struct RobotState {
     pub name: String,
     pub model: String,
     pub task_id: String,
     pub seq: u64,
     pub mode: RobotMode,
+    #[serde(with = "float32")]
     pub battery_percent: f64,
     pub location: Location,
     pub path: Vec<Location>,
 }
 
-#[derive(Debug, Clone, PartialEq, Default, Serialize)]
+#[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
 pub struct FleetState {
     pub name: String,
     pub robots: Vec<RobotState>,
 }
 
-#[derive(Debug, Clone, PartialEq, Default, Serialize)]
+#[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
 pub struct PathRequest {
     pub fleet_name: String,
     pub robot_name: String,
@@ -93,13 +124,13 @@ pub struct PathRequest {
     pub task_id: String,
 }
 
-#[derive(Debug, Clone, PartialEq, Default, Serialize)]
+#[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
 pub struct ModeParameter {
     pub name: String,
     pub value: String,
 }
 
-#[derive(Debug, Clone, PartialEq, Default, Serialize)]
+#[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
 pub struct ModeRequest {
     pub fleet_name: String,
     pub robot_name: String,
@@ -114,7 +145,7 @@ pub mod pause_type {
     pub const RESUME: u32 = 2;
 }
 
-#[derive(Debug, Clone, PartialEq, Default, Serialize)]
+#[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
 pub struct PauseRequest {
     pub fleet_name: String,
     pub robot_name: String,
@@ -132,12 +163,12 @@ pub mod door_mode {
     pub const UNKNOWN: u32 = 4;
 }
 
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
 pub struct DoorMode {
     pub value: u32,
 }
 
-#[derive(Debug, Clone, PartialEq, Default, Serialize)]
+#[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
 pub struct DoorRequest {
     pub request_time: Time,
     pub requester_id: String,
@@ -145,26 +176,26 @@ pub struct DoorRequest {
     pub requested_mode: DoorMode,
 }
 
-#[derive(Debug, Clone, PartialEq, Default, Serialize)]
+#[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
 pub struct DoorState {
     pub door_time: Time,
     pub door_name: String,
     pub current_mode: DoorMode,
 }
 
-#[derive(Debug, Clone, PartialEq, Default, Serialize)]
+#[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
 pub struct Session {
     pub request_time: Time,
     pub requester_id: String,
 }
 
-#[derive(Debug, Clone, PartialEq, Default, Serialize)]
+#[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
 pub struct DoorSessions {
     pub door_name: String,
     pub sessions: Vec<Session>,
 }
 
-#[derive(Debug, Clone, PartialEq, Default, Serialize)]
+#[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
 pub struct SupervisorHeartbeat {
     pub all_sessions: Vec<DoorSessions>,
 }
@@ -190,7 +221,7 @@ pub mod lift_state {
     pub const MODE_AGV: u8 = 2;
 }
 
-#[derive(Debug, Clone, PartialEq, Default, Serialize)]
+#[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
 pub struct LiftRequest {
     pub lift_name: String,
     pub request_time: Time,
@@ -200,7 +231,7 @@ pub struct LiftRequest {
     pub door_state: u8,
 }
 
-#[derive(Debug, Clone, PartialEq, Default, Serialize)]
+#[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
 pub struct LiftState {
     pub lift_time: Time,
     pub lift_name: String,
@@ -214,7 +245,7 @@ pub struct LiftState {
     pub session_id: String,
 }
 
-#[derive(Debug, Clone, PartialEq, Default, Serialize)]
+#[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
 pub struct ItemType {
     pub type_guid: String,
     pub quantity: i32,
@@ -223,7 +254,7 @@ pub struct ItemType {
 
 /// `rmf_dispenser_msgs/DispenserRequest` and `rmf_ingestor_msgs/IngestorRequest` have the
 /// same fields.
-#[derive(Debug, Clone, PartialEq, Default, Serialize)]
+#[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
 pub struct WorkcellRequest {
     pub time: Time,
     pub request_guid: String,
@@ -239,7 +270,7 @@ pub mod workcell_result {
 }
 
 /// `DispenserResult` / `IngestorResult`.
-#[derive(Debug, Clone, PartialEq, Default, Serialize)]
+#[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
 pub struct WorkcellResult {
     pub time: Time,
     pub request_guid: String,
@@ -254,12 +285,13 @@ pub mod workcell_mode {
 }
 
 /// `DispenserState` / `IngestorState`.
-#[derive(Debug, Clone, PartialEq, Default, Serialize)]
+#[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
 pub struct WorkcellState {
     pub time: Time,
     pub guid: String,
     pub mode: i32,
     pub request_guid_queue: Vec<String>,
+    #[serde(with = "float32")]
     pub seconds_remaining: f64,
 }
 
@@ -330,7 +362,8 @@ pub enum WaitCause {
     Charging,
 }
 
-/// A message on a topic: what the runtime publishes, what the trace records.
+/// A message on a topic: what the runtime publishes, what the trace records. Untagged, so it
+/// serialises as the message itself (a trace line's `msg`, a CDR payload).
 #[derive(Debug, Clone, PartialEq, Serialize)]
 #[serde(untagged)]
 pub enum Msg {
@@ -354,14 +387,14 @@ pub enum Msg {
 /// rmf_obstacle_msgs/Obstacles (rmf_internal_msgs 4.1.0): what rmf_human_detector
 /// publishes on `/rmf_obstacles` and RMF's lane blocker reads; the crowd publishes one
 /// `Obstacle` per person.
-#[derive(Debug, Clone, PartialEq, Default, Serialize)]
+#[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
 pub struct Obstacles {
     pub header: Header,
     pub obstacles: Vec<Obstacle>,
 }
 
 /// rmf_obstacle_msgs/Obstacle (the fields the crowd fills; `data` is empty).
-#[derive(Debug, Clone, PartialEq, Default, Serialize)]
+#[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
 pub struct Obstacle {
     pub header: Header,
     pub id: i32,
@@ -382,28 +415,28 @@ pub struct Obstacle {
 pub const OBSTACLE_ACTION_ADD: i32 = 1;
 
 /// std_msgs/Header.
-#[derive(Debug, Clone, PartialEq, Default, Serialize)]
+#[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
 pub struct Header {
     pub stamp: Time,
     pub frame_id: String,
 }
 
 /// rmf_obstacle_msgs/BoundingBox3D: centre pose and size (m).
-#[derive(Debug, Clone, PartialEq, Default, Serialize)]
+#[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
 pub struct BoundingBox3D {
     pub center: Pose,
     pub size: Vector3,
 }
 
 /// geometry_msgs/Pose.
-#[derive(Debug, Clone, PartialEq, Default, Serialize)]
+#[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
 pub struct Pose {
     pub position: Vector3,
     pub orientation: Quaternion,
 }
 
 /// geometry_msgs/Point and Vector3 (same fields).
-#[derive(Debug, Clone, Copy, PartialEq, Default, Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Default, Serialize, Deserialize)]
 pub struct Vector3 {
     pub x: f64,
     pub y: f64,
@@ -411,7 +444,7 @@ pub struct Vector3 {
 }
 
 /// geometry_msgs/Quaternion.
-#[derive(Debug, Clone, Copy, PartialEq, Default, Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Default, Serialize, Deserialize)]
 pub struct Quaternion {
     pub x: f64,
     pub y: f64,

@@ -1,23 +1,13 @@
-//! builtin_interfaces
+//! builtin_interfaces. `Duration` has `Time`'s fields, so the runtime's `Time` stands for both
+//! (`Obstacle::lifetime` is a Duration on the wire).
 
 use super::{ros_msg, Definition};
-use serde::{Deserialize, Serialize};
+pub use mapc_sim::msgs::Time;
 
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
-pub struct Time {
-    pub sec: i32,
-    pub nanosec: u32,
-}
 pub(crate) const TIME: Definition = ("builtin_interfaces/msg/Time", "int32 sec\nuint32 nanosec\n");
 ros_msg!(Time, TIME);
 
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
-pub struct Duration {
-    pub sec: i32,
-    pub nanosec: u32,
-}
 pub(crate) const DURATION: Definition = (
     "builtin_interfaces/msg/Duration",
     "int32 sec\nuint32 nanosec\n",
 );
-ros_msg!(Duration, DURATION);

@@ -1,7 +1,12 @@
-//! ROS 2 message types mapc speaks, one module per ROS package, with their ROS names and
-//! `.msg` definitions. Field order and widths are the wire format (CDR serialises fields in
-//! declaration order), so each struct mirrors its `.msg` exactly; the `.msg` text beside it
-//! is what MCAP files carry as schema and what `tests/ros2_cdr.rs` checks against Cyclone DDS.
+//! ROS 2 messages as mapc speaks them, one module per ROS package: each type's `.msg` text
+//! (what MCAP files carry as schema and type hashes are computed from) and its ROS name. The
+//! RMF messages the runtime publishes and reads are `mapc_sim::msgs`'s structs, re-exported
+//! here under their package, so there is one set of types and CDR is derived from them; the
+//! ROS-only types (`/map`'s, `/clock`'s, the `String` that carries task events) are defined
+//! here. Invariant: a struct's field order is its `.msg`'s (CDR writes fields in declaration
+//! order; `field_order_is_the_msg_order` checks every type), and a float32 field held as f64
+//! by the runtime goes through `mapc_sim::msgs::float32`; `ros2/tests/cyclone_cdr.rs` holds
+//! the bytes of every type to Cyclone DDS's.
 
 pub mod builtin_interfaces;
 pub mod geometry_msgs;
@@ -167,6 +172,111 @@ mod tests {
                     "{name}: `{line}`"
                 );
             }
+        }
+    }
+
+    /// The top-level keys of a JSON object, in order (for default values: no escapes).
+    fn keys(json: &str) -> Vec<std::string::String> {
+        let b = json.as_bytes();
+        let (mut depth, mut i, mut out) = (0, 0, Vec::new());
+        while i < b.len() {
+            match b[i] {
+                b'{' | b'[' => depth += 1,
+                b'}' | b']' => depth -= 1,
+                b'"' => {
+                    let end = i + 1 + json[i + 1..].find('"').expect("closed string");
+                    if depth == 1 && b.get(end + 1) == Some(&b':') {
+                        out.push(json[i + 1..end].to_string());
+                    }
+                    i = end;
+                }
+                _ => {}
+            }
+            i += 1;
+        }
+        out
+    }
+
+    /// A type's serialised field names, in declaration order (serde keeps it).
+    fn fields<T: Serialize + Default>() -> Vec<std::string::String> {
+        keys(&serde_json::to_string(&T::default()).expect("json"))
+    }
+
+    /// CDR has no field names: a struct whose fields are out of the `.msg`'s order sends
+    /// wrong values silently. Every definition is checked against the type sent for it.
+    #[test]
+    fn field_order_is_the_msg_order() {
+        use mapc_sim::msgs as sim;
+        use rmf_building_map_msgs as map;
+        let types = [
+            (builtin_interfaces::TIME, fields::<sim::Time>()),
+            (builtin_interfaces::DURATION, fields::<sim::Time>()),
+            (std_msgs::STRING, fields::<std_msgs::String>()),
+            (std_msgs::HEADER, fields::<sim::Header>()),
+            (geometry_msgs::POINT, fields::<sim::Vector3>()),
+            (geometry_msgs::VECTOR3, fields::<sim::Vector3>()),
+            (geometry_msgs::QUATERNION, fields::<sim::Quaternion>()),
+            (geometry_msgs::POSE, fields::<sim::Pose>()),
+            (rosgraph_msgs::CLOCK, fields::<rosgraph_msgs::Clock>()),
+            (rmf_fleet_msgs::LOCATION, fields::<sim::Location>()),
+            (rmf_fleet_msgs::ROBOT_MODE, fields::<sim::RobotMode>()),
+            (rmf_fleet_msgs::ROBOT_STATE, fields::<sim::RobotState>()),
+            (rmf_fleet_msgs::FLEET_STATE, fields::<sim::FleetState>()),
+            (rmf_fleet_msgs::PATH_REQUEST, fields::<sim::PathRequest>()),
+            (
+                rmf_fleet_msgs::MODE_PARAMETER,
+                fields::<sim::ModeParameter>(),
+            ),
+            (rmf_fleet_msgs::MODE_REQUEST, fields::<sim::ModeRequest>()),
+            (rmf_fleet_msgs::PAUSE_REQUEST, fields::<sim::PauseRequest>()),
+            (rmf_door_msgs::DOOR_MODE, fields::<sim::DoorMode>()),
+            (rmf_door_msgs::DOOR_REQUEST, fields::<sim::DoorRequest>()),
+            (rmf_door_msgs::DOOR_STATE, fields::<sim::DoorState>()),
+            (rmf_door_msgs::SESSION, fields::<sim::Session>()),
+            (rmf_door_msgs::DOOR_SESSIONS, fields::<sim::DoorSessions>()),
+            (
+                rmf_door_msgs::SUPERVISOR_HEARTBEAT,
+                fields::<sim::SupervisorHeartbeat>(),
+            ),
+            (rmf_lift_msgs::LIFT_REQUEST, fields::<sim::LiftRequest>()),
+            (rmf_lift_msgs::LIFT_STATE, fields::<sim::LiftState>()),
+            (rmf_dispenser_msgs::REQUEST_ITEM, fields::<sim::ItemType>()),
+            (
+                rmf_dispenser_msgs::REQUEST,
+                fields::<sim::WorkcellRequest>(),
+            ),
+            (rmf_dispenser_msgs::RESULT, fields::<sim::WorkcellResult>()),
+            (rmf_dispenser_msgs::STATE, fields::<sim::WorkcellState>()),
+            (rmf_ingestor_msgs::REQUEST_ITEM, fields::<sim::ItemType>()),
+            (rmf_ingestor_msgs::REQUEST, fields::<sim::WorkcellRequest>()),
+            (rmf_ingestor_msgs::RESULT, fields::<sim::WorkcellResult>()),
+            (rmf_ingestor_msgs::STATE, fields::<sim::WorkcellState>()),
+            (
+                rmf_obstacle_msgs::BOUNDING_BOX_3D,
+                fields::<sim::BoundingBox3D>(),
+            ),
+            (rmf_obstacle_msgs::OBSTACLE, fields::<sim::Obstacle>()),
+            (rmf_obstacle_msgs::OBSTACLES, fields::<sim::Obstacles>()),
+            (map::PARAM, fields::<map::Param>()),
+            (map::GRAPH_NODE, fields::<map::GraphNode>()),
+            (map::GRAPH_EDGE, fields::<map::GraphEdge>()),
+            (map::GRAPH, fields::<map::Graph>()),
+            (map::AFFINE_IMAGE, fields::<map::AffineImage>()),
+            (map::PLACE, fields::<map::Place>()),
+            (map::DOOR, fields::<map::Door>()),
+            (map::LEVEL, fields::<map::Level>()),
+            (map::LIFT, fields::<map::Lift>()),
+            (map::BUILDING_MAP, fields::<map::BuildingMap>()),
+        ];
+        for ((name, def), fields) in &types {
+            let msg: Vec<&str> = def.lines().filter_map(|l| l.split(' ').nth(1)).collect();
+            assert_eq!(fields, &msg, "{name}");
+        }
+        for (name, _) in definitions() {
+            assert!(
+                types.iter().any(|((n, _), _)| n == name),
+                "{name} unchecked"
+            );
         }
     }
 

@@ -1,7 +1,7 @@
 //! std_msgs (mapc's task events travel as JSON in a `String`: RMF has no message for them).
 
-use super::builtin_interfaces::Time;
 use super::{ros_msg, Definition};
+pub use mapc_sim::msgs::Header;
 use serde::{Deserialize, Serialize};
 
 #[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
@@ -11,11 +11,6 @@ pub struct String {
 pub(crate) const STRING: Definition = ("std_msgs/msg/String", "string data\n");
 ros_msg!(String, STRING);
 
-#[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
-pub struct Header {
-    pub stamp: Time,
-    pub frame_id: std::string::String,
-}
 pub(crate) const HEADER: Definition = (
     "std_msgs/msg/Header",
     "builtin_interfaces/Time stamp\nstring frame_id\n",
