@@ -285,3 +285,71 @@ fn a_plan_that_fits_goes_before_nobody() {
         assert!(!s.soft_on(x, 1));
     }
 }
+
+/// What `busy` says of every resource, for each robot left out and with or without soft
+/// spans.
+fn busy_everywhere(s: &Schedule) -> Vec<Vec<(f64, f64)>> {
+    let mut out = Vec::new();
+    for x in 0..s.conf().n_res as Res {
+        for r in 0..2 {
+            for soft in [false, true] {
+                out.push(s.busy(x, r, soft).collect());
+            }
+        }
+    }
+    out
+}
+
+/// Checks that every resource whose `busy` changed in `op` is stamped as changed since
+/// before it (what the planner's kept intervals rely on), and that some did change.
+fn stamps_follow(s: &mut Schedule, what: &str, op: impl FnOnce(&mut Schedule)) {
+    let (before, at) = (busy_everywhere(s), s.stamp());
+    op(s);
+    let after = busy_everywhere(s);
+    let per = 4; // 2 robots × soft or not
+    let mut moved = 0;
+    for x in 0..s.conf().n_res {
+        let changed = (0..per).any(|k| before[x * per + k] != after[x * per + k]);
+        if changed {
+            moved += 1;
+            assert!(
+                s.changed_since(&[x as Res], at),
+                "{what}: resource {x} changed but was not stamped"
+            );
+        }
+    }
+    assert!(
+        moved > 0,
+        "{what}: nothing changed (the test would prove nothing)"
+    );
+}
+
+#[test]
+fn every_change_of_what_busy_says_is_stamped() {
+    let (nav, mut s) = two_robots();
+    stamps_follow(&mut s, "retime", |s| {
+        s.retime(0.0).expect("acyclic");
+    });
+    stamps_follow(&mut s, "begin and complete", |s| {
+        s.begin(1, 1, 0.0);
+        s.complete_front(1, 5.0);
+    });
+    stamps_follow(&mut s, "late retime", |s| {
+        s.begin(0, 1, 0.0);
+        s.retime(25.0).expect("acyclic");
+    });
+    // Robot 0 gets a way on from p1 whose part after b is soft (a way to parking).
+    stamps_follow(&mut s, "install with soft steps", |s| {
+        s.install(
+            0,
+            1,
+            &[
+                step(&nav, e(&nav, "b", "p1"), 25.0, 10.0),
+                step(&nav, e(&nav, "p1", "b"), 60.0, 10.0),
+            ],
+            25.0,
+            Some(1),
+        );
+    });
+    stamps_follow(&mut s, "harden", |s| s.harden(0));
+}
