@@ -141,6 +141,22 @@ fn problems(name: &str, runs: &[Run]) -> Vec<String> {
     for (i, small) in runs.iter().enumerate() {
         for big in &runs[i + 1..] {
             let (a, b) = (completed(&small.report), completed(&big.report));
+            // Asking more robots than the building holds changes nothing.
+            let placed = |r: &Report| {
+                let capped = r.fleets.iter().any(|f| f.reserve > 0);
+                capped.then(|| r.fleets.iter().map(|f| f.robots).collect::<Vec<_>>())
+            };
+            if placed(&small.report).is_some()
+                && placed(&small.report) == placed(&big.report)
+                && a != b
+            {
+                out.push(format!(
+                    "{name}: {} and {} robots asked, {} on the floor each, completed {a} and {b}",
+                    small.asked,
+                    big.asked,
+                    big.report.robots.len()
+                ));
+            }
             if (b as f64) < 0.95 * a as f64 - 1.0 {
                 out.push(format!(
                     "{name}: {} robots ({} on the floor) completed {b}, fewer than {} robots ({} on the floor) with {a}",

@@ -124,8 +124,37 @@ impl Fleets {
             }
         }
         let spawned: Vec<usize> = taken.iter().map(|&(v, _)| v).collect();
-        let parks = choose_parks(&nav, &conf, scenario, &spawned, &per_slot);
-        let auto_chosen = spawn::auto_spawn(&nav, &conf, &parks, &auto, &spawned);
+        let mut parks = choose_parks(&nav, &conf, scenario, &spawned, &per_slot);
+        let mut auto_chosen = spawn::auto_spawn(&nav, &conf, &parks, &auto, &spawned);
+        // A building that holds fewer robots than asked: parking and spawns are chosen again
+        // for the robots on the floor, so that the run depends on them and not on how many
+        // more were asked (asking 32 or 64 where 15 fit is the same run). Kept only when
+        // every robot of the first choice still finds a place.
+        if auto
+            .iter()
+            .zip(&auto_chosen)
+            .any(|(a, c)| c.len() < a.count)
+        {
+            let placed: Vec<spawn::AutoFleet> = auto
+                .iter()
+                .zip(&auto_chosen)
+                .map(|(a, c)| spawn::AutoFleet {
+                    fleet: a.fleet,
+                    slot: a.slot,
+                    count: c.len(),
+                })
+                .collect();
+            let mut on_floor = per_slot.clone();
+            for (a, p) in auto.iter().zip(&placed) {
+                on_floor[a.slot] -= a.count - p.count;
+            }
+            let parks2 = choose_parks(&nav, &conf, scenario, &spawned, &on_floor);
+            let chosen2 = spawn::auto_spawn(&nav, &conf, &parks2, &placed, &spawned);
+            if chosen2.iter().zip(&placed).all(|(c, p)| c.len() == p.count) {
+                parks = parks2;
+                auto_chosen = chosen2;
+            }
+        }
         for (a, vs) in auto.iter().zip(auto_chosen) {
             explicit[a.fleet] = Some(vs.into_iter().map(|v| (v, None)).collect());
         }
