@@ -479,7 +479,7 @@ impl Fleets {
                     continue;
                 }
                 Step::Dwell(x) => *x,
-                Step::Dispense(_) | Step::Ingest(_) => WORKCELL_ESTIMATE,
+                Step::Dispense(_) | Step::Ingest(_) | Step::Resume(_) => WORKCELL_ESTIMATE,
                 Step::Charge(pct) => (pct - r.battery()).max(0.0) / f.charge_rate.max(1e-9),
             };
             if let Some(g) = goals.last_mut() {

@@ -241,7 +241,7 @@ impl Fleets {
                         Step::Dwell(d) => robot += d.max(0.0),
                         Step::Dispense(d) => carried = Some(d),
                         Step::Ingest(_) => carried = None,
-                        Step::Charge(_) => {}
+                        Step::Charge(_) | Step::Resume(_) => {}
                     }
                 }
                 mine.insert(Resource::Robots, robot);

@@ -109,6 +109,8 @@ enum Step {
     Ingest(String),
     Dwell(f64),
     Charge(f64),
+    /// Back at a dispenser after making room: the wait for its item goes on as it was.
+    Resume(Box<Cur>),
 }
 
 /// Runtime of the step in progress.
@@ -201,6 +203,8 @@ struct Robot {
     reached_at: f64,
     /// Not on a parking vertex yet (a spawn elsewhere): plans its way there when idle.
     park_pending: bool,
+    /// Steps ahead that are a detour to make room, not phases of the task.
+    detour: u8,
     /// What it does when it has no more tasks (its fleet adapter config's
     /// `finishing_request`).
     finish: Finish,

@@ -381,6 +381,7 @@ impl Fleets {
                     task_started: 0.0,
                     reached_at: 0.0,
                     park_pending: false,
+                    detour: 0,
                     finish: placement.finishes.get(si).copied().unwrap_or_default(),
                     waiting_for: None,
                     waits: TaskWaits::default(),

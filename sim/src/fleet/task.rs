@@ -52,6 +52,7 @@ impl Fleets {
         );
         r.steps.clear();
         r.legs.clear();
+        r.detour = 0;
         r.cur = Cur::None;
         if !ok {
             self.abandon_route(i, t, out);
@@ -98,7 +99,7 @@ impl Fleets {
                     deadline,
                     tries,
                     since,
-                    ..
+                    sent,
                 } => match self.results.get(&guid).copied() {
                     Some(workcell_result::SUCCESS) => {
                         let r = &mut self.robots[i];
@@ -151,6 +152,16 @@ impl Fleets {
                         self.end_task(i, t, false, format!("{target} did not answer"), out);
                         continue;
                     }
+                    // Waiting to ask an empty dispenser again, on a place another robot
+                    // waits to pass: it goes to park, and comes back to ask.
+                    None if dispenser
+                        && tries > 0
+                        && !sent
+                        && t < next_send
+                        && self.make_room(i, t) =>
+                    {
+                        continue;
+                    }
                     None => {
                         if t >= next_send {
                             self.workcell_request(i, &guid, &target, dispenser, t, out);
@@ -197,7 +208,11 @@ impl Fleets {
                 }
             };
             if done {
-                self.phase_done(i, t, out);
+                if self.robots[i].detour > 0 {
+                    self.robots[i].detour -= 1;
+                } else {
+                    self.phase_done(i, t, out);
+                }
                 if matches!(self.robots[i].cur, Cur::Charge { .. }) {
                     let r = &mut self.robots[i];
                     if let Some(c) = r.charger.take() {
@@ -256,6 +271,14 @@ impl Fleets {
                 format!("pickup at {pickup} from {d}")
             }
             (Step::Dispense(d), _) => format!("pickup from {d}"),
+            (Step::Resume(c), _) => match &**c {
+                Cur::Workcell {
+                    target,
+                    dispenser: true,
+                    ..
+                } => return self.phase_name(ti, &Step::Dispense(target.clone()), last),
+                _ => return None,
+            },
             (Step::Ingest(x), TaskKind::Delivery { dropoff, .. }) => {
                 format!("dropoff at {dropoff} into {x}")
             }
@@ -310,6 +333,28 @@ impl Fleets {
                     best_t: t,
                 },
                 Step::Dispense(target) => workcell(target, true),
+                // Asks again at once, under the same request and time limits.
+                Step::Resume(cur) => match *cur {
+                    Cur::Workcell {
+                        guid,
+                        target,
+                        dispenser,
+                        deadline,
+                        tries,
+                        since,
+                        ..
+                    } => Cur::Workcell {
+                        guid,
+                        target,
+                        dispenser,
+                        next_send: t,
+                        deadline: deadline.max(t + EXTERNAL_TIMEOUT),
+                        tries,
+                        since,
+                        sent: false,
+                    },
+                    other => other,
+                },
                 Step::Ingest(target) => workcell(target, false),
             };
             return true;

@@ -1171,7 +1171,6 @@ fn an_empty_dispensers_item_is_coming_while_its_carrier_is_on_its_way() {
 }
 
 #[test]
-#[ignore = "not yet with planned traffic: a robot waiting at a workcell does not leave it to make room (issue 35)"]
 fn a_robot_waiting_at_an_empty_dispenser_makes_room() {
     // park_w - w - e - park_e in a line. a_0 waits at e for a dispenser's item (asked,
     // answered empty, asks again much later); b_0 must pass e to reach w. The item could

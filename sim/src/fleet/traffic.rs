@@ -234,6 +234,87 @@ impl Fleets {
         r
     }
 
+    /// Robot `i` waits to ask an empty dispenser again, standing on a place that is no
+    /// parking vertex. When other robots wait for it to leave, it makes room: it drives to
+    /// a parking vertex, stays there as long as it would have waited to ask, comes back and
+    /// asks again (the item it waits for may be the one another robot brings back). Its
+    /// request keeps its tries and time limit. The robots that waited for it (standing,
+    /// not yet on their way) plan again behind it. True when it set off.
+    pub(super) fn make_room(&mut self, i: usize, t: f64) -> bool {
+        let r = &self.robots[i];
+        if r.n_sent > 0 || r.gate != Gate::None || self.parks.per_slot[r.slot][r.at] != 0 {
+            return false;
+        }
+        let waiters: Vec<usize> = (0..self.robots.len())
+            .filter(|&j| {
+                let o = &self.robots[j];
+                j != i
+                    && o.waiting.is_some()
+                    && o.n_sent == 0
+                    && o.gate == Gate::None
+                    && matches!(o.cur, Cur::GoTo { .. } | Cur::None)
+                    && self.sched.waits_for(j, 0).contains(&i)
+            })
+            .collect();
+        if waiters.is_empty() {
+            return false;
+        }
+        let back = r.at;
+        let before = self.sched.clone();
+        // The waiters stand where they are while robot `i` plans its way out.
+        for &j in &waiters {
+            self.sched.install(j, 0, &[], t, None);
+        }
+        // The task's later legs were planned from this place: they are planned again on
+        // the way.
+        let legs = std::mem::take(&mut self.robots[i].legs);
+        let leg = self.robots[i].leg.take();
+        let planned = self.plan_with(i, &[], None, t);
+        let park = self.sched.end_vertex(i);
+        match planned {
+            Ok(n) if park != back => {
+                let r = &mut self.robots[i];
+                let cur = std::mem::replace(
+                    &mut r.cur,
+                    Cur::GoTo {
+                        goal: park,
+                        planned: true,
+                    },
+                );
+                r.leg = Some(n);
+                r.steps.push_front(Step::Resume(Box::new(cur)));
+                r.steps.push_front(Step::GoTo(back));
+                r.steps.push_front(Step::Dwell(ITEM_RETRY));
+                // The way to park, the stay there and the way back are no phases.
+                r.detour = 3;
+                r.dirty = true;
+                for &j in &waiters {
+                    let o = &mut self.robots[j];
+                    o.legs.clear();
+                    o.leg = None;
+                    o.replan_at = t;
+                    o.wake = t;
+                    match o.cur {
+                        Cur::GoTo { goal, .. } => {
+                            o.cur = Cur::GoTo {
+                                goal,
+                                planned: false,
+                            }
+                        }
+                        _ => o.park_pending = true,
+                    }
+                }
+                true
+            }
+            _ => {
+                self.sched = before;
+                let r = &mut self.robots[i];
+                (r.legs, r.leg) = (legs, leg);
+                false
+            }
+        }
+    }
+
     /// Robots whose itineraries end where one of robot `i`'s `goals` is (a task place that
     /// is also a parking vertex), and idle robots that stay off the parking vertices, are
     /// planned again to end on other parking vertices, keeping their own goal and its work:
