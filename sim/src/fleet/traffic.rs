@@ -25,6 +25,9 @@ const HOME_AGAIN: f64 = 60.0;
 /// robot's own (None: the graph's), and a vertex where it may stay.
 pub(super) type End = (Option<Vec<u8>>, Option<usize>);
 
+/// The schedule, and the legs of the robots [`Fleets::aside`] plans again.
+type AsideSnapshot = (Schedule, Vec<(VecDeque<usize>, Option<usize>)>);
+
 /// Why a leg could not be planned.
 pub(super) enum NoPlan {
     /// The goal cannot be reached on the fleet's graph at all.
@@ -234,12 +237,85 @@ impl Fleets {
         r
     }
 
+    /// Robot `j` stands (not driving, at no door or lift) with nothing but a way to go:
+    /// its itinerary may be dropped and planned again.
+    fn may_stand_aside(&self, j: usize) -> bool {
+        let o = &self.robots[j];
+        o.n_sent == 0 && o.gate == Gate::None && matches!(o.cur, Cur::GoTo { .. } | Cur::None)
+    }
+
+    /// What [`Self::aside`] changes, to put it back.
+    fn aside_snapshot(&self, who: &[usize]) -> AsideSnapshot {
+        let legs = who
+            .iter()
+            .map(|&j| (self.robots[j].legs.clone(), self.robots[j].leg))
+            .collect();
+        (self.sched.clone(), legs)
+    }
+
+    fn aside_restore(&mut self, who: &[usize], snap: AsideSnapshot) {
+        self.sched = snap.0;
+        for (&j, (legs, leg)) in who.iter().zip(snap.1) {
+            (self.robots[j].legs, self.robots[j].leg) = (legs, leg);
+        }
+    }
+
+    /// Robot `i` plans (`plan`) past robots `js` (each [`Self::may_stand_aside`]): they
+    /// stand where they are while it plans, then each plans its way again at once, behind
+    /// what is in the schedule by then. Every plan fits the schedule as it is, and the
+    /// order is checked acyclic; when `plan` declines, a robot set aside finds no way, or
+    /// the order would not hold, everything is put back. True when it went through.
+    fn aside(
+        &mut self,
+        i: usize,
+        js: &[usize],
+        t: f64,
+        plan: impl FnOnce(&mut Self) -> bool,
+    ) -> bool {
+        let who: Vec<usize> = std::iter::once(i).chain(js.iter().copied()).collect();
+        let snap = self.aside_snapshot(&who);
+        for &j in js {
+            self.sched.install(j, 0, &[], t, None);
+        }
+        let mut ok = plan(self);
+        for &j in js {
+            if !ok {
+                break;
+            }
+            let goals = match self.robots[j].cur {
+                Cur::GoTo {
+                    goal,
+                    planned: true,
+                } => self.remaining_goals(j, goal),
+                _ => Vec::new(),
+            };
+            ok = match self.plan_with(j, &goals, None, t) {
+                Ok(leg) => {
+                    if !goals.is_empty() {
+                        self.robots[j].leg = Some(leg);
+                    }
+                    true
+                }
+                Err(_) => false,
+            };
+        }
+        ok = ok && self.sched.retime(t).is_ok();
+        if ok {
+            for &j in &who {
+                self.robots[j].dirty = true;
+            }
+        } else {
+            self.aside_restore(&who, snap);
+        }
+        ok
+    }
+
     /// Robot `i` waits to ask an empty dispenser again, standing on a place that is no
     /// parking vertex. When other robots wait for it to leave, it makes room: it drives to
     /// a parking vertex, stays there as long as it would have waited to ask, comes back and
     /// asks again (the item it waits for may be the one another robot brings back). Its
-    /// request keeps its tries and time limit. The robots that waited for it (standing,
-    /// not yet on their way) plan again behind it. True when it set off.
+    /// request keeps its tries and time limit. The robots that waited for it plan again
+    /// behind it ([`Self::aside`]). True when it set off.
     pub(super) fn make_room(&mut self, i: usize, t: f64) -> bool {
         let r = &self.robots[i];
         if r.n_sent > 0 || r.gate != Gate::None || self.parks.per_slot[r.slot][r.at] != 0 {
@@ -247,12 +323,9 @@ impl Fleets {
         }
         let waiters: Vec<usize> = (0..self.robots.len())
             .filter(|&j| {
-                let o = &self.robots[j];
                 j != i
-                    && o.waiting.is_some()
-                    && o.n_sent == 0
-                    && o.gate == Gate::None
-                    && matches!(o.cur, Cur::GoTo { .. } | Cur::None)
+                    && self.robots[j].waiting.is_some()
+                    && self.may_stand_aside(j)
                     && self.sched.waits_for(j, 0).contains(&i)
             })
             .collect();
@@ -260,59 +333,39 @@ impl Fleets {
             return false;
         }
         let back = r.at;
-        let before = self.sched.clone();
-        // The waiters stand where they are while robot `i` plans its way out.
-        for &j in &waiters {
-            self.sched.install(j, 0, &[], t, None);
-        }
-        // The task's later legs were planned from this place: they are planned again on
-        // the way.
-        let legs = std::mem::take(&mut self.robots[i].legs);
-        let leg = self.robots[i].leg.take();
-        let planned = self.plan_with(i, &[], None, t);
-        let park = self.sched.end_vertex(i);
-        match planned {
-            Ok(n) if park != back => {
-                let r = &mut self.robots[i];
-                let cur = std::mem::replace(
-                    &mut r.cur,
-                    Cur::GoTo {
-                        goal: park,
-                        planned: true,
-                    },
-                );
-                r.leg = Some(n);
-                r.steps.push_front(Step::Resume(Box::new(cur)));
-                r.steps.push_front(Step::GoTo(back));
-                r.steps.push_front(Step::Dwell(ITEM_RETRY));
-                // The way to park, the stay there and the way back are no phases.
-                r.detour = 3;
-                r.dirty = true;
-                for &j in &waiters {
-                    let o = &mut self.robots[j];
-                    o.legs.clear();
-                    o.leg = None;
-                    o.replan_at = t;
-                    o.wake = t;
-                    match o.cur {
-                        Cur::GoTo { goal, .. } => {
-                            o.cur = Cur::GoTo {
-                                goal,
-                                planned: false,
-                            }
-                        }
-                        _ => o.park_pending = true,
-                    }
+        let mut leg = 0;
+        let went = self.aside(i, &waiters, t, |f| {
+            // The task's later legs were planned from this place: they are planned again
+            // on the way.
+            f.robots[i].legs.clear();
+            match f.plan_with(i, &[], None, t) {
+                Ok(n) if f.sched.end_vertex(i) != back => {
+                    leg = n;
+                    true
                 }
-                true
+                _ => false,
             }
-            _ => {
-                self.sched = before;
-                let r = &mut self.robots[i];
-                (r.legs, r.leg) = (legs, leg);
-                false
-            }
+        });
+        if !went {
+            return false;
         }
+        let park = self.sched.end_vertex(i);
+        let r = &mut self.robots[i];
+        let cur = std::mem::replace(
+            &mut r.cur,
+            Cur::GoTo {
+                goal: park,
+                planned: true,
+            },
+        );
+        r.leg = Some(leg);
+        r.legs.clear();
+        r.steps.push_front(Step::Resume(Box::new(cur)));
+        r.steps.push_front(Step::GoTo(back));
+        r.steps.push_front(Step::Dwell(ITEM_RETRY));
+        // The way to park, the stay there and the way back are no phases.
+        r.detour = 3;
+        true
     }
 
     /// Robots whose itineraries end where one of robot `i`'s `goals` is (a task place that
