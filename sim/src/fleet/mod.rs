@@ -314,12 +314,8 @@ pub struct Fleets {
     clean_duration: f64,
     /// Per dispenser, when its item was last ingested (it then goes home by itself).
     ingested: BTreeMap<String, f64>,
-    /// Cancels still to come: (time, index in the scenario's cancels, task id), by time.
-    cancels: VecDeque<(f64, usize, String)>,
-    /// Cancels due whose task has not arrived yet.
-    awaiting_cancel: Vec<(usize, String)>,
-    /// Per cancel of the scenario: done, or why not.
-    cancel_results: Vec<Result<(), String>>,
+    /// The scenario's cancels.
+    cancels: cancel::Cancels,
     /// Per IR lane: when robots drove it (the report's timeline).
     lane_use: BTreeMap<usize, crate::report::timeline::Buckets>,
     /// The timeline's interval (s).
@@ -460,8 +456,8 @@ impl Fleets {
         if let Some(u) = self.upcoming.front() {
             next = next.min(u.0);
         }
-        if let Some(c) = self.cancels.front() {
-            next = next.min(c.0);
+        if let Some(c) = self.cancels.next_at() {
+            next = next.min(c);
         }
         for r in &self.robots {
             next = next.min(r.wake);

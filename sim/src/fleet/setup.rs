@@ -513,14 +513,6 @@ impl Fleets {
             return Err(diags);
         }
         upcoming.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
-        let mut cancels: Vec<(f64, usize, String)> = scenario
-            .cancels
-            .iter()
-            .enumerate()
-            .map(|(k, c)| (c.at, k, c.task_id.clone()))
-            .collect();
-        cancels.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
-        let cancels = VecDeque::from(cancels);
         let mut door_index = BTreeMap::new();
         for (i, d) in nav.doors.iter().enumerate() {
             door_index.entry(d.name.clone()).or_insert(i);
@@ -572,9 +564,7 @@ impl Fleets {
             clean_duration: scenario.options.clean_duration,
             released: false,
             ingested: BTreeMap::new(),
-            cancels,
-            awaiting_cancel: Vec::new(),
-            cancel_results: vec![Err(String::new()); scenario.cancels.len()],
+            cancels: cancel::Cancels::new(scenario),
             lane_use: BTreeMap::new(),
             period: crate::report::timeline::period_for(scenario.duration),
         })
