@@ -2,6 +2,69 @@
 //! RobotState, door and lift sessions at the gates on the way.
 
 use super::*;
+use crate::report::timeline::{Buckets, Series};
+
+/// Per IR lane, when robots drove it (the report's timeline).
+///
+/// Invariant: a lane's buckets hold exactly the spans robots were on it, each added when
+/// the robot reached the lane's end (from when it left the lane before, or was sent,
+/// if later); buckets are `period` s long. Guarantees the report's ten busiest lanes
+/// ([`LaneUse::series`]), in a fixed order.
+pub(super) struct LaneUse {
+    busy: BTreeMap<usize, Buckets>,
+    /// The timeline's interval (s).
+    period: f64,
+}
+
+impl LaneUse {
+    /// No lane driven yet; intervals of `period` s.
+    pub(super) fn new(period: f64) -> LaneUse {
+        LaneUse {
+            busy: BTreeMap::new(),
+            period,
+        }
+    }
+
+    /// A robot was on IR lane `lane` from `since` to `t`.
+    fn add(&mut self, lane: usize, since: f64, t: f64) {
+        let period = self.period;
+        self.busy
+            .entry(lane)
+            .or_insert_with(|| Buckets::new(period))
+            .add(since, t);
+    }
+
+    /// The ten lanes robots drove longest (named by `nav`'s vertices), each with its busy
+    /// share per interval of a run of `end` seconds.
+    pub(super) fn series(&self, nav: &Nav, end: f64) -> Vec<Series> {
+        let mut lanes: Vec<(&usize, &Buckets)> = self.busy.iter().collect();
+        lanes.sort_by(|a, b| b.1.total().total_cmp(&a.1.total()).then(a.0.cmp(b.0)));
+        lanes
+            .into_iter()
+            .take(10)
+            .filter_map(|(&lane, busy)| {
+                let e = nav.edges.iter().find(|e| e.lane == Some(lane))?;
+                let name = |v: usize| {
+                    let x = &nav.vertices[v];
+                    if x.name.is_empty() {
+                        format!("({:.1}, {:.1})", x.pos.x, x.pos.y)
+                    } else {
+                        x.name.clone()
+                    }
+                };
+                Some(Series {
+                    resource: format!(
+                        "lane {} – {} on {}",
+                        name(e.from),
+                        name(e.to),
+                        nav.vertices[e.from].level_name
+                    ),
+                    busy: busy.shares(end, 1.0),
+                })
+            })
+            .collect()
+    }
+}
 
 impl Fleets {
     /// Drops the leg being driven (the robot finishes the traversals it was sent along, then
@@ -57,11 +120,7 @@ impl Fleets {
         if let Some(lane) = self.nav.edges[edge].lane {
             // On the lane from when it left the lane before (or was sent, if later).
             let since = begun_at.max(self.robots[i].reached_at);
-            let period = self.period;
-            self.lane_use
-                .entry(lane)
-                .or_insert_with(|| crate::report::timeline::Buckets::new(period))
-                .add(since, t);
+            self.lane_use.add(lane, since, t);
         }
         self.robots[i].reached_at = t;
         self.sched.complete_front(i, t);

@@ -317,9 +317,7 @@ pub struct Fleets {
     /// The scenario's cancels.
     cancels: cancel::Cancels,
     /// Per IR lane: when robots drove it (the report's timeline).
-    lane_use: BTreeMap<usize, crate::report::timeline::Buckets>,
-    /// The timeline's interval (s).
-    period: f64,
+    lane_use: drive::LaneUse,
 }
 
 impl Fleets {
@@ -478,33 +476,7 @@ impl Fleets {
     /// The ten lanes robots drove longest, each with its busy share per interval of a run
     /// of `end` seconds (the report's timeline).
     pub fn lane_series(&self, end: f64) -> Vec<crate::report::timeline::Series> {
-        let mut lanes: Vec<(&usize, &crate::report::timeline::Buckets)> =
-            self.lane_use.iter().collect();
-        lanes.sort_by(|a, b| b.1.total().total_cmp(&a.1.total()).then(a.0.cmp(b.0)));
-        lanes
-            .into_iter()
-            .take(10)
-            .filter_map(|(&lane, busy)| {
-                let e = self.nav.edges.iter().find(|e| e.lane == Some(lane))?;
-                let name = |v: usize| {
-                    let x = &self.nav.vertices[v];
-                    if x.name.is_empty() {
-                        format!("({:.1}, {:.1})", x.pos.x, x.pos.y)
-                    } else {
-                        x.name.clone()
-                    }
-                };
-                Some(crate::report::timeline::Series {
-                    resource: format!(
-                        "lane {} – {} on {}",
-                        name(e.from),
-                        name(e.to),
-                        self.nav.vertices[e.from].level_name
-                    ),
-                    busy: busy.shares(end, 1.0),
-                })
-            })
-            .collect()
+        self.lane_use.series(&self.nav, end)
     }
 
     /// The traffic planner's work so far.

@@ -565,8 +565,7 @@ impl Fleets {
             released: false,
             ingested: BTreeMap::new(),
             cancels: cancel::Cancels::new(scenario),
-            lane_use: BTreeMap::new(),
-            period: crate::report::timeline::period_for(scenario.duration),
+            lane_use: drive::LaneUse::new(crate::report::timeline::period_for(scenario.duration)),
         })
     }
 }
