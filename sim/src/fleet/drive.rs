@@ -245,8 +245,7 @@ impl Fleets {
                 next_send,
                 since,
             } => {
-                let v = &self.doors[door];
-                if v.mode == door_mode::OPEN && v.sessions.contains(&name) {
+                if self.devices.door_open_for(door, &name) {
                     return true;
                 }
                 if t - since > EXTERNAL_TIMEOUT {
@@ -274,11 +273,7 @@ impl Fleets {
                 next_send,
                 since,
             } => {
-                let v = &self.lifts[lift];
-                if v.current_floor == floor
-                    && v.door_state == lift_state::DOOR_OPEN
-                    && v.session_id == name
-                {
+                if self.devices.lift_ready_for(lift, &floor, &name) {
                     return true;
                 }
                 if t - since > EXTERNAL_TIMEOUT {
@@ -343,7 +338,7 @@ impl Fleets {
             None => (
                 lift_request::END_SESSION,
                 lift_request::DOOR_CLOSED,
-                self.lifts[lift].current_floor.clone(),
+                self.devices.lift_floor(lift).to_string(),
             ),
         };
         out.push((

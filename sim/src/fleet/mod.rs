@@ -36,6 +36,7 @@ use std::collections::{BTreeMap, VecDeque};
 mod assign;
 mod bound;
 mod cancel;
+mod devices;
 mod drive;
 mod park;
 mod setup;
@@ -258,19 +259,6 @@ struct Task {
     ended: bool,
 }
 
-#[derive(Default, Clone)]
-struct DoorView {
-    mode: u32,
-    sessions: Vec<String>,
-}
-
-#[derive(Default, Clone)]
-struct LiftView {
-    current_floor: String,
-    door_state: u8,
-    session_id: String,
-}
-
 pub struct Fleets {
     nav: Nav,
     /// Every robot's itinerary and the order robots pass each resource.
@@ -301,19 +289,13 @@ pub struct Fleets {
     next_dispatch: f64,
     /// (request time, source order, kind, fleet) of tasks not yet requested, sorted.
     upcoming: VecDeque<(f64, usize, NewTask)>,
-    doors: Vec<DoorView>,
-    door_index: BTreeMap<String, usize>,
-    lifts: Vec<LiftView>,
-    lift_index: BTreeMap<String, usize>,
-    results: BTreeMap<String, u8>,
     counters: BTreeMap<TaskCategory, usize>,
-    chargers: BTreeMap<usize, usize>,
     next_wake: f64,
     next_fleet_state: f64,
     next_traffic: f64,
     clean_duration: f64,
-    /// Per dispenser, when its item was last ingested (it then goes home by itself).
-    ingested: BTreeMap<String, f64>,
+    /// Doors, lifts, workcells and chargers as last heard of.
+    devices: devices::Devices,
     /// The scenario's cancels.
     cancels: cancel::Cancels,
     /// Per IR lane: when robots drove it (the report's timeline).
@@ -342,42 +324,7 @@ impl Fleets {
                         r.dirty = true;
                     }
                 }
-                Msg::DoorState(s) => {
-                    if let Some(&d) = self.door_index.get(&s.door_name) {
-                        self.doors[d].mode = s.current_mode.value;
-                        external = true;
-                    }
-                }
-                Msg::DoorHeartbeat(h) => {
-                    for v in self.doors.iter_mut() {
-                        v.sessions.clear();
-                    }
-                    for ds in &h.all_sessions {
-                        if let Some(&d) = self.door_index.get(&ds.door_name) {
-                            self.doors[d].sessions =
-                                ds.sessions.iter().map(|s| s.requester_id.clone()).collect();
-                        }
-                    }
-                    external = true;
-                }
-                Msg::LiftState(s) => {
-                    if let Some(&l) = self.lift_index.get(&s.lift_name) {
-                        self.lifts[l] = LiftView {
-                            current_floor: s.current_floor.clone(),
-                            door_state: s.door_state,
-                            session_id: s.session_id.clone(),
-                        };
-                        external = true;
-                    }
-                }
-                Msg::WorkcellResult(res)
-                    if matches!(p.topic, Topic::DispenserResults | Topic::IngestorResults)
-                        && res.status != workcell_result::ACKNOWLEDGED =>
-                {
-                    self.results.insert(res.request_guid.clone(), res.status);
-                    external = true;
-                }
-                _ => {}
+                _ => external |= self.devices.hear(p),
             }
         }
         if external {

@@ -513,14 +513,6 @@ impl Fleets {
             return Err(diags);
         }
         upcoming.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
-        let mut door_index = BTreeMap::new();
-        for (i, d) in nav.doors.iter().enumerate() {
-            door_index.entry(d.name.clone()).or_insert(i);
-        }
-        let mut lift_index = BTreeMap::new();
-        for (i, l) in nav.lifts.iter().enumerate() {
-            lift_index.entry(l.name.clone()).or_insert(i);
-        }
         // A robot that does not start on a parking vertex drives to one first.
         let parks = placement.parks.clone();
         for r in robots.iter_mut() {
@@ -535,8 +527,7 @@ impl Fleets {
         let planner = Planner::new(&nav);
         let sched = Schedule::new(conf, &starts, 0.0);
         Ok(Fleets {
-            doors: vec![DoorView::default(); nav.doors.len()],
-            lifts: vec![LiftView::default(); nav.lifts.len()],
+            devices: devices::Devices::new(&nav),
             nav,
             sched,
             planner,
@@ -553,17 +544,12 @@ impl Fleets {
             pending: VecDeque::new(),
             next_dispatch: f64::INFINITY,
             upcoming: upcoming.into(),
-            door_index,
-            lift_index,
-            results: BTreeMap::new(),
             counters: BTreeMap::new(),
-            chargers: BTreeMap::new(),
             next_wake: 0.0,
             next_fleet_state: 0.0,
             next_traffic: f64::INFINITY,
             clean_duration: scenario.options.clean_duration,
             released: false,
-            ingested: BTreeMap::new(),
             cancels: cancel::Cancels::new(scenario),
             lane_use: drive::LaneUse::new(crate::report::timeline::period_for(scenario.duration)),
         })

@@ -1165,7 +1165,7 @@ fn an_empty_dispensers_item_is_coming_while_its_carrier_is_on_its_way() {
         "a carrier with nothing to do brings nothing back"
     );
     // Ingested: the plugin sends it home after a few seconds, so it is still coming then.
-    f.ingested.insert("disp".into(), 2.0);
+    f.devices.ingested("disp".into(), 2.0);
     assert!(f.item_coming("disp", 2.0 + ITEM_HOME - 1.0));
     assert!(!f.item_coming("disp", 2.0 + ITEM_HOME + 1.0));
 }
