@@ -108,8 +108,7 @@ impl Fleets {
             ));
         }
         const DETAIL: &str = "cancelled by cancel_task_request";
-        if let Some(k) = self.pending.iter().position(|p| p.task == ti) {
-            self.pending.remove(k);
+        if self.dispatcher.withdraw(ti) {
             self.tasks[ti].ended = true;
             self.event(t, ti, "cancelled", None, DETAIL.into(), out);
             return Ok(());

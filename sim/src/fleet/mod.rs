@@ -281,15 +281,8 @@ pub struct Fleets {
     robots: Vec<Robot>,
     by_name: BTreeMap<String, usize>,
     tasks: Vec<Task>,
-    /// Per (graph slot, speed, place): free-flow times to the place from every vertex.
-    eta_tables: BTreeMap<(usize, u64, usize), Vec<f64>>,
-    /// Tasks no robot has taken yet, oldest first.
-    pending: VecDeque<assign::Pending>,
-    /// When the dispatcher runs next.
-    next_dispatch: f64,
-    /// (request time, source order, kind, fleet) of tasks not yet requested, sorted.
-    upcoming: VecDeque<(f64, usize, NewTask)>,
-    counters: BTreeMap<TaskCategory, usize>,
+    /// The task queue and what is still to be requested.
+    dispatcher: assign::Dispatcher,
     next_wake: f64,
     next_fleet_state: f64,
     next_traffic: f64,
@@ -335,10 +328,8 @@ impl Fleets {
             }
         }
         // New tasks.
-        while self.upcoming.front().is_some_and(|u| u.0 <= t) {
-            if let Some((_, _, new)) = self.upcoming.pop_front() {
-                self.request_task(t, new, out);
-            }
+        while let Some(new) = self.dispatcher.take_request(t) {
+            self.request_task(t, new, out);
         }
         self.cancel_due(t, out);
         self.dispatch(t, out);
@@ -397,10 +388,7 @@ impl Fleets {
         let mut next = self
             .next_fleet_state
             .min(self.next_traffic)
-            .min(self.next_dispatch);
-        if let Some(u) = self.upcoming.front() {
-            next = next.min(u.0);
-        }
+            .min(self.dispatcher.next_at());
         if let Some(c) = self.cancels.next_at() {
             next = next.min(c);
         }
@@ -449,7 +437,7 @@ impl Fleets {
 
     /// True when every task has ended (completed or failed) and no generator is pending.
     pub fn all_done(&self, _t: f64) -> bool {
-        self.upcoming.is_empty() && self.tasks.iter().all(|t| t.ended)
+        self.dispatcher.requested_all() && self.tasks.iter().all(|t| t.ended)
     }
 
     // ----- tasks -----

@@ -33,7 +33,7 @@ impl Fleets {
         // Its way to parking is what it drives next: nobody's plan goes before it now.
         self.sched.harden(i);
         // The robot is free (once its steps are done): waiting tasks may go to it.
-        self.next_dispatch = self.next_dispatch.min(t);
+        self.dispatcher.wake(t);
         if let Some(tk) = self.tasks.get_mut(ti) {
             tk.ended = true;
         }
