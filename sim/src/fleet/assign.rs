@@ -13,6 +13,7 @@
 //! with a saturating stream hundreds of tasks wait, and planning each again at every round
 //! cost 95 % of a run.
 
+use super::traffic::GRAPH_PARKS;
 use super::*;
 use crate::traffic::sipp::{Plan, Query};
 
@@ -265,7 +266,7 @@ impl Fleets {
             let mut stack: Vec<usize> = f
                 .robots
                 .iter()
-                .map(|&ri| self.sched.itinerary(ri).at)
+                .map(|&ri| self.traffic.sched.itinerary(ri).at)
                 .collect();
             while let Some(v) = stack.pop() {
                 if std::mem::replace(&mut seen[v], true) {
@@ -303,7 +304,7 @@ impl Fleets {
     /// (its first traversals still to be kept).
     fn plan_start(&self, i: usize, t: f64) -> (usize, usize, f64) {
         let keep = self.robots[i].n_sent;
-        let it = self.sched.itinerary(i);
+        let it = self.traffic.sched.itinerary(i);
         match keep.checked_sub(1).and_then(|k| it.travs.get(k)) {
             Some(tr) => (keep, tr.to, tr.end.max(t)),
             None => (0, it.at, t),
@@ -318,7 +319,7 @@ impl Fleets {
             return;
         }
         self.dispatcher.next_dispatch = f64::INFINITY;
-        self.retime(t);
+        self.traffic.retime(t);
         // Free robots: where they plan from, and how long until they may leave.
         let mut free: Vec<Free> = (0..self.robots.len())
             .filter(|&i| self.free(i))
@@ -405,11 +406,11 @@ impl Fleets {
                 let (keep, from, t0) = self.plan_start(ri, t);
                 // A place where another robot stays for good: no plan can get there (a
                 // search would only prove it, at length), that robot must make room.
-                let conf = self.sched.conf();
+                let conf = self.traffic.sched.conf();
                 if goals.iter().any(|&(g, _)| {
                     conf.vertex[g]
                         .iter()
-                        .any(|&x| self.sched.held_for_good(x, ri, soft).is_some())
+                        .any(|&x| self.traffic.sched.held_for_good(x, ri, soft).is_some())
                 }) {
                     failed = true;
                     continue;
@@ -423,11 +424,11 @@ impl Fleets {
                         from,
                         t0,
                         goals: &goals,
-                        parks: own.as_deref().unwrap_or(&self.parks.per_slot[f.slot]),
+                        parks: own.as_deref().unwrap_or(GRAPH_PARKS),
                         stay,
                         soft,
                     };
-                    found = self.planner.plan(&self.nav, &self.sched, &q);
+                    found = self.traffic.plan(&self.nav, q);
                     if found.is_some() {
                         break;
                     }
@@ -510,13 +511,13 @@ impl Fleets {
 
     /// The free robots (of `free`) that stay for good on a place of pending task `k`.
     fn holders(&self, k: usize, free: &[Free]) -> Vec<usize> {
-        let conf = self.sched.conf();
+        let conf = self.traffic.sched.conf();
         let mut out = Vec::new();
         for (_, steps) in &self.dispatcher.pending[k].steps {
             for s in steps {
                 let Step::GoTo(g) = s else { continue };
                 for &x in &conf.vertex[*g] {
-                    if let Some(o) = self.sched.held_for_good(x, usize::MAX, false) {
+                    if let Some(o) = self.traffic.sched.held_for_good(x, usize::MAX, false) {
                         if free.iter().any(|f| f.0 == o) && !out.contains(&o) {
                             out.push(o);
                         }

@@ -109,6 +109,7 @@ impl Fleets {
 
     pub(super) fn reach_next(&mut self, i: usize, t: f64, out: &mut Vec<(Topic, Msg)>) {
         let Some((to, edge, begun_at)) = self
+            .traffic
             .sched
             .itinerary(i)
             .travs
@@ -123,14 +124,10 @@ impl Fleets {
             self.lane_use.add(lane, since, t);
         }
         self.robots[i].reached_at = t;
-        self.sched.complete_front(i, t);
-        if cfg!(debug_assertions) {
-            if let Err(e) = self.sched.check(t) {
-                self.cycles += 1;
-                debug_assert!(false, "schedule broken after robot {i} arrived: {e}");
-            }
-        }
-        self.released = true;
+        self.traffic.sched.complete_front(i, t);
+        self.traffic
+            .check(t, || format!("schedule broken after robot {i} arrived"));
+        self.traffic.release();
         let r = &mut self.robots[i];
         r.n_sent = r.n_sent.saturating_sub(1);
         if let Some(l) = &mut r.leg {
@@ -163,7 +160,7 @@ impl Fleets {
             if t < self.robots[i].replan_at {
                 // The last try found no way: drive what the itinerary holds (to park).
                 self.robots[i].wake = self.robots[i].replan_at;
-                let n = self.sched.itinerary(i).travs.len();
+                let n = self.traffic.sched.itinerary(i).travs.len();
                 self.advance(i, n, t, out);
                 return Some(false);
             }
@@ -181,8 +178,8 @@ impl Fleets {
                 Err(NoPlan::Busy) => {
                     // Not now: at least it goes to stand where it blocks nobody (a robot
                     // spawned in a corridor may be what keeps the others from planning).
-                    let end = self.sched.end_vertex(i);
-                    if self.parks.per_slot[self.robots[i].slot][end] == 0 {
+                    let end = self.traffic.sched.end_vertex(i);
+                    if self.traffic.parks(self.robots[i].slot)[end] == 0 {
                         let _ = self.plan_to(i, &[], t);
                     }
                     let r = &mut self.robots[i];
@@ -190,7 +187,7 @@ impl Fleets {
                     if r.waiting.is_none() {
                         r.waiting = Some(t);
                     }
-                    let n = self.sched.itinerary(i).travs.len();
+                    let n = self.traffic.sched.itinerary(i).travs.len();
                     self.advance(i, n, t, out);
                     return Some(false);
                 }
@@ -357,6 +354,7 @@ impl Fleets {
     /// PathRequest: where the robot is, then the ends of its first `n` traversals.
     pub(super) fn send_path(&mut self, i: usize, n: usize, t: f64, out: &mut Vec<(Topic, Msg)>) {
         let edges: Vec<usize> = self
+            .traffic
             .sched
             .itinerary(i)
             .travs

@@ -15,8 +15,10 @@
 //!
 //! Modules: `setup` (placement, graphs, the schedule), `spawn` (where auto-spawned robots
 //! start), `assign` (which robot takes a task), `task` (the steps of a task and their
-//! sessions), `drive` (path requests, doors and lifts on the way), `traffic` (planning legs
-//! into the schedule and driving what it grants), `waits` (why robots wait).
+//! sessions), `drive` (path requests, doors and lifts on the way), `devices` (doors, lifts,
+//! workcells and chargers as last heard of), `cancel` (cancel requests), `traffic`
+//! (planning legs into the schedule and driving what it grants), `waits` (why robots
+//! wait).
 
 use crate::graph::{EdgeKind, Nav};
 use crate::msgs::{
@@ -259,24 +261,19 @@ struct Task {
     ended: bool,
 }
 
+/// The fleet adapter: the nav graphs, the fleets, their robots (each with its task's steps
+/// and the step in progress), the tasks and the robots' names, and one component per job,
+/// each keeping its own state and invariant: `traffic::Traffic` (the schedule shared by
+/// all fleets, the planner, the parking vertices), `assign::Dispatcher` (the task queue),
+/// `devices::Devices` (doors, lifts, workcells and chargers as last heard of),
+/// `cancel::Cancels` and `drive::LaneUse`. `Fleets` orchestrates them in
+/// [`Fleets::update`]; what needs the robots and several components at once (a robot's
+/// legs and steps, planning into the schedule, making room) stays here, its `impl` split
+/// over the modules by job.
 pub struct Fleets {
     nav: Nav,
-    /// Every robot's itinerary and the order robots pass each resource.
-    sched: Schedule,
-    planner: Planner,
-    /// Where robots may stand for good.
-    parks: Parks,
-    /// When the schedule was last retimed.
-    retimed_at: f64,
-    /// A traversal completed in this update (waiting robots may go on).
-    released: bool,
-    /// Dependency cycles found (never expected; counted for the tests).
-    cycles: u64,
-    /// Task plans undone because a robot they went before on its way to parking could not
-    /// plan again behind them.
-    soft_undone: u64,
-    /// States the planner expanded, per plan made.
-    decisions: Vec<u32>,
+    /// The schedule every robot's plan goes into, and the planner.
+    traffic: traffic::Traffic,
     fleets: Vec<FleetRt>,
     robots: Vec<Robot>,
     by_name: BTreeMap<String, usize>,
@@ -336,7 +333,7 @@ impl Fleets {
         // Robots with news or an expired timer; repeat while reservations were released
         // (a release can unblock robots that are waiting).
         for pass in 0..4 {
-            self.released = false;
+            self.traffic.begin_pass();
             for i in 0..self.robots.len() {
                 let r = &self.robots[i];
                 let due = r.dirty || r.wake <= t || (pass > 0 && r.waiting.is_some());
@@ -345,7 +342,7 @@ impl Fleets {
                     self.tick(i, t, out);
                 }
             }
-            if !self.released {
+            if !self.traffic.released() {
                 break;
             }
         }
@@ -400,12 +397,12 @@ impl Fleets {
 
     /// Records the wall-clock time of every plan from now on (see `RunOptions::plan_times`).
     pub fn time_plans(&mut self) {
-        self.planner.times = Some(Vec::new());
+        self.traffic.time_plans();
     }
 
     /// The wall-clock time (s) of every plan since [`Fleets::time_plans`].
     pub fn plan_times(&mut self) -> Vec<f64> {
-        self.planner.times.take().unwrap_or_default()
+        self.traffic.plan_times()
     }
 
     /// The ten lanes robots drove longest, each with its busy share per interval of a run
@@ -416,23 +413,7 @@ impl Fleets {
 
     /// The traffic planner's work so far.
     pub fn traffic_report(&self) -> crate::report::TrafficReport {
-        let mut e = self.decisions.clone();
-        e.sort_unstable();
-        let pick = |q: f64| -> u64 {
-            if e.is_empty() {
-                0
-            } else {
-                e[((e.len() - 1) as f64 * q).round() as usize] as u64
-            }
-        };
-        crate::report::TrafficReport {
-            plans: self.planner.plans,
-            plans_failed: self.planner.plans - e.len() as u64,
-            expanded_median: pick(0.5),
-            expanded_p99: pick(0.99),
-            cycles: self.cycles,
-            soft_undone: self.soft_undone,
-        }
+        self.traffic.report()
     }
 
     /// True when every task has ended (completed or failed) and no generator is pending.

@@ -524,18 +524,11 @@ impl Fleets {
             };
         }
         let starts: Vec<usize> = robots.iter().map(|r| r.at).collect();
-        let planner = Planner::new(&nav);
-        let sched = Schedule::new(conf, &starts, 0.0);
+        let traffic = traffic::Traffic::new(&nav, conf, &starts, parks);
         Ok(Fleets {
             devices: devices::Devices::new(&nav),
             nav,
-            sched,
-            planner,
-            parks,
-            retimed_at: f64::NAN,
-            cycles: 0,
-            soft_undone: 0,
-            decisions: Vec::new(),
+            traffic,
             fleets,
             robots,
             by_name,
@@ -545,7 +538,6 @@ impl Fleets {
             next_fleet_state: 0.0,
             next_traffic: f64::INFINITY,
             clean_duration: scenario.options.clean_duration,
-            released: false,
             cancels: cancel::Cancels::new(scenario),
             lane_use: drive::LaneUse::new(crate::report::timeline::period_for(scenario.duration)),
         })

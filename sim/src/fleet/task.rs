@@ -31,7 +31,7 @@ impl Fleets {
             return;
         };
         // Its way to parking is what it drives next: nobody's plan goes before it now.
-        self.sched.harden(i);
+        self.traffic.sched.harden(i);
         // The robot is free (once its steps are done): waiting tasks may go to it.
         self.dispatcher.wake(t);
         if let Some(tk) = self.tasks.get_mut(ti) {
@@ -380,7 +380,7 @@ impl Fleets {
                 }
             }
         }
-        let n = self.sched.itinerary(i).travs.len();
+        let n = self.traffic.sched.itinerary(i).travs.len();
         self.advance(i, n, t, out);
         false
     }
