@@ -8,8 +8,8 @@ use super::*;
 ///
 /// Invariant: every cancel of the scenario is in exactly one place: still to come
 /// (`upcoming`, by time), due but waiting for its task to arrive (`awaiting`), or done
-/// with its result in `results`. A cancel is due once, and one waiting for its task is
-/// tried again at every update until the task arrives; guarantees a result per cancel
+/// with its result in `results`. A cancel is due once; one waiting for its task is
+/// tried again at every update until the task arrives. Guarantees a result per cancel
 /// ([`Cancels::results`]).
 pub(super) struct Cancels {
     /// Cancels still to come: (time, index in the scenario's cancels, task id), by time.
