@@ -13,6 +13,7 @@
 //! with a saturating stream hundreds of tasks wait, and planning each again at every round
 //! cost 95 % of a run.
 
+use super::traffic::GRAPH_PARKS;
 use super::*;
 use crate::traffic::sipp::{Plan, Query};
 
@@ -51,24 +52,135 @@ type Free = (usize, usize, f64);
 const ETA_TABLES: usize = 512;
 
 /// A task in the queue.
-pub(super) struct Pending {
-    pub task: usize,
+struct Pending {
+    task: usize,
     /// (fleet, the task's steps for it) of every fleet that may do the task.
-    pub steps: Vec<(usize, Vec<Step>)>,
+    steps: Vec<(usize, Vec<Step>)>,
     /// The only robot that may do it (a robot task).
-    pub robot: Option<usize>,
+    robot: Option<usize>,
     /// RMF's priority: the queue keeps higher ones first.
-    pub priority: u64,
+    priority: u64,
     /// Since when younger tasks have been taken while this one was not.
-    pub passed_over: Option<f64>,
+    passed_over: Option<f64>,
     /// When robots were last asked to make room for it.
-    pub displaced_at: f64,
+    displaced_at: f64,
     /// Robots whose plans for it waited too long, each with when planning for it again
     /// may first succeed (see [`Fleets::dispatch`]).
-    pub backoff: Vec<(usize, f64)>,
+    backoff: Vec<(usize, f64)>,
     /// Its plans keep clear of the others' ways to parking too (one that went before them
     /// was undone: see [`Fleets::install`]).
-    pub hard: bool,
+    hard: bool,
+}
+
+/// The dispatcher's state: the tasks still to be requested, the queue of tasks no robot
+/// has taken yet, and when it runs next.
+///
+/// Invariant: the queue keeps tasks oldest first within a priority and a higher priority
+/// before every lower one; a task is in it from its request until a robot takes it or it
+/// is cancelled; while it is not empty a round is due within `DISPATCH_EVERY` s (at once
+/// when a task comes or a robot becomes free). Guarantees (with [`Fleets::dispatch`]):
+/// tasks are looked at oldest first, each goes to the free robot whose whole-task plan
+/// arrives first, a plan that would wait long for traffic is not taken while the task is
+/// young, and a robot whose plan for a task waited too long is not planned for it again
+/// until its backoff ends (its excess wait, at most `MAX_BACKOFF`).
+pub(super) struct Dispatcher {
+    /// (request time, source order, kind, fleet) of tasks not yet requested, sorted.
+    upcoming: VecDeque<(f64, usize, NewTask)>,
+    /// Tasks no robot has taken yet, oldest first.
+    pending: VecDeque<Pending>,
+    /// When the dispatcher runs next.
+    next_dispatch: f64,
+    /// Per category, the tasks requested so far (their ids count on).
+    counters: BTreeMap<TaskCategory, usize>,
+    /// Per (graph slot, speed, place): free-flow times to the place from every vertex.
+    eta_tables: BTreeMap<(usize, u64, usize), Vec<f64>>,
+}
+
+impl Dispatcher {
+    /// The tasks to come, `upcoming` sorted by (request time, source order).
+    pub(super) fn new(upcoming: Vec<(f64, usize, NewTask)>) -> Dispatcher {
+        Dispatcher {
+            upcoming: upcoming.into(),
+            pending: VecDeque::new(),
+            next_dispatch: f64::INFINITY,
+            counters: BTreeMap::new(),
+            eta_tables: BTreeMap::new(),
+        }
+    }
+
+    /// The next task requested by `t`, if any (in request order).
+    pub(super) fn take_request(&mut self, t: f64) -> Option<NewTask> {
+        if self.upcoming.front().is_some_and(|u| u.0 <= t) {
+            self.upcoming.pop_front().map(|(_, _, new)| new)
+        } else {
+            None
+        }
+    }
+
+    /// No task is still to be requested.
+    pub(super) fn requested_all(&self) -> bool {
+        self.upcoming.is_empty()
+    }
+
+    /// When the dispatcher runs next or the next task is requested, whichever is first.
+    pub(super) fn next_at(&self) -> f64 {
+        let mut next = self.next_dispatch;
+        if let Some(u) = self.upcoming.front() {
+            next = next.min(u.0);
+        }
+        next
+    }
+
+    /// A round is due at `t` (a robot became free).
+    pub(super) fn wake(&mut self, t: f64) {
+        self.next_dispatch = self.next_dispatch.min(t);
+    }
+
+    /// The id of a new task of `category`: its category and how many came before it.
+    fn new_id(&mut self, category: TaskCategory) -> String {
+        let n = self.counters.entry(category).or_insert(0);
+        let id = format!("{}_{}", category.as_str(), *n);
+        *n += 1;
+        id
+    }
+
+    /// Queues `p` at `t`: oldest first within a priority; a higher priority before every
+    /// lower one. A round is due at once.
+    fn enqueue(&mut self, p: Pending, t: f64) {
+        let at = self
+            .pending
+            .iter()
+            .position(|q| q.priority < p.priority)
+            .unwrap_or(self.pending.len());
+        self.pending.insert(at, p);
+        self.next_dispatch = self.next_dispatch.min(t);
+    }
+
+    /// Takes task `ti` out of the queue. False when it was not queued.
+    pub(super) fn withdraw(&mut self, ti: usize) -> bool {
+        match self.pending.iter().position(|p| p.task == ti) {
+            Some(k) => {
+                self.pending.remove(k);
+                true
+            }
+            None => false,
+        }
+    }
+
+    /// Free-flow time (s) for free robot `f` of `fleet` to `goal`: one table per place, kept (a
+    /// table per robot would cost a search of the whole graph per free robot and round:
+    /// with 1,000 robots on 10,000 waypoints, most of a run).
+    fn eta(&mut self, nav: &Nav, fleet: &FleetRt, goal: usize, f: &Free) -> f64 {
+        let key = (fleet.slot, fleet.speed.to_bits(), goal);
+        if !self.eta_tables.contains_key(&key) {
+            if self.eta_tables.len() >= ETA_TABLES {
+                self.eta_tables.clear();
+            }
+            let table = nav.times_to(fleet.slot, goal, fleet.speed);
+            self.eta_tables.insert(key, table);
+        }
+        self.eta_tables[&key][f.1] + f.2
+    }
 }
 
 impl Fleets {
@@ -80,9 +192,7 @@ impl Fleets {
             priority,
         } = new;
         let category = kind.category();
-        let n = self.counters.entry(category).or_insert(0);
-        let id = format!("{}_{}", category.as_str(), *n);
-        *n += 1;
+        let id = self.dispatcher.new_id(category);
         let ti = self.tasks.len();
         self.tasks.push(Task {
             id,
@@ -133,14 +243,7 @@ impl Fleets {
             backoff: Vec::new(),
             hard: false,
         };
-        // Oldest first within a priority; a higher priority before every lower one.
-        let at = self
-            .pending
-            .iter()
-            .position(|q| q.priority < priority)
-            .unwrap_or(self.pending.len());
-        self.pending.insert(at, p);
-        self.next_dispatch = self.next_dispatch.min(t);
+        self.dispatcher.enqueue(p, t);
     }
 
     /// (fleet, its steps for the task) of every fleet that may do task `ti` and has a
@@ -163,7 +266,7 @@ impl Fleets {
             let mut stack: Vec<usize> = f
                 .robots
                 .iter()
-                .map(|&ri| self.sched.itinerary(ri).at)
+                .map(|&ri| self.traffic.sched.itinerary(ri).at)
                 .collect();
             while let Some(v) = stack.pop() {
                 if std::mem::replace(&mut seen[v], true) {
@@ -201,7 +304,7 @@ impl Fleets {
     /// (its first traversals still to be kept).
     fn plan_start(&self, i: usize, t: f64) -> (usize, usize, f64) {
         let keep = self.robots[i].n_sent;
-        let it = self.sched.itinerary(i);
+        let it = self.traffic.sched.itinerary(i);
         match keep.checked_sub(1).and_then(|k| it.travs.get(k)) {
             Some(tr) => (keep, tr.to, tr.end.max(t)),
             None => (0, it.at, t),
@@ -212,11 +315,11 @@ impl Fleets {
     /// there first. Tasks no robot can take now stay queued. A round looks at no more
     /// than `SCAN_PER_ROUND` tasks and makes no more than `PLANS_PER_ROUND` plans.
     pub(super) fn dispatch(&mut self, t: f64, out: &mut Vec<(Topic, Msg)>) {
-        if t < self.next_dispatch || self.pending.is_empty() {
+        if t < self.dispatcher.next_dispatch || self.dispatcher.pending.is_empty() {
             return;
         }
-        self.next_dispatch = f64::INFINITY;
-        self.retime(t);
+        self.dispatcher.next_dispatch = f64::INFINITY;
+        self.traffic.retime(t);
         // Free robots: where they plan from, and how long until they may leave.
         let mut free: Vec<Free> = (0..self.robots.len())
             .filter(|&i| self.free(i))
@@ -229,22 +332,27 @@ impl Fleets {
         let mut displaced = false;
         let mut k = 0;
         let mut scanned = 0;
-        while k < self.pending.len() && budget > 0 && !free.is_empty() && scanned < SCAN_PER_ROUND {
+        while k < self.dispatcher.pending.len()
+            && budget > 0
+            && !free.is_empty()
+            && scanned < SCAN_PER_ROUND
+        {
             scanned += 1;
-            let ti = self.pending[k].task;
-            let patient = self.pending[k]
+            let ti = self.dispatcher.pending[k].task;
+            let patient = self.dispatcher.pending[k]
                 .passed_over
                 .is_some_and(|p| t - p >= PATIENCE);
             // The nearest free robots by free-flow time to the task's first place.
             let mut near: Vec<(f64, usize, Vec<Step>)> = Vec::new();
-            let only = self.pending[k].robot;
-            for (fi, steps) in self.pending[k].steps.clone() {
+            let only = self.dispatcher.pending[k].robot;
+            for (fi, steps) in self.dispatcher.pending[k].steps.clone() {
                 let Some(first) = first_goal(&steps) else {
                     continue;
                 };
                 for f in &free {
                     if self.robots[f.0].fleet == fi && only.is_none_or(|o| o == f.0) {
-                        let eta = self.eta(f, first);
+                        let fleet = &self.fleets[fi];
+                        let eta = self.dispatcher.eta(&self.nav, fleet, first, f);
                         if eta.is_finite() {
                             near.push((eta, f.0, steps.clone()));
                         }
@@ -264,13 +372,13 @@ impl Fleets {
                 .map(|(_, c)| c)
                 .collect();
             // Not past the moment the task turns patient (its plans may then wait longer).
-            let turns_patient = self.pending[k]
+            let turns_patient = self.dispatcher.pending[k]
                 .passed_over
                 .map(|p| p + PATIENCE)
                 .filter(|&p| t < p)
                 .unwrap_or(f64::INFINITY);
             // Task plans go through the others' ways to parking (see `schedule`).
-            let soft = !self.pending[k].hard;
+            let soft = !self.dispatcher.pending[k].hard;
             let mut best: Option<(f64, usize, Vec<Step>, Plan, usize, f64)> = None;
             let mut failed = false;
             // Robots whose plans for it waited too long now and will, planned again.
@@ -279,7 +387,11 @@ impl Fleets {
                 // Planning again for a robot before its backoff ends cannot succeed unless
                 // the others got ahead of their plans: a later start shortens a plan's
                 // waits by at most the delay, and the plans installed since only add spans.
-                if let Some(&(_, until)) = self.pending[k].backoff.iter().find(|b| b.0 == ri) {
+                if let Some(&(_, until)) = self.dispatcher.pending[k]
+                    .backoff
+                    .iter()
+                    .find(|b| b.0 == ri)
+                {
                     if t < until {
                         refused.push((ri, until));
                         continue;
@@ -294,11 +406,11 @@ impl Fleets {
                 let (keep, from, t0) = self.plan_start(ri, t);
                 // A place where another robot stays for good: no plan can get there (a
                 // search would only prove it, at length), that robot must make room.
-                let conf = self.sched.conf();
+                let conf = self.traffic.sched.conf();
                 if goals.iter().any(|&(g, _)| {
                     conf.vertex[g]
                         .iter()
-                        .any(|&x| self.sched.held_for_good(x, ri, soft).is_some())
+                        .any(|&x| self.traffic.sched.held_for_good(x, ri, soft).is_some())
                 }) {
                     failed = true;
                     continue;
@@ -312,11 +424,11 @@ impl Fleets {
                         from,
                         t0,
                         goals: &goals,
-                        parks: own.as_deref().unwrap_or(&self.parks.per_slot[f.slot]),
+                        parks: own.as_deref().unwrap_or(GRAPH_PARKS),
                         stay,
                         soft,
                     };
-                    found = self.planner.plan(&self.nav, &self.sched, &q);
+                    found = self.traffic.plan(&self.nav, q);
                     if found.is_some() {
                         break;
                     }
@@ -353,18 +465,24 @@ impl Fleets {
             let Some((_, ri, steps, plan, keep, t0)) = best else {
                 // Robots that found no way are planned for again next round: they may find
                 // one as soon as others make room.
-                self.pending[k].backoff = refused;
+                self.dispatcher.pending[k].backoff = refused;
                 // Room is made for one task per round, the oldest that needs it: for two
                 // tasks in turn, the same robot would be sent back and forth between them.
-                if failed && !displaced && t >= self.pending[k].displaced_at + DISPLACE_EVERY {
+                if failed
+                    && !displaced
+                    && t >= self.dispatcher.pending[k].displaced_at + DISPLACE_EVERY
+                {
                     displaced = true;
-                    self.pending[k].displaced_at = t;
+                    self.dispatcher.pending[k].displaced_at = t;
                     // Maybe a robot stays for good where the task must go: it makes room.
-                    let found = self.pending[k].steps.iter().find_map(|(fi, st)| {
-                        free.iter()
-                            .find(|f| self.robots[f.0].fleet == *fi)
-                            .map(|f| (f.0, st.clone()))
-                    });
+                    let found = self.dispatcher.pending[k]
+                        .steps
+                        .iter()
+                        .find_map(|(fi, st)| {
+                            free.iter()
+                                .find(|f| self.robots[f.0].fleet == *fi)
+                                .map(|f| (f.0, st.clone()))
+                        });
                     if let Some((ri, steps)) = found {
                         let goals = self.goals_of(ri, &steps);
                         self.displace_for(ri, &goals, t);
@@ -376,46 +494,30 @@ impl Fleets {
             let soft_at = soft.then_some(t);
             if !self.start_task(ri, ti, steps, plan, (keep, t0, soft_at), t, out) {
                 // A robot it went before on its way to parking found no way behind it.
-                self.pending[k].hard = true;
+                self.dispatcher.pending[k].hard = true;
                 k += 1;
                 continue;
             }
-            self.pending.remove(k);
-            for p in self.pending.iter_mut().take(k) {
+            self.dispatcher.pending.remove(k);
+            for p in self.dispatcher.pending.iter_mut().take(k) {
                 p.passed_over.get_or_insert(t);
             }
             free.retain(|f| f.0 != ri);
         }
-        if !self.pending.is_empty() {
-            self.next_dispatch = t + DISPATCH_EVERY;
+        if !self.dispatcher.pending.is_empty() {
+            self.dispatcher.next_dispatch = t + DISPATCH_EVERY;
         }
-    }
-
-    /// Free-flow time (s) for free robot `f` to `goal`: one table per place, kept (a
-    /// table per robot would cost a search of the whole graph per free robot and round:
-    /// with 1,000 robots on 10,000 waypoints, most of a run).
-    fn eta(&mut self, f: &Free, goal: usize) -> f64 {
-        let fleet = &self.fleets[self.robots[f.0].fleet];
-        let key = (fleet.slot, fleet.speed.to_bits(), goal);
-        if !self.eta_tables.contains_key(&key) {
-            if self.eta_tables.len() >= ETA_TABLES {
-                self.eta_tables.clear();
-            }
-            let table = self.nav.times_to(fleet.slot, goal, fleet.speed);
-            self.eta_tables.insert(key, table);
-        }
-        self.eta_tables[&key][f.1] + f.2
     }
 
     /// The free robots (of `free`) that stay for good on a place of pending task `k`.
     fn holders(&self, k: usize, free: &[Free]) -> Vec<usize> {
-        let conf = self.sched.conf();
+        let conf = self.traffic.sched.conf();
         let mut out = Vec::new();
-        for (_, steps) in &self.pending[k].steps {
+        for (_, steps) in &self.dispatcher.pending[k].steps {
             for s in steps {
                 let Step::GoTo(g) = s else { continue };
                 for &x in &conf.vertex[*g] {
-                    if let Some(o) = self.sched.held_for_good(x, usize::MAX, false) {
+                    if let Some(o) = self.traffic.sched.held_for_good(x, usize::MAX, false) {
                         if free.iter().any(|f| f.0 == o) && !out.contains(&o) {
                             out.push(o);
                         }

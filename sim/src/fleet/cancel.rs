@@ -4,21 +4,97 @@
 
 use super::*;
 
+/// The scenario's cancels, as time brings them.
+///
+/// Invariant: every cancel of the scenario is in exactly one place: still to come
+/// (`upcoming`, by time), due but waiting for its task to arrive (`awaiting`), or done
+/// with its result in `results`. A cancel is due once; one waiting for its task is
+/// tried again at every update until the task arrives. Guarantees a result per cancel
+/// ([`Cancels::results`]).
+pub(super) struct Cancels {
+    /// Cancels still to come: (time, index in the scenario's cancels, task id), by time.
+    upcoming: VecDeque<(f64, usize, String)>,
+    /// Cancels due whose task has not arrived yet.
+    awaiting: Vec<(usize, String)>,
+    /// Per cancel of the scenario: done, or why not.
+    results: Vec<Result<(), String>>,
+}
+
+impl Cancels {
+    /// The scenario's cancels, none due yet.
+    pub(super) fn new(scenario: &Scenario) -> Cancels {
+        let mut upcoming: Vec<(f64, usize, String)> = scenario
+            .cancels
+            .iter()
+            .enumerate()
+            .map(|(k, c)| (c.at, k, c.task_id.clone()))
+            .collect();
+        upcoming.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
+        Cancels {
+            upcoming: upcoming.into(),
+            awaiting: Vec::new(),
+            results: vec![Err(String::new()); scenario.cancels.len()],
+        }
+    }
+
+    /// The cancels due at `t` and those still waiting for their task, in that order
+    /// (taken: each is put back with [`Cancels::wait`] or ended with [`Cancels::done`]).
+    fn take_due(&mut self, t: f64) -> Vec<(usize, String)> {
+        while self.upcoming.front().is_some_and(|c| c.0 <= t) {
+            if let Some((_, k, id)) = self.upcoming.pop_front() {
+                self.awaiting.push((k, id));
+            }
+        }
+        std::mem::take(&mut self.awaiting)
+    }
+
+    /// Cancel `k` waits for its task to arrive.
+    fn wait(&mut self, k: usize, id: String) {
+        self.awaiting.push((k, id));
+    }
+
+    /// Cancel `k` was handled: done, or why not.
+    fn done(&mut self, k: usize, result: Result<(), String>) {
+        self.results[k] = result;
+    }
+
+    /// When the next cancel comes.
+    pub(super) fn next_at(&self) -> Option<f64> {
+        self.upcoming.front().map(|c| c.0)
+    }
+
+    /// Per cancel of the scenario: done, or why not (a task that has not arrived when the
+    /// run ends never does).
+    fn results(&self) -> Vec<Result<(), String>> {
+        let mut out = self.results.clone();
+        for (k, id) in &self.awaiting {
+            out[*k] = Err(format!(
+                "cancel_task_request for `{id}`: no task of that id arrived before the run ended"
+            ));
+        }
+        for (_, k, id) in &self.upcoming {
+            out[*k] = Err(format!(
+                "cancel_task_request for `{id}`: the run ended before the cancel arrived"
+            ));
+        }
+        out
+    }
+}
+
 impl Fleets {
     /// Handles the cancels due at `t` (and those waiting for their task to arrive).
     pub(super) fn cancel_due(&mut self, t: f64, out: &mut Vec<(Topic, Msg)>) {
-        while self.cancels.front().is_some_and(|c| c.0 <= t) {
-            if let Some((_, k, id)) = self.cancels.pop_front() {
-                self.awaiting_cancel.push((k, id));
-            }
-        }
-        if self.awaiting_cancel.is_empty() {
+        let due = self.cancels.take_due(t);
+        if due.is_empty() {
             return;
         }
-        for (k, id) in std::mem::take(&mut self.awaiting_cancel) {
+        for (k, id) in due {
             match self.tasks.iter().position(|tk| tk.id == id) {
-                None => self.awaiting_cancel.push((k, id)),
-                Some(ti) => self.cancel_results[k] = self.cancel(ti, t, out),
+                None => self.cancels.wait(k, id),
+                Some(ti) => {
+                    let result = self.cancel(ti, t, out);
+                    self.cancels.done(k, result);
+                }
             }
         }
     }
@@ -32,8 +108,7 @@ impl Fleets {
             ));
         }
         const DETAIL: &str = "cancelled by cancel_task_request";
-        if let Some(k) = self.pending.iter().position(|p| p.task == ti) {
-            self.pending.remove(k);
+        if self.dispatcher.withdraw(ti) {
             self.tasks[ti].ended = true;
             self.event(t, ti, "cancelled", None, DETAIL.into(), out);
             return Ok(());
@@ -54,17 +129,6 @@ impl Fleets {
     /// Per cancel of the scenario: done, or why not (a task that has not arrived when the
     /// run ends never does).
     pub fn cancel_results(&self) -> Vec<Result<(), String>> {
-        let mut out = self.cancel_results.clone();
-        for (k, id) in &self.awaiting_cancel {
-            out[*k] = Err(format!(
-                "cancel_task_request for `{id}`: no task of that id arrived before the run ended"
-            ));
-        }
-        for (_, k, id) in &self.cancels {
-            out[*k] = Err(format!(
-                "cancel_task_request for `{id}`: the run ended before the cancel arrived"
-            ));
-        }
-        out
+        self.cancels.results()
     }
 }

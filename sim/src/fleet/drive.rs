@@ -2,6 +2,69 @@
 //! RobotState, door and lift sessions at the gates on the way.
 
 use super::*;
+use crate::report::timeline::{Buckets, Series};
+
+/// Per IR lane, when robots drove it (the report's timeline).
+///
+/// Invariant: a lane's buckets hold exactly the spans robots were on it, each added when
+/// the robot reached the lane's end (from when it left the lane before, or was sent,
+/// if later); buckets are `period` s long. Guarantees the report's ten busiest lanes
+/// ([`LaneUse::series`]), in a fixed order.
+pub(super) struct LaneUse {
+    busy: BTreeMap<usize, Buckets>,
+    /// The timeline's interval (s).
+    period: f64,
+}
+
+impl LaneUse {
+    /// No lane driven yet; intervals of `period` s.
+    pub(super) fn new(period: f64) -> LaneUse {
+        LaneUse {
+            busy: BTreeMap::new(),
+            period,
+        }
+    }
+
+    /// A robot was on IR lane `lane` from `since` to `t`.
+    fn add(&mut self, lane: usize, since: f64, t: f64) {
+        let period = self.period;
+        self.busy
+            .entry(lane)
+            .or_insert_with(|| Buckets::new(period))
+            .add(since, t);
+    }
+
+    /// The ten lanes robots drove longest (named by `nav`'s vertices), each with its busy
+    /// share per interval of a run of `end` seconds.
+    pub(super) fn series(&self, nav: &Nav, end: f64) -> Vec<Series> {
+        let mut lanes: Vec<(&usize, &Buckets)> = self.busy.iter().collect();
+        lanes.sort_by(|a, b| b.1.total().total_cmp(&a.1.total()).then(a.0.cmp(b.0)));
+        lanes
+            .into_iter()
+            .take(10)
+            .filter_map(|(&lane, busy)| {
+                let e = nav.edges.iter().find(|e| e.lane == Some(lane))?;
+                let name = |v: usize| {
+                    let x = &nav.vertices[v];
+                    if x.name.is_empty() {
+                        format!("({:.1}, {:.1})", x.pos.x, x.pos.y)
+                    } else {
+                        x.name.clone()
+                    }
+                };
+                Some(Series {
+                    resource: format!(
+                        "lane {} – {} on {}",
+                        name(e.from),
+                        name(e.to),
+                        nav.vertices[e.from].level_name
+                    ),
+                    busy: busy.shares(end, 1.0),
+                })
+            })
+            .collect()
+    }
+}
 
 impl Fleets {
     /// Drops the leg being driven (the robot finishes the traversals it was sent along, then
@@ -46,6 +109,7 @@ impl Fleets {
 
     pub(super) fn reach_next(&mut self, i: usize, t: f64, out: &mut Vec<(Topic, Msg)>) {
         let Some((to, edge, begun_at)) = self
+            .traffic
             .sched
             .itinerary(i)
             .travs
@@ -57,21 +121,13 @@ impl Fleets {
         if let Some(lane) = self.nav.edges[edge].lane {
             // On the lane from when it left the lane before (or was sent, if later).
             let since = begun_at.max(self.robots[i].reached_at);
-            let period = self.period;
-            self.lane_use
-                .entry(lane)
-                .or_insert_with(|| crate::report::timeline::Buckets::new(period))
-                .add(since, t);
+            self.lane_use.add(lane, since, t);
         }
         self.robots[i].reached_at = t;
-        self.sched.complete_front(i, t);
-        if cfg!(debug_assertions) {
-            if let Err(e) = self.sched.check(t) {
-                self.cycles += 1;
-                debug_assert!(false, "schedule broken after robot {i} arrived: {e}");
-            }
-        }
-        self.released = true;
+        self.traffic.sched.complete_front(i, t);
+        self.traffic
+            .check(t, || format!("schedule broken after robot {i} arrived"));
+        self.traffic.release();
         let r = &mut self.robots[i];
         r.n_sent = r.n_sent.saturating_sub(1);
         if let Some(l) = &mut r.leg {
@@ -104,7 +160,7 @@ impl Fleets {
             if t < self.robots[i].replan_at {
                 // The last try found no way: drive what the itinerary holds (to park).
                 self.robots[i].wake = self.robots[i].replan_at;
-                let n = self.sched.itinerary(i).travs.len();
+                let n = self.traffic.sched.itinerary(i).travs.len();
                 self.advance(i, n, t, out);
                 return Some(false);
             }
@@ -122,8 +178,8 @@ impl Fleets {
                 Err(NoPlan::Busy) => {
                     // Not now: at least it goes to stand where it blocks nobody (a robot
                     // spawned in a corridor may be what keeps the others from planning).
-                    let end = self.sched.end_vertex(i);
-                    if self.parks.per_slot[self.robots[i].slot][end] == 0 {
+                    let end = self.traffic.sched.end_vertex(i);
+                    if self.traffic.parks(self.robots[i].slot)[end] == 0 {
                         let _ = self.plan_to(i, &[], t);
                     }
                     let r = &mut self.robots[i];
@@ -131,7 +187,7 @@ impl Fleets {
                     if r.waiting.is_none() {
                         r.waiting = Some(t);
                     }
-                    let n = self.sched.itinerary(i).travs.len();
+                    let n = self.traffic.sched.itinerary(i).travs.len();
                     self.advance(i, n, t, out);
                     return Some(false);
                 }
@@ -186,8 +242,7 @@ impl Fleets {
                 next_send,
                 since,
             } => {
-                let v = &self.doors[door];
-                if v.mode == door_mode::OPEN && v.sessions.contains(&name) {
+                if self.devices.door_open_for(door, &name) {
                     return true;
                 }
                 if t - since > EXTERNAL_TIMEOUT {
@@ -215,11 +270,7 @@ impl Fleets {
                 next_send,
                 since,
             } => {
-                let v = &self.lifts[lift];
-                if v.current_floor == floor
-                    && v.door_state == lift_state::DOOR_OPEN
-                    && v.session_id == name
-                {
+                if self.devices.lift_ready_for(lift, &floor, &name) {
                     return true;
                 }
                 if t - since > EXTERNAL_TIMEOUT {
@@ -284,7 +335,7 @@ impl Fleets {
             None => (
                 lift_request::END_SESSION,
                 lift_request::DOOR_CLOSED,
-                self.lifts[lift].current_floor.clone(),
+                self.devices.lift_floor(lift).to_string(),
             ),
         };
         out.push((
@@ -303,6 +354,7 @@ impl Fleets {
     /// PathRequest: where the robot is, then the ends of its first `n` traversals.
     pub(super) fn send_path(&mut self, i: usize, n: usize, t: f64, out: &mut Vec<(Topic, Msg)>) {
         let edges: Vec<usize> = self
+            .traffic
             .sched
             .itinerary(i)
             .travs

@@ -15,8 +15,10 @@
 //!
 //! Modules: `setup` (placement, graphs, the schedule), `spawn` (where auto-spawned robots
 //! start), `assign` (which robot takes a task), `task` (the steps of a task and their
-//! sessions), `drive` (path requests, doors and lifts on the way), `traffic` (planning legs
-//! into the schedule and driving what it grants), `waits` (why robots wait).
+//! sessions), `drive` (path requests, doors and lifts on the way), `devices` (doors, lifts,
+//! workcells and chargers as last heard of), `cancel` (cancel requests), `traffic`
+//! (planning legs into the schedule and driving what it grants), `waits` (why robots
+//! wait).
 
 use crate::graph::{EdgeKind, Nav};
 use crate::msgs::{
@@ -36,6 +38,7 @@ use std::collections::{BTreeMap, VecDeque};
 mod assign;
 mod bound;
 mod cancel;
+mod devices;
 mod drive;
 mod park;
 mod setup;
@@ -258,72 +261,35 @@ struct Task {
     ended: bool,
 }
 
-#[derive(Default, Clone)]
-struct DoorView {
-    mode: u32,
-    sessions: Vec<String>,
-}
-
-#[derive(Default, Clone)]
-struct LiftView {
-    current_floor: String,
-    door_state: u8,
-    session_id: String,
-}
-
+/// The fleet adapter: the nav graphs, the fleets, their robots (each with its task's steps
+/// and the step in progress), the tasks and the robots' names, and one component per job,
+/// each keeping its own state and invariant: `traffic::Traffic` (the schedule shared by
+/// all fleets, the planner, the parking vertices), `assign::Dispatcher` (the task queue),
+/// `devices::Devices` (doors, lifts, workcells and chargers as last heard of),
+/// `cancel::Cancels` and `drive::LaneUse`. `Fleets` orchestrates them in
+/// [`Fleets::update`]; what needs the robots and several components at once (a robot's
+/// legs and steps, planning into the schedule, making room) stays here, its `impl` split
+/// over the modules by job.
 pub struct Fleets {
     nav: Nav,
-    /// Every robot's itinerary and the order robots pass each resource.
-    sched: Schedule,
-    planner: Planner,
-    /// Where robots may stand for good.
-    parks: Parks,
-    /// When the schedule was last retimed.
-    retimed_at: f64,
-    /// A traversal completed in this update (waiting robots may go on).
-    released: bool,
-    /// Dependency cycles found (never expected; counted for the tests).
-    cycles: u64,
-    /// Task plans undone because a robot they went before on its way to parking could not
-    /// plan again behind them.
-    soft_undone: u64,
-    /// States the planner expanded, per plan made.
-    decisions: Vec<u32>,
+    /// The schedule every robot's plan goes into, and the planner.
+    traffic: traffic::Traffic,
     fleets: Vec<FleetRt>,
     robots: Vec<Robot>,
     by_name: BTreeMap<String, usize>,
     tasks: Vec<Task>,
-    /// Per (graph slot, speed, place): free-flow times to the place from every vertex.
-    eta_tables: BTreeMap<(usize, u64, usize), Vec<f64>>,
-    /// Tasks no robot has taken yet, oldest first.
-    pending: VecDeque<assign::Pending>,
-    /// When the dispatcher runs next.
-    next_dispatch: f64,
-    /// (request time, source order, kind, fleet) of tasks not yet requested, sorted.
-    upcoming: VecDeque<(f64, usize, NewTask)>,
-    doors: Vec<DoorView>,
-    door_index: BTreeMap<String, usize>,
-    lifts: Vec<LiftView>,
-    lift_index: BTreeMap<String, usize>,
-    results: BTreeMap<String, u8>,
-    counters: BTreeMap<TaskCategory, usize>,
-    chargers: BTreeMap<usize, usize>,
+    /// The task queue and what is still to be requested.
+    dispatcher: assign::Dispatcher,
     next_wake: f64,
     next_fleet_state: f64,
     next_traffic: f64,
     clean_duration: f64,
-    /// Per dispenser, when its item was last ingested (it then goes home by itself).
-    ingested: BTreeMap<String, f64>,
-    /// Cancels still to come: (time, index in the scenario's cancels, task id), by time.
-    cancels: VecDeque<(f64, usize, String)>,
-    /// Cancels due whose task has not arrived yet.
-    awaiting_cancel: Vec<(usize, String)>,
-    /// Per cancel of the scenario: done, or why not.
-    cancel_results: Vec<Result<(), String>>,
+    /// Doors, lifts, workcells and chargers as last heard of.
+    devices: devices::Devices,
+    /// The scenario's cancels.
+    cancels: cancel::Cancels,
     /// Per IR lane: when robots drove it (the report's timeline).
-    lane_use: BTreeMap<usize, crate::report::timeline::Buckets>,
-    /// The timeline's interval (s).
-    period: f64,
+    lane_use: drive::LaneUse,
 }
 
 impl Fleets {
@@ -348,42 +314,7 @@ impl Fleets {
                         r.dirty = true;
                     }
                 }
-                Msg::DoorState(s) => {
-                    if let Some(&d) = self.door_index.get(&s.door_name) {
-                        self.doors[d].mode = s.current_mode.value;
-                        external = true;
-                    }
-                }
-                Msg::DoorHeartbeat(h) => {
-                    for v in self.doors.iter_mut() {
-                        v.sessions.clear();
-                    }
-                    for ds in &h.all_sessions {
-                        if let Some(&d) = self.door_index.get(&ds.door_name) {
-                            self.doors[d].sessions =
-                                ds.sessions.iter().map(|s| s.requester_id.clone()).collect();
-                        }
-                    }
-                    external = true;
-                }
-                Msg::LiftState(s) => {
-                    if let Some(&l) = self.lift_index.get(&s.lift_name) {
-                        self.lifts[l] = LiftView {
-                            current_floor: s.current_floor.clone(),
-                            door_state: s.door_state,
-                            session_id: s.session_id.clone(),
-                        };
-                        external = true;
-                    }
-                }
-                Msg::WorkcellResult(res)
-                    if matches!(p.topic, Topic::DispenserResults | Topic::IngestorResults)
-                        && res.status != workcell_result::ACKNOWLEDGED =>
-                {
-                    self.results.insert(res.request_guid.clone(), res.status);
-                    external = true;
-                }
-                _ => {}
+                _ => external |= self.devices.hear(p),
             }
         }
         if external {
@@ -394,17 +325,15 @@ impl Fleets {
             }
         }
         // New tasks.
-        while self.upcoming.front().is_some_and(|u| u.0 <= t) {
-            if let Some((_, _, new)) = self.upcoming.pop_front() {
-                self.request_task(t, new, out);
-            }
+        while let Some(new) = self.dispatcher.take_request(t) {
+            self.request_task(t, new, out);
         }
         self.cancel_due(t, out);
         self.dispatch(t, out);
         // Robots with news or an expired timer; repeat while reservations were released
         // (a release can unblock robots that are waiting).
         for pass in 0..4 {
-            self.released = false;
+            self.traffic.begin_pass();
             for i in 0..self.robots.len() {
                 let r = &self.robots[i];
                 let due = r.dirty || r.wake <= t || (pass > 0 && r.waiting.is_some());
@@ -413,7 +342,7 @@ impl Fleets {
                     self.tick(i, t, out);
                 }
             }
-            if !self.released {
+            if !self.traffic.released() {
                 break;
             }
         }
@@ -456,12 +385,9 @@ impl Fleets {
         let mut next = self
             .next_fleet_state
             .min(self.next_traffic)
-            .min(self.next_dispatch);
-        if let Some(u) = self.upcoming.front() {
-            next = next.min(u.0);
-        }
-        if let Some(c) = self.cancels.front() {
-            next = next.min(c.0);
+            .min(self.dispatcher.next_at());
+        if let Some(c) = self.cancels.next_at() {
+            next = next.min(c);
         }
         for r in &self.robots {
             next = next.min(r.wake);
@@ -471,70 +397,28 @@ impl Fleets {
 
     /// Records the wall-clock time of every plan from now on (see `RunOptions::plan_times`).
     pub fn time_plans(&mut self) {
-        self.planner.times = Some(Vec::new());
+        self.traffic.time_plans();
     }
 
     /// The wall-clock time (s) of every plan since [`Fleets::time_plans`].
     pub fn plan_times(&mut self) -> Vec<f64> {
-        self.planner.times.take().unwrap_or_default()
+        self.traffic.plan_times()
     }
 
     /// The ten lanes robots drove longest, each with its busy share per interval of a run
     /// of `end` seconds (the report's timeline).
     pub fn lane_series(&self, end: f64) -> Vec<crate::report::timeline::Series> {
-        let mut lanes: Vec<(&usize, &crate::report::timeline::Buckets)> =
-            self.lane_use.iter().collect();
-        lanes.sort_by(|a, b| b.1.total().total_cmp(&a.1.total()).then(a.0.cmp(b.0)));
-        lanes
-            .into_iter()
-            .take(10)
-            .filter_map(|(&lane, busy)| {
-                let e = self.nav.edges.iter().find(|e| e.lane == Some(lane))?;
-                let name = |v: usize| {
-                    let x = &self.nav.vertices[v];
-                    if x.name.is_empty() {
-                        format!("({:.1}, {:.1})", x.pos.x, x.pos.y)
-                    } else {
-                        x.name.clone()
-                    }
-                };
-                Some(crate::report::timeline::Series {
-                    resource: format!(
-                        "lane {} – {} on {}",
-                        name(e.from),
-                        name(e.to),
-                        self.nav.vertices[e.from].level_name
-                    ),
-                    busy: busy.shares(end, 1.0),
-                })
-            })
-            .collect()
+        self.lane_use.series(&self.nav, end)
     }
 
     /// The traffic planner's work so far.
     pub fn traffic_report(&self) -> crate::report::TrafficReport {
-        let mut e = self.decisions.clone();
-        e.sort_unstable();
-        let pick = |q: f64| -> u64 {
-            if e.is_empty() {
-                0
-            } else {
-                e[((e.len() - 1) as f64 * q).round() as usize] as u64
-            }
-        };
-        crate::report::TrafficReport {
-            plans: self.planner.plans,
-            plans_failed: self.planner.plans - e.len() as u64,
-            expanded_median: pick(0.5),
-            expanded_p99: pick(0.99),
-            cycles: self.cycles,
-            soft_undone: self.soft_undone,
-        }
+        self.traffic.report()
     }
 
     /// True when every task has ended (completed or failed) and no generator is pending.
     pub fn all_done(&self, _t: f64) -> bool {
-        self.upcoming.is_empty() && self.tasks.iter().all(|t| t.ended)
+        self.dispatcher.requested_all() && self.tasks.iter().all(|t| t.ended)
     }
 
     // ----- tasks -----

@@ -513,22 +513,6 @@ impl Fleets {
             return Err(diags);
         }
         upcoming.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
-        let mut cancels: Vec<(f64, usize, String)> = scenario
-            .cancels
-            .iter()
-            .enumerate()
-            .map(|(k, c)| (c.at, k, c.task_id.clone()))
-            .collect();
-        cancels.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
-        let cancels = VecDeque::from(cancels);
-        let mut door_index = BTreeMap::new();
-        for (i, d) in nav.doors.iter().enumerate() {
-            door_index.entry(d.name.clone()).or_insert(i);
-        }
-        let mut lift_index = BTreeMap::new();
-        for (i, l) in nav.lifts.iter().enumerate() {
-            lift_index.entry(l.name.clone()).or_insert(i);
-        }
         // A robot that does not start on a parking vertex drives to one first.
         let parks = placement.parks.clone();
         for r in robots.iter_mut() {
@@ -540,43 +524,22 @@ impl Fleets {
             };
         }
         let starts: Vec<usize> = robots.iter().map(|r| r.at).collect();
-        let planner = Planner::new(&nav);
-        let sched = Schedule::new(conf, &starts, 0.0);
+        let traffic = traffic::Traffic::new(&nav, conf, &starts, parks);
         Ok(Fleets {
-            doors: vec![DoorView::default(); nav.doors.len()],
-            lifts: vec![LiftView::default(); nav.lifts.len()],
+            devices: devices::Devices::new(&nav),
             nav,
-            sched,
-            planner,
-            parks,
-            retimed_at: f64::NAN,
-            cycles: 0,
-            soft_undone: 0,
-            decisions: Vec::new(),
+            traffic,
             fleets,
             robots,
             by_name,
             tasks: Vec::new(),
-            eta_tables: BTreeMap::new(),
-            pending: VecDeque::new(),
-            next_dispatch: f64::INFINITY,
-            upcoming: upcoming.into(),
-            door_index,
-            lift_index,
-            results: BTreeMap::new(),
-            counters: BTreeMap::new(),
-            chargers: BTreeMap::new(),
+            dispatcher: assign::Dispatcher::new(upcoming),
             next_wake: 0.0,
             next_fleet_state: 0.0,
             next_traffic: f64::INFINITY,
             clean_duration: scenario.options.clean_duration,
-            released: false,
-            ingested: BTreeMap::new(),
-            cancels,
-            awaiting_cancel: Vec::new(),
-            cancel_results: vec![Err(String::new()); scenario.cancels.len()],
-            lane_use: BTreeMap::new(),
-            period: crate::report::timeline::period_for(scenario.duration),
+            cancels: cancel::Cancels::new(scenario),
+            lane_use: drive::LaneUse::new(crate::report::timeline::period_for(scenario.duration)),
         })
     }
 }

@@ -31,9 +31,9 @@ impl Fleets {
             return;
         };
         // Its way to parking is what it drives next: nobody's plan goes before it now.
-        self.sched.harden(i);
+        self.traffic.sched.harden(i);
         // The robot is free (once its steps are done): waiting tasks may go to it.
-        self.next_dispatch = self.next_dispatch.min(t);
+        self.dispatcher.wake(t);
         if let Some(tk) = self.tasks.get_mut(ti) {
             tk.ended = true;
         }
@@ -100,7 +100,7 @@ impl Fleets {
                     tries,
                     since,
                     sent,
-                } => match self.results.get(&guid).copied() {
+                } => match self.devices.result(&guid) {
                     Some(workcell_result::SUCCESS) => {
                         let r = &mut self.robots[i];
                         if dispenser {
@@ -119,7 +119,7 @@ impl Fleets {
                         } else {
                             r.carrying = None;
                             if let Some(d) = r.item_from.take() {
-                                self.ingested.insert(d, t);
+                                self.devices.ingested(d, t);
                             }
                         }
                         true
@@ -216,7 +216,7 @@ impl Fleets {
                 if matches!(self.robots[i].cur, Cur::Charge { .. }) {
                     let r = &mut self.robots[i];
                     if let Some(c) = r.charger.take() {
-                        self.chargers.remove(&c);
+                        self.devices.free_charger(c);
                     }
                 }
                 self.robots[i].cur = Cur::None;
@@ -380,7 +380,7 @@ impl Fleets {
                 }
             }
         }
-        let n = self.sched.itinerary(i).travs.len();
+        let n = self.traffic.sched.itinerary(i).travs.len();
         self.advance(i, n, t, out);
         false
     }
@@ -398,14 +398,14 @@ impl Fleets {
             .filter(|&v| {
                 self.nav.vertices[v].roles.is_charger && self.nav.vertices[v].lift.is_none()
             })
-            .filter(|v| self.chargers.get(v).is_none_or(|&o| o == i))
+            .filter(|&v| self.devices.charger_free_for(v, i))
             .filter(|&v| times[v].is_finite())
             .min_by(|&a, &b| times[a].total_cmp(&times[b]).then(a.cmp(&b)));
         let Some(c) = best else {
             return false;
         };
         let pct = f.recharge_soc * 100.0;
-        self.chargers.insert(c, i);
+        self.devices.take_charger(c, i);
         let r = &mut self.robots[i];
         r.charger = Some(c);
         r.steps.push_back(Step::GoTo(c));
@@ -446,10 +446,7 @@ impl Fleets {
     /// carries `dispenser`'s item: it will come back, so waiting for it is not in vain.
     pub(super) fn item_coming(&self, dispenser: &str, t: f64) -> bool {
         // Ingested lately: on its way home (the ingestor returns it after a few seconds).
-        let home_soon = self
-            .ingested
-            .get(dispenser)
-            .is_some_and(|&at| t - at < ITEM_HOME);
+        let home_soon = self.devices.home_soon(dispenser, t);
         home_soon
             || self.robots.iter().any(|x| {
                 x.item_from.as_deref() == Some(dispenser)

@@ -706,8 +706,8 @@ fn delivery_through_doors_and_lift_completes() {
     assert!(r.pos.minus(goal).norm() < 1e-6);
     // Then it parks off the task places (its itinerary ends on a parking vertex).
     settle(&mut f, &mut mock, &s, 300.0);
-    let end = f.sched.end_vertex(0);
-    assert_eq!(f.parks.per_slot[0][end], crate::traffic::parks::PARK);
+    let end = f.traffic.sched.end_vertex(0);
+    assert_eq!(f.traffic.parks(0)[end], crate::traffic::parks::PARK);
     assert_eq!(f.robots[0].at, end);
     // Every door that was opened was opened for the robot, and all are closed again.
     assert!(mock
@@ -837,9 +837,9 @@ fn clean_without_dock_waits_clean_duration() {
     assert!((phases[1].1 - phases[0].1 - 30.0).abs() < 1.0, "{phases:?}");
     assert_eq!(phases[1].1, t);
     // Then it parks on the nearest parking vertex off the task places: park_e, beside e.
-    assert_eq!(f.sched.end_vertex(0), vertex(&f.nav, "park_e"));
+    assert_eq!(f.traffic.sched.end_vertex(0), vertex(&f.nav, "park_e"));
     assert_eq!(
-        f.parks.per_slot[0][vertex(&f.nav, "park_e")],
+        f.traffic.parks(0)[vertex(&f.nav, "park_e")],
         crate::traffic::parks::PARK
     );
 }
@@ -1165,7 +1165,7 @@ fn an_empty_dispensers_item_is_coming_while_its_carrier_is_on_its_way() {
         "a carrier with nothing to do brings nothing back"
     );
     // Ingested: the plugin sends it home after a few seconds, so it is still coming then.
-    f.ingested.insert("disp".into(), 2.0);
+    f.devices.ingested("disp".into(), 2.0);
     assert!(f.item_coming("disp", 2.0 + ITEM_HOME - 1.0));
     assert!(!f.item_coming("disp", 2.0 + ITEM_HOME + 1.0));
 }
@@ -1325,5 +1325,5 @@ fn a_robot_with_no_parking_vertex_left_ends_its_plan_where_it_stands() {
         "{events:#?}"
     );
     let i = f.by_name["a_2"];
-    assert_eq!(f.nav.vertices[f.sched.end_vertex(i)].name, "w");
+    assert_eq!(f.nav.vertices[f.traffic.sched.end_vertex(i)].name, "w");
 }

@@ -36,7 +36,53 @@ pub(super) enum NoPlan {
     Busy,
 }
 
-impl Fleets {
+/// A query's `parks` when it ends on its graph's parking vertices (see [`Traffic::plan`]).
+pub(super) const GRAPH_PARKS: &[u8] = &[];
+
+/// The traffic side of the fleets: one schedule shared by all fleets, the planner that
+/// plans legs into it, and where robots may stand for good.
+///
+/// Invariant: every robot has an itinerary in `sched` that ends on a vertex where it may
+/// stand for good; every plan installed fits the schedule as it is (SIPP against every
+/// robot's itinerary), and the order in which robots pass each resource is acyclic
+/// (checked after every plan that goes through others' soft spans, and after every
+/// arrival in debug builds; a cycle found is counted in `cycles`, never expected). A
+/// plan that fails leaves the old itinerary. Guarantees that no robot ever waits on
+/// another except in the schedule's order, so waits end.
+pub(super) struct Traffic {
+    /// Every robot's itinerary and the order robots pass each resource.
+    pub(super) sched: Schedule,
+    planner: Planner,
+    /// Where robots may stand for good.
+    parks: Parks,
+    /// When the schedule was last retimed.
+    retimed_at: f64,
+    /// A traversal completed in this update (waiting robots may go on).
+    released: bool,
+    /// Dependency cycles found (never expected; counted for the tests).
+    cycles: u64,
+    /// Task plans undone because a robot they went before on its way to parking could not
+    /// plan again behind them.
+    soft_undone: u64,
+    /// States the planner expanded, per plan made.
+    decisions: Vec<u32>,
+}
+
+impl Traffic {
+    /// Robots standing at `starts` (vertices of `nav`), with the conflict sets `conf`.
+    pub(super) fn new(nav: &Nav, conf: Conflicts, starts: &[usize], parks: Parks) -> Traffic {
+        Traffic {
+            sched: Schedule::new(conf, starts, 0.0),
+            planner: Planner::new(nav),
+            parks,
+            retimed_at: f64::NAN,
+            released: false,
+            cycles: 0,
+            soft_undone: 0,
+            decisions: Vec::new(),
+        }
+    }
+
     /// Brings the schedule's time estimates up to `t` (once per update).
     pub(super) fn retime(&mut self, t: f64) {
         if self.retimed_at == t && !self.sched.stale() {
@@ -51,6 +97,96 @@ impl Fleets {
         }
     }
 
+    /// Per vertex of graph slot `slot`: where robots may stand for good (0: nowhere).
+    pub(super) fn parks(&self, slot: usize) -> &[u8] {
+        &self.parks.per_slot[slot]
+    }
+
+    /// Plans `q` against the schedule as it is (a query whose `parks` is [`GRAPH_PARKS`]
+    /// ends on its graph's parking vertices). Installs nothing.
+    pub(super) fn plan(&mut self, nav: &Nav, q: Query) -> Option<Plan> {
+        let q = if q.parks.is_empty() {
+            Query {
+                parks: &self.parks.per_slot[q.slot],
+                ..q
+            }
+        } else {
+            q
+        };
+        self.planner.plan(nav, &self.sched, &q)
+    }
+
+    /// A plan that expanded `expanded` states was installed.
+    fn planned(&mut self, expanded: usize) {
+        self.decisions.push(expanded as u32);
+    }
+
+    /// Puts back the schedule as it was `before` a plan through soft spans that could not
+    /// hold.
+    fn undo(&mut self, before: Schedule) {
+        self.sched = before;
+        self.soft_undone += 1;
+    }
+
+    /// In debug builds: checks the schedule at `t` (`what` says after what), counting a
+    /// broken one as a cycle.
+    pub(super) fn check(&mut self, t: f64, what: impl FnOnce() -> String) {
+        if cfg!(debug_assertions) {
+            if let Err(e) = self.sched.check(t) {
+                self.cycles += 1;
+                debug_assert!(false, "{}: {e}", what());
+            }
+        }
+    }
+
+    /// A new pass over the robots: no traversal completed in it yet.
+    pub(super) fn begin_pass(&mut self) {
+        self.released = false;
+    }
+
+    /// A traversal completed (waiting robots may go on).
+    pub(super) fn release(&mut self) {
+        self.released = true;
+    }
+
+    /// A traversal completed since [`Traffic::begin_pass`].
+    pub(super) fn released(&self) -> bool {
+        self.released
+    }
+
+    /// Records the wall-clock time of every plan from now on.
+    pub(super) fn time_plans(&mut self) {
+        self.planner.times = Some(Vec::new());
+    }
+
+    /// The wall-clock time (s) of every plan since [`Traffic::time_plans`].
+    pub(super) fn plan_times(&mut self) -> Vec<f64> {
+        self.planner.times.take().unwrap_or_default()
+    }
+
+    /// The traffic planner's work so far.
+    pub(super) fn report(&self) -> crate::report::TrafficReport {
+        let mut e = self.decisions.clone();
+        e.sort_unstable();
+        let pick = |q: f64| -> u64 {
+            if e.is_empty() {
+                0
+            } else {
+                e[((e.len() - 1) as f64 * q).round() as usize] as u64
+            }
+        };
+        crate::report::TrafficReport {
+            plans: self.planner.plans,
+            plans_failed: self.planner.plans - e.len() as u64,
+            expanded_median: pick(0.5),
+            expanded_p99: pick(0.99),
+            cycles: self.cycles,
+            soft_undone: self.soft_undone,
+        }
+    }
+}
+
+impl Fleets {
     /// The places robot `i` goes to from its current GoTo's `goal` on (its task's
     /// remaining places), each with the work there.
     pub(super) fn remaining_goals(&self, i: usize, goal: usize) -> Vec<(usize, f64)> {
@@ -100,7 +236,7 @@ impl Fleets {
             }
             Finish::Stay => {
                 let last = goals.last().map_or(from, |g| g.0);
-                let free = self.parks.per_slot[r.slot][last] != 0
+                let free = self.traffic.parks(r.slot)[last] != 0
                     && !self.robots.iter().any(|o| o.finish == Finish::Home(last));
                 vec![(None, if free { Some(last) } else { stay })]
             }
@@ -108,8 +244,8 @@ impl Fleets {
         // Last: back where it stands for good now, when that is no parking vertex (a
         // config's start waypoint, or where it was sent to make room). With more robots
         // than parking vertices no plan could end otherwise, and it stands there already.
-        let here = self.sched.end_vertex(i);
-        if self.parks.per_slot[r.slot][here] == 0 && stay != Some(here) {
+        let here = self.traffic.sched.end_vertex(i);
+        if self.traffic.parks(r.slot)[here] == 0 && stay != Some(here) {
             ends.push((None, Some(here)));
         }
         ends
@@ -131,31 +267,26 @@ impl Fleets {
         t0: f64,
         soft_at: Option<f64>,
     ) -> bool {
-        let before = soft_at.map(|_| self.sched.clone());
+        let before = soft_at.map(|_| self.traffic.sched.clone());
         let soft = self.robots[i]
             .task
             .and_then(|_| plan.goal_at.last().copied());
-        let jumped = self.sched.install(i, keep, &plan.steps, t0, soft);
+        let jumped = self.traffic.sched.install(i, keep, &plan.steps, t0, soft);
         if let (Some(now), Some(before)) = (soft_at, before) {
             // Every robot it went before plans again behind it, and the order stays
             // acyclic; else nothing changes.
             let kept = jumped.is_empty()
                 || (jumped.iter().all(|&o| self.park_again(o, now))
-                    && self.sched.retime(now).is_ok());
+                    && self.traffic.sched.retime(now).is_ok());
             if !kept {
-                self.sched = before;
-                self.soft_undone += 1;
+                self.traffic.undo(before);
                 return false;
             }
         }
         debug_assert!(jumped.is_empty() || soft_at.is_some(), "a hard plan jumped");
-        self.decisions.push(plan.expanded as u32);
-        if cfg!(debug_assertions) {
-            if let Err(e) = self.sched.check(t0) {
-                self.cycles += 1;
-                debug_assert!(false, "schedule broken after planning robot {i}: {e}");
-            }
-        }
+        self.traffic.planned(plan.expanded);
+        self.traffic
+            .check(t0, || format!("schedule broken after planning robot {i}"));
         let mut prev = 0;
         let r = &mut self.robots[i];
         r.legs = plan
@@ -175,10 +306,10 @@ impl Fleets {
     /// traversals, which another robot's task plan went before), through nobody's spans.
     /// False when there is no way now.
     fn park_again(&mut self, o: usize, now: f64) -> bool {
-        let Some(keep) = self.sched.soft_keep(o) else {
+        let Some(keep) = self.traffic.sched.soft_keep(o) else {
             return false;
         };
-        let it = self.sched.itinerary(o);
+        let it = self.traffic.sched.itinerary(o);
         // From its last place, after the work there.
         let (from, t0, work) = match keep.checked_sub(1).and_then(|k| it.travs.get(k)) {
             Some(tr) => (
@@ -200,13 +331,13 @@ impl Fleets {
                 from,
                 t0,
                 goals: &goals,
-                parks: own.as_deref().unwrap_or(&self.parks.per_slot[slot]),
+                parks: own.as_deref().unwrap_or(GRAPH_PARKS),
                 stay,
                 soft: false,
             };
-            if let Some(plan) = self.planner.plan(&self.nav, &self.sched, &q) {
+            if let Some(plan) = self.traffic.plan(&self.nav, q) {
                 let soft = plan.goal_at.last().copied();
-                let jumped = self.sched.install(o, keep, &plan.steps, t0, soft);
+                let jumped = self.traffic.sched.install(o, keep, &plan.steps, t0, soft);
                 debug_assert!(jumped.is_empty(), "a hard plan jumped {jumped:?}");
                 self.robots[o].dirty = true;
                 return true;
@@ -250,11 +381,11 @@ impl Fleets {
             .iter()
             .map(|&j| (self.robots[j].legs.clone(), self.robots[j].leg))
             .collect();
-        (self.sched.clone(), legs)
+        (self.traffic.sched.clone(), legs)
     }
 
     fn aside_restore(&mut self, who: &[usize], snap: AsideSnapshot) {
-        self.sched = snap.0;
+        self.traffic.sched = snap.0;
         for (&j, (legs, leg)) in who.iter().zip(snap.1) {
             (self.robots[j].legs, self.robots[j].leg) = (legs, leg);
         }
@@ -275,7 +406,7 @@ impl Fleets {
         let who: Vec<usize> = std::iter::once(i).chain(js.iter().copied()).collect();
         let snap = self.aside_snapshot(&who);
         for &j in js {
-            self.sched.install(j, 0, &[], t, None);
+            self.traffic.sched.install(j, 0, &[], t, None);
         }
         let mut ok = plan(self);
         for &j in js {
@@ -299,7 +430,7 @@ impl Fleets {
                 Err(_) => false,
             };
         }
-        ok = ok && self.sched.retime(t).is_ok();
+        ok = ok && self.traffic.sched.retime(t).is_ok();
         if ok {
             for &j in &who {
                 self.robots[j].dirty = true;
@@ -318,7 +449,7 @@ impl Fleets {
     /// behind it ([`Self::aside`]). True when it set off.
     pub(super) fn make_room(&mut self, i: usize, t: f64) -> bool {
         let r = &self.robots[i];
-        if r.n_sent > 0 || r.gate != Gate::None || self.parks.per_slot[r.slot][r.at] != 0 {
+        if r.n_sent > 0 || r.gate != Gate::None || self.traffic.parks(r.slot)[r.at] != 0 {
             return false;
         }
         let waiters: Vec<usize> = (0..self.robots.len())
@@ -326,7 +457,7 @@ impl Fleets {
                 j != i
                     && self.robots[j].waiting.is_some()
                     && self.may_stand_aside(j)
-                    && self.sched.waits_for(j, 0).contains(&i)
+                    && self.traffic.sched.waits_for(j, 0).contains(&i)
             })
             .collect();
         if waiters.is_empty() {
@@ -339,7 +470,7 @@ impl Fleets {
             // on the way.
             f.robots[i].legs.clear();
             match f.plan_with(i, &[], None, t) {
-                Ok(n) if f.sched.end_vertex(i) != back => {
+                Ok(n) if f.traffic.sched.end_vertex(i) != back => {
                     leg = n;
                     true
                 }
@@ -349,7 +480,7 @@ impl Fleets {
         if !went {
             return false;
         }
-        let park = self.sched.end_vertex(i);
+        let park = self.traffic.sched.end_vertex(i);
         let r = &mut self.robots[i];
         let cur = std::mem::replace(
             &mut r.cur,
@@ -374,7 +505,7 @@ impl Fleets {
     /// their stay for good there may be what keeps robot `i` from planning. True when one
     /// was.
     pub(super) fn displace_for(&mut self, i: usize, goals: &[(usize, f64)], t: f64) -> bool {
-        let conf = self.sched.conf();
+        let conf = self.traffic.sched.conf();
         let mut near: Vec<Res> = goals
             .iter()
             .flat_map(|&(g, _)| conf.vertex[g].iter().copied())
@@ -392,9 +523,9 @@ impl Fleets {
         {
             let r = &self.robots[i];
             let f = &self.fleets[r.fleet];
-            let mut at = self.sched.end_vertex(i);
+            let mut at = self.traffic.sched.end_vertex(i);
             if r.n_sent == 0 {
-                at = self.sched.itinerary(i).at;
+                at = self.traffic.sched.itinerary(i).at;
             }
             let mut way: Vec<usize> = vec![at];
             for &(g, _) in goals {
@@ -421,8 +552,8 @@ impl Fleets {
             .filter(|&o| o != i && self.robots[o].gate == Gate::None)
             .filter(|&o| {
                 let r = &self.robots[o];
-                let end = self.sched.end_vertex(o);
-                off[end] || (r.n_sent == 0 && self.parks.per_slot[r.slot][end] == 0)
+                let end = self.traffic.sched.end_vertex(o);
+                off[end] || (r.n_sent == 0 && self.traffic.parks(r.slot)[end] == 0)
             })
             .collect();
         let mut moved = false;
@@ -443,7 +574,9 @@ impl Fleets {
                 continue;
             }
             let slot = r.slot;
-            let mask: Vec<u8> = self.parks.per_slot[slot]
+            let mask: Vec<u8> = self
+                .traffic
+                .parks(slot)
                 .iter()
                 .enumerate()
                 .map(|(v, &p)| if off[v] { 0 } else { p })
@@ -491,13 +624,13 @@ impl Fleets {
         parks: Option<&[u8]>,
         t: f64,
     ) -> Result<usize, NoPlan> {
-        self.retime(t);
+        self.traffic.retime(t);
         let r = &self.robots[i];
         let f = &self.fleets[r.fleet];
         let slot = f.slot;
         let kin = f.kin;
         let keep = r.n_sent;
-        let it = self.sched.itinerary(i);
+        let it = self.traffic.sched.itinerary(i);
         let (from, t0) = match keep.checked_sub(1).and_then(|k| it.travs.get(k)) {
             Some(tr) => (tr.to, tr.end.max(t)),
             None => (it.at, t.max(it.ready.min(t))),
@@ -521,14 +654,11 @@ impl Fleets {
                 from,
                 t0,
                 goals,
-                parks: own
-                    .as_deref()
-                    .or(parks)
-                    .unwrap_or(&self.parks.per_slot[slot]),
+                parks: own.as_deref().or(parks).unwrap_or(GRAPH_PARKS),
                 stay: *stay,
                 soft: false,
             };
-            found = self.planner.plan(&self.nav, &self.sched, &q);
+            found = self.traffic.plan(&self.nav, q);
             if found.is_some() {
                 break;
             }
@@ -555,22 +685,22 @@ impl Fleets {
         let n_sent = self.robots[i].n_sent;
         if n_sent > 0 {
             // Moving: extend the path while the traversals stay plain and granted.
-            let travs = &self.sched.itinerary(i).travs;
+            let travs = &self.traffic.sched.itinerary(i).travs;
             let all_plain = travs.iter().take(n_sent).all(|tr| self.is_plain(tr.edge));
             if all_plain && n_sent < LOOKAHEAD && n_sent < limit {
                 let next_plain = travs.get(n_sent).is_some_and(|tr| self.is_plain(tr.edge));
-                if next_plain && self.sched.granted(i, n_sent) {
-                    self.sched.begin(i, n_sent + 1, t);
+                if next_plain && self.traffic.sched.granted(i, n_sent) {
+                    self.traffic.sched.begin(i, n_sent + 1, t);
                     self.send_path(i, n_sent + 1, t, out);
                 }
             }
             return;
         }
-        let Some(tr) = self.sched.itinerary(i).travs.front().cloned() else {
+        let Some(tr) = self.traffic.sched.itinerary(i).travs.front().cloned() else {
             self.robots[i].waiting = None;
             return;
         };
-        if !self.sched.granted(i, 0) {
+        if !self.traffic.sched.granted(i, 0) {
             let r = &mut self.robots[i];
             if r.waiting.is_none() {
                 r.waiting = Some(t);
@@ -598,7 +728,7 @@ impl Fleets {
             // The cabin is at the destination floor: the robot is on its other vertex.
             self.robots[i].gate = Gate::None;
             self.robots[i].end_lift = Some(l);
-            self.sched.begin(i, 1, t);
+            self.traffic.sched.begin(i, 1, t);
             self.reach_next(i, t, out);
             self.robots[i].dirty = true;
             return;
@@ -640,15 +770,15 @@ impl Fleets {
             self.robots[i].close_door = Some(d);
         } else {
             // Plain lanes: a few more in the same path while they stay plain and granted.
-            let travs = &self.sched.itinerary(i).travs;
+            let travs = &self.traffic.sched.itinerary(i).travs;
             while n < LOOKAHEAD.min(limit)
                 && travs.get(n).is_some_and(|x| self.is_plain(x.edge))
-                && self.sched.granted(i, n)
+                && self.traffic.sched.granted(i, n)
             {
                 n += 1;
             }
         }
-        self.sched.begin(i, n, t);
+        self.traffic.sched.begin(i, n, t);
         self.send_path(i, n, t, out);
     }
 
@@ -666,20 +796,20 @@ impl Fleets {
     /// again from where it stands (its old itinerary stays if no better one is found).
     /// The new plan fits the schedule as it is, so the order stays acyclic.
     pub(super) fn replan_delayed(&mut self, t: f64) {
-        self.retime(t);
+        self.traffic.retime(t);
         for i in 0..self.robots.len() {
             let r = &self.robots[i];
             let Some(since) = r.waiting else { continue };
             if r.n_sent > 0 || r.gate != Gate::None || t - since < REPLAN_DELAY || t < r.replan_at {
                 continue;
             }
-            let Some(front) = self.sched.itinerary(i).travs.front() else {
+            let Some(front) = self.traffic.sched.itinerary(i).travs.front() else {
                 continue;
             };
             if front.start - t < REPLAN_DELAY {
                 continue;
             }
-            let before = self.sched.end_vertex(i);
+            let before = self.traffic.sched.end_vertex(i);
             let goals = match r.cur {
                 Cur::GoTo {
                     goal,
@@ -690,7 +820,7 @@ impl Fleets {
             };
             let old_arrival = self.arrival(i, goals.len());
             let snapshot = (
-                self.sched.clone(),
+                self.traffic.sched.clone(),
                 self.robots[i].legs.clone(),
                 self.robots[i].leg,
             );
@@ -707,8 +837,8 @@ impl Fleets {
                 self.robots[i].dirty = true;
             } else {
                 // Not better: the old itinerary stays.
-                (self.sched, self.robots[i].legs, self.robots[i].leg) = snapshot;
-                debug_assert_eq!(before, self.sched.end_vertex(i));
+                (self.traffic.sched, self.robots[i].legs, self.robots[i].leg) = snapshot;
+                debug_assert_eq!(before, self.traffic.sched.end_vertex(i));
             }
             self.robots[i].replan_at = t + REPLAN_DELAY;
         }
@@ -717,7 +847,7 @@ impl Fleets {
     /// When robot `i`'s itinerary estimates it at its last place (of `n` goals), or at its
     /// end when it has none.
     fn arrival(&self, i: usize, n: usize) -> f64 {
-        let it = self.sched.itinerary(i);
+        let it = self.traffic.sched.itinerary(i);
         let legs: usize =
             self.robots[i].leg.unwrap_or(0) + self.robots[i].legs.iter().sum::<usize>();
         let k = if n == 0 {
@@ -742,6 +872,7 @@ impl Fleets {
             }
             self.robots[i].stuck_reported = true;
             let who: Vec<String> = self
+                .traffic
                 .sched
                 .waits_for(i, 0)
                 .into_iter()
