@@ -86,14 +86,16 @@ impl Itinerary {
                 .is_some_and(|k| self.travs.get(k as usize).is_none_or(|t| !t.begun))
     }
 
-    /// Whether the robot holds a span from its traversal `first` on now (it has driven or
-    /// is driving the traversal).
+    /// Whether the robot holds a span from its traversal `first` on now: it has driven,
+    /// is driving, or was sent along the traversal (traversals sent together are driven
+    /// one after the other, without asking again: the next one's resources are as good as
+    /// held).
     fn held_in(&self, first: u64) -> bool {
         first < self.base
             || self
                 .travs
-                .front()
-                .is_some_and(|t| t.begun && first <= t.seq)
+                .get((first - self.base) as usize)
+                .is_some_and(|t| t.begun)
     }
 }
 
@@ -639,8 +641,15 @@ impl Schedule {
             let it = &self.its[r];
             let tr = &it.travs[k];
             if tr.begun {
-                start[b] = tr.start;
-                end[b] = (tr.start + tr.dur).max(now);
+                // Driven now (the first), or next after it (sent together): the estimate
+                // from when it was sent may lie ahead of now if the one before ended early.
+                let s = if k == 0 {
+                    tr.start.min(now)
+                } else {
+                    end[b - 1]
+                };
+                start[b] = s;
+                end[b] = (s + tr.dur).max(now);
             } else {
                 let own = if k == 0 {
                     it.ready
@@ -686,6 +695,11 @@ impl Schedule {
                 let r = s.robot as usize;
                 if let Some(b) = node(its, r, s.first) {
                     s.start = start[b];
+                    // Held now (sent along its first traversal): busy from now, as
+                    // `install` never puts a span before it.
+                    if its[r].held_in(s.first) {
+                        s.start = s.start.min(now);
+                    }
                     // A robot ready to go on and waiting for its turn holds its next
                     // traversal's resources from now: nobody planned later goes before
                     // it (else a waiting robot could be overtaken for ever).
