@@ -10,8 +10,9 @@
 //! Invariant (checked by [`Schedule::retime`], which fails on a cycle): the order of every
 //! queue agrees with the robots' own order of traversals, so the dependency graph is
 //! acyclic. It holds because spans are only ever appended or inserted where their estimated
-//! times fit between their neighbours' (the planner plans against retimed estimates), and
-//! removing spans removes dependencies. Hence at any time the unfinished traversal with the
+//! times fit between their neighbours' (the planner plans against retimed estimates), never
+//! before a span its robot holds (it drives, or was sent along, the span's first traversal;
+//! such spans are busy from now for the planner), and removing spans removes dependencies. Hence at any time the unfinished traversal with the
 //! earliest estimated start has every dependency met: some robot can always go on.
 //!
 //! Every itinerary ends where its robot may stand for good (a span with `last ==
