@@ -91,10 +91,13 @@ pub struct RequestReport {
 /// What the traffic planner did (`crate::traffic`).
 #[derive(Debug, Clone, Default, PartialEq, Serialize)]
 pub struct TrafficReport {
-    /// Plans made (SIPP searches), and how many found no way at the time.
+    /// Plans made (SIPP searches), how many found no way at the time, and how many were
+    /// taken (installed in the schedule; the others found a way that another robot's
+    /// plan beat, or that waited too long).
     pub plans: u64,
     pub plans_failed: u64,
-    /// States the planner expanded per successful plan: median and 99th percentile.
+    pub plans_taken: u64,
+    /// States the planner expanded per plan taken: median and 99th percentile.
     pub expanded_median: u64,
     pub expanded_p99: u64,
     /// Dependency cycles found in the schedule (the guarantee says 0).

@@ -75,6 +75,15 @@ fn check_safe(r: &Report, what: &str) {
     assert!(failed.is_empty(), "{what}: failed tasks {failed:?}");
     assert!(r.contacts.is_empty(), "{what}: contacts {:?}", r.contacts);
     assert_eq!(r.traffic.cycles, 0, "{what}: dependency cycles");
+    // The planner's counts add up: no plan both failed and was taken, and every task given
+    // to a robot took a plan.
+    let t = &r.traffic;
+    assert!(t.plans_failed + t.plans_taken <= t.plans, "{what}: {t:?}");
+    let assigned = r.tasks.iter().filter(|k| k.assigned.is_some()).count() as u64;
+    assert!(
+        t.plans_taken >= assigned,
+        "{what}: {assigned} tasks assigned, {t:?}"
+    );
     check_bound(r, what);
 }
 

@@ -177,7 +177,8 @@ impl Traffic {
         };
         crate::report::TrafficReport {
             plans: self.planner.plans,
-            plans_failed: self.planner.plans - e.len() as u64,
+            plans_failed: self.planner.failed,
+            plans_taken: e.len() as u64,
             expanded_median: pick(0.5),
             expanded_p99: pick(0.99),
             cycles: self.cycles,

@@ -333,8 +333,9 @@ pub struct Planner {
     /// rounds' where the schedule did not change.
     cache: Cache,
     scratch: Scratch,
-    /// Plans made and states expanded, for the report.
+    /// Plans made, plans that found no way, and states expanded, for the report.
     pub plans: u64,
+    pub failed: u64,
     pub expanded: u64,
     /// Why the last plan failed (for debugging).
     pub why: &'static str,
@@ -363,6 +364,7 @@ impl Planner {
             cache: Cache::default(),
             scratch: Scratch::default(),
             plans: 0,
+            failed: 0,
             expanded: 0,
             why: "",
             times: None,
@@ -410,6 +412,7 @@ impl Planner {
         if let (Some(t), Some(times)) = (started, self.times.as_mut()) {
             times.push(t.elapsed().as_secs_f64());
         }
+        self.failed += u64::from(plan.is_none());
         plan
     }
 

@@ -121,6 +121,13 @@ fn no_way_back_over_a_one_way_lane_means_no_plan() {
     let goals_q = [(v(&nav, "e"), 0.0)];
     let q = query(0, v(&nav, "a"), &goals_q, &p);
     assert!(planner.plan(&nav, &sched, &q).is_none());
+    // The report counts it as a plan that found no way; a plan that finds one is not.
+    assert_eq!((planner.plans, planner.failed), (1, 1));
+    let goals_c = [(v(&nav, "c"), 0.0)];
+    assert!(planner
+        .plan(&nav, &sched, &query(0, v(&nav, "a"), &goals_c, &p))
+        .is_some());
+    assert_eq!((planner.plans, planner.failed), (2, 1));
 }
 
 #[test]
