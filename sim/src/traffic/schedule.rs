@@ -12,8 +12,9 @@
 //! acyclic. It holds because spans are only ever appended or inserted where their estimated
 //! times fit between their neighbours' (the planner plans against retimed estimates), never
 //! before a span its robot holds (it drives, or was sent along, the span's first traversal;
-//! such spans are busy from now for the planner), and removing spans removes dependencies. Hence at any time the unfinished traversal with the
-//! earliest estimated start has every dependency met: some robot can always go on.
+//! such spans are busy from now for the planner), and removing spans removes dependencies.
+//! Hence at any time the unfinished traversal with the earliest estimated start has every
+//! dependency met: some robot can always go on.
 //!
 //! Every itinerary ends where its robot may stand for good (a span with `last ==
 //! FOREVER`); the planner never plans through such a span, so a robot that has nothing to do
