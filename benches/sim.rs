@@ -24,6 +24,9 @@
 //! bench also prints the planner's cost per decision (one robot's plan against the
 //! schedule): median, 99th percentile and maximum over every decision of its samples.
 
+#[path = "../sim/tests/support/warehouse.rs"]
+mod warehouse;
+
 use divan::Bencher;
 use mapc_sim::{parse_scenario, simulate, RunOptions};
 use std::path::Path;
@@ -177,42 +180,6 @@ fn rings_10min(bencher: Bencher, n: usize) {
     run_whole(bencher, &building, &scenario);
 }
 
-/// A warehouse of `rows` aisles of `cols` waypoints 2 m apart (two-way lanes), joined by a
-/// cross aisle every 10 waypoints, in cartesian metres. Racks are named half way between
-/// cross aisles (`rack_<row>_<k>`), and each aisle's west end is a station
-/// (`station_<row>`).
-fn warehouse_map(rows: usize, cols: usize) -> String {
-    let mut s = String::from(
-        "coordinate_system: cartesian_meters\nname: warehouse\nlevels:\n  L1:\n    elevation: 0\n    vertices:\n",
-    );
-    for r in 0..rows {
-        for c in 0..cols {
-            let name = if c == 0 {
-                format!("station_{r}")
-            } else if c % 10 == 5 {
-                format!("rack_{r}_{}", c / 10)
-            } else {
-                String::new()
-            };
-            s += &format!("      - [{}, {}, 0, \"{name}\"]\n", 2 * c, 3 * r);
-        }
-    }
-    s += "    lanes:\n";
-    let lane = "{bidirectional: [4, true], graph_idx: [2, 0]}";
-    for r in 0..rows {
-        for c in 0..cols {
-            let v = r * cols + c;
-            if c + 1 < cols {
-                s += &format!("      - [{v}, {}, {lane}]\n", v + 1);
-            }
-            if c % 10 == 0 && r + 1 < rows {
-                s += &format!("      - [{v}, {}, {lane}]\n", v + cols);
-            }
-        }
-    }
-    s
-}
-
 /// `robots` tiny robots placed by `spawn: auto`, and a loop from a random rack to a random
 /// station every half second for `minutes` (more than the fleet serves).
 fn warehouse_scenario(rows: usize, cols: usize, robots: usize, minutes: usize) -> String {
@@ -246,7 +213,7 @@ fn warehouse_scenario(rows: usize, cols: usize, robots: usize, minutes: usize) -
 #[divan::bench(args = [1], sample_count = 1, sample_size = 1)]
 fn warehouse_1000(bencher: Bencher, minutes: usize) {
     let (building, scenario) = load(
-        &warehouse_map(50, 200),
+        &warehouse::map(50, 200, "warehouse").0,
         &warehouse_scenario(50, 200, 1000, minutes),
     );
     run_whole(bencher, &building, &scenario);

@@ -26,6 +26,14 @@ fn env_or<T: std::str::FromStr>(name: &str, default: T) -> T {
         .unwrap_or(default)
 }
 
+/// The fleet sizes of `MAPC_TRAFFIC_SIZES` (comma-separated), else `default`.
+fn sizes_or(default: &[usize]) -> Vec<usize> {
+    std::env::var("MAPC_TRAFFIC_SIZES")
+        .ok()
+        .map(|s| s.split(',').filter_map(|x| x.trim().parse().ok()).collect())
+        .unwrap_or_else(|| default.to_vec())
+}
+
 /// Runs `robots` robots on generated building `b` for `minutes` with a task every `every` s.
 fn run(b: &gen::Building, robots: usize, minutes: f64, every: f64) -> Report {
     run_with(b, robots, minutes, every, "")
@@ -185,10 +193,7 @@ fn check_building_every(
 fn generated_buildings_never_deadlock() {
     let cases: u64 = env_or("MAPC_TRAFFIC_CASES", 200);
     let minutes: f64 = env_or("MAPC_TRAFFIC_MINUTES", 8.0);
-    let sizes: Vec<usize> = std::env::var("MAPC_TRAFFIC_SIZES")
-        .ok()
-        .map(|s| s.split(',').filter_map(|x| x.trim().parse().ok()).collect())
-        .unwrap_or_else(|| vec![1, 4, 16]);
+    let sizes = sizes_or(&[1, 4, 16]);
     let first: u64 = env_or("MAPC_TRAFFIC_FIRST", 0);
     // Every building runs, so one run names every building that breaks the rule.
     let mut fewer = Vec::new();
@@ -217,10 +222,7 @@ fn generated_buildings_never_deadlock() {
 fn generated_warehouses_never_deadlock() {
     let cases: u64 = env_or("MAPC_TRAFFIC_GRIDS", 6);
     let minutes: f64 = env_or("MAPC_TRAFFIC_MINUTES", 8.0);
-    let sizes: Vec<usize> = std::env::var("MAPC_TRAFFIC_SIZES")
-        .ok()
-        .map(|s| s.split(',').filter_map(|x| x.trim().parse().ok()).collect())
-        .unwrap_or_else(|| vec![4, 16]);
+    let sizes = sizes_or(&[4, 16]);
     let first: u64 = env_or("MAPC_TRAFFIC_FIRST", 0);
     // A task every 2 s: more than 32 robots serve in these warehouses.
     let every: f64 = env_or("MAPC_TRAFFIC_EVERY", 2.0);

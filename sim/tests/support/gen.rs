@@ -276,46 +276,11 @@ pub fn building_with(seed: u64, s: &Shape) -> Building {
 pub fn grid(seed: u64) -> Building {
     let mut rng = fastrand::Rng::with_seed(seed ^ 0x6a1d_5eed);
     let rows = rng.usize(3..13);
-    let segments = rng.usize(2..5);
-    let cols = 10 * segments + 1;
-    let mut out = String::new();
-    let _ = writeln!(out, "coordinate_system: cartesian_meters");
-    let _ = writeln!(out, "name: grid_{seed}");
-    let _ = writeln!(out, "graphs:\n  0: {{name: fleet, default_lane_width: 1}}");
-    let _ = writeln!(out, "levels:\n  L1:\n    elevation: 0\n    lanes:");
-    for r in 0..rows {
-        for c in 0..cols {
-            let v = r * cols + c;
-            let lane = "{bidirectional: [4, true], graph_idx: [2, 0]}";
-            if c + 1 < cols {
-                let _ = writeln!(out, "      - [{v}, {}, {lane}]", v + 1);
-            }
-            if c % 10 == 0 && r + 1 < rows {
-                let _ = writeln!(out, "      - [{v}, {}, {lane}]", v + cols);
-            }
-        }
-    }
-    let _ = writeln!(out, "    vertices:");
-    let mut places = Vec::new();
-    for r in 0..rows {
-        for c in 0..cols {
-            let name = if c == 0 {
-                format!("station_{r}")
-            } else if c % 10 == 5 {
-                format!("rack_{r}_{}", c / 10)
-            } else {
-                String::new()
-            };
-            if !name.is_empty() {
-                places.push(name.clone());
-            }
-            let _ = writeln!(out, "      - [{}, {}, 0, \"{name}\"]", 2 * c, 3 * r);
-        }
-    }
-    let _ = writeln!(out, "reference_level_name: L1");
+    let cols = 10 * rng.usize(2..5) + 1;
+    let (yaml, places) = super::warehouse::map(rows, cols, &format!("grid_{seed}"));
     Building {
         seed,
-        yaml: out,
+        yaml,
         places,
         levels: 1,
         well_formed: true,
