@@ -537,25 +537,15 @@ impl Lift {
     /// Is `p` inside the shaft rectangle (boundary included)?
     pub fn shaft_contains(&self, p: Vec2) -> bool {
         // Compare in the cabin frame, with a tolerance for rounding on the boundary.
-        let local = p.minus(self.pos).rotate(-self.yaw);
+        let local = self.to_cabin(p);
         let eps = 1e-9;
         local.x.abs() <= self.width / 2.0 + SHAFT_MARGIN + eps
             && local.y.abs() <= self.depth / 2.0 + SHAFT_MARGIN + eps
     }
 
-    /// What the lift plugin carries: robots whose origin lies in this axis-aligned hull of
-    /// the rotated cabin footprint (`[x_min, x_max, y_min, y_max]`, map frame), as Gazebo's
-    /// bounding box of the cabin link. Wider than the cabin when the lift is rotated.
-    pub fn payload_box(&self) -> [f64; 4] {
-        let (s, c) = self.yaw.sin_cos();
-        let hx = (c * self.width / 2.0).abs() + (s * self.depth / 2.0).abs();
-        let hy = (s * self.width / 2.0).abs() + (c * self.depth / 2.0).abs();
-        [
-            self.pos.x - hx,
-            self.pos.x + hx,
-            self.pos.y - hy,
-            self.pos.y + hy,
-        ]
+    /// `p` in the cabin's frame: x along its width, y along its depth, from its centre.
+    pub fn to_cabin(&self, p: Vec2) -> Vec2 {
+        p.minus(self.pos).rotate(-self.yaw)
     }
 
     /// Initial floor: explicit, else the first level in `level_doors`.

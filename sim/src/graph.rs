@@ -25,10 +25,6 @@ pub struct NavVertex {
     pub elevation: f64,
     /// Index into `Nav::lifts` when the vertex lies in a lift cabin.
     pub lift: Option<usize>,
-    /// The lift whose plugin would carry a robot standing here (its payload box holds the
-    /// vertex, `mapc_ir::Lift::payload_box`): the cabin's vertices, and around a rotated
-    /// cabin some just outside it.
-    pub carried_by: Option<usize>,
     pub roles: WaypointRoles,
 }
 
@@ -54,8 +50,8 @@ pub struct NavEdge {
     pub door: Option<usize>,
     pub mutex: Option<String>,
     pub orientation: Orientation,
-    /// The lift whose plugin would carry a robot driving this lane (it crosses the lift's
-    /// payload box on a floor the lift serves).
+    /// The lift that could carry a robot driving this lane (it crosses the lift's shaft on
+    /// a floor the lift serves).
     pub carried_by: Option<usize>,
 }
 
@@ -123,14 +119,6 @@ impl Nav {
                         l.shaft_contains(v.pos) || v.roles.lift_cabin.as_deref() == Some(&l.name)
                     })
                     .map(|lh| lh.index());
-                let carried_by = lift.or_else(|| {
-                    b.lifts_on_level(v.level)
-                        .find(|&lh| {
-                            let [x0, x1, y0, y1] = b.lifts[lh].payload_box();
-                            (x0..=x1).contains(&v.pos.x) && (y0..=y1).contains(&v.pos.y)
-                        })
-                        .map(|lh| lh.index())
-                });
                 nav.vertices.push(NavVertex {
                     name: v.name.clone(),
                     pos: v.pos,
@@ -138,7 +126,6 @@ impl Nav {
                     level_name: level.name.clone(),
                     elevation: level.elevation,
                     lift,
-                    carried_by,
                     roles: (*v.roles).clone(),
                 });
                 nav.vertices.len() - 1
@@ -182,7 +169,7 @@ impl Nav {
                     let door = b.crossed_door(lane.level, a, z).map(|d| d.index());
                     let carried_by = b
                         .lifts_on_level(lane.level)
-                        .find(|&lh| segment_crosses_box(a, z, b.lifts[lh].payload_box()))
+                        .find(|&lh| crosses_shaft(&b.lifts[lh], a, z))
                         .map(|lh| lh.index());
                     nav.edges.push(NavEdge {
                         graph: slot,
@@ -511,6 +498,15 @@ impl PartialOrd for QItem {
 
 /// Distance from `p` to segment `a→b`.
 /// Whether segment `a`–`z` meets the box `[x_min, x_max, y_min, y_max]` (slab clipping).
+/// Whether the segment `a→z` crosses the shaft of lift `l` (where a robot could be carried).
+fn crosses_shaft(l: &mapc_ir::Lift, a: Vec2, z: Vec2) -> bool {
+    let (w, d) = (
+        l.width / 2.0 + mapc_ir::SHAFT_MARGIN,
+        l.depth / 2.0 + mapc_ir::SHAFT_MARGIN,
+    );
+    segment_crosses_box(l.to_cabin(a), l.to_cabin(z), [-w, w, -d, d])
+}
+
 fn segment_crosses_box(a: Vec2, z: Vec2, [x0, x1, y0, y1]: [f64; 4]) -> bool {
     let (mut lo, mut hi) = (0.0f64, 1.0f64);
     for (p, d, min, max) in [(a.x, z.x - a.x, x0, x1), (a.y, z.y - a.y, y0, y1)] {

@@ -10,8 +10,12 @@
 //! - `available_floors` keeps the map's order (`level_doors`), not a hash order.
 //! - With `lifts_start_at_initial_floor` (the default) the cabin starts at its initial
 //!   floor; otherwise, as in Gazebo, at z = 0 and drives there first (§4.2).
-//! - Payloads: robots whose origin is inside the cabin's box ride with it; items
-//!   attached to a robot follow the robot.
+//! - Payloads: robots standing on the cabin floor ride with it (origin within the cabin's
+//!   footprint, turned with the cabin, and within the floor's thickness of its height);
+//!   items attached to a robot follow the robot. The plugin carries whatever lies in the
+//!   cabin's axis-aligned bounding box, from under its floor to its roof: a robot waiting
+//!   on the landing beside a turned cabin, or standing on the floor above the cabin's
+//!   path, would be lifted off its floor and left between floors.
 
 use crate::msgs::{
     door_mode, lift_request, lift_state, LiftRequest, LiftState, Msg, Published, Time, Topic,
@@ -26,9 +30,33 @@ pub(crate) const CABIN: Limits = Limits {
     a_nom: 1.0,
 };
 pub(crate) const CABIN_DX_MIN: f64 = 0.001;
-/// Cabin floor thickness and height (the payload box, §4.6).
+/// Cabin floor thickness (§4.6): a robot's origin down to this below the cabin floor's
+/// top, or up to `ON_FLOOR` above it, stands on it.
 const FLOOR_THICKNESS: f64 = 0.05;
-const CABIN_HEIGHT: f64 = 2.5;
+const ON_FLOOR: f64 = 0.01;
+
+/// The cabin's footprint: where a robot stands on its floor.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct Cabin {
+    /// Centre, world frame.
+    pub x: f64,
+    pub y: f64,
+    pub yaw: f64,
+    /// Half its width and depth (with the shaft's margin).
+    pub half: [f64; 2],
+}
+
+impl Cabin {
+    /// Whether a robot at `(x, y, z)` stands on the floor of this cabin at height `floor`.
+    fn holds(&self, [x, y, z]: [f64; 3], floor: f64) -> bool {
+        let (dx, dy) = (x - self.x, y - self.y);
+        let (s, c) = self.yaw.sin_cos();
+        let (u, v) = (c * dx + s * dy, -s * dx + c * dy);
+        u.abs() <= self.half[0]
+            && v.abs() <= self.half[1]
+            && (floor - FLOOR_THICKNESS..=floor + ON_FLOOR).contains(&z)
+    }
+}
 
 #[derive(Debug, Clone)]
 pub(crate) struct Floor {
@@ -66,13 +94,12 @@ pub(crate) struct LiftSim {
     active: Option<Cmd>,
     last_state: Option<(Compact, String)>,
     last_pub: f64,
-    /// Cabin footprint (axis-aligned hull), world frame: x_min, x_max, y_min, y_max.
-    aabb: [f64; 4],
+    cabin: Cabin,
     first: bool,
 }
 
 impl LiftSim {
-    pub fn new(name: String, floors: Vec<Floor>, initial: usize, z: f64, aabb: [f64; 4]) -> Self {
+    pub fn new(name: String, floors: Vec<Floor>, initial: usize, z: f64, cabin: Cabin) -> Self {
         let cmd = Cmd {
             request_type: lift_request::AGV_MODE,
             dest: initial,
@@ -89,7 +116,7 @@ impl LiftSim {
             active: Some(cmd),
             last_state: None,
             last_pub: 0.0,
-            aabb,
+            cabin,
             first: true,
         }
     }
@@ -293,14 +320,9 @@ impl LiftSim {
                 self.last_v = v;
                 self.v = v;
                 if v != 0.0 {
-                    let [x0, x1, y0, y1] = self.aabb;
-                    let (z0, z1) = (self.z - FLOOR_THICKNESS, self.z + CABIN_HEIGHT);
                     for r in robots.iter_mut() {
                         let [x, y, z, _] = r.pose();
-                        if (x0..=x1).contains(&x)
-                            && (y0..=y1).contains(&y)
-                            && (z0..=z1).contains(&z)
-                        {
+                        if self.cabin.holds([x, y, z], self.z) {
                             r.ride(v);
                         }
                     }
@@ -326,5 +348,32 @@ impl LiftSim {
         if self.v != 0.0 {
             self.z += self.v * dt;
         }
+    }
+}
+
+#[cfg(test)]
+mod cabin_tests {
+    use super::Cabin;
+
+    #[test]
+    fn a_turned_cabin_holds_its_floor_not_its_bounding_box() {
+        // 2.5 m × 3 m, turned 45°: its axis-aligned hull reaches 1.94 m from the centre
+        // along x, the cabin itself 1.25 m (across) to 1.5 m (along its depth).
+        let c = Cabin {
+            x: 10.0,
+            y: -5.0,
+            yaw: std::f64::consts::FRAC_PI_4,
+            half: [1.25, 1.5],
+        };
+        assert!(c.holds([10.0, -5.0, 4.0], 4.0));
+        // Inside the hull, outside the cabin: the landing beside it.
+        assert!(!c.holds([11.8, -5.0, 4.0], 4.0));
+        // 1.4 m along its depth (turned), inside.
+        let (s, co) = std::f64::consts::FRAC_PI_4.sin_cos();
+        assert!(c.holds([10.0 - 1.4 * s, -5.0 + 1.4 * co, 4.0], 4.0));
+        // On its floor, just under its top (thickness 5 cm), not above it.
+        assert!(c.holds([10.0, -5.0, 3.96], 4.0));
+        assert!(!c.holds([10.0, -5.0, 3.9], 4.0));
+        assert!(!c.holds([10.0, -5.0, 4.5], 4.0));
     }
 }

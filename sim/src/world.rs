@@ -18,7 +18,7 @@
 //! for the slotcars' stop test are the other robots and the people of `crowd/`.
 
 use crate::door::{self, DoorSim};
-use crate::lift::{Floor, LiftSim};
+use crate::lift::{Cabin, Floor, LiftSim};
 use crate::msgs::{DoorRequest, LiftRequest, Msg, Published, Topic, WorkcellRequest};
 use crate::params::RobotParams;
 use crate::scenario::WorkcellKind;
@@ -234,7 +234,16 @@ impl World {
             } else {
                 0.0
             };
-            let mut lift = LiftSim::new(l.name.clone(), floors, initial, z, l.payload_box());
+            let cabin = Cabin {
+                x: l.pos.x,
+                y: l.pos.y,
+                yaw: l.yaw,
+                half: [
+                    l.width / 2.0 + mapc_ir::SHAFT_MARGIN,
+                    l.depth / 2.0 + mapc_ir::SHAFT_MARGIN,
+                ],
+            };
+            let mut lift = LiftSim::new(l.name.clone(), floors, initial, z, cabin);
             lift.set_phase(rng.f64());
             lift_index.entry(l.name.clone()).or_insert(lifts.len());
             lifts.push(lift);

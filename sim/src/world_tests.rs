@@ -361,6 +361,36 @@ fn lift_trip_time_is_doors_close_plus_cabin_plus_doors_open() {
     assert_eq!(level.as_deref(), Some("L2"));
 }
 
+#[test]
+fn only_robots_on_the_cabin_floor_ride() {
+    let b = clinic();
+    let (lx, ly) = {
+        let l = b.lifts.iter().next().expect("lift").1;
+        (l.pos.x, l.pos.y)
+    };
+    let params = RobotParams::default;
+    let rider = spawn(&b, "rider", params(), lx, ly, 0.0, "L1");
+    // In the shaft on the floor above: the plugin's box (up to the cabin roof, 2.5 m)
+    // would take it from 1.5 m on and leave it 2.5 m above its floor.
+    let above = spawn(&b, "above", params(), lx, ly, 0.0, "L2");
+    let mut w = World::new(&b, &setup(vec![rider, above]));
+    let mut out = Vec::new();
+    run_until(&mut w, &mut out, 0.5, |_, _| false);
+    let open = lift_request::DOOR_OPEN;
+    w.deliver(
+        Topic::AdapterLiftRequests,
+        lift_req("lift_1", "s", lift_request::AGV_MODE, "L2", open),
+    );
+    run_until(&mut w, &mut out, 40.0, |w, _| {
+        w.lifts[0].active_dest().is_none()
+    })
+    .expect("arrives");
+    let z: Vec<f64> = w.robots().iter().map(|r| r.z).collect();
+    assert!((z[0] - 4.0).abs() < 0.001, "rider z {}", z[0]);
+    // Taken along only for the last centimetres, as the cabin floor reached it.
+    assert!((4.0..4.06).contains(&z[1]), "z of the robot above {}", z[1]);
+}
+
 /// The level named by the last RobotState published during the next second.
 fn last_level(w: &mut World, out: &mut Vec<Published>) -> Option<String> {
     let mut level = None;

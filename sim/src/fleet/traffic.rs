@@ -588,7 +588,7 @@ impl Fleets {
                 .map(|v| {
                     if mask[v] != 0 {
                         mask[v]
-                    } else if off[v] || on_way[v] || self.nav.vertices[v].carried_by.is_some() {
+                    } else if off[v] || on_way[v] || self.nav.vertices[v].lift.is_some() {
                         0
                     } else {
                         PARK_ON_PLACE

@@ -170,7 +170,7 @@ impl Conflicts {
             }
             // Standing where the lift would carry the robot (in the cabin, or close to a
             // rotated one) owns the lift: nobody else may move it meanwhile.
-            if let Some(l) = v.carried_by {
+            if let Some(l) = v.lift {
                 set.push((lift_base + l) as Res);
             }
             set.sort_unstable();

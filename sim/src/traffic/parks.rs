@@ -172,7 +172,7 @@ pub fn choose(nav: &Nav, conf: &Conflicts, needs: &Needs) -> Parks {
         let mut cands: Vec<usize> = nav.members[s]
             .iter()
             .copied()
-            .filter(|&v| Some(main[s][v]) == biggest && nav.vertices[v].carried_by.is_none())
+            .filter(|&v| Some(main[s][v]) == biggest && nav.vertices[v].lift.is_none())
             .filter(|&v| !required(s, v) || place(v))
             .collect();
         let class = |v: usize| {
@@ -205,7 +205,7 @@ pub fn choose(nav: &Nav, conf: &Conflicts, needs: &Needs) -> Parks {
             .filter(|&&(hs, v)| {
                 hs == s
                     && Some(main[s][v]) == biggest
-                    && nav.vertices[v].carried_by.is_none()
+                    && nav.vertices[v].lift.is_none()
                     && nav.members[s].binary_search(&v).is_ok()
             })
             .map(|&(_, v)| (v, true))
@@ -231,7 +231,7 @@ pub fn choose(nav: &Nav, conf: &Conflicts, needs: &Needs) -> Parks {
             abs.sort_unstable();
             abs.dedup();
             let touches_need = abs.iter().any(|&w| {
-                nav.vertices[w].carried_by.is_some()
+                nav.vertices[w].lift.is_some()
                     || (0..slots.len()).any(|t| required(t, w) || parks.per_slot[t][w] != 0)
             });
             if touches_need {
