@@ -6,8 +6,11 @@
 //! then a parking vertex) is planned when it is assigned, so a robot holding a task
 //! always has a plan. The nearest idle robots (free-flow time) are planned for, and the
 //! one whose plan arrives first takes the task. A plan that would wait long for traffic
-//! is not taken while the task is young: robots stay parked rather than queue in the
-//! corridors, so a bigger fleet does not jam a building that a smaller one serves.
+//! is not taken, however long the task has waited: robots stay parked rather than queue
+//! in the corridors, so a bigger fleet does not jam a building that a smaller one serves.
+//! (A task that has waited long used to accept plans that wait longer: under a saturating
+//! stream nearly every task had, so the bound was loosest where traffic was densest;
+//! BENCHMARKS.md has the figures.)
 //! Such a task is not planned again for the same robot until its plan could first fit
 //! (its excess wait, at most `MAX_BACKOFF`), whatever the task's other candidates found:
 //! with a saturating stream hundreds of tasks wait, and planning each again at every round
@@ -23,14 +26,10 @@ const CANDIDATES: usize = 3;
 const PLANS_PER_ROUND: usize = 32;
 const SCAN_PER_ROUND: usize = 64;
 /// A plan waiting longer than this for traffic (s, summed up to its last place) is not
-/// taken, unless younger tasks have gone before the task for `PATIENCE`.
-const MAX_PLANNED_WAIT: f64 = 60.0;
+/// taken.
+const MAX_PLANNED_WAIT: f64 = 50.0;
 /// The share of a plan's length (to its last place) it may wait on top of that.
 const WAIT_SHARE: f64 = 0.25;
-/// A task passed over this long (s) by younger ones takes the soonest plan that waits at
-/// most `PATIENT_WAIT`: robots with a task never plan to stand for longer.
-const PATIENCE: f64 = 600.0;
-const PATIENT_WAIT: f64 = 200.0;
 /// No plan a task takes stands still for longer than this in one place (s), well under
 /// the 300 s after which a robot with a task counts as stuck (`report::STUCK_AFTER`).
 const LONGEST_WAIT: f64 = 180.0;
@@ -60,8 +59,6 @@ struct Pending {
     robot: Option<usize>,
     /// RMF's priority: the queue keeps higher ones first.
     priority: u64,
-    /// Since when younger tasks have been taken while this one was not.
-    passed_over: Option<f64>,
     /// When robots were last asked to make room for it.
     displaced_at: f64,
     /// Robots whose plans for it waited too long, each with when planning for it again
@@ -80,8 +77,7 @@ struct Pending {
 /// is cancelled; while it is not empty a round is due within `DISPATCH_EVERY` s (at once
 /// when a task comes or a robot becomes free). Guarantees (with [`Fleets::dispatch`]):
 /// tasks are looked at oldest first, each goes to the free robot whose whole-task plan
-/// arrives first, a plan that would wait long for traffic is not taken while the task is
-/// young, and a robot whose plan for a task waited too long is not planned for it again
+/// arrives first, a plan that would wait long for traffic is never taken, and a robot whose plan for a task waited too long is not planned for it again
 /// until its backoff ends (its excess wait, at most `MAX_BACKOFF`).
 pub(super) struct Dispatcher {
     /// (request time, source order, kind, fleet) of tasks not yet requested, sorted.
@@ -238,7 +234,6 @@ impl Fleets {
             steps,
             robot: only.flatten(),
             priority,
-            passed_over: None,
             displaced_at: f64::NEG_INFINITY,
             backoff: Vec::new(),
             hard: false,
@@ -339,9 +334,6 @@ impl Fleets {
         {
             scanned += 1;
             let ti = self.dispatcher.pending[k].task;
-            let patient = self.dispatcher.pending[k]
-                .passed_over
-                .is_some_and(|p| t - p >= PATIENCE);
             // The nearest free robots by free-flow time to the task's first place.
             let mut near: Vec<(f64, usize, Vec<Step>)> = Vec::new();
             let only = self.dispatcher.pending[k].robot;
@@ -371,12 +363,6 @@ impl Fleets {
                 .filter(|(n, c)| *n < CANDIDATES || holders.contains(&c.1))
                 .map(|(_, c)| c)
                 .collect();
-            // Not past the moment the task turns patient (its plans may then wait longer).
-            let turns_patient = self.dispatcher.pending[k]
-                .passed_over
-                .map(|p| p + PATIENCE)
-                .filter(|&p| t < p)
-                .unwrap_or(f64::INFINITY);
             // Task plans go through the others' ways to parking (see `schedule`).
             let soft = !self.dispatcher.pending[k].hard;
             let mut best: Option<(f64, usize, Vec<Step>, Plan, usize, f64)> = None;
@@ -441,20 +427,15 @@ impl Fleets {
                     Some(&0) | None => t0,
                     Some(&n) => plan.steps[n - 1].end,
                 };
-                let most = if patient {
-                    PATIENT_WAIT
-                } else {
-                    MAX_PLANNED_WAIT
-                };
                 // Long tasks may wait longer in all: a share of their length.
                 let last = plan.goal_at.last().copied().unwrap_or(0);
                 let length = last.checked_sub(1).map_or(0.0, |k| plan.steps[k].end - t0);
                 // No single wait as long as the stand-still a report calls stuck, however
-                // patient the task: a robot with a task keeps moving.
-                let over = (planned_wait(&plan, t0) - (most + WAIT_SHARE * length))
+                // long the task: a robot with a task keeps moving.
+                let over = (planned_wait(&plan, t0) - (MAX_PLANNED_WAIT + WAIT_SHARE * length))
                     .max(longest_wait(&plan, t0) - LONGEST_WAIT);
                 if over > 0.0 {
-                    let until = (t + over.clamp(DISPATCH_EVERY, MAX_BACKOFF)).min(turns_patient);
+                    let until = t + over.clamp(DISPATCH_EVERY, MAX_BACKOFF);
                     refused.push((ri, until));
                     continue;
                 }
@@ -499,9 +480,6 @@ impl Fleets {
                 continue;
             }
             self.dispatcher.pending.remove(k);
-            for p in self.dispatcher.pending.iter_mut().take(k) {
-                p.passed_over.get_or_insert(t);
-            }
             free.retain(|f| f.0 != ri);
         }
         if !self.dispatcher.pending.is_empty() {
