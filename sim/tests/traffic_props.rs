@@ -218,6 +218,9 @@ fn generated_buildings_never_deadlock() {
 /// (`MAPC_TRAFFIC_GRIDS`, `MAPC_TRAFFIC_EVERY`, and the sizes and minutes as above) still
 /// find breaches: with 60 minutes, a task every second and 8 to 128 robots, warehouse 2
 /// completes 412 tasks with 72 robots on the floor against 442 with 64 (BENCHMARKS.md).
+/// `MAPC_TRAFFIC_HOTSPOT=1` sends every task to a station (`gen::grid_to_stations`); all 6
+/// break the rule then at 4 to 64 robots, a task a second, 60 minutes: not fixed yet, so
+/// not in CI (BENCHMARKS.md).
 #[test]
 fn generated_warehouses_never_deadlock() {
     let cases: u64 = env_or("MAPC_TRAFFIC_GRIDS", 6);
@@ -227,8 +230,14 @@ fn generated_warehouses_never_deadlock() {
     // A task every 2 s: more than 32 robots serve in these warehouses.
     let every: f64 = env_or("MAPC_TRAFFIC_EVERY", 2.0);
     let mut fewer = Vec::new();
+    // `MAPC_TRAFFIC_HOTSPOT=1`: every task goes to a station.
+    let hotspot = std::env::var_os("MAPC_TRAFFIC_HOTSPOT").is_some();
     for seed in first..first + cases {
-        let b = gen::grid(seed);
+        let b = if hotspot {
+            gen::grid_to_stations(seed)
+        } else {
+            gen::grid(seed)
+        };
         let (done, f) = check_building_every(&b, &sizes, minutes, every);
         if std::env::var_os("MAPC_TRAFFIC_VERBOSE").is_some() {
             eprintln!(

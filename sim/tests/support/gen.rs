@@ -27,6 +27,9 @@ pub struct Building {
     /// Its doors and lifts, by name.
     pub doors: Vec<String>,
     pub lifts: Vec<String>,
+    /// When not empty, every task of [`scenario`] ends at one of these (a hotspot) and
+    /// starts at one of `places`.
+    pub sinks: Vec<String>,
 }
 
 struct Level {
@@ -265,6 +268,7 @@ pub fn building_with(seed: u64, s: &Shape) -> Building {
         waypoints,
         doors,
         lifts,
+        sinks: Vec::new(),
     }
 }
 
@@ -287,7 +291,21 @@ pub fn grid(seed: u64) -> Building {
         waypoints: rows * cols,
         doors: Vec::new(),
         lifts: Vec::new(),
+        sinks: Vec::new(),
     }
+}
+
+/// [`grid`]`(seed)` with a hotspot: every task goes from a rack to a station (the west
+/// end of an aisle), as where goods are packed.
+pub fn grid_to_stations(seed: u64) -> Building {
+    let mut b = grid(seed);
+    let (sinks, racks) = b
+        .places
+        .iter()
+        .cloned()
+        .partition(|p| p.starts_with("station_"));
+    (b.sinks, b.places) = (sinks, racks);
+    b
 }
 
 fn a_x_towards(x: f64, rx: f64) -> f64 {
@@ -321,6 +339,15 @@ pub fn scenario(b: &Building, robots: usize, duration_s: f64, every: f64, seed: 
     let n = (duration_s / every) as usize;
     for k in 0..n {
         let a = &b.places[rng.usize(0..b.places.len())];
+        if !b.sinks.is_empty() {
+            let c = &b.sinks[rng.usize(0..b.sinks.len())];
+            let _ = writeln!(
+                out,
+                "  - {{at: {}s, loop: {{start: {a}, finish: {c}, loops: 1}}}}",
+                k as f64 * every
+            );
+            continue;
+        }
         let mut c = &b.places[rng.usize(0..b.places.len())];
         if c == a {
             c = &b.places[(rng.usize(0..b.places.len()) + 1) % b.places.len()];
