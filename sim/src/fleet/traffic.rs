@@ -595,10 +595,28 @@ impl Fleets {
                     }
                 })
                 .collect();
-            let res = match self.plan_with(o, &own, Some(&mask), t) {
+            // Making room never delays a robot's own task: a new plan that reaches its
+            // places later (it may have to wait out of the others' way, for minutes) is
+            // undone, and the robot keeps its plan.
+            let task = leg && self.robots[o].task.is_some();
+            let before = task.then(|| {
+                let r = &self.robots[o];
+                let snap = (self.traffic.sched.clone(), r.legs.clone(), r.leg);
+                (snap, self.arrival(o, own.len()))
+            });
+            let mut res = match self.plan_with(o, &own, Some(&mask), t) {
                 Err(NoPlan::Busy) => self.plan_with(o, &own, Some(&anywhere), t),
                 r => r,
             };
+            if let (Ok(l), Some((snap, old))) = (&res, before) {
+                let was = self.robots[o].leg.replace(*l);
+                if self.arrival(o, own.len()) > old + 1.0 {
+                    (self.traffic.sched, self.robots[o].legs, self.robots[o].leg) = snap;
+                    res = Err(NoPlan::Busy);
+                } else {
+                    self.robots[o].leg = was;
+                }
+            }
             if let Ok(l) = res {
                 if leg {
                     self.robots[o].leg = Some(l);
