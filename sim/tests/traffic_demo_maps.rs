@@ -11,9 +11,8 @@
 //! with). The scaling scenarios keep their own task mixes, with their fleets scaled together.
 //!
 //! Briefly in CI: the demo maps at 2, 8 and 32 robots for 15 simulated minutes, the
-//! scaling scenarios at 2 and 8 robots for 4 minutes (at 2-64 robots for 60 minutes, the
-//! airport_terminal scaling scenario still breaks the 95 % rule at 64 against 32; issue 35,
-//! BENCHMARKS.md). Long on
+//! scaling scenarios at 2 and 8 robots for 4 minutes (at 2-64 robots for 60 minutes all of
+//! them hold the rule as of 2026-11-30, BENCHMARKS.md). Long on
 //! demand: `MAPC_DEMO_SIZES=2,4,8,16,32,64 MAPC_DEMO_MINUTES=120 cargo test -p mapc-sim
 //! --release --test traffic_demo_maps -- --nocapture` (`MAPC_DEMO_ONLY=clinic` picks runs
 //! by name, `MAPC_DEMO_DUMP=DIR` writes each run's scenario there, `MAPC_DEMO_MAPS=DIR`

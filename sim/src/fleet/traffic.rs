@@ -547,14 +547,18 @@ impl Fleets {
                 }
             }
         }
-        // Those whose stay for good is at a goal, and standing robots staying anywhere but
-        // on a parking vertex: such a stay may cut robot `i`'s way.
+        // Those whose stay for good is at a goal, standing robots staying anywhere but on a
+        // parking vertex, and idle robots parked on robot `i`'s way: such a stay may cut
+        // it (each parking vertex keeps the graph connected alone, not all of them
+        // together).
         let blockers: Vec<usize> = (0..self.robots.len())
             .filter(|&o| o != i && self.robots[o].gate == Gate::None)
             .filter(|&o| {
                 let r = &self.robots[o];
                 let end = self.traffic.sched.end_vertex(o);
-                off[end] || (r.n_sent == 0 && self.traffic.parks(r.slot)[end] == 0)
+                off[end]
+                    || (r.n_sent == 0 && self.traffic.parks(r.slot)[end] == 0)
+                    || (r.n_sent == 0 && r.idle() && on_way[end])
             })
             .collect();
         let mut moved = false;
@@ -604,9 +608,18 @@ impl Fleets {
                 let snap = (self.traffic.sched.clone(), r.legs.clone(), r.leg);
                 (snap, self.arrival(o, own.len()))
             });
-            let mut res = match self.plan_with(o, &own, Some(&mask), t) {
-                Err(NoPlan::Busy) => self.plan_with(o, &own, Some(&anywhere), t),
-                r => r,
+            let end = self.traffic.sched.end_vertex(o);
+            let mut res = if self.traffic.parks(slot)[end] != 0 && !off[end] {
+                // Parked on the way: to a parking vertex off it, or it stays.
+                let clear: Vec<u8> = (0..mask.len())
+                    .map(|v| if on_way[v] { 0 } else { mask[v] })
+                    .collect();
+                self.plan_with(o, &own, Some(&clear), t)
+            } else {
+                match self.plan_with(o, &own, Some(&mask), t) {
+                    Err(NoPlan::Busy) => self.plan_with(o, &own, Some(&anywhere), t),
+                    r => r,
+                }
             };
             if let (Ok(l), Some((snap, old))) = (&res, before) {
                 let was = self.robots[o].leg.replace(*l);
