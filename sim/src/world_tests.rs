@@ -298,6 +298,23 @@ fn door_supervisor_closes_doors_nobody_holds() {
     .expect("closed again");
 }
 
+/// Where the clinic's first lift cabin stands (x, y).
+fn lift_xy(b: &Building) -> (f64, f64) {
+    let l = b.lifts.iter().next().expect("lift").1;
+    (l.pos.x, l.pos.y)
+}
+
+/// Asks lift_1 to `floor` with its doors open (session `s`) and steps until it is done,
+/// within `limit` s; returns when.
+fn lift_to(w: &mut World, out: &mut Vec<Published>, floor: &str, limit: f64) -> Option<f64> {
+    let open = lift_request::DOOR_OPEN;
+    w.deliver(
+        Topic::AdapterLiftRequests,
+        lift_req("lift_1", "s", lift_request::AGV_MODE, floor, open),
+    );
+    run_until(w, out, limit, |w, _| w.lifts[0].active_dest().is_none())
+}
+
 fn lift_req(lift: &str, session: &str, kind: u8, floor: &str, door: u8) -> Msg {
     Msg::LiftRequest(LiftRequest {
         lift_name: lift.into(),
@@ -312,32 +329,14 @@ fn lift_req(lift: &str, session: &str, kind: u8, floor: &str, door: u8) -> Msg {
 #[test]
 fn lift_trip_time_is_doors_close_plus_cabin_plus_doors_open() {
     let b = clinic();
-    let (lx, ly) = {
-        let l = b.lifts.iter().next().expect("lift").1;
-        (l.pos.x, l.pos.y)
-    };
+    let (lx, ly) = lift_xy(&b);
     let r = spawn(&b, "rider", RobotParams::default(), lx, ly, 0.0, "L1");
     let mut w = World::new(&b, &setup(vec![r]));
     let mut out = Vec::new();
     run_until(&mut w, &mut out, 0.5, |_, _| false);
-    let open = lift_request::DOOR_OPEN;
-    w.deliver(
-        Topic::AdapterLiftRequests,
-        lift_req("lift_1", "s", lift_request::AGV_MODE, "L1", open),
-    );
-    run_until(&mut w, &mut out, 20.0, |w, _| {
-        w.lifts[0].active_dest().is_none()
-    })
-    .expect("doors open at L1");
+    lift_to(&mut w, &mut out, "L1", 20.0).expect("doors open at L1");
     let t0 = w.time();
-    w.deliver(
-        Topic::AdapterLiftRequests,
-        lift_req("lift_1", "s", lift_request::AGV_MODE, "L2", open),
-    );
-    let t1 = run_until(&mut w, &mut out, 40.0, |w, _| {
-        w.lifts[0].active_dest().is_none()
-    })
-    .expect("arrives");
+    let t1 = lift_to(&mut w, &mut out, "L2", 40.0).expect("arrives");
     // Each lift door leaf travels width/2 = 0.6 m at 0.3 m/s, 0.1 m/s²; the cabin 4 m at
     // 2 m/s, 1 m/s².
     // Doors count as closed/open within dx_min 1e-4 m; the cabin arrives within 0.001 m.
@@ -364,10 +363,7 @@ fn lift_trip_time_is_doors_close_plus_cabin_plus_doors_open() {
 #[test]
 fn only_robots_on_the_cabin_floor_ride() {
     let b = clinic();
-    let (lx, ly) = {
-        let l = b.lifts.iter().next().expect("lift").1;
-        (l.pos.x, l.pos.y)
-    };
+    let (lx, ly) = lift_xy(&b);
     let params = RobotParams::default;
     let rider = spawn(&b, "rider", params(), lx, ly, 0.0, "L1");
     // In the shaft on the floor above: the plugin's box (up to the cabin roof, 2.5 m)
@@ -376,15 +372,7 @@ fn only_robots_on_the_cabin_floor_ride() {
     let mut w = World::new(&b, &setup(vec![rider, above]));
     let mut out = Vec::new();
     run_until(&mut w, &mut out, 0.5, |_, _| false);
-    let open = lift_request::DOOR_OPEN;
-    w.deliver(
-        Topic::AdapterLiftRequests,
-        lift_req("lift_1", "s", lift_request::AGV_MODE, "L2", open),
-    );
-    run_until(&mut w, &mut out, 40.0, |w, _| {
-        w.lifts[0].active_dest().is_none()
-    })
-    .expect("arrives");
+    lift_to(&mut w, &mut out, "L2", 40.0).expect("arrives");
     let z: Vec<f64> = w.robots().iter().map(|r| r.z).collect();
     assert!((z[0] - 4.0).abs() < 0.001, "rider z {}", z[0]);
     // Taken along only for the last centimetres, as the cabin floor reached it.
