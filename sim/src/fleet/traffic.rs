@@ -501,10 +501,11 @@ impl Fleets {
     }
 
     /// Robots whose itineraries end where one of robot `i`'s `goals` is (a task place that
-    /// is also a parking vertex), and idle robots that stay off the parking vertices, are
-    /// planned again to end on other parking vertices, keeping their own goal and its work:
-    /// their stay for good there may be what keeps robot `i` from planning. True when one
-    /// was.
+    /// is also a parking vertex), idle robots that stay off the parking vertices, and idle
+    /// robots parked on robot `i`'s shortest way are planned again to end on other parking
+    /// vertices (off that way), keeping their own goal and its work: their stay for good
+    /// there may be what keeps robot `i` from planning. A robot driving to its task's place
+    /// keeps its plan when the new one would get there later. True when one moved.
     pub(super) fn displace_for(&mut self, i: usize, goals: &[(usize, f64)], t: f64) -> bool {
         let conf = self.traffic.sched.conf();
         let mut near: Vec<Res> = goals
