@@ -20,6 +20,8 @@ use petgraph::algo::tarjan_scc;
 use petgraph::graph::{DiGraph, NodeIndex};
 use petgraph::visit::EdgeFiltered;
 
+mod through;
+
 /// Per graph slot, per vertex: 0 not a parking vertex, [`PARK`], [`PARK_ON_PLACE`] or
 /// [`PARK_HOME`].
 #[derive(Debug, Clone, Default)]
@@ -83,8 +85,11 @@ fn digraph(nav: &Nav, s: usize) -> DiGraph<(), usize> {
 }
 
 /// Chooses the parking vertices (see the module doc). Greedy in order of preference:
-/// parking spots, holding points, dead ends (leaves), then other vertices; a candidate is
-/// taken when the graphs stay connected with it taken too. Deterministic.
+/// parking spots, holding points, dead ends (leaves), then other vertices, and within each
+/// where the fewest shortest routes between places pass (`through`, with the parks taken
+/// so far in the way), not in the map's order (which put parks beside a warehouse's
+/// stations, on every route to them); a candidate is taken when the graphs stay connected
+/// with it taken too. Deterministic.
 pub fn choose(nav: &Nav, conf: &Conflicts, needs: &Needs) -> Parks {
     let nv = nav.vertices.len();
     let slots: Vec<Slot> = (0..nav.graphs.len())
@@ -196,8 +201,20 @@ pub fn choose(nav: &Nav, conf: &Conflicts, needs: &Needs) -> Parks {
                 .unwrap_or(false)
         };
         // Chargers and spawn points after the others, task places last, and only as many
-        // as still wanted.
-        cands.sort_by_key(|&v| (task(v), place(v), class(v), v));
+        // as still wanted; within a class, where the least traffic between places passes
+        // first (`through`), scored again as parks are taken (they send traffic round).
+        let key = |v: usize| (task(v), place(v), class(v));
+        cands.sort_by_key(|&v| (key(v), v));
+        let targets: Vec<usize> = nav.members[s]
+            .iter()
+            .copied()
+            .filter(|&v| required(s, v))
+            .collect();
+        let n_edges = nav.members[s]
+            .iter()
+            .map(|&v| nav.out[s][v].len())
+            .sum::<usize>();
+        let search_cost = targets.len().min(through::SOURCES) * n_edges.max(1);
         // Homes asked for first, on the same terms (but they may be required vertices).
         let homes: Vec<(usize, bool)> = needs
             .homes
@@ -210,14 +227,59 @@ pub fn choose(nav: &Nav, conf: &Conflicts, needs: &Needs) -> Parks {
             })
             .map(|&(_, v)| (v, true))
             .collect();
-        let mut taken = 0;
-        for (v, home) in homes
+        let n_homes = homes.len();
+        let mut order: Vec<(usize, bool)> = homes
             .into_iter()
             .chain(cands.into_iter().map(|v| (v, false)))
-        {
+            .collect();
+        let mut taken = 0;
+        // Parks taken since the scores were last computed (none yet).
+        let mut since: Option<usize> = None;
+        let mut i = 0;
+        while i < order.len() {
+            let (v, home) = order[i];
             if !home && taken >= want {
                 break;
             }
+            // Scores again after every park where that is cheap, else as the parks taken
+            // grow by an eighth (a 10,000-waypoint warehouse takes a thousand).
+            let every = if search_cost <= 200_000 {
+                1
+            } else {
+                (taken / 8).max(1)
+            };
+            if i >= n_homes && !targets.is_empty() && since.is_none_or(|k| k >= every) {
+                since = Some(0);
+                let usable = |e: usize| {
+                    let ed = &nav.edges[e];
+                    !blocked[e] && !absorbed[ed.from] && !absorbed[ed.to]
+                };
+                let pass = through::through(nav, s, &slots[s].inn, &targets, &usable);
+                // A robot standing on v blocks its standing room too.
+                let score = |v: usize| -> f64 {
+                    let mut room: Vec<usize> = conf.vertex[v]
+                        .iter()
+                        .flat_map(|&x| standers[x as usize].iter().copied())
+                        .collect();
+                    room.push(v);
+                    room.sort_unstable();
+                    room.dedup();
+                    room.iter().map(|&w| pass[w]).sum()
+                };
+                let mut rest: Vec<(usize, f64)> =
+                    order[i..].iter().map(|&(w, _)| (w, score(w))).collect();
+                rest.sort_by(|a, b| {
+                    key(a.0)
+                        .cmp(&key(b.0))
+                        .then(a.1.total_cmp(&b.1))
+                        .then(a.0.cmp(&b.0))
+                });
+                for (k, (w, _)) in rest.into_iter().enumerate() {
+                    order[i + k] = (w, false);
+                }
+                continue;
+            }
+            i += 1;
             let set: &[Res] = &conf.vertex[v];
             if set.iter().any(|&x| held[x as usize]) || absorbed[v] {
                 continue;
@@ -328,6 +390,7 @@ pub fn choose(nav: &Nav, conf: &Conflicts, needs: &Needs) -> Parks {
                 held[x as usize] = true;
             }
             taken_parks.push(v);
+            since = since.map(|k| k + 1);
             // A taken park is occupied for every later check (not only after a check
             // that happened to visit it: a later park must not shut it in).
             absorbed[v] = true;

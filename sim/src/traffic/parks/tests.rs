@@ -165,3 +165,57 @@ fn every_park_keeps_a_way_out_and_in_with_all_parks_taken() {
         }
     }
 }
+
+/// A ring of two aisles (11 waypoints each, 2 m apart, 3 m between the aisles, joined at
+/// both ends) with a station at the west end of the south aisle and a rack 6 m east of it.
+fn ring_nav() -> crate::graph::Nav {
+    let mut y = String::from(
+        "coordinate_system: cartesian_meters\nname: ring\nlevels:\n  L1:\n    elevation: 0\n    vertices:\n",
+    );
+    for r in 0..2 {
+        for c in 0..11 {
+            let name = match (r, c) {
+                (0, 0) => "station",
+                (0, 3) => "rack",
+                _ => "",
+            };
+            y += &format!("      - [{}, {}, 0, \"{name}\"]\n", 2 * c, 3 * r);
+        }
+    }
+    y += "    lanes:\n";
+    let lane = "{bidirectional: [4, true], graph_idx: [2, 0]}";
+    for r in 0..2 {
+        for c in 0..10 {
+            y += &format!("      - [{}, {}, {lane}]\n", 11 * r + c, 11 * r + c + 1);
+        }
+    }
+    y += &format!("      - [0, 11, {lane}]\n      - [10, 21, {lane}]\n");
+    let parsed = mapc_frontend::parse_str("ring.building.yaml", &y);
+    crate::graph::Nav::build(parsed.valid_building().expect("ring loads"), &[0])
+}
+
+#[test]
+fn parks_go_where_the_fewest_routes_between_places_pass() {
+    let nav = ring_nav();
+    let conf = conflicts(&nav);
+    let n = nav.vertices.len();
+    let (station, rack) = (v(&nav, "station"), v(&nav, "rack"));
+    let mut places = vec![vec![false; n]];
+    places[0][station] = true;
+    places[0][rack] = true;
+    let parks = choose_for(&nav, &conf, &places, 2, &[]);
+    let taken: Vec<(f64, f64)> = (0..n)
+        .filter(|&x| parks.per_slot[0][x] != 0)
+        .map(|x| (nav.vertices[x].pos.x, nav.vertices[x].pos.y))
+        .collect();
+    assert_eq!(taken.len(), 2, "{taken:?}");
+    // The short way between the station and the rack (x 2 and 4 on the south aisle)
+    // stays clear: a robot parked there would send every trip round the ring. The
+    // waypoints first in the map's order are exactly those.
+    for p in &taken {
+        assert!(
+            !(p.1 == 0.0 && p.0 > 0.0 && p.0 < 6.0),
+            "parked on the short way: {taken:?}"
+        );
+    }
+}
