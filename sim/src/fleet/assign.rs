@@ -14,7 +14,12 @@
 //! Such a task is not planned again for the same robot until its plan could first fit
 //! (its excess wait, at most `MAX_BACKOFF`), whatever the task's other candidates found:
 //! with a saturating stream hundreds of tasks wait, and planning each again at every round
-//! cost 95 % of a run.
+//! cost 95 % of a run. Nor is the same plan (robot, start, places) made for another task
+//! meanwhile, and a task none of whose candidates may be planned for sleeps until one may
+//! or a robot becomes free: rounds pass it by at no cost and look further down the queue.
+//! (Rounds looked at the 64 oldest tasks only, and under a saturating stream those were the
+//! tasks every robot had been refused for: robots stood idle while the tasks they could do
+//! waited behind them.)
 
 use super::traffic::GRAPH_PARKS;
 use super::*;
@@ -38,6 +43,10 @@ const LONGEST_WAIT: f64 = 180.0;
 const DISPATCH_EVERY: f64 = 5.0;
 /// Robots in a waiting task's way are asked to make room at most this often (s).
 const DISPLACE_EVERY: f64 = 5.0;
+/// A robot that found no way to a task is planned for it again after this long (s): others
+/// may make room meanwhile (robots in the way are asked as often, `DISPLACE_EVERY`), and
+/// planning it again at every round (each second while tasks come) was most of a run.
+const NO_WAY_BACKOFF: f64 = 5.0;
 /// A task whose plans all waited too long is planned for the same robots again after at
 /// most this long (s), even if their excess wait was longer (the others may have got
 /// ahead of their plans meanwhile).
@@ -64,6 +73,11 @@ struct Pending {
     /// Robots whose plans for it waited too long, each with when planning for it again
     /// may first succeed (see [`Fleets::dispatch`]).
     backoff: Vec<(usize, f64)>,
+    /// Every robot it was looked at for is in `backoff`: until when, and
+    /// [`Dispatcher::freed`] then. Rounds pass it by until then unless a robot became free
+    /// since (without looking for its nearest robots: with thousands of tasks queued,
+    /// that was most of a round).
+    asleep: Option<(f64, u64)>,
     /// Its plans keep clear of the others' ways to parking too (one that went before them
     /// was undone: see [`Fleets::install`]).
     hard: bool,
@@ -77,8 +91,10 @@ struct Pending {
 /// is cancelled; while it is not empty a round is due within `DISPATCH_EVERY` s (at once
 /// when a task comes or a robot becomes free). Guarantees (with [`Fleets::dispatch`]):
 /// tasks are looked at oldest first, each goes to the free robot whose whole-task plan
-/// arrives first, a plan that would wait long for traffic is never taken, and a robot whose plan for a task waited too long is not planned for it again
-/// until its backoff ends (its excess wait, at most `MAX_BACKOFF`).
+/// arrives first, a plan that would wait long for traffic is never taken, and a robot
+/// whose plan for a task waited too long (or found no way) is not planned for it, nor for
+/// the same places from the same start, again until its backoff ends (its excess wait, at
+/// most `MAX_BACKOFF`; `NO_WAY_BACKOFF`).
 pub(super) struct Dispatcher {
     /// (request time, source order, kind, fleet) of tasks not yet requested, sorted.
     upcoming: VecDeque<(f64, usize, NewTask)>,
@@ -90,6 +106,31 @@ pub(super) struct Dispatcher {
     counters: BTreeMap<TaskCategory, usize>,
     /// Per (graph slot, speed, place): free-flow times to the place from every vertex.
     eta_tables: BTreeMap<(usize, u64, usize), Vec<f64>>,
+    /// The robots free in the last round, and how many times a round found one free that
+    /// was not in the round before.
+    was_free: Vec<bool>,
+    freed: u64,
+    /// Plans refused (or that found no way), by what they were a plan of: until when
+    /// planning the same again cannot succeed, and whether it found no way.
+    same: BTreeMap<Same, (f64, bool)>,
+}
+
+/// What a plan is a plan of: the robot, where it starts, whether it may go through the
+/// others' soft spans, where it stays, and its places with the work there (bits).
+#[derive(Debug, Clone, PartialEq, Eq, PartialOrd, Ord)]
+struct Same(usize, usize, bool, Option<usize>, Vec<(usize, u64)>);
+
+impl Same {
+    fn new(
+        robot: usize,
+        from: usize,
+        soft: bool,
+        stay: Option<usize>,
+        goals: &[(usize, f64)],
+    ) -> Same {
+        let goals = goals.iter().map(|&(g, w)| (g, w.to_bits())).collect();
+        Same(robot, from, soft, stay, goals)
+    }
 }
 
 impl Dispatcher {
@@ -101,6 +142,9 @@ impl Dispatcher {
             next_dispatch: f64::INFINITY,
             counters: BTreeMap::new(),
             eta_tables: BTreeMap::new(),
+            was_free: Vec::new(),
+            freed: 0,
+            same: BTreeMap::new(),
         }
     }
 
@@ -236,6 +280,7 @@ impl Fleets {
             priority,
             displaced_at: f64::NEG_INFINITY,
             backoff: Vec::new(),
+            asleep: None,
             hard: false,
         };
         self.dispatcher.enqueue(p, t);
@@ -323,6 +368,16 @@ impl Fleets {
                 (i, at, t0 - t)
             })
             .collect();
+        let d = &mut self.dispatcher;
+        d.same.retain(|_, v| v.0 > t);
+        d.was_free.resize(self.robots.len(), false);
+        if free.iter().any(|f| !d.was_free[f.0]) {
+            d.freed += 1;
+        }
+        d.was_free.fill(false);
+        for f in &free {
+            d.was_free[f.0] = true;
+        }
         let mut budget = PLANS_PER_ROUND;
         let mut displaced = false;
         let mut k = 0;
@@ -332,6 +387,14 @@ impl Fleets {
             && !free.is_empty()
             && scanned < SCAN_PER_ROUND
         {
+            // Asleep: nothing changed that could let it be taken.
+            if let Some((until, freed)) = self.dispatcher.pending[k].asleep {
+                if t < until && freed == self.dispatcher.freed {
+                    k += 1;
+                    continue;
+                }
+            }
+            self.dispatcher.pending[k].asleep = None;
             scanned += 1;
             let ti = self.dispatcher.pending[k].task;
             // The nearest free robots by free-flow time to the task's first place.
@@ -367,6 +430,7 @@ impl Fleets {
             let soft = !self.dispatcher.pending[k].hard;
             let mut best: Option<(f64, usize, Vec<Step>, Plan, usize, f64)> = None;
             let mut failed = false;
+            let looked_at = near.len();
             // Robots whose plans for it waited too long now and will, planned again.
             let mut refused: Vec<(usize, f64)> = Vec::new();
             for (_, ri, steps) in near {
@@ -383,13 +447,24 @@ impl Fleets {
                         continue;
                     }
                 }
-                budget = budget.saturating_sub(1);
                 let goals = self.goals_of(ri, &steps);
                 let stay = matches!(self.tasks[ti].kind, TaskKind::GoToPlace { .. })
                     .then(|| goals.last().map(|g| g.0))
                     .flatten();
-                let f = &self.fleets[self.robots[ri].fleet];
                 let (keep, from, t0) = self.plan_start(ri, t);
+                // The same plan (robot, start, places) was refused for another task: the
+                // reason above holds for it too (a saturating stream queues many tasks
+                // between the same places).
+                let same = Same::new(ri, from, soft, stay, &goals);
+                if let Some(&(until, no_way)) = self.dispatcher.same.get(&same) {
+                    if t < until {
+                        failed |= no_way;
+                        refused.push((ri, until));
+                        continue;
+                    }
+                }
+                budget = budget.saturating_sub(1);
+                let f = &self.fleets[self.robots[ri].fleet];
                 // A place where another robot stays for good: no plan can get there (a
                 // search would only prove it, at length), that robot must make room.
                 let conf = self.traffic.sched.conf();
@@ -399,6 +474,10 @@ impl Fleets {
                         .any(|&x| self.traffic.sched.held_for_good(x, ri, soft).is_some())
                 }) {
                     failed = true;
+                    refused.push((ri, t + NO_WAY_BACKOFF));
+                    self.dispatcher
+                        .same
+                        .insert(same, (t + NO_WAY_BACKOFF, true));
                     continue;
                 }
                 let mut found = None;
@@ -421,6 +500,10 @@ impl Fleets {
                 }
                 let Some(plan) = found else {
                     failed = true;
+                    refused.push((ri, t + NO_WAY_BACKOFF));
+                    self.dispatcher
+                        .same
+                        .insert(same, (t + NO_WAY_BACKOFF, true));
                     continue;
                 };
                 let arrive = match plan.goal_at.first() {
@@ -437,6 +520,7 @@ impl Fleets {
                 if over > 0.0 {
                     let until = t + over.clamp(DISPATCH_EVERY, MAX_BACKOFF);
                     refused.push((ri, until));
+                    self.dispatcher.same.insert(same, (until, false));
                     continue;
                 }
                 if best.as_ref().is_none_or(|b| arrive < b.0) {
@@ -446,6 +530,12 @@ impl Fleets {
             let Some((_, ri, steps, plan, keep, t0)) = best else {
                 // Robots that found no way are planned for again next round: they may find
                 // one as soon as others make room.
+                // No free robot may do it (a robot task whose robot is busy), or every one
+                // that may is backed off: only time or a robot becoming free changes that.
+                if refused.len() == looked_at {
+                    let until = refused.iter().map(|r| r.1).fold(f64::INFINITY, f64::min);
+                    self.dispatcher.pending[k].asleep = Some((until, self.dispatcher.freed));
+                }
                 self.dispatcher.pending[k].backoff = refused;
                 // Room is made for one task per round, the oldest that needs it: for two
                 // tasks in turn, the same robot would be sent back and forth between them.

@@ -1327,3 +1327,35 @@ fn a_robot_with_no_parking_vertex_left_ends_its_plan_where_it_stands() {
     let i = f.by_name["a_2"];
     assert_eq!(f.nav.vertices[f.traffic.sched.end_vertex(i)].name, "w");
 }
+
+#[test]
+fn tasks_no_free_robot_may_take_do_not_hold_up_those_behind_them() {
+    let b = cross();
+    let c = fleet(
+        "c",
+        2,
+        SpawnSpec::Waypoints(vec!["park_w".into(), "park_e".into()]),
+    );
+    let go = |at: f64, place: &str, robot: Option<&str>| TaskSpec {
+        robot: robot.map(str::to_string),
+        ..task(
+            at,
+            TaskKind::GoToPlace {
+                place: place.into(),
+            },
+        )
+    };
+    // c_0 is sent back and forth by 100 tasks of its own (more than a round looks at);
+    // a task any robot may do comes after them: to park_e, where c_1 stands free.
+    let mut tasks: Vec<TaskSpec> = (0..100)
+        .map(|k| go(0.5, if k % 2 == 0 { "e" } else { "w" }, Some("c_0")))
+        .collect();
+    tasks.push(go(1.0, "park_e", None));
+    let s = scenario(vec![c], tasks);
+    let (events, _, _) = run(&b, &s, 30.0);
+    let last = events
+        .iter()
+        .find(|e| e.event == "assigned" && e.task_id == "go_to_place_100")
+        .unwrap_or_else(|| panic!("not assigned in 30 s: {:?}", assignments(&events)));
+    assert_eq!(last.robot, "c_1");
+}

@@ -542,6 +542,12 @@ impl Schedule {
             .map(|s| s.robot as usize)
     }
 
+    /// The robots with a span on resource `x` (in queue order, a robot as often as it has
+    /// spans there).
+    pub fn holders(&self, x: Res) -> impl Iterator<Item = usize> + '_ {
+        self.queues[x as usize].iter().map(|s| s.robot as usize)
+    }
+
     /// Busy intervals `[start, end)` of resource `x` for anybody but robot `r`; when
     /// `soft`, without the others' soft spans.
     pub fn busy(&self, x: Res, r: usize, soft: bool) -> impl Iterator<Item = (f64, f64)> + '_ {

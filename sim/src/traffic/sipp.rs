@@ -182,10 +182,11 @@ impl PartialOrd for Open {
     }
 }
 
-/// Intervals computed from the schedule, per robot they are for, kept while the resources
-/// they come from do not change (`Schedule::changed_since`): a saturated run makes
-/// thousands of plans between changes of most of the building. Every list lives in one
-/// arena, so that starting again frees no small vectors.
+/// Intervals computed from the schedule, kept while the resources they come from do not
+/// change (`Schedule::changed_since`): a saturated run makes thousands of plans between
+/// changes of most of the building. Kept for everybody (robot [`ANYBODY`]) with the robots
+/// that have spans there; for a robot among those (its own spans do not count), kept for
+/// it alone. Every list lives in one arena, so that starting again frees no small vectors.
 #[derive(Default)]
 struct Cache {
     /// The copy of the schedule they come from (`Schedule::lineage`).
@@ -196,15 +197,22 @@ struct Cache {
     /// Per (robot, vertex, without soft spans): the safe intervals of its standing set.
     vertex_free: Map<(usize, usize, bool), Entry>,
     arena: Vec<(f64, f64)>,
+    /// The robots of the entries for [`ANYBODY`], sorted.
+    who: Vec<u32>,
     /// The busy intervals being merged (a buffer).
     tmp: Vec<(f64, f64)>,
 }
+
+/// The robot of the entries kept for everybody: no robot's spans are left out.
+const ANYBODY: usize = usize::MAX;
 
 /// Intervals kept: where in `Cache::arena` (start, length), the stamp they were computed
 /// at, and the last stamp they were found to hold at.
 #[derive(Clone, Copy)]
 struct Entry {
     at: (u32, u32),
+    /// For [`ANYBODY`]: where in `Cache::who` the robots with spans there are.
+    who: (u32, u32),
     made: u64,
     checked: u64,
 }
@@ -220,6 +228,7 @@ impl Cache {
             self.edge_busy.clear();
             self.vertex_free.clear();
             self.arena.clear();
+            self.who.clear();
         }
     }
 
@@ -227,10 +236,64 @@ impl Cache {
         &self.arena[a as usize..(a + n) as usize]
     }
 
+    /// Whether robot `r` has no span in the kept entry `e` for [`ANYBODY`]: it holds for
+    /// `r` too.
+    fn not_held_by(&self, e: Entry, r: usize) -> bool {
+        let (a, n) = e.who;
+        self.who[a as usize..(a + n) as usize]
+            .binary_search(&(r as u32))
+            .is_err()
+    }
+
+    /// The robots with spans on the resources of `set`, sorted, appended to `who`.
+    fn robots_of(&mut self, sched: &Schedule, set: &[Res]) -> (u32, u32) {
+        let start = self.who.len();
+        self.who
+            .extend(set.iter().flat_map(|&x| sched.holders(x)).map(|r| r as u32));
+        self.who[start..].sort_unstable();
+        let mut w = start;
+        for i in start..self.who.len() {
+            if w == start || self.who[i] != self.who[w - 1] {
+                self.who[w] = self.who[i];
+                w += 1;
+            }
+        }
+        self.who.truncate(w);
+        (start as u32, (w - start) as u32)
+    }
+
     /// The safe intervals of vertex `v` for robot `r`.
     fn intervals(&mut self, sched: &Schedule, (r, soft): (usize, bool), v: usize) -> (u32, u32) {
         let set = &sched.conf().vertex[v];
-        if let Some(at) = still(&mut self.vertex_free, (r, v, soft), sched, set) {
+        // For everybody, unless `r` has spans there.
+        let shared = match still(&mut self.vertex_free, (ANYBODY, v, soft), sched, set) {
+            Some(e) => e,
+            None => {
+                merge_busy(sched, set, ANYBODY, soft, &mut self.tmp);
+                let start = self.arena.len();
+                gaps(&self.tmp, &mut self.arena);
+                let at = (start as u32, (self.arena.len() - start) as u32);
+                let who = self.robots_of(sched, set);
+                let e = made(at, who, sched);
+                self.vertex_free.insert((ANYBODY, v, soft), e);
+                e
+            }
+        };
+        if self.not_held_by(shared, r) {
+            #[cfg(debug_assertions)]
+            {
+                let (mut busy, mut free) = (Vec::new(), Vec::new());
+                merge_busy(sched, set, r, soft, &mut busy);
+                gaps(&busy, &mut free);
+                assert_eq!(
+                    self.get(shared.at),
+                    &free[..],
+                    "safe intervals of vertex {v}"
+                );
+            }
+            return shared.at;
+        }
+        if let Some(at) = still(&mut self.vertex_free, (r, v, soft), sched, set).map(|e| e.at) {
             #[cfg(debug_assertions)]
             {
                 let (mut busy, mut free) = (Vec::new(), Vec::new());
@@ -244,14 +307,37 @@ impl Cache {
         let start = self.arena.len();
         gaps(&self.tmp, &mut self.arena);
         let at = (start as u32, (self.arena.len() - start) as u32);
-        self.vertex_free.insert((r, v, soft), made(at, sched));
+        self.vertex_free
+            .insert((r, v, soft), made(at, (0, 0), sched));
         at
     }
 
     /// The others' merged busy intervals on edge `e`'s traversal set for robot `r`.
     fn busy(&mut self, sched: &Schedule, (r, soft): (usize, bool), e: usize) -> (u32, u32) {
         let set = &sched.conf().trav[e];
-        if let Some(at) = still(&mut self.edge_busy, (r, e, soft), sched, set) {
+        let shared = match still(&mut self.edge_busy, (ANYBODY, e, soft), sched, set) {
+            Some(x) => x,
+            None => {
+                merge_busy(sched, set, ANYBODY, soft, &mut self.tmp);
+                let start = self.arena.len();
+                self.arena.extend_from_slice(&self.tmp);
+                let at = (start as u32, self.tmp.len() as u32);
+                let who = self.robots_of(sched, set);
+                let x = made(at, who, sched);
+                self.edge_busy.insert((ANYBODY, e, soft), x);
+                x
+            }
+        };
+        if self.not_held_by(shared, r) {
+            #[cfg(debug_assertions)]
+            {
+                let mut busy = Vec::new();
+                merge_busy(sched, set, r, soft, &mut busy);
+                assert_eq!(self.get(shared.at), &busy[..], "busy intervals of edge {e}");
+            }
+            return shared.at;
+        }
+        if let Some(at) = still(&mut self.edge_busy, (r, e, soft), sched, set).map(|x| x.at) {
             #[cfg(debug_assertions)]
             {
                 let mut busy = Vec::new();
@@ -264,7 +350,7 @@ impl Cache {
         let start = self.arena.len();
         self.arena.extend_from_slice(&self.tmp);
         let at = (start as u32, self.tmp.len() as u32);
-        self.edge_busy.insert((r, e, soft), made(at, sched));
+        self.edge_busy.insert((r, e, soft), made(at, (0, 0), sched));
         at
     }
 }
@@ -283,9 +369,10 @@ fn gaps(busy: &[(f64, f64)], out: &mut Vec<(f64, f64)>) {
     }
 }
 
-fn made(at: (u32, u32), sched: &Schedule) -> Entry {
+fn made(at: (u32, u32), who: (u32, u32), sched: &Schedule) -> Entry {
     Entry {
         at,
+        who,
         made: sched.stamp(),
         checked: sched.stamp(),
     }
@@ -297,7 +384,7 @@ fn still(
     key: (usize, usize, bool),
     sched: &Schedule,
     set: &[Res],
-) -> Option<(u32, u32)> {
+) -> Option<Entry> {
     let e = map.get_mut(&key)?;
     if e.checked != sched.stamp() {
         if sched.changed_since(set, e.made) {
@@ -305,7 +392,7 @@ fn still(
         }
         e.checked = sched.stamp();
     }
-    Some(e.at)
+    Some(*e)
 }
 
 /// A search's buffers, kept between searches (cleared, not freed: a saturated run makes
