@@ -208,7 +208,8 @@ fn warehouse_scenario(rows: usize, cols: usize, robots: usize, minutes: usize) -
 /// 1,000 robots on a generated 10,000-waypoint warehouse (50 aisles of 200), tasks
 /// arriving faster than the fleet serves them: issue 35 asks for at least 10× real time
 /// over an hour with every robot busy. Not so yet: most plans are refused for long waits
-/// on the one way to the stations past the parked robots, and robots stay idle. `args`
+/// in the single-file two-way aisles, and robots stay idle (the dispatcher's budget of
+/// states searched per simulated second bounds the work). `args`
 /// are simulated minutes: one (about 10 s).
 #[divan::bench(args = [1], sample_count = 1, sample_size = 1)]
 fn warehouse_1000(bencher: Bencher, minutes: usize) {

@@ -116,6 +116,11 @@ impl Traffic {
         self.planner.plan(nav, &self.sched, &q)
     }
 
+    /// States the planner expanded so far, in every search.
+    pub(super) fn expanded(&self) -> u64 {
+        self.planner.expanded
+    }
+
     /// A plan that expanded `expanded` states was installed.
     fn planned(&mut self, expanded: usize) {
         self.decisions.push(expanded as u32);
