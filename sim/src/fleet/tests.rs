@@ -1012,6 +1012,19 @@ fn assignments(events: &[TaskEvent]) -> Vec<(&str, &str)> {
         .collect()
 }
 
+/// A go-to-place task at `at` to `place`, for `robot` only when named.
+fn go(at: f64, place: &str, robot: Option<&str>) -> TaskSpec {
+    TaskSpec {
+        robot: robot.map(str::to_string),
+        ..task(
+            at,
+            TaskKind::GoToPlace {
+                place: place.into(),
+            },
+        )
+    }
+}
+
 #[test]
 fn a_robot_task_goes_to_its_robot_only() {
     let b = cross();
@@ -1020,15 +1033,6 @@ fn a_robot_task_goes_to_its_robot_only() {
         2,
         SpawnSpec::Waypoints(vec!["park_w".into(), "park_e".into()]),
     );
-    let go = |at: f64, place: &str, robot: Option<&str>| TaskSpec {
-        robot: robot.map(str::to_string),
-        ..task(
-            at,
-            TaskKind::GoToPlace {
-                place: place.into(),
-            },
-        )
-    };
     // c_1 stands 3 m from e, c_0 13 m: without its robot named, c_1 would take it.
     let s = scenario(
         vec![c],
@@ -1336,15 +1340,6 @@ fn tasks_no_free_robot_may_take_do_not_hold_up_those_behind_them() {
         2,
         SpawnSpec::Waypoints(vec!["park_w".into(), "park_e".into()]),
     );
-    let go = |at: f64, place: &str, robot: Option<&str>| TaskSpec {
-        robot: robot.map(str::to_string),
-        ..task(
-            at,
-            TaskKind::GoToPlace {
-                place: place.into(),
-            },
-        )
-    };
     // c_0 is sent back and forth by 100 tasks of its own (more than a round looks at);
     // a task any robot may do comes after them: to park_e, where c_1 stands free.
     let mut tasks: Vec<TaskSpec> = (0..100)
