@@ -392,11 +392,10 @@ impl Fleets {
         for f in &free {
             d.was_free[f.0] = true;
         }
-        let mut budget = PLANS_PER_ROUND;
-        let d = &mut self.dispatcher;
         d.work = (d.work + (t - d.work_at) * WORK_PER_S).min(WORK_MAX);
         d.work_at = t;
         let work_before = self.traffic.expanded();
+        let mut budget = PLANS_PER_ROUND;
         let mut displaced = false;
         let mut k = 0;
         let mut scanned = 0;
@@ -547,10 +546,10 @@ impl Fleets {
                 }
             }
             let Some((_, ri, steps, plan, keep, t0)) = best else {
-                // Robots that found no way are planned for again next round: they may find
-                // one as soon as others make room.
                 // No free robot may do it (a robot task whose robot is busy), or every one
-                // that may is backed off: only time or a robot becoming free changes that.
+                // that may is backed off (those that found no way for `NO_WAY_BACKOFF`: they
+                // may find one as soon as others make room): only time or a robot becoming
+                // free changes that.
                 if refused.len() == looked_at {
                     let until = refused.iter().map(|r| r.1).fold(f64::INFINITY, f64::min);
                     self.dispatcher.pending[k].asleep = Some((until, self.dispatcher.freed));
