@@ -251,6 +251,7 @@ impl Cache {
         self.who
             .extend(set.iter().flat_map(|&x| sched.holders(x)).map(|r| r as u32));
         self.who[start..].sort_unstable();
+        // Duplicates out of the new entry's part only.
         let mut w = start;
         for i in start..self.who.len() {
             if w == start || self.who[i] != self.who[w - 1] {
@@ -263,96 +264,88 @@ impl Cache {
     }
 
     /// The safe intervals of vertex `v` for robot `r`.
-    fn intervals(&mut self, sched: &Schedule, (r, soft): (usize, bool), v: usize) -> (u32, u32) {
-        let set = &sched.conf().vertex[v];
-        // For everybody, unless `r` has spans there.
-        let shared = match still(&mut self.vertex_free, (ANYBODY, v, soft), sched, set) {
-            Some(e) => e,
-            None => {
-                merge_busy(sched, set, ANYBODY, soft, &mut self.tmp);
-                let start = self.arena.len();
-                gaps(&self.tmp, &mut self.arena);
-                let at = (start as u32, (self.arena.len() - start) as u32);
-                let who = self.robots_of(sched, set);
-                let e = made(at, who, sched);
-                self.vertex_free.insert((ANYBODY, v, soft), e);
-                e
-            }
-        };
-        if self.not_held_by(shared, r) {
-            #[cfg(debug_assertions)]
-            {
-                let (mut busy, mut free) = (Vec::new(), Vec::new());
-                merge_busy(sched, set, r, soft, &mut busy);
-                gaps(&busy, &mut free);
-                assert_eq!(
-                    self.get(shared.at),
-                    &free[..],
-                    "safe intervals of vertex {v}"
-                );
-            }
-            return shared.at;
-        }
-        if let Some(at) = still(&mut self.vertex_free, (r, v, soft), sched, set).map(|e| e.at) {
-            #[cfg(debug_assertions)]
-            {
-                let (mut busy, mut free) = (Vec::new(), Vec::new());
-                merge_busy(sched, set, r, soft, &mut busy);
-                gaps(&busy, &mut free);
-                assert_eq!(self.get(at), &free[..], "safe intervals kept of vertex {v}");
-            }
-            return at;
-        }
-        merge_busy(sched, set, r, soft, &mut self.tmp);
-        let start = self.arena.len();
-        gaps(&self.tmp, &mut self.arena);
-        let at = (start as u32, (self.arena.len() - start) as u32);
-        self.vertex_free
-            .insert((r, v, soft), made(at, (0, 0), sched));
-        at
+    fn intervals(&mut self, sched: &Schedule, rs: (usize, bool), v: usize) -> (u32, u32) {
+        self.kept(sched, rs, Kind::Vertex(v))
     }
 
     /// The others' merged busy intervals on edge `e`'s traversal set for robot `r`.
-    fn busy(&mut self, sched: &Schedule, (r, soft): (usize, bool), e: usize) -> (u32, u32) {
-        let set = &sched.conf().trav[e];
-        let shared = match still(&mut self.edge_busy, (ANYBODY, e, soft), sched, set) {
+    fn busy(&mut self, sched: &Schedule, rs: (usize, bool), e: usize) -> (u32, u32) {
+        self.kept(sched, rs, Kind::Edge(e))
+    }
+
+    /// The intervals of `kind` for robot `r`: those kept for everybody unless `r` has
+    /// spans there, else those kept for `r`; computed and kept when none hold.
+    fn kept(&mut self, sched: &Schedule, (r, soft): (usize, bool), kind: Kind) -> (u32, u32) {
+        let (set, id) = match kind {
+            Kind::Vertex(v) => (&sched.conf().vertex[v], v),
+            Kind::Edge(e) => (&sched.conf().trav[e], e),
+        };
+        let shared = match still(self.map(kind), (ANYBODY, id, soft), sched, set) {
             Some(x) => x,
             None => {
-                merge_busy(sched, set, ANYBODY, soft, &mut self.tmp);
-                let start = self.arena.len();
-                self.arena.extend_from_slice(&self.tmp);
-                let at = (start as u32, self.tmp.len() as u32);
+                let at = self.compute(sched, set, ANYBODY, soft, kind);
                 let who = self.robots_of(sched, set);
                 let x = made(at, who, sched);
-                self.edge_busy.insert((ANYBODY, e, soft), x);
+                self.map(kind).insert((ANYBODY, id, soft), x);
                 x
             }
         };
-        if self.not_held_by(shared, r) {
-            #[cfg(debug_assertions)]
-            {
-                let mut busy = Vec::new();
-                merge_busy(sched, set, r, soft, &mut busy);
-                assert_eq!(self.get(shared.at), &busy[..], "busy intervals of edge {e}");
-            }
-            return shared.at;
-        }
-        if let Some(at) = still(&mut self.edge_busy, (r, e, soft), sched, set).map(|x| x.at) {
-            #[cfg(debug_assertions)]
-            {
-                let mut busy = Vec::new();
-                merge_busy(sched, set, r, soft, &mut busy);
-                assert_eq!(self.get(at), &busy[..], "busy intervals kept of edge {e}");
-            }
+        let at = if self.not_held_by(shared, r) {
+            shared.at
+        } else if let Some(x) = still(self.map(kind), (r, id, soft), sched, set) {
+            x.at
+        } else {
+            let at = self.compute(sched, set, r, soft, kind);
+            self.map(kind)
+                .insert((r, id, soft), made(at, (0, 0), sched));
             return at;
+        };
+        #[cfg(debug_assertions)]
+        {
+            let (mut busy, mut fresh) = (Vec::new(), Vec::new());
+            merge_busy(sched, set, r, soft, &mut busy);
+            match kind {
+                Kind::Vertex(_) => gaps(&busy, &mut fresh),
+                Kind::Edge(_) => fresh = busy,
+            }
+            assert_eq!(self.get(at), &fresh[..], "intervals kept of {kind:?}");
         }
-        merge_busy(sched, set, r, soft, &mut self.tmp);
-        let start = self.arena.len();
-        self.arena.extend_from_slice(&self.tmp);
-        let at = (start as u32, self.tmp.len() as u32);
-        self.edge_busy.insert((r, e, soft), made(at, (0, 0), sched));
         at
     }
+
+    /// The kept entries of `kind`'s intervals.
+    fn map(&mut self, kind: Kind) -> &mut Map<(usize, usize, bool), Entry> {
+        match kind {
+            Kind::Vertex(_) => &mut self.vertex_free,
+            Kind::Edge(_) => &mut self.edge_busy,
+        }
+    }
+
+    /// Computes the intervals of `kind` on `set` for robot `r` into the arena.
+    fn compute(
+        &mut self,
+        sched: &Schedule,
+        set: &[Res],
+        r: usize,
+        soft: bool,
+        kind: Kind,
+    ) -> (u32, u32) {
+        merge_busy(sched, set, r, soft, &mut self.tmp);
+        let start = self.arena.len();
+        match kind {
+            Kind::Vertex(_) => gaps(&self.tmp, &mut self.arena),
+            Kind::Edge(_) => self.arena.extend_from_slice(&self.tmp),
+        }
+        (start as u32, (self.arena.len() - start) as u32)
+    }
+}
+
+/// What intervals are kept of: the safe intervals of a vertex's standing set, or the
+/// busy intervals of an edge's traversal set.
+#[derive(Debug, Clone, Copy)]
+enum Kind {
+    Vertex(usize),
+    Edge(usize),
 }
 
 /// The gaps between sorted disjoint `busy` intervals, appended to `out`.
