@@ -64,8 +64,11 @@ const MAX_BACKOFF: f64 = 60.0;
 /// (s).
 type Free = (usize, usize, f64);
 
-/// Free-flow time tables to places kept (each a float per vertex).
+/// Free-flow time tables to places kept (each a float per vertex): at least this many, and
+/// as many as fit in `ETA_TABLE_FLOATS` (a warehouse's thousand racks each made again and
+/// again when all were dropped at 512).
 const ETA_TABLES: usize = 512;
+const ETA_TABLE_FLOATS: usize = 16 << 20;
 
 /// A task in the queue.
 struct Pending {
@@ -227,7 +230,8 @@ impl Dispatcher {
     fn eta(&mut self, nav: &Nav, fleet: &FleetRt, goal: usize, f: &Free) -> f64 {
         let key = (fleet.slot, fleet.speed.to_bits(), goal);
         if !self.eta_tables.contains_key(&key) {
-            if self.eta_tables.len() >= ETA_TABLES {
+            if self.eta_tables.len() >= ETA_TABLES.max(ETA_TABLE_FLOATS / nav.vertices.len().max(1))
+            {
                 self.eta_tables.clear();
             }
             let table = nav.times_to(fleet.slot, goal, fleet.speed);

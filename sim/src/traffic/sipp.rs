@@ -23,8 +23,11 @@ type Map<K, V> = std::collections::HashMap<K, V, foldhash::fast::FixedState>;
 
 /// Bound on the search (states expanded) of one plan.
 const MAX_EXPANSIONS: usize = 200_000;
-/// Distance tables to goals kept between plans (each a float per vertex).
+/// Distance tables to goals kept between plans (each a float per vertex): at least this
+/// many, and as many as fit in `GOAL_TABLE_FLOATS` (a warehouse has a thousand racks, and
+/// dropping them all each time 512 were kept made tables again and again).
 const GOAL_TABLES: usize = 512;
+const GOAL_TABLE_FLOATS: usize = 16 << 20;
 /// Extra cost (s) of ending on a parking vertex that is a task place: another robot's task
 /// may need it (and send the robot parked there away).
 const PLACE_PENALTY: f64 = 60.0;
@@ -403,8 +406,9 @@ pub struct Planner {
     inn: Vec<Vec<Vec<usize>>>,
     /// Per edge: its heading (rad), for turning times.
     heading: Vec<f64>,
-    /// Time to the nearest parking vertex, per (slot, speed bits, parking vertices' hash).
-    park_dist: Map<(usize, u64, u64), Vec<f64>>,
+    /// Time to the nearest free parking vertex, per (slot, speed bits, whether places
+    /// count), repaired as parks are taken and left.
+    park_dist: Map<(usize, u64, bool), nearest::Nearest>,
     /// Time to a goal, per (slot, speed bits, goal vertex): tasks go to the same places
     /// again and again.
     goal_dist: Map<(usize, u64, usize), Vec<f64>>,
@@ -522,8 +526,9 @@ impl Planner {
         let conf = sched.conf();
         // The parking vertices the plan may end on: those nobody else stays on for good
         // (a heuristic towards taken ones sends the search round every vertex of a large
-        // building before it gives up on them). Keyed by that set: making room plans with
-        // other sets of them, and robots park and leave.
+        // building before it gives up on them). The table of times to them is repaired
+        // from the last plan's set: robots park and leave, making room plans with other
+        // sets of them.
         let parks: Vec<usize> = (0..nav.vertices.len())
             .filter(|&v| {
                 (q.parks[v] == PARK || places && q.parks[v] == PARK_ON_PLACE)
@@ -532,22 +537,23 @@ impl Planner {
                         .all(|&x| sched.held_for_good(x, q.robot, false).is_none())
             })
             .collect();
-        let key = (q.slot, q.kin.speed.to_bits(), {
-            use std::hash::{Hash, Hasher};
-            let mut h = std::collections::hash_map::DefaultHasher::new();
-            parks.hash(&mut h);
-            h.finish()
-        });
-        if !self.park_dist.contains_key(&key) {
-            if self.park_dist.len() >= 64 {
-                self.park_dist.clear();
-            }
-            let d = self.dist_to(nav, q.slot, &q.kin, &parks);
-            self.park_dist.insert(key, d);
-        }
+        let key = (q.slot, q.kin.speed.to_bits(), places);
+        self.park_dist
+            .entry(key)
+            .or_insert_with(|| nearest::Nearest::new(nav.vertices.len()))
+            .update(nav, &self.inn[q.slot], &nav.out[q.slot], &q.kin, &parks);
+        debug_assert!(
+            self.park_dist[&key]
+                .d
+                .iter()
+                .zip(&self.dist_to(nav, q.slot, &q.kin, &parks))
+                .all(|(a, b)| a.to_bits() == b.to_bits()),
+            "repaired park times differ from computed ones"
+        );
         let nl = q.goals.len();
         // Bounded memory: a few hundred places' tables (each a float per vertex).
-        if self.goal_dist.len() + nl + 1 > GOAL_TABLES {
+        let most = GOAL_TABLES.max(GOAL_TABLE_FLOATS / nav.vertices.len().max(1));
+        if self.goal_dist.len() + nl + 1 > most {
             self.goal_dist.clear();
         }
         for g in q.goals.iter().map(|g| g.0).chain(q.stay) {
@@ -557,7 +563,7 @@ impl Planner {
                 self.goal_dist.insert(gk, d);
             }
         }
-        let park_dist = &self.park_dist[&key];
+        let park_dist = &self.park_dist[&key].d;
         let table = |g: usize| &self.goal_dist[&(q.slot, q.kin.speed.to_bits(), g)];
         // h(v, label): to the goal of `label`, then through the rest, then to a park.
         let dist: Vec<&Vec<f64>> = q.goals.iter().map(|&(g, _)| table(g)).collect();
@@ -845,5 +851,6 @@ fn unwind(nav: &Nav, nodes: &[Node], mut id: usize, nl: usize, expanded: usize) 
     }
 }
 
+mod nearest;
 #[cfg(test)]
 mod tests;
