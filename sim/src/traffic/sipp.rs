@@ -551,7 +551,7 @@ impl Planner {
             "repaired park times differ from computed ones"
         );
         let nl = q.goals.len();
-        // Bounded memory: a few hundred places' tables (each a float per vertex).
+        // Bounded memory (`GOAL_TABLES`): dropped all at once when full.
         let most = GOAL_TABLES.max(GOAL_TABLE_FLOATS / nav.vertices.len().max(1));
         if self.goal_dist.len() + nl + 1 > most {
             self.goal_dist.clear();
