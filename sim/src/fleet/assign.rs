@@ -23,7 +23,7 @@
 
 use super::traffic::GRAPH_PARKS;
 use super::*;
-use crate::traffic::sipp::{Plan, Query};
+use crate::traffic::sipp::{Delay, Plan, Query};
 
 /// States the dispatcher's searches may expand per simulated second, and at most at once:
 /// its computing budget, as a real dispatcher has one (the League of Robot Runners plans
@@ -43,6 +43,15 @@ const SCAN_PER_ROUND: usize = 64;
 const MAX_PLANNED_WAIT: f64 = 50.0;
 /// The share of a plan's length (to its last place) it may wait on top of that.
 const WAIT_SHARE: f64 = 0.25;
+/// How late a task plan may reach its last place for the search to look for it: twice the
+/// delay over its free-flow time F that a plan on its free-flow route may wait (W ≤ 50 +
+/// ¼ (F + W) is W ≤ (50 + ¼ F) / ¾). A plan later than that waits past its bound by
+/// `MAX_BACKOFF` or more unless it drives a long detour: searched to its end only to be
+/// refused, such plans were half the airport's searching.
+const SEARCH_DELAY: Delay = Delay {
+    fixed: 2.0 * MAX_PLANNED_WAIT / (1.0 - WAIT_SHARE),
+    share: 2.0 * WAIT_SHARE / (1.0 - WAIT_SHARE),
+};
 /// No plan a task takes stands still for longer than this in one place (s), well under
 /// the 300 s after which a robot with a task counts as stuck (`report::STUCK_AFTER`).
 const LONGEST_WAIT: f64 = 180.0;
@@ -125,9 +134,35 @@ pub(super) struct Dispatcher {
     /// and when it was last refilled.
     work: f64,
     work_at: f64,
-    /// Plans refused (or that found no way), by what they were a plan of: until when
-    /// planning the same again cannot succeed, and whether it found no way.
-    same: BTreeMap<Same, (f64, bool)>,
+    /// Plans refused (or that found no way, or were undone), by what they were a plan of:
+    /// until when planning the same again cannot succeed, and why.
+    same: BTreeMap<Same, (f64, Refused)>,
+}
+
+/// Why a plan was not taken.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Refused {
+    /// It found no way at any time.
+    NoWay,
+    /// It would wait too long for traffic.
+    Late,
+    /// It went through another robot's way to parking, and that robot found no way behind
+    /// it.
+    Undone,
+}
+
+/// The best plan for a task so far: when it gets to the first place, its robot and the
+/// task's steps for it, the plan and where it starts (after `keep` traversals, at `t0`),
+/// whether it goes through soft spans, and what it is a plan of.
+struct Best {
+    arrive: f64,
+    robot: usize,
+    steps: Vec<Step>,
+    plan: Plan,
+    keep: usize,
+    t0: f64,
+    soft: bool,
+    same: Same,
 }
 
 /// What a plan is a plan of: the robot, where it starts, whether it may go through the
@@ -449,8 +484,8 @@ impl Fleets {
                 .map(|(_, c)| c)
                 .collect();
             // Task plans go through the others' ways to parking (see `schedule`).
-            let soft = !self.dispatcher.pending[k].hard;
-            let mut best: Option<(f64, usize, Vec<Step>, Plan, usize, f64)> = None;
+            let task_soft = !self.dispatcher.pending[k].hard;
+            let mut best: Option<Best> = None;
             let mut failed = false;
             let looked_at = near.len();
             // Robots whose plans for it waited too long now and will, planned again.
@@ -474,13 +509,20 @@ impl Fleets {
                     .then(|| goals.last().map(|g| g.0))
                     .flatten();
                 let (keep, from, t0) = self.plan_start(ri, t);
+                // The same plan through soft spans was undone for another task (a robot it
+                // went before found no way behind it): this one keeps clear of them. With
+                // a few places and a saturating stream, one task after another was
+                // planned, installed and undone while robots stood idle.
+                let undone = Same::new(ri, from, true, stay, &goals);
+                let soft = task_soft
+                    && !matches!(self.dispatcher.same.get(&undone), Some(&(until, Refused::Undone)) if t < until);
                 // The same plan (robot, start, places) was refused for another task: the
                 // reason above holds for it too (a saturating stream queues many tasks
                 // between the same places).
                 let same = Same::new(ri, from, soft, stay, &goals);
-                if let Some(&(until, no_way)) = self.dispatcher.same.get(&same) {
-                    if t < until {
-                        failed |= no_way;
+                if let Some(&(until, why)) = self.dispatcher.same.get(&same) {
+                    if t < until && why != Refused::Undone {
+                        failed |= why == Refused::NoWay;
                         refused.push((ri, until));
                         continue;
                     }
@@ -499,10 +541,11 @@ impl Fleets {
                     refused.push((ri, t + NO_WAY_BACKOFF));
                     self.dispatcher
                         .same
-                        .insert(same, (t + NO_WAY_BACKOFF, true));
+                        .insert(same, (t + NO_WAY_BACKOFF, Refused::NoWay));
                     continue;
                 }
                 let mut found = None;
+                let mut late = false;
                 for (own, stay) in self.ends(ri, &goals, from, stay) {
                     let q = Query {
                         robot: ri,
@@ -514,42 +557,69 @@ impl Fleets {
                         parks: own.as_deref().unwrap_or(GRAPH_PARKS),
                         stay,
                         soft,
+                        delay: Some(SEARCH_DELAY),
                     };
                     found = self.traffic.plan(&self.nav, q);
                     if found.is_some() {
                         break;
                     }
+                    late |= self.traffic.late();
                 }
-                let Some(plan) = found else {
-                    failed = true;
-                    refused.push((ri, t + NO_WAY_BACKOFF));
-                    self.dispatcher
-                        .same
-                        .insert(same, (t + NO_WAY_BACKOFF, true));
+                let over = match &found {
+                    // Every way there is later than the search looks: refused for long.
+                    None if late => MAX_BACKOFF,
+                    None => {
+                        failed = true;
+                        refused.push((ri, t + NO_WAY_BACKOFF));
+                        self.dispatcher
+                            .same
+                            .insert(same, (t + NO_WAY_BACKOFF, Refused::NoWay));
+                        continue;
+                    }
+                    // Long tasks may wait longer in all: a share of their length. No single
+                    // wait as long as the stand-still a report calls stuck, however long
+                    // the task: a robot with a task keeps moving.
+                    Some(plan) => {
+                        let last = plan.goal_at.last().copied().unwrap_or(0);
+                        let length = last.checked_sub(1).map_or(0.0, |k| plan.steps[k].end - t0);
+                        (planned_wait(plan, t0) - (MAX_PLANNED_WAIT + WAIT_SHARE * length))
+                            .max(longest_wait(plan, t0) - LONGEST_WAIT)
+                    }
+                };
+                let Some(plan) = found.filter(|_| over <= 0.0) else {
+                    let until = t + over.clamp(DISPATCH_EVERY, MAX_BACKOFF);
+                    refused.push((ri, until));
+                    self.dispatcher.same.insert(same, (until, Refused::Late));
                     continue;
                 };
                 let arrive = match plan.goal_at.first() {
                     Some(&0) | None => t0,
                     Some(&n) => plan.steps[n - 1].end,
                 };
-                // Long tasks may wait longer in all: a share of their length.
-                let last = plan.goal_at.last().copied().unwrap_or(0);
-                let length = last.checked_sub(1).map_or(0.0, |k| plan.steps[k].end - t0);
-                // No single wait as long as the stand-still a report calls stuck, however
-                // long the task: a robot with a task keeps moving.
-                let over = (planned_wait(&plan, t0) - (MAX_PLANNED_WAIT + WAIT_SHARE * length))
-                    .max(longest_wait(&plan, t0) - LONGEST_WAIT);
-                if over > 0.0 {
-                    let until = t + over.clamp(DISPATCH_EVERY, MAX_BACKOFF);
-                    refused.push((ri, until));
-                    self.dispatcher.same.insert(same, (until, false));
-                    continue;
-                }
-                if best.as_ref().is_none_or(|b| arrive < b.0) {
-                    best = Some((arrive, ri, steps, plan, keep, t0));
+                if best.as_ref().is_none_or(|b| arrive < b.arrive) {
+                    best = Some(Best {
+                        arrive,
+                        robot: ri,
+                        steps,
+                        plan,
+                        keep,
+                        t0,
+                        soft,
+                        same,
+                    });
                 }
             }
-            let Some((_, ri, steps, plan, keep, t0)) = best else {
+            let Some(Best {
+                robot: ri,
+                steps,
+                plan,
+                keep,
+                t0,
+                soft,
+                same,
+                ..
+            }) = best
+            else {
                 // No free robot may do it (a robot task whose robot is busy), or every one
                 // that may is backed off (those that found no way for `NO_WAY_BACKOFF`: they
                 // may find one as soon as others make room): only time or a robot becoming
@@ -588,6 +658,9 @@ impl Fleets {
             if !self.start_task(ri, ti, steps, plan, (keep, t0, soft_at), t, out) {
                 // A robot it went before on its way to parking found no way behind it.
                 self.dispatcher.pending[k].hard = true;
+                self.dispatcher
+                    .same
+                    .insert(same, (t + MAX_BACKOFF, Refused::Undone));
                 k += 1;
                 continue;
             }

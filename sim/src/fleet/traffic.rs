@@ -116,6 +116,11 @@ impl Traffic {
         self.planner.plan(nav, &self.sched, &q)
     }
 
+    /// Whether the last plan failed only for its delay bound (a later one may exist).
+    pub(super) fn late(&self) -> bool {
+        self.planner.late
+    }
+
     /// States the planner expanded so far, in every search.
     pub(super) fn expanded(&self) -> u64 {
         self.planner.expanded
@@ -340,6 +345,7 @@ impl Fleets {
                 parks: own.as_deref().unwrap_or(GRAPH_PARKS),
                 stay,
                 soft: false,
+                delay: None,
             };
             if let Some(plan) = self.traffic.plan(&self.nav, q) {
                 let soft = plan.goal_at.last().copied();
@@ -695,6 +701,7 @@ impl Fleets {
                 parks: own.as_deref().or(parks).unwrap_or(GRAPH_PARKS),
                 stay: *stay,
                 soft: false,
+                delay: None,
             };
             found = self.traffic.plan(&self.nav, q);
             if found.is_some() {

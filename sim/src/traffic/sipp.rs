@@ -141,6 +141,19 @@ pub struct Query<'a> {
     /// Plan through the others' soft spans (their ways to parking while their tasks go
     /// on: see `schedule`), but not to stay for good where one is.
     pub soft: bool,
+    /// How late the plan may reach its last place (see [`Delay`]); None: any time.
+    pub delay: Option<Delay>,
+}
+
+/// A bound on how late a plan reaches its last place: by `t0 + F + fixed + share · F`,
+/// where F is its free-flow time there (the search's lower bound, dwells included). The
+/// search keeps to it: it does not look at states that cannot arrive in time, so a task
+/// that cannot be served soon costs only the states that could (searched to their end and
+/// refused after, such plans were half of the saturated airport's searching).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Delay {
+    pub fixed: f64,
+    pub share: f64,
 }
 
 /// A plan: its steps, and after how many steps each goal is reached.
@@ -423,6 +436,8 @@ pub struct Planner {
     pub expanded: u64,
     /// Why the last plan failed (for debugging).
     pub why: &'static str,
+    /// The last plan failed for its [`Delay`]: ways later than it were not searched.
+    pub late: bool,
     /// When set, the wall-clock time (s) of every plan, for benchmarks.
     pub times: Option<Vec<f64>>,
 }
@@ -451,6 +466,7 @@ impl Planner {
             failed: 0,
             expanded: 0,
             why: "",
+            late: false,
             times: None,
         }
     }
@@ -484,6 +500,7 @@ impl Planner {
     /// be parked on (a robot there blocks the tasks going there until it is sent away).
     pub fn plan(&mut self, nav: &Nav, sched: &Schedule, q: &Query) -> Option<Plan> {
         self.plans += 1;
+        self.late = false;
         let started = self.times.is_some().then(std::time::Instant::now);
         let plan = self.search(nav, sched, q, false).or_else(|| {
             let any_place = q.parks.contains(&PARK_ON_PLACE);
@@ -597,6 +614,20 @@ impl Planner {
             self.why = "unreachable";
             return None;
         }
+        // The latest a state may reach the last place at, and how much of `h` comes after
+        // it (to a park, and the dwell there).
+        let after_last = q
+            .goals
+            .last()
+            .map_or(0.0, |&(g, dwell)| dwell + end_dist[g]);
+        let deadline = match (q.delay, nl) {
+            (Some(d), 1..) => {
+                let free = h(q.from, 0) - after_last;
+                q.t0 + free + d.fixed + d.share * free
+            }
+            _ => f64::INFINITY,
+        };
+        let mut late = false;
         let r = q.robot;
         let rs = (r, q.soft);
         let iv0 = cache.intervals(sched, rs, q.from);
@@ -666,6 +697,10 @@ impl Planner {
                 if !hv.is_finite() {
                     return;
                 }
+                if node.label < nl && node.t + hv - after_last > deadline {
+                    late = true;
+                    return;
+                }
                 best.insert(k, node.t);
                 nodes.push(node);
                 open.push(Open(node.t + hv, node.t, nodes.len() - 1));
@@ -733,6 +768,9 @@ impl Planner {
         self.expanded += expanded as u64;
         self.why = if expanded > MAX_EXPANSIONS {
             "search bound"
+        } else if late {
+            self.late = true;
+            "late"
         } else {
             "no way"
         };

@@ -23,6 +23,7 @@ fn query<'a>(robot: usize, from: usize, goals: &'a [(usize, f64)], parks: &'a [u
         parks,
         stay: None,
         soft: false,
+        delay: None,
     }
 }
 
@@ -108,6 +109,63 @@ fn it_waits_for_a_robot_planned_through_first() {
         plan0.steps.first().is_some_and(|s| s.start > 0.0),
         "it waits at a: {plan0:?}"
     );
+}
+
+#[test]
+fn a_delay_bound_keeps_the_search_to_ways_that_arrive_in_time() {
+    let nav = nav();
+    let conf = conflicts(&nav);
+    let mut sched = Schedule::new(conf, &[v(&nav, "a"), v(&nav, "d")], 0.0);
+    let mut planner = Planner::new(&nav);
+    let p = parks(&nav, &["p1", "p2", "a", "d"]);
+    // Robot 1 comes down the corridor to p1: robot 0 cannot reach d before it has passed.
+    let goals_q1 = [(v(&nav, "p1"), 0.0)];
+    let plan1 = planner
+        .plan(&nav, &sched, &query(1, v(&nav, "d"), &goals_q1, &p))
+        .expect("robot 1 plans");
+    sched.install(1, 0, &plan1.steps, 0.0, None);
+    let goals = [(v(&nav, "d"), 0.0)];
+    let free = 3.0 * 10.5; // a→d free-flow: three 4 m lanes, no turn
+    let unbounded = planner
+        .plan(&nav, &sched, &query(0, v(&nav, "a"), &goals, &p))
+        .expect("robot 0 plans");
+    let at_d = |plan: &Plan| plan.steps[plan.goal_at[0] - 1].end;
+    let late = at_d(&unbounded) - free;
+    assert!(late > 10.0, "robot 0 waits for robot 1: {unbounded:?}");
+    assert!(!planner.late);
+    // A bound tighter than that delay: no plan, and the planner says it was the bound.
+    let tight = Query {
+        delay: Some(Delay {
+            fixed: late - 5.0,
+            share: 0.0,
+        }),
+        ..query(0, v(&nav, "a"), &goals, &p)
+    };
+    let expanded = planner.expanded;
+    assert!(planner.plan(&nav, &sched, &tight).is_none());
+    assert!(planner.late);
+    assert!(planner.expanded - expanded <= unbounded.expanded as u64);
+    // A bound that holds it (the share counts the free-flow time): the same plan.
+    let loose = Query {
+        delay: Some(Delay {
+            fixed: late - free / 2.0 + 1e-6,
+            share: 0.5,
+        }),
+        ..query(0, v(&nav, "a"), &goals, &p)
+    };
+    assert_eq!(planner.plan(&nav, &sched, &loose), Some(unbounded));
+    assert!(!planner.late);
+    // No way at all is not lateness: nothing after the one-way lane to e to park on.
+    let to_e = [(v(&nav, "e"), 0.0)];
+    let no_way = Query {
+        delay: Some(Delay {
+            fixed: 0.0,
+            share: 0.0,
+        }),
+        ..query(0, v(&nav, "a"), &to_e, &p)
+    };
+    assert!(planner.plan(&nav, &sched, &no_way).is_none());
+    assert!(!planner.late);
 }
 
 #[test]
