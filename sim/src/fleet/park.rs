@@ -221,6 +221,36 @@ fn task_places(nav: &Nav, scenario: &Scenario) -> Vec<Vec<bool>> {
     required_of(nav, scenario, &[], false)
 }
 
+/// Per graph slot: the legs tasks drive, from each place to the next in the task's order
+/// (and from the last back to the first when it goes round more than once), deduplicated.
+fn task_legs(nav: &Nav, scenario: &Scenario) -> Vec<Vec<(usize, usize)>> {
+    (0..nav.graphs.len())
+        .map(|slot| {
+            let mut legs = std::collections::BTreeSet::new();
+            for (kind, _, _) in task_kinds(scenario) {
+                let vs: Vec<usize> = kind
+                    .places()
+                    .into_iter()
+                    .filter_map(|name| nav.find(slot, name))
+                    .collect();
+                for w in vs.windows(2) {
+                    legs.insert((w[0], w[1]));
+                }
+                let again = match kind {
+                    TaskKind::Loop { loops, .. } => *loops > 1,
+                    TaskKind::Patrol { rounds, .. } => *rounds > 1,
+                    _ => false,
+                };
+                if let (true, Some(&first), Some(&last)) = (again, vs.first(), vs.last()) {
+                    legs.insert((last, first));
+                }
+            }
+            legs.retain(|&(a, z)| a != z);
+            legs.into_iter().collect()
+        })
+        .collect()
+}
+
 /// The parking vertices for `robots` robots per slot (and spares), around what the
 /// scenario needs.
 pub(super) fn choose_parks(
@@ -235,6 +265,7 @@ pub(super) fn choose_parks(
     // task places of the second kind.
     let places = required_of(nav, scenario, spawns, true);
     let tasks = task_places(nav, scenario);
+    let legs = task_legs(nav, scenario);
     let want: Vec<usize> = robots.iter().map(|&n| 2 * n + 4).collect();
     let homes = wanted_homes(nav, scenario);
     parks::choose(
@@ -244,6 +275,7 @@ pub(super) fn choose_parks(
             required: &req,
             places: &places,
             tasks: &tasks,
+            legs: &legs,
             want: &want,
             homes: &homes,
         },

@@ -52,6 +52,9 @@ pub struct Needs<'a> {
     /// second kind ([`PARK_ON_PLACE`]); a charger or spawn point no task names is a
     /// [`PARK`] (a robot parked there is sent elsewhere when one comes to charge).
     pub tasks: &'a [Vec<bool>],
+    /// Per slot: the legs tasks drive (from one place to the next, in a task's order),
+    /// whose routes parks should keep clear of; empty: every place to every other.
+    pub legs: &'a [Vec<(usize, usize)>],
     /// At most this many parking vertices per slot (enough for the robots and spares).
     pub want: &'a [usize],
     /// (slot, vertex) asked for as [`PARK_HOME`]s, tried in this order before the slot's
@@ -214,7 +217,21 @@ pub fn choose(nav: &Nav, conf: &Conflicts, needs: &Needs) -> Parks {
             .iter()
             .map(|&v| nav.out[s][v].len())
             .sum::<usize>();
-        let search_cost = targets.len().min(through::SOURCES) * n_edges.max(1);
+        // Routes counted: those of the legs tasks drive, else between every two places
+        // (with a saturating stream between racks and stations, parks beside the stations
+        // were on no route between racks, and walled the stations in).
+        let legs: Vec<(usize, usize)> = needs
+            .legs
+            .get(s)
+            .map(|l| {
+                l.iter()
+                    .copied()
+                    .filter(|&(a, z)| required(s, a) && required(s, z))
+                    .collect()
+            })
+            .unwrap_or_default();
+        let flows = through::flows(&targets, &legs);
+        let search_cost = flows.len() * n_edges.max(1);
         // Homes asked for first, on the same terms (but they may be required vertices).
         let homes: Vec<(usize, bool)> = needs
             .homes
@@ -254,7 +271,7 @@ pub fn choose(nav: &Nav, conf: &Conflicts, needs: &Needs) -> Parks {
                     let ed = &nav.edges[e];
                     !blocked[e] && !absorbed[ed.from] && !absorbed[ed.to]
                 };
-                let pass = through::through(nav, s, &slots[s].inn, &targets, &usable);
+                let pass = through::through(nav, s, &slots[s].inn, &flows, &usable);
                 // A robot standing on v blocks its standing room too.
                 let score = |v: usize| -> f64 {
                     let mut room: Vec<usize> = conf.vertex[v]

@@ -31,6 +31,7 @@ fn choose_among(
             required: places,
             places,
             tasks,
+            legs: &[],
             want: &[want],
             homes,
         },
@@ -217,5 +218,84 @@ fn parks_go_where_the_fewest_routes_between_places_pass() {
             !(p.1 == 0.0 && p.0 > 0.0 && p.0 < 6.0),
             "parked on the short way: {taken:?}"
         );
+    }
+}
+
+/// A floor of 4 × 12 waypoints (2 m × 3 m, each joined to its four neighbours) with a
+/// station at the west end of every row and racks in its middle and at its east end.
+fn floor_nav() -> crate::graph::Nav {
+    let (rows, cols) = (4, 12);
+    let mut y = String::from(
+        "coordinate_system: cartesian_meters\nname: floor\nlevels:\n  L1:\n    elevation: 0\n    vertices:\n",
+    );
+    for r in 0..rows {
+        for c in 0..cols {
+            let name = match c {
+                0 => format!("station_{r}"),
+                6 => format!("mid_{r}"),
+                11 => format!("end_{r}"),
+                _ => String::new(),
+            };
+            y += &format!("      - [{}, {}, 0, \"{name}\"]\n", 2 * c, 3 * r);
+        }
+    }
+    y += "    lanes:\n";
+    let lane = "{bidirectional: [4, true], graph_idx: [2, 0]}";
+    for r in 0..rows {
+        for c in 0..cols {
+            let v = r * cols + c;
+            if c + 1 < cols {
+                y += &format!("      - [{v}, {}, {lane}]\n", v + 1);
+            }
+            if r + 1 < rows {
+                y += &format!("      - [{v}, {}, {lane}]\n", v + cols);
+            }
+        }
+    }
+    let parsed = mapc_frontend::parse_str("floor.building.yaml", &y);
+    crate::graph::Nav::build(parsed.valid_building().expect("floor loads"), &[0])
+}
+
+#[test]
+fn parks_keep_off_the_routes_tasks_drive_not_only_those_between_places() {
+    let nav = floor_nav();
+    let conf = conflicts(&nav);
+    let n = nav.vertices.len();
+    let mut places = vec![vec![false; n]];
+    let mut legs = vec![Vec::new()];
+    for r in 0..4 {
+        let station = v(&nav, &format!("station_{r}"));
+        places[0][station] = true;
+        for rack in [format!("mid_{r}"), format!("end_{r}")] {
+            let rack = v(&nav, &rack);
+            places[0][rack] = true;
+            // Every rack to every station: the stream a warehouse's pickers drive.
+            for s in 0..4 {
+                legs[0].push((rack, v(&nav, &format!("station_{s}"))));
+            }
+        }
+    }
+    let parks = choose(
+        &nav,
+        &conf,
+        &Needs {
+            required: &places,
+            places: &places,
+            tasks: &places,
+            legs: &legs,
+            want: &[8],
+            homes: &[],
+        },
+    );
+    let taken: Vec<(f64, f64)> = (0..n)
+        .filter(|&x| parks.per_slot[0][x] != 0)
+        .map(|x| (nav.vertices[x].pos.x, nav.vertices[x].pos.y))
+        .collect();
+    assert_eq!(taken.len(), 8, "{taken:?}");
+    // Every route from a rack to a station ends in the west columns. Counted between every
+    // two places instead, the routes between racks fill the middle and the columns beside
+    // the stations look free: parks there wall the stations in.
+    for p in &taken {
+        assert!(p.0 > 12.0, "parked on the way to the stations: {taken:?}");
     }
 }

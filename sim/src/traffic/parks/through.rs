@@ -11,30 +11,47 @@ use std::collections::BinaryHeap;
 /// Places searched from, at most (the others are still targets).
 pub(super) const SOURCES: usize = 48;
 
-/// Per vertex: the (fractional) number of shortest routes from a place to another place of
-/// graph slot `s` that pass through it, on the edges `usable` accepts. `inn[v]`: the slot's
-/// edges into `v`.
+/// The routes to count: each source with the places routes go to from it. The places tasks
+/// go between (`legs`, from → to, each task's places in order), else every place to every
+/// other; at most [`SOURCES`] sources, spread evenly over them.
+pub(super) fn flows(places: &[usize], legs: &[(usize, usize)]) -> Vec<(usize, Vec<usize>)> {
+    let all: Vec<(usize, Vec<usize>)> = if legs.is_empty() {
+        places.iter().map(|&p| (p, places.to_vec())).collect()
+    } else {
+        let mut by: std::collections::BTreeMap<usize, Vec<usize>> = Default::default();
+        for &(a, z) in legs {
+            by.entry(a).or_default().push(z);
+        }
+        by.into_iter().collect()
+    };
+    let stride = all.len().div_ceil(SOURCES).max(1);
+    all.into_iter().step_by(stride).collect()
+}
+
+/// Per vertex: the (fractional) number of shortest routes of `flows` (see [`flows`]) on graph
+/// slot `s` that pass through it, on the edges `usable` accepts. `inn[v]`: the slot's edges
+/// into `v`.
 pub(super) fn through(
     nav: &Nav,
     s: usize,
     inn: &[Vec<usize>],
-    places: &[usize],
+    flows: &[(usize, Vec<usize>)],
     usable: &dyn Fn(usize) -> bool,
 ) -> Vec<f64> {
     let n = nav.vertices.len();
     let mut out = vec![0.0; n];
     let mut target = vec![false; n];
-    for &p in places {
-        target[p] = true;
-    }
-    let stride = places.len().div_ceil(SOURCES).max(1);
     let cost = |e: usize| nav.edge_cost(e, 1.0);
     let mut dist = vec![f64::INFINITY; n];
     let mut sigma = vec![0.0f64; n];
     let mut delta = vec![0.0f64; n];
     let mut settled: Vec<usize> = Vec::new();
     let mut heap = BinaryHeap::new();
-    for &src in places.iter().step_by(stride) {
+    for (src, targets) in flows {
+        let src = *src;
+        for &p in targets {
+            target[p] = true;
+        }
         for &v in &settled {
             (dist[v], sigma[v], delta[v]) = (f64::INFINITY, 0.0, 0.0);
         }
@@ -80,6 +97,9 @@ pub(super) fn through(
             if w != src {
                 out[w] += delta[w];
             }
+        }
+        for &p in targets {
+            target[p] = false;
         }
     }
     out
@@ -132,7 +152,7 @@ mod tests {
         }
         let v = |n: &str| nav.find(s, n).unwrap();
         let places = [v("a"), v("d")];
-        let t = through(&nav, s, &inn, &places, &|_| true);
+        let t = through(&nav, s, &inn, &flows(&places, &[]), &|_| true);
         // a ↔ d both ways, each through b and c only.
         assert_eq!(t[v("b")], 2.0);
         assert_eq!(t[v("c")], 2.0);
