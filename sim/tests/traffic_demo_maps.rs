@@ -17,7 +17,8 @@
 //! --release --test traffic_demo_maps -- --nocapture` (`MAPC_DEMO_ONLY=clinic` picks runs
 //! by name, `MAPC_DEMO_DUMP=DIR` writes each run's scenario there, `MAPC_DEMO_MAPS=DIR`
 //! takes the maps from DIR/<name>/<name>.building.yaml instead, skipping invalid ones: your
-//! own buildings under the same rule).
+//! own buildings under the same rule; `MAPC_DEMO_SEED=N` draws the demo maps' task streams
+//! from another seed: other task mixes on the same maps).
 
 #[path = "support/places.rs"]
 mod places;
@@ -260,7 +261,8 @@ fn demo_maps_take_every_fleet_size() {
             }
             let mut runs = Vec::new();
             for n in sizes(&[2, 8, 32]) {
-                let text = stream(&places, g, n, minutes(15.0), 35 + g as u64);
+                let seed = env_or("MAPC_DEMO_SEED", 35u64) + g as u64;
+                let text = stream(&places, g, n, minutes(15.0), seed);
                 let report = run(
                     &format!("{name}, {n} robots"),
                     building,
