@@ -768,7 +768,7 @@ impl Planner {
         self.expanded += expanded as u64;
         self.why = if expanded > MAX_EXPANSIONS {
             "search bound"
-        } else if late {
+        } else if late && !blocked(nav, sched, q, &dist, &end_dist) {
             self.late = true;
             "late"
         } else {
@@ -776,6 +776,53 @@ impl Planner {
         };
         None
     }
+}
+
+/// Whether other robots' stays for good cut every way to one of `q`'s goals (in order),
+/// or from the last to anywhere the robot may stay, whatever the timing. A search cut by
+/// its [`Delay`] then failed for that, not for the cut: no later plan exists either, and
+/// the robot staying in the way must make room (a robot held up by one for good was
+/// otherwise refused as late, again and again, and never had it moved).
+///
+/// Best first by the free-flow times to each target (`to_goal`, then `to_end`): the same
+/// answer as any search of the reachable vertices, found in a few steps when the way is
+/// open (it runs after every search the cut stopped).
+fn blocked(nav: &Nav, sched: &Schedule, q: &Query, to_goal: &[&Vec<f64>], to_end: &[f64]) -> bool {
+    let conf = sched.conf();
+    let open = |set: &[Res]| {
+        set.iter()
+            .all(|&x| sched.held_for_good(x, q.robot, q.soft).is_none())
+    };
+    let mut seen = vec![false; nav.vertices.len()];
+    let mut heap = BinaryHeap::new();
+    let mut reach = |from: usize, by: &[f64], to: &dyn Fn(usize) -> bool| {
+        seen.fill(false);
+        seen[from] = true;
+        heap.clear();
+        heap.push(Open(by[from], 0.0, from));
+        while let Some(Open(_, _, v)) = heap.pop() {
+            if to(v) {
+                return true;
+            }
+            for &e in &nav.out[q.slot][v] {
+                let w = nav.edges[e].to;
+                if !seen[w] && open(&conf.trav[e]) && open(&conf.vertex[w]) {
+                    seen[w] = true;
+                    heap.push(Open(by[w], 0.0, w));
+                }
+            }
+        }
+        false
+    };
+    let mut at = q.from;
+    for (&(g, _), by) in q.goals.iter().zip(to_goal) {
+        if !reach(at, by, &|v| v == g) {
+            return true;
+        }
+        at = g;
+    }
+    let may_stay = |v: usize| q.stay == Some(v) || q.parks[v] != 0;
+    !reach(at, to_end, &may_stay)
 }
 
 /// The merged busy intervals of `set` for anybody but robot `r` (without soft spans when

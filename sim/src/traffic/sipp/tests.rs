@@ -169,6 +169,40 @@ fn a_delay_bound_keeps_the_search_to_ways_that_arrive_in_time() {
 }
 
 #[test]
+fn a_way_cut_by_a_robot_staying_for_good_is_no_way_not_lateness() {
+    let nav = nav();
+    let conf = conflicts(&nav);
+    // Robot 1 stands at c for good: robot 0 at a can never reach d.
+    let sched = Schedule::new(conf, &[v(&nav, "a"), v(&nav, "c")], 0.0);
+    let mut planner = Planner::new(&nav);
+    let p = parks(&nav, &["p1", "a"]);
+    let goals = [(v(&nav, "d"), 0.0)];
+    let q = Query {
+        delay: Some(Delay {
+            fixed: 1.0,
+            share: 0.0,
+        }),
+        ..query(0, v(&nav, "a"), &goals, &p)
+    };
+    assert!(planner.plan(&nav, &sched, &q).is_none());
+    // The search was cut (it waited at a past the bound) but no later way exists either:
+    // the dispatcher must have robot 1 make room, not wait for traffic to clear.
+    assert!(!planner.late, "{}", planner.why);
+    // To b, which it can reach, a bound it cannot keep is lateness.
+    let to_b = [(v(&nav, "b"), 0.0)];
+    let q = Query {
+        t0: 0.0,
+        delay: Some(Delay {
+            fixed: -5.0,
+            share: 0.0,
+        }),
+        ..query(0, v(&nav, "a"), &to_b, &p)
+    };
+    assert!(planner.plan(&nav, &sched, &q).is_none());
+    assert!(planner.late);
+}
+
+#[test]
 fn no_way_back_over_a_one_way_lane_means_no_plan() {
     let nav = nav();
     let conf = conflicts(&nav);
