@@ -614,17 +614,7 @@ impl Fleets {
                     });
                 }
             }
-            let Some(Best {
-                robot: ri,
-                steps,
-                plan,
-                keep,
-                t0,
-                soft,
-                same,
-                ..
-            }) = best
-            else {
+            let Some(best) = best else {
                 // No free robot may do it (a robot task whose robot is busy), or every one
                 // that may is backed off (those that found no way for `NO_WAY_BACKOFF`: they
                 // may find one as soon as others make room): only time or a robot becoming
@@ -659,13 +649,14 @@ impl Fleets {
                 k += 1;
                 continue;
             };
-            let soft_at = soft.then_some(t);
-            if !self.start_task(ri, ti, steps, plan, (keep, t0, soft_at), t, out) {
+            let ri = best.robot;
+            let start = (best.keep, best.t0, best.soft.then_some(t));
+            if !self.start_task(ri, ti, best.steps, best.plan, start, t, out) {
                 // A robot it went before on its way to parking found no way behind it.
                 self.dispatcher.pending[k].hard = true;
                 self.dispatcher
                     .same
-                    .insert(same, (t + MAX_BACKOFF, Refused::Undone));
+                    .insert(best.same, (t + MAX_BACKOFF, Refused::Undone));
                 k += 1;
                 continue;
             }

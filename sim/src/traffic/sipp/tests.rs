@@ -74,18 +74,24 @@ fn alone_it_drives_straight_to_the_goal_and_parks() {
     assert_eq!(plan.steps[2].hold, 5.0);
 }
 
+/// Robot 0 at a, robot 1 planned from d down the corridor to p1 from 0 s (10.5 s a lane):
+/// the schedule, the planner and the parks (p1, p2, a, d), and robot 1's plan.
+fn robot_1_down_the_corridor(nav: &Nav) -> (Schedule, Planner, Vec<u8>, Plan) {
+    let mut sched = Schedule::new(conflicts(nav), &[v(nav, "a"), v(nav, "d")], 0.0);
+    let mut planner = Planner::new(nav);
+    let p = parks(nav, &["p1", "p2", "a", "d"]);
+    let goals = [(v(nav, "p1"), 0.0)];
+    let plan1 = planner
+        .plan(nav, &sched, &query(1, v(nav, "d"), &goals, &p))
+        .expect("robot 1 plans");
+    sched.install(1, 0, &plan1.steps, 0.0, None);
+    (sched, planner, p, plan1)
+}
+
 #[test]
 fn it_waits_for_a_robot_planned_through_first() {
     let nav = nav();
-    let conf = conflicts(&nav);
-    let mut sched = Schedule::new(conf, &[v(&nav, "a"), v(&nav, "d")], 0.0);
-    // Robot 1 drives d→c→b→p1 from 0 s, 10.5 s a lane (no turns counted here).
-    let mut planner = Planner::new(&nav);
-    let p = parks(&nav, &["p1", "p2", "a", "d"]);
-    let goals_q1 = [(v(&nav, "p1"), 0.0)];
-    let q1 = query(1, v(&nav, "d"), &goals_q1, &p);
-    let plan1 = planner.plan(&nav, &sched, &q1).expect("robot 1 plans");
-    sched.install(1, 0, &plan1.steps, 0.0, None);
+    let (mut sched, mut planner, p, plan1) = robot_1_down_the_corridor(&nav);
     let arrive_p1 = plan1.done;
     // Robot 0 wants d: it cannot be in the corridor while robot 1 comes down it.
     let goals_q0 = [(v(&nav, "d"), 0.0)];
@@ -114,16 +120,8 @@ fn it_waits_for_a_robot_planned_through_first() {
 #[test]
 fn a_delay_bound_keeps_the_search_to_ways_that_arrive_in_time() {
     let nav = nav();
-    let conf = conflicts(&nav);
-    let mut sched = Schedule::new(conf, &[v(&nav, "a"), v(&nav, "d")], 0.0);
-    let mut planner = Planner::new(&nav);
-    let p = parks(&nav, &["p1", "p2", "a", "d"]);
     // Robot 1 comes down the corridor to p1: robot 0 cannot reach d before it has passed.
-    let goals_q1 = [(v(&nav, "p1"), 0.0)];
-    let plan1 = planner
-        .plan(&nav, &sched, &query(1, v(&nav, "d"), &goals_q1, &p))
-        .expect("robot 1 plans");
-    sched.install(1, 0, &plan1.steps, 0.0, None);
+    let (sched, mut planner, p, _) = robot_1_down_the_corridor(&nav);
     let goals = [(v(&nav, "d"), 0.0)];
     let free = 3.0 * 10.5; // a→d free-flow: three 4 m lanes, no turn
     let unbounded = planner
