@@ -537,21 +537,19 @@ impl Fleets {
                 // A place where another robot stays for good: no plan can get there (a
                 // search would only prove it, at length), that robot must make room.
                 let conf = self.traffic.sched.conf();
-                if goals.iter().any(|&(g, _)| {
+                let held = goals.iter().any(|&(g, _)| {
                     conf.vertex[g]
                         .iter()
                         .any(|&x| self.traffic.sched.held_for_good(x, ri, soft).is_some())
-                }) {
-                    failed = true;
-                    refused.push((ri, t + NO_WAY_BACKOFF));
-                    self.dispatcher
-                        .same
-                        .insert(same, (t + NO_WAY_BACKOFF, Refused::NoWay));
-                    continue;
-                }
+                });
                 let mut found = None;
                 let mut late = false;
-                for (own, stay) in self.ends(ri, &goals, from, stay) {
+                let ends = if held {
+                    Vec::new()
+                } else {
+                    self.ends(ri, &goals, from, stay)
+                };
+                for (own, stay) in ends {
                     let q = Query {
                         robot: ri,
                         slot: f.slot,
