@@ -268,8 +268,17 @@ fn completed_between(r: &Report, from: f64, to: f64) -> usize {
 /// the lift out of service, 30 to 200 s each, all within the first third of the run). No
 /// contact, no cycle, no failed task (no fault outlasts the 300 s a robot waits for a door
 /// or a lift); once the last fault has ended, nobody with a task stands still for 300 s;
-/// and in the last half of the run throughput is back to at least 75 % of the fault-free
-/// run's in the same window (less one task).
+/// and in the last half of the run throughput is back to the fault-free run's: over all
+/// buildings at least 90 % of the fault-free runs' tasks in the same window (less three),
+/// and in each at least half (less one).
+///
+/// Why summed: one building's last half holds about ten tasks, and which ten depends on
+/// where the queue stood when the faults ended (a task between levels takes three times
+/// one on a level). Pausing one robot of building 27 for 30 to 171 s alone moves its last
+/// half between 9 and 11 tasks against 11, and the per-building rule of 75 % failed on
+/// such draws while the forty buildings together completed 98.6 % of the fault-free
+/// tasks. The sum measures the rate; the per-building floor still catches a building
+/// whose robots do not recover.
 #[test]
 fn faults_delay_robots_but_never_deadlock() {
     let cases: u64 = env_or("MAPC_TRAFFIC_FAULT_CASES", 40);
@@ -277,6 +286,7 @@ fn faults_delay_robots_but_never_deadlock() {
     let minutes: f64 = env_or("MAPC_TRAFFIC_FAULT_MINUTES", 20.0);
     let robots: usize = env_or("MAPC_TRAFFIC_FAULT_ROBOTS", 4);
     let end = minutes * 60.0;
+    let (mut with_all, mut without_all) = (0, 0);
     for seed in first..first + cases {
         let b = gen::building(seed);
         let faults = gen::faults(&b, robots, end / 3.0, 4, seed);
@@ -297,13 +307,21 @@ fn faults_delay_robots_but_never_deadlock() {
         let (a, z) = (end / 2.0, end);
         let (with, without) = (completed_between(&r, a, z), completed_between(&clean, a, z));
         assert!(
-            with as f64 >= 0.75 * without as f64 - 1.0,
+            with as f64 >= 0.5 * without as f64 - 1.0,
             "building {seed}: {with} tasks in the last half after faults, {without} without\n{faults}"
         );
         if std::env::var_os("MAPC_TRAFFIC_VERBOSE").is_some() {
             eprintln!("building {seed}: last half {with} with faults, {without} without");
         }
+        with_all += with;
+        without_all += without;
     }
+    eprintln!("last halves: {with_all} tasks with faults, {without_all} without");
+    assert!(
+        with_all as f64 >= 0.9 * without_all as f64 - 3.0,
+        "buildings {first}..{}: {with_all} tasks in the last halves after faults, {without_all} without",
+        first + cases
+    );
 }
 
 #[test]
