@@ -42,7 +42,8 @@ const SCAN_PER_ROUND: usize = 64;
 /// taken. (It was 50 s: on every set of long runs, generated, demo and public buildings
 /// and other task streams, fleets completed more with 25 s, 2-8 %, and a breach of the
 /// rule went: the waits are held where the robot stands, often a task place on a
-/// corridor. With 10 s a scaling scenario broke the rule. BENCHMARKS.md.)
+/// corridor. The saturated airport completes 5 % less, and with 10 s a scaling scenario
+/// broke the rule. BENCHMARKS.md.)
 const MAX_PLANNED_WAIT: f64 = 25.0;
 /// The share of a plan's length (to its last place) it may wait on top of that.
 const WAIT_SHARE: f64 = 0.25;
