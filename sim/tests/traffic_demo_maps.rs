@@ -172,9 +172,17 @@ fn problems(name: &str, runs: &[Run]) -> Vec<String> {
     out
 }
 
-/// A saturating stream on graph `graph`: `robots` TinyRobots and a loop between two random
-/// places every `every` s.
+/// A saturating stream on graph `graph`: `robots` TinyRobots and a task every `every` s: a
+/// loop between two random places, or (`MAPC_DEMO_TASKS=go_to_place`) a go-to-place to a
+/// random place, after which the robot stays there until it is sent elsewhere or the place
+/// is needed, or (`mixed`) either, at random.
 fn stream(places: &[String], graph: i64, robots: usize, minutes: f64, seed: u64) -> String {
+    let mix = std::env::var("MAPC_DEMO_TASKS").unwrap_or_else(|_| "loop".into());
+    let kinds = match mix.as_str() {
+        "go_to_place" => "go_to_place",
+        "mixed" => "loop, go_to_place",
+        _ => "loop",
+    };
     let every = 3.0;
     let mut rng = fastrand::Rng::with_seed(seed);
     let mut out = String::new();
@@ -186,12 +194,26 @@ fn stream(places: &[String], graph: i64, robots: usize, minutes: f64, seed: u64)
     let _ = writeln!(out, "crowd: {{enabled: false}}");
     let _ = writeln!(
         out,
-        "fleets:\n  - {{name: tiny, graph: {graph}, robot: TinyRobot, count: {robots}, spawn: auto, tasks: [loop]}}"
+        "fleets:\n  - {{name: tiny, graph: {graph}, robot: TinyRobot, count: {robots}, spawn: auto, tasks: [{kinds}]}}"
     );
     let _ = writeln!(out, "tasks:");
     for k in 0..(minutes * 60.0 / every) as usize {
         let a = rng.usize(0..places.len());
         let c = (a + 1 + rng.usize(0..places.len() - 1)) % places.len();
+        let go = match mix.as_str() {
+            "go_to_place" => true,
+            "mixed" => rng.bool(),
+            _ => false,
+        };
+        if go {
+            let _ = writeln!(
+                out,
+                "  - {{at: {}s, go_to_place: {{place: {}}}}}",
+                k as f64 * every,
+                places[c]
+            );
+            continue;
+        }
         let _ = writeln!(
             out,
             "  - {{at: {}s, loop: {{start: {}, finish: {}, loops: 1}}}}",

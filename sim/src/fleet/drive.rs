@@ -132,6 +132,12 @@ impl Fleets {
         r.n_sent = r.n_sent.saturating_sub(1);
         if let Some(l) = &mut r.leg {
             *l = l.saturating_sub(1);
+        } else if let Some(l) = r.legs.front_mut() {
+            // A task planned after traversals the robot was already sent along (`keep`)
+            // counts them in its first leg; one may end before the task's first step
+            // starts (in the same update). Not counted, the robot waited at its place for
+            // a traversal its itinerary no longer had, for good.
+            *l = l.saturating_sub(1);
         }
         r.at = to;
         r.stuck_reported = false;
@@ -207,6 +213,10 @@ impl Fleets {
             self.robots[i].dirty = true;
             return Some(false);
         }
+        debug_assert!(
+            leg <= self.traffic.sched.itinerary(i).travs.len(),
+            "robot {i}'s leg of {leg} traversals is longer than its itinerary"
+        );
         self.advance(i, leg, t, out);
         Some(false)
     }

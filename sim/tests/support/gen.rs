@@ -312,11 +312,47 @@ fn a_x_towards(x: f64, rx: f64) -> f64 {
     (x + rx) / 2.0
 }
 
+/// The tasks of a stream.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Mix {
+    /// Loops between two places (a robot parks after each).
+    Loops,
+    /// Go-to-place tasks: the robot stays at the place until another task or a robot
+    /// that needs the place sends it on.
+    GoTo,
+    /// Either, drawn for each task.
+    Mixed,
+}
+
 /// A saturating stream of loops between random places of `b`: a task every `every` s for
 /// the whole run, each between two places drawn from the seed, for `robots` robots placed
 /// by `spawn: auto`: TinyRobots, and in one building in three half of them DeliveryRobots.
 pub fn scenario(b: &Building, robots: usize, duration_s: f64, every: f64, seed: u64) -> String {
+    scenario_mix(b, robots, duration_s, every, seed, Mix::Loops)
+}
+
+/// [`scenario`] with the tasks of `mix` (a go-to-place goes to the second place drawn).
+pub fn scenario_mix(
+    b: &Building,
+    robots: usize,
+    duration_s: f64,
+    every: f64,
+    seed: u64,
+    mix: Mix,
+) -> String {
     let mut rng = fastrand::Rng::with_seed(seed);
+    // Drawn from a stream of its own, so that the places drawn are those of `Loops`.
+    let mut kinds = fastrand::Rng::with_seed(seed ^ 0x90_70_91_ace);
+    let go = |kinds: &mut fastrand::Rng| match mix {
+        Mix::Loops => false,
+        Mix::GoTo => true,
+        Mix::Mixed => kinds.bool(),
+    };
+    let caps = match mix {
+        Mix::Loops => "loop",
+        Mix::GoTo => "go_to_place",
+        Mix::Mixed => "loop, go_to_place",
+    };
     let mut out = String::new();
     let _ = writeln!(out, "seed: {seed}");
     let _ = writeln!(out, "duration: {duration_s}s");
@@ -326,26 +362,29 @@ pub fn scenario(b: &Building, robots: usize, duration_s: f64, every: f64, seed: 
     let big = if seed % 3 == 2 { robots / 2 } else { 0 };
     let _ = writeln!(
         out,
-        "fleets:\n  - {{name: fleet, graph: 0, robot: TinyRobot, count: {}, spawn: auto, tasks: [loop]}}",
+        "fleets:\n  - {{name: fleet, graph: 0, robot: TinyRobot, count: {}, spawn: auto, tasks: [{caps}]}}",
         robots - big
     );
     if big > 0 {
         let _ = writeln!(
             out,
-            "  - {{name: big, graph: 0, robot: DeliveryRobot, count: {big}, spawn: auto, tasks: [loop]}}"
+            "  - {{name: big, graph: 0, robot: DeliveryRobot, count: {big}, spawn: auto, tasks: [{caps}]}}"
         );
     }
+    let task = |at: f64, a: &str, c: &str, go: bool| {
+        if go {
+            format!("  - {{at: {at}s, go_to_place: {{place: {c}}}}}")
+        } else {
+            format!("  - {{at: {at}s, loop: {{start: {a}, finish: {c}, loops: 1}}}}")
+        }
+    };
     let _ = writeln!(out, "tasks:");
     let n = (duration_s / every) as usize;
     for k in 0..n {
         let a = &b.places[rng.usize(0..b.places.len())];
         if !b.sinks.is_empty() {
             let c = &b.sinks[rng.usize(0..b.sinks.len())];
-            let _ = writeln!(
-                out,
-                "  - {{at: {}s, loop: {{start: {a}, finish: {c}, loops: 1}}}}",
-                k as f64 * every
-            );
+            let _ = writeln!(out, "{}", task(k as f64 * every, a, c, go(&mut kinds)));
             continue;
         }
         let mut c = &b.places[rng.usize(0..b.places.len())];
@@ -355,11 +394,7 @@ pub fn scenario(b: &Building, robots: usize, duration_s: f64, every: f64, seed: 
         if a == c {
             continue;
         }
-        let _ = writeln!(
-            out,
-            "  - {{at: {}s, loop: {{start: {a}, finish: {c}, loops: 1}}}}",
-            k as f64 * every
-        );
+        let _ = writeln!(out, "{}", task(k as f64 * every, a, c, go(&mut kinds)));
     }
     out
 }
