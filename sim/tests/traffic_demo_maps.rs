@@ -18,7 +18,8 @@
 //! by name, `MAPC_DEMO_DUMP=DIR` writes each run's scenario there, `MAPC_DEMO_MAPS=DIR`
 //! takes the maps from DIR/<name>/<name>.building.yaml instead, skipping invalid ones: your
 //! own buildings under the same rule; `MAPC_DEMO_SEED=N` draws the demo maps' task streams
-//! from another seed: other task mixes on the same maps).
+//! from another seed: other task mixes on the same maps; `MAPC_DEMO_TASKS=go_to_place` or
+//! `mixed` sends robots to places where they stay, or mixes those with loops).
 
 #[path = "support/places.rs"]
 mod places;

@@ -6,7 +6,9 @@
 //! dependency cycle, and a bigger fleet completes at least 95 % of what any smaller one did.
 //! Where the building holds fewer robots than asked, asking more changes nothing: runs with
 //! the same robots on the floor complete the same tasks. The same on generated warehouses
-//! (aisles joined by cross aisles, no dead ends: `MAPC_TRAFFIC_GRIDS`, default 6).
+//! (aisles joined by cross aisles, no dead ends: `MAPC_TRAFFIC_GRIDS`, default 6), and
+//! with other task mixes on the same buildings: go-to-place tasks, after which a robot
+//! stays at its place, alone or mixed with loops (`MAPC_TRAFFIC_MIX_CASES`, default 60).
 //!
 //! Briefly in CI (`MAPC_TRAFFIC_CASES`, default 200 buildings of 8 simulated minutes at 1,
 //! 4 and 16 robots; shorter runs measure the start more than the traffic); long on demand:

@@ -342,7 +342,7 @@ pub fn scenario_mix(
 ) -> String {
     let mut rng = fastrand::Rng::with_seed(seed);
     // Drawn from a stream of its own, so that the places drawn are those of `Loops`.
-    let mut kinds = fastrand::Rng::with_seed(seed ^ 0x90_70_91_ace);
+    let mut kinds = fastrand::Rng::with_seed(seed ^ 0x0009_0709_1ace);
     let go = |kinds: &mut fastrand::Rng| match mix {
         Mix::Loops => false,
         Mix::GoTo => true,
