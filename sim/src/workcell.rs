@@ -7,8 +7,10 @@
 //! - An ingestor that is still holding the previous item (≤ 5 s after a success) keeps a
 //!   new request pending and serves it once the item went home (upstream ignores it
 //!   silently).
-//! - The ingestor's payload is the nearest *item* within 1 m of the robot (upstream: any
-//!   non-static model, which could be another robot).
+//! - The ingestor's payload is the item the robot carries, else the nearest *item* within
+//!   1 m of the robot (upstream: the nearest non-static model within 1 m, which could be
+//!   another robot, or a dispenser's item waiting at the same place: then the carried item
+//!   stayed on the robot for good and its dispenser was never refilled).
 //! - Each dispenser starts filled with its own item `<dispenser>_item`; a dispensed item
 //!   is attached to the robot (0.5 m above its origin, the plugin's fallback height) and
 //!   moves with it, lift rides included, until ingested.
@@ -269,13 +271,19 @@ impl Workcell {
         };
         let [x, y, z, _] = r.pose();
         let p = [x, y, z];
-        let nearest = items
+        let carried = items
             .iter()
-            .enumerate()
-            .map(|(i, it)| (i, it.distance(p)))
-            .filter(|(_, d)| *d < PAYLOAD_RADIUS)
-            .min_by(|a, b| a.1.total_cmp(&b.1));
-        let Some((ii, _)) = nearest else {
+            .position(|it| it.attached.is_some_and(|(r, _)| r == ri));
+        let nearest = || {
+            items
+                .iter()
+                .enumerate()
+                .map(|(i, it)| (i, it.distance(p)))
+                .filter(|(_, d)| *d < PAYLOAD_RADIUS)
+                .min_by(|a, b| a.1.total_cmp(&b.1))
+                .map(|(i, _)| i)
+        };
+        let Some(ii) = carried.or_else(nearest) else {
             return false;
         };
         if let Some(it) = items.get_mut(ii) {

@@ -864,6 +864,68 @@ fn dispenser_robot_ingestor_item_loop() {
     assert_eq!(results(&out, Topic::DispenserResults), vec![0, 2]);
 }
 
+/// An ingestor at a place where a dispenser's own item waits takes the item the robot
+/// brings, not the one waiting (the nearest): else the delivered item stayed on the robot
+/// and its dispenser never refilled, and every later delivery from it failed.
+#[test]
+fn an_ingestor_takes_the_carried_item_before_one_waiting_beside_it() {
+    let map = MAP.replace(
+        "      - {dispensable: false, model_name: TeleportIngestor",
+        "      - {dispensable: false, model_name: TeleportDispenser, name: disp2, static: true, x: 30, y: 0, yaw: 0, z: 0}\n      - {dispensable: false, model_name: TeleportIngestor",
+    );
+    let b = parse(&map);
+    let r = spawn(
+        &b,
+        "r",
+        RobotParams::preset("TinyRobot").expect("preset"),
+        20.0,
+        0.0,
+        0.0,
+        "L1",
+    );
+    let mut w = World::new(&b, &setup(vec![r]));
+    let mut out = Vec::new();
+    w.deliver(
+        Topic::FleetStates,
+        Msg::FleetState(FleetState {
+            name: "f".into(),
+            robots: vec![RobotState {
+                name: "r".into(),
+                ..RobotState::default()
+            }],
+        }),
+    );
+    let (t, m) = workcell_req(Topic::DispenserRequests, "disp", "d1");
+    w.deliver(t, m);
+    w.step(&mut out);
+    let item = |w: &World, name: &str| w.items.iter().position(|i| i.name == name).expect(name);
+    let (carried, waiting) = (item(&w, "disp_item"), item(&w, "disp2_item"));
+    assert_eq!(w.items[carried].attached.map(|a| a.0), Some(0));
+    path(&mut w, "r", "1", &[(20.0, 0.0, 0.0), (30.0, 0.0, 0.0)]);
+    run_until(&mut w, &mut out, 40.0, |_, _| false);
+    // The waiting item is nearer the robot's origin (0 m against 0.5 m).
+    let d = |i: usize| w.items[i].distance([30.0, 0.0, 0.0]);
+    assert!(d(waiting) < d(carried), "{} {}", d(waiting), d(carried));
+    let (t, m) = workcell_req(Topic::IngestorRequests, "ing", "i1");
+    w.deliver(t, m);
+    out.clear();
+    w.step(&mut out);
+    assert_eq!(results(&out, Topic::IngestorResults), vec![0, 1]);
+    assert!(w.items[carried].attached.is_none());
+    assert_eq!(w.items[carried].pos, [30.0, 0.0, 0.0]);
+    // Five whole seconds later it is home, and its dispenser serves again.
+    run_until(&mut w, &mut out, 8.0, |_, _| false);
+    assert_eq!(w.items[carried].pos, [20.0, 0.0, 0.0]);
+    assert_eq!(w.items[waiting].pos, [30.0, 0.0, 0.0]);
+    path(&mut w, "r", "2", &[(30.0, 0.0, 0.0), (20.0, 0.0, 0.0)]);
+    run_until(&mut w, &mut out, 40.0, |_, _| false);
+    let (t, m) = workcell_req(Topic::DispenserRequests, "disp", "d2");
+    w.deliver(t, m);
+    out.clear();
+    w.step(&mut out);
+    assert_eq!(results(&out, Topic::DispenserResults), vec![0, 1]);
+}
+
 #[test]
 fn robots_on_a_charger_charge_and_report_charging() {
     let b = parse(MAP);

@@ -19,7 +19,8 @@
 //! takes the maps from DIR/<name>/<name>.building.yaml instead, skipping invalid ones: your
 //! own buildings under the same rule; `MAPC_DEMO_SEED=N` draws the demo maps' task streams
 //! from another seed: other task mixes on the same maps; `MAPC_DEMO_TASKS=go_to_place` or
-//! `mixed` sends robots to places where they stay, or mixes those with loops).
+//! `mixed` sends robots to places where they stay, or mixes those with loops, and
+//! `delivery` makes deliveries between the places, with a dispenser and an ingestor at each).
 
 #[path = "support/places.rs"]
 mod places;
@@ -176,12 +177,14 @@ fn problems(name: &str, runs: &[Run]) -> Vec<String> {
 /// A saturating stream on graph `graph`: `robots` TinyRobots and a task every `every` s: a
 /// loop between two random places, or (`MAPC_DEMO_TASKS=go_to_place`) a go-to-place to a
 /// random place, after which the robot stays there until it is sent elsewhere or the place
-/// is needed, or (`mixed`) either, at random.
+/// is needed, or (`mixed`) either, at random, or (`delivery`) a delivery between two random
+/// places, each with a dispenser and an ingestor of the scenario's.
 fn stream(places: &[String], graph: i64, robots: usize, minutes: f64, seed: u64) -> String {
     let mix = std::env::var("MAPC_DEMO_TASKS").unwrap_or_else(|_| "loop".into());
     let kinds = match mix.as_str() {
         "go_to_place" => "go_to_place",
         "mixed" => "loop, go_to_place",
+        "delivery" => "delivery",
         _ => "loop",
     };
     let every = 3.0;
@@ -197,10 +200,32 @@ fn stream(places: &[String], graph: i64, robots: usize, minutes: f64, seed: u64)
         out,
         "fleets:\n  - {{name: tiny, graph: {graph}, robot: TinyRobot, count: {robots}, spawn: auto, tasks: [{kinds}]}}"
     );
+    if mix == "delivery" {
+        let _ = writeln!(out, "workcells:");
+        for p in places {
+            let _ = writeln!(
+                out,
+                "  - {{name: {p}_dispenser, kind: dispenser, waypoint: {p}}}"
+            );
+            let _ = writeln!(
+                out,
+                "  - {{name: {p}_ingestor, kind: ingestor, waypoint: {p}}}"
+            );
+        }
+    }
     let _ = writeln!(out, "tasks:");
     for k in 0..(minutes * 60.0 / every) as usize {
         let a = rng.usize(0..places.len());
         let c = (a + 1 + rng.usize(0..places.len() - 1)) % places.len();
+        if mix == "delivery" {
+            let (a, c) = (&places[a], &places[c]);
+            let _ = writeln!(
+                out,
+                "  - {{at: {}s, delivery: {{pickup: {a}, dropoff: {c}, dispenser: {a}_dispenser, ingestor: {c}_ingestor}}}}",
+                k as f64 * every
+            );
+            continue;
+        }
         let go = match mix.as_str() {
             "go_to_place" => true,
             "mixed" => rng.bool(),
