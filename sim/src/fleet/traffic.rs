@@ -420,6 +420,16 @@ impl Fleets {
         for &j in js {
             self.traffic.sched.install(j, 0, &[], t, None);
         }
+        // A robot set to stand where another's plan passes later would hold that plan up
+        // for good: no order holds (a delivery robot making room at an empty dispenser
+        // found such cycles). Then nobody moves aside.
+        if js
+            .iter()
+            .any(|&j| self.traffic.sched.stands_before_others(j))
+        {
+            self.aside_restore(&who, snap);
+            return false;
+        }
         let mut ok = plan(self);
         for &j in js {
             if !ok {
