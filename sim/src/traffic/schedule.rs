@@ -532,18 +532,6 @@ impl Schedule {
             .any(|s| s.robot as usize != r && self.its[s.robot as usize].soft_in(s.first))
     }
 
-    /// Whether robot `r` stands for good ahead of another robot's span on a resource (no
-    /// order holds then: that span could never start).
-    pub fn stands_before_others(&self, r: usize) -> bool {
-        let at = self.end_vertex(r);
-        self.conf.vertex[at].iter().any(|&x| {
-            let q = &self.queues[x as usize];
-            q.iter()
-                .position(|s| s.robot as usize == r && s.last == FOREVER)
-                .is_some_and(|w| w + 1 < q.len())
-        })
-    }
-
     /// The robot other than `r` that holds resource `x` for good (stays there), if any;
     /// when `soft`, not one that would stay there only at the end of soft traversals.
     pub fn held_for_good(&self, x: Res, r: usize, soft: bool) -> Option<usize> {
@@ -608,8 +596,8 @@ impl Schedule {
             for w in 1..q.len() {
                 let (p, s) = (&q[w - 1], &q[w]);
                 if p.last == FOREVER {
-                    // A span after one held for good can never start.
-                    debug_assert!(false, "after forever: {q:?}");
+                    // A span after one held for good can never start (the callers say
+                    // whether that may happen on the way: robots set aside).
                     return Err(Cycle {
                         robots: vec![p.robot as usize, s.robot as usize],
                     });
