@@ -459,6 +459,18 @@ impl Fleets {
             }
             self.dispatcher.pending[k].asleep = None;
             scanned += 1;
+            // A delivery whose dispenser's item is away (on a robot, on its way home, or
+            // promised to a robot on its way there) waits in the queue: a robot sent now
+            // would stand at the empty dispenser until the item is back (minutes, on a
+            // large building), in others' way.
+            let away = self.dispatcher.pending[k].steps.iter().any(|(_, st)| {
+                st.iter()
+                    .any(|s| matches!(s, Step::Dispense(d) if self.dispenser_taken(d, t)))
+            });
+            if away {
+                k += 1;
+                continue;
+            }
             let ti = self.dispatcher.pending[k].task;
             // The nearest free robots by free-flow time to the task's first place.
             let mut near: Vec<(f64, usize, Vec<Step>)> = Vec::new();
@@ -666,6 +678,23 @@ impl Fleets {
         if !self.dispatcher.pending.is_empty() {
             self.dispatcher.next_dispatch = t + DISPATCH_EVERY;
         }
+    }
+
+    /// Whether `dispenser`'s item is away or promised: a robot carries it or brings it
+    /// back ([`Fleets::item_coming`]), or a robot's task will take it (before it did).
+    fn dispenser_taken(&self, dispenser: &str, t: f64) -> bool {
+        let asks = |c: &Cur| matches!(c, Cur::Workcell { target, dispenser: true, .. } if target == dispenser);
+        self.item_coming(dispenser, t)
+            || self.robots.iter().any(|r| {
+                r.task.is_some()
+                    && (asks(&r.cur)
+                        || r.steps.iter().any(|s| match s {
+                            Step::Dispense(d) => d == dispenser,
+                            // Making room while it waits to ask again.
+                            Step::Resume(c) => asks(c),
+                            _ => false,
+                        }))
+            })
     }
 
     /// The free robots (of `free`) that stay for good on a place of pending task `k`.
