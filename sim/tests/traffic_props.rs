@@ -8,7 +8,8 @@
 //! the same robots on the floor complete the same tasks. The same on generated warehouses
 //! (aisles joined by cross aisles, no dead ends: `MAPC_TRAFFIC_GRIDS`, default 6), and
 //! with other task mixes on the same buildings: go-to-place tasks, after which a robot
-//! stays at its place, alone or mixed with loops (`MAPC_TRAFFIC_MIX_CASES`, default 60).
+//! stays at its place, alone or mixed with loops, and deliveries (`MAPC_TRAFFIC_MIX_CASES`,
+//! default 60).
 //!
 //! Briefly in CI (`MAPC_TRAFFIC_CASES`, default 200 buildings of 8 simulated minutes at 1,
 //! 4 and 16 robots; shorter runs measure the start more than the traffic); long on demand:
@@ -222,9 +223,10 @@ fn generated_buildings_never_deadlock() {
     );
 }
 
-/// Other task mixes on the generated buildings: go-to-place tasks (the robot stays at the
-/// place until another task, or a robot the place is needed for, sends it on) in even
-/// buildings, those and loops at random in odd ones; the same checks and rule. Briefly in
+/// Other task mixes on the generated buildings, by building in turn: go-to-place tasks
+/// (the robot stays at the place until another task, or a robot the place is needed for,
+/// sends it on), those and loops at random, and deliveries between the places (a dispenser
+/// and an ingestor at each, one item per dispenser); the same checks and rule. Briefly in
 /// CI (`MAPC_TRAFFIC_MIX_CASES`, default 60 buildings of 8 minutes at 1, 4 and 16 robots),
 /// long on demand with the sizes and minutes as above. Go-to-place streams on a public map
 /// found a robot that stood at its place for good, its task never done: a task planned
@@ -238,10 +240,10 @@ fn other_task_mixes_never_deadlock() {
     let first: u64 = env_or("MAPC_TRAFFIC_FIRST", 0);
     let mut fewer = Vec::new();
     for seed in first..first + cases {
-        let mix = if seed % 2 == 0 {
-            gen::Mix::GoTo
-        } else {
-            gen::Mix::Mixed
+        let mix = match seed % 3 {
+            0 => gen::Mix::GoTo,
+            1 => gen::Mix::Mixed,
+            _ => gen::Mix::Deliveries,
         };
         let (done, f) = check_building_every(&gen::building(seed), &sizes, minutes, 10.0, mix);
         if std::env::var_os("MAPC_TRAFFIC_VERBOSE").is_some() {

@@ -322,6 +322,10 @@ pub enum Mix {
     GoTo,
     /// Either, drawn for each task.
     Mixed,
+    /// Deliveries from the first place to the second, with a dispenser and an ingestor
+    /// of the scenario's at every place (each dispenser holds one item, back home a few
+    /// seconds after it was delivered).
+    Deliveries,
 }
 
 /// A saturating stream of loops between random places of `b`: a task every `every` s for
@@ -344,7 +348,7 @@ pub fn scenario_mix(
     // Drawn from a stream of its own, so that the places drawn are those of `Loops`.
     let mut kinds = fastrand::Rng::with_seed(seed ^ 0x0009_0709_1ace);
     let go = |kinds: &mut fastrand::Rng| match mix {
-        Mix::Loops => false,
+        Mix::Loops | Mix::Deliveries => false,
         Mix::GoTo => true,
         Mix::Mixed => kinds.bool(),
     };
@@ -352,6 +356,7 @@ pub fn scenario_mix(
         Mix::Loops => "loop",
         Mix::GoTo => "go_to_place",
         Mix::Mixed => "loop, go_to_place",
+        Mix::Deliveries => "delivery",
     };
     let mut out = String::new();
     let _ = writeln!(out, "seed: {seed}");
@@ -371,8 +376,23 @@ pub fn scenario_mix(
             "  - {{name: big, graph: 0, robot: DeliveryRobot, count: {big}, spawn: auto, tasks: [{caps}]}}"
         );
     }
+    if mix == Mix::Deliveries {
+        let _ = writeln!(out, "workcells:");
+        for p in b.places.iter().chain(&b.sinks) {
+            let _ = writeln!(
+                out,
+                "  - {{name: {p}_dispenser, kind: dispenser, waypoint: {p}}}"
+            );
+            let _ = writeln!(
+                out,
+                "  - {{name: {p}_ingestor, kind: ingestor, waypoint: {p}}}"
+            );
+        }
+    }
     let task = |at: f64, a: &str, c: &str, go: bool| {
-        if go {
+        if mix == Mix::Deliveries {
+            format!("  - {{at: {at}s, delivery: {{pickup: {a}, dropoff: {c}, dispenser: {a}_dispenser, ingestor: {c}_ingestor}}}}")
+        } else if go {
             format!("  - {{at: {at}s, go_to_place: {{place: {c}}}}}")
         } else {
             format!("  - {{at: {at}s, loop: {{start: {a}, finish: {c}, loops: 1}}}}")
