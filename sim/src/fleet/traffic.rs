@@ -39,6 +39,11 @@ pub(super) enum NoPlan {
 /// A query's `parks` when it ends on its graph's parking vertices (see [`Traffic::plan`]).
 pub(super) const GRAPH_PARKS: &[u8] = &[];
 
+/// A task plan through others' soft spans is undone when the order it was installed in
+/// makes it reach its last place more than this much later than planned (s): well under
+/// the 300 s a robot with a task may stand still.
+const SOFT_ORDER_SLACK: f64 = 120.0;
+
 /// The traffic side of the fleets: one schedule shared by all fleets, the planner that
 /// plans legs into it, and where robots may stand for good.
 ///
@@ -296,9 +301,9 @@ impl Fleets {
         if let (Some(now), Some(before)) = (soft_at, before) {
             // Every robot it went before plans again behind it, and the order stays
             // acyclic; else nothing changes.
-            let kept = jumped.is_empty()
-                || (jumped.iter().all(|&o| self.park_again(o, now))
-                    && self.traffic.sched.retime(now).is_ok());
+            let kept = (jumped.iter().all(|&o| self.park_again(o, now)))
+                && self.traffic.sched.retime(now).is_ok()
+                && !self.later_than_planned(i, keep, &plan);
             if !kept {
                 self.traffic.undo(before);
                 return false;
@@ -321,6 +326,22 @@ impl Fleets {
             })
             .collect();
         true
+    }
+
+    /// Whether robot `i`'s itinerary, just installed from `plan` after `keep` traversals and
+    /// retimed, reaches the plan's last place more than `SOFT_ORDER_SLACK` later than the
+    /// plan did. A plan through others' soft spans goes after those the others hold now,
+    /// whatever the plan assumed: on the airport a task planned to wait 51 s was put behind
+    /// two robots' whole ways to parking, and its robot stood 513 s.
+    fn later_than_planned(&self, i: usize, keep: usize, plan: &Plan) -> bool {
+        let Some(&last) = plan.goal_at.last().filter(|&&n| n > 0) else {
+            return false;
+        };
+        let planned = plan.steps[last - 1].end;
+        let it = self.traffic.sched.itinerary(i);
+        it.travs
+            .get(keep + last - 1)
+            .is_some_and(|tr| tr.end > planned + SOFT_ORDER_SLACK)
     }
 
     /// Plans robot `o`'s way to parking again after its task's last place (its soft
