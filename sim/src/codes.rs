@@ -648,7 +648,8 @@ pub const UNKNOWN_OPTION: Code = Code {
 
 /// # S0308 duplicate-workcell
 ///
-/// **What:** two workcells of the scenario have the same `name`.
+/// **What:** two workcells of the scenario have the same `name`, or one has the name of a
+/// dispenser or ingestor of the map (a `TeleportDispenser`/`TeleportIngestor` model).
 ///
 /// **Why it matters:** dispensers and ingestors are addressed by name (`target_guid`); two
 /// with one name would both answer the same request.

@@ -201,15 +201,16 @@ fn stream(places: &[String], graph: i64, robots: usize, minutes: f64, seed: u64)
         "fleets:\n  - {{name: tiny, graph: {graph}, robot: TinyRobot, count: {robots}, spawn: auto, tasks: [{kinds}]}}"
     );
     if mix == "delivery" {
+        // Names no map has (the map's own dispensers and ingestors keep theirs: S0308).
         let _ = writeln!(out, "workcells:");
         for p in places {
             let _ = writeln!(
                 out,
-                "  - {{name: {p}_dispenser, kind: dispenser, waypoint: {p}}}"
+                "  - {{name: stream_{p}_dispenser, kind: dispenser, waypoint: {p}}}"
             );
             let _ = writeln!(
                 out,
-                "  - {{name: {p}_ingestor, kind: ingestor, waypoint: {p}}}"
+                "  - {{name: stream_{p}_ingestor, kind: ingestor, waypoint: {p}}}"
             );
         }
     }
@@ -221,7 +222,7 @@ fn stream(places: &[String], graph: i64, robots: usize, minutes: f64, seed: u64)
             let (a, c) = (&places[a], &places[c]);
             let _ = writeln!(
                 out,
-                "  - {{at: {}s, delivery: {{pickup: {a}, dropoff: {c}, dispenser: {a}_dispenser, ingestor: {c}_ingestor}}}}",
+                "  - {{at: {}s, delivery: {{pickup: {a}, dropoff: {c}, dispenser: stream_{a}_dispenser, ingestor: stream_{c}_ingestor}}}}",
                 k as f64 * every
             );
             continue;

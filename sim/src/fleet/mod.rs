@@ -65,6 +65,8 @@ pub mod codes {
     pub const NO_FLEET: &str = "S0205";
     /// A delivery has no dispenser/ingestor (neither given nor a waypoint param).
     pub const NO_WORKCELL: &str = "S0206";
+    /// A scenario workcell has the name of one of the map's.
+    pub const DUPLICATE_WORKCELL: &str = "S0308";
     /// A task waypoint lies inside a lift cabin.
     pub const IN_LIFT: &str = "S0207";
     /// A task waypoint cuts the graph (warning).

@@ -254,6 +254,28 @@ impl Fleets {
         }
         let mut workcells = Vec::new();
         for w in &scenario.workcells {
+            // The map's own dispensers and ingestors are workcells too, addressed by name:
+            // two of one name both answer a request (a robot was handed two items, and the
+            // one it did not deliver was never seen again).
+            let in_map = building.models.iter().any(|(_, m)| {
+                m.name == w.name
+                    && (m.model_name.ends_with("TeleportDispenser")
+                        || m.model_name.ends_with("TeleportIngestor"))
+            });
+            if in_map {
+                diags.push(
+                    Diagnostic::error(
+                        codes::DUPLICATE_WORKCELL,
+                        w.span,
+                        format!(
+                            "workcell `{}`: the map has a dispenser or ingestor of that name",
+                            w.name
+                        ),
+                    )
+                    .with_help("rename it, or leave it out and use the map's"),
+                );
+                continue;
+            }
             match building
                 .vertices
                 .iter()

@@ -719,6 +719,32 @@ fn delivery_through_doors_and_lift_completes() {
     assert!(mock.lifts.values().all(|l| l.1.is_empty()));
 }
 
+/// A scenario workcell named like one of the map's dispensers is refused (S0308): both
+/// would answer its requests, and a robot was handed two items.
+#[test]
+fn a_workcell_named_like_one_of_the_maps_is_refused() {
+    let b = clinic();
+    let mut s = scenario(
+        vec![fleet("tiny", 1, SpawnSpec::MapSpawnPoints)],
+        Vec::new(),
+    );
+    s.workcells.push(WorkcellSpec {
+        name: "pharmacy_dispenser".into(),
+        kind: crate::scenario::WorkcellKind::Dispenser,
+        waypoint: "ward_a".into(),
+        span: Span::UNKNOWN,
+    });
+    let Err(diags) = Fleets::place(&b, &s) else {
+        panic!("placed a workcell named like the map's `pharmacy_dispenser`");
+    };
+    assert!(
+        diags
+            .iter()
+            .any(|d| d.code == "S0308" && d.message.contains("pharmacy_dispenser")),
+        "{diags:#?}"
+    );
+}
+
 #[test]
 fn crossing_robots_keep_apart() {
     let b = cross();
