@@ -765,11 +765,26 @@ fn results(out: &[Published], topic: Topic) -> Vec<u8> {
         .collect()
 }
 
-#[test]
-fn dispenser_robot_ingestor_item_loop() {
-    let b = parse(MAP);
+/// Asks workcell `target` (request `guid` on `topic`) and steps once: the statuses of the
+/// results it sent (on the matching results topic).
+fn ask(w: &mut World, out: &mut Vec<Published>, topic: Topic, target: &str, guid: &str) -> Vec<u8> {
+    let (t, m) = workcell_req(topic, target, guid);
+    w.deliver(t, m);
+    out.clear();
+    w.step(out);
+    let results_topic = if topic == Topic::DispenserRequests {
+        Topic::DispenserResults
+    } else {
+        Topic::IngestorResults
+    };
+    results(out, results_topic)
+}
+
+/// A world on `b` with one TinyRobot `r` of fleet `f` at the dispenser `disp` (20, 0),
+/// which has just been asked (`d1`) for its item: served at the next step.
+fn at_dispenser_asking(b: &Building) -> (World, Vec<Published>) {
     let r = spawn(
-        &b,
+        b,
         "r",
         RobotParams::preset("TinyRobot").expect("preset"),
         20.0,
@@ -777,8 +792,7 @@ fn dispenser_robot_ingestor_item_loop() {
         0.0,
         "L1",
     );
-    let mut w = World::new(&b, &setup(vec![r]));
-    let mut out = Vec::new();
+    let mut w = World::new(b, &setup(vec![r]));
     w.deliver(
         Topic::FleetStates,
         Msg::FleetState(FleetState {
@@ -791,6 +805,13 @@ fn dispenser_robot_ingestor_item_loop() {
     );
     let (t, m) = workcell_req(Topic::DispenserRequests, "disp", "d1");
     w.deliver(t, m);
+    (w, Vec::new())
+}
+
+#[test]
+fn dispenser_robot_ingestor_item_loop() {
+    let b = parse(MAP);
+    let (mut w, mut out) = at_dispenser_asking(&b);
     out.clear();
     w.step(&mut out);
     assert_eq!(results(&out, Topic::DispenserResults), vec![0, 1]);
@@ -809,16 +830,14 @@ fn dispenser_robot_ingestor_item_loop() {
         "{p:?}"
     );
     // A repeated dispenser request gets its recorded result, nothing more.
-    let (t, m) = workcell_req(Topic::DispenserRequests, "disp", "d1");
-    w.deliver(t, m);
-    out.clear();
-    w.step(&mut out);
-    assert_eq!(results(&out, Topic::DispenserResults), vec![1]);
-    let (t, m) = workcell_req(Topic::IngestorRequests, "ing", "i1");
-    w.deliver(t, m);
-    out.clear();
-    w.step(&mut out);
-    assert_eq!(results(&out, Topic::IngestorResults), vec![0, 1]);
+    assert_eq!(
+        ask(&mut w, &mut out, Topic::DispenserRequests, "disp", "d1"),
+        vec![1]
+    );
+    assert_eq!(
+        ask(&mut w, &mut out, Topic::IngestorRequests, "ing", "i1"),
+        vec![0, 1]
+    );
     assert_eq!(w.items[item].pos, [30.0, 0.0, 0.0]);
     assert!(w.items[item].attached.is_none());
     // A request while the item is still held waits until it went home (five whole
@@ -851,17 +870,15 @@ fn dispenser_robot_ingestor_item_loop() {
     assert_eq!(w.items[item].pos, [20.0, 0.0, 0.0]);
     path(&mut w, "r", "2", &[(30.0, 0.0, 0.0), (20.0, 0.0, 0.0)]);
     run_until(&mut w, &mut out, 40.0, |_, _| false);
-    let (t, m) = workcell_req(Topic::DispenserRequests, "disp", "d2");
-    w.deliver(t, m);
-    out.clear();
-    w.step(&mut out);
-    assert_eq!(results(&out, Topic::DispenserResults), vec![0, 1]);
+    assert_eq!(
+        ask(&mut w, &mut out, Topic::DispenserRequests, "disp", "d2"),
+        vec![0, 1]
+    );
     // Empty now: the next request fails.
-    let (t, m) = workcell_req(Topic::DispenserRequests, "disp", "d3");
-    w.deliver(t, m);
-    out.clear();
-    w.step(&mut out);
-    assert_eq!(results(&out, Topic::DispenserResults), vec![0, 2]);
+    assert_eq!(
+        ask(&mut w, &mut out, Topic::DispenserRequests, "disp", "d3"),
+        vec![0, 2]
+    );
 }
 
 /// An ingestor at a place where a dispenser's own item waits takes the item the robot
@@ -874,29 +891,7 @@ fn an_ingestor_takes_the_carried_item_before_one_waiting_beside_it() {
         "      - {dispensable: false, model_name: TeleportDispenser, name: disp2, static: true, x: 30, y: 0, yaw: 0, z: 0}\n      - {dispensable: false, model_name: TeleportIngestor",
     );
     let b = parse(&map);
-    let r = spawn(
-        &b,
-        "r",
-        RobotParams::preset("TinyRobot").expect("preset"),
-        20.0,
-        0.0,
-        0.0,
-        "L1",
-    );
-    let mut w = World::new(&b, &setup(vec![r]));
-    let mut out = Vec::new();
-    w.deliver(
-        Topic::FleetStates,
-        Msg::FleetState(FleetState {
-            name: "f".into(),
-            robots: vec![RobotState {
-                name: "r".into(),
-                ..RobotState::default()
-            }],
-        }),
-    );
-    let (t, m) = workcell_req(Topic::DispenserRequests, "disp", "d1");
-    w.deliver(t, m);
+    let (mut w, mut out) = at_dispenser_asking(&b);
     w.step(&mut out);
     let item = |w: &World, name: &str| w.items.iter().position(|i| i.name == name).expect(name);
     let (carried, waiting) = (item(&w, "disp_item"), item(&w, "disp2_item"));
@@ -906,11 +901,10 @@ fn an_ingestor_takes_the_carried_item_before_one_waiting_beside_it() {
     // The waiting item is nearer the robot's origin (0 m against 0.5 m).
     let d = |i: usize| w.items[i].distance([30.0, 0.0, 0.0]);
     assert!(d(waiting) < d(carried), "{} {}", d(waiting), d(carried));
-    let (t, m) = workcell_req(Topic::IngestorRequests, "ing", "i1");
-    w.deliver(t, m);
-    out.clear();
-    w.step(&mut out);
-    assert_eq!(results(&out, Topic::IngestorResults), vec![0, 1]);
+    assert_eq!(
+        ask(&mut w, &mut out, Topic::IngestorRequests, "ing", "i1"),
+        vec![0, 1]
+    );
     assert!(w.items[carried].attached.is_none());
     assert_eq!(w.items[carried].pos, [30.0, 0.0, 0.0]);
     // Five whole seconds later it is home, and its dispenser serves again.
@@ -919,11 +913,10 @@ fn an_ingestor_takes_the_carried_item_before_one_waiting_beside_it() {
     assert_eq!(w.items[waiting].pos, [30.0, 0.0, 0.0]);
     path(&mut w, "r", "2", &[(30.0, 0.0, 0.0), (20.0, 0.0, 0.0)]);
     run_until(&mut w, &mut out, 40.0, |_, _| false);
-    let (t, m) = workcell_req(Topic::DispenserRequests, "disp", "d2");
-    w.deliver(t, m);
-    out.clear();
-    w.step(&mut out);
-    assert_eq!(results(&out, Topic::DispenserResults), vec![0, 1]);
+    assert_eq!(
+        ask(&mut w, &mut out, Topic::DispenserRequests, "disp", "d2"),
+        vec![0, 1]
+    );
 }
 
 #[test]
