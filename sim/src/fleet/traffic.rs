@@ -299,9 +299,9 @@ impl Fleets {
             .and_then(|_| plan.goal_at.last().copied());
         let jumped = self.traffic.sched.install(i, keep, &plan.steps, t0, soft);
         if let (Some(now), Some(before)) = (soft_at, before) {
-            // Every robot it went before plans again behind it, and the order stays
-            // acyclic; else nothing changes.
-            let kept = (jumped.iter().all(|&o| self.park_again(o, now)))
+            // Every robot it went before plans again behind it, the order stays acyclic,
+            // and it does not put the plan far behind itself; else nothing changes.
+            let kept = jumped.iter().all(|&o| self.park_again(o, now))
                 && self.traffic.sched.retime(now).is_ok()
                 && !self.later_than_planned(i, keep, &plan);
             if !kept {
@@ -491,11 +491,10 @@ impl Fleets {
     }
 
     /// Robot `i` waits to ask an empty dispenser again. When other robots wait for it to
-    /// leave, it makes room: it drives to
-    /// a parking vertex, stays there as long as it would have waited to ask, comes back and
-    /// asks again (the item it waits for may be the one another robot brings back). Its
-    /// request keeps its tries and time limit. The robots that waited for it plan again
-    /// behind it ([`Self::aside`]). True when it set off.
+    /// leave, it makes room: it drives to a parking vertex, stays there as long as it would
+    /// have waited to ask, comes back and asks again (the item it waits for may be the one
+    /// another robot brings back). Its request keeps its tries and time limit. The robots
+    /// that waited for it plan again behind it ([`Self::aside`]). True when it set off.
     pub(super) fn make_room(&mut self, i: usize, t: f64) -> bool {
         let r = &self.robots[i];
         // Wherever it stands, a parking vertex too (a task place may be one): the robots
