@@ -265,20 +265,19 @@ impl Dispatcher {
         }
     }
 
-    /// Free-flow time (s) for free robot `f` of `fleet` to `goal`: one table per place, kept (a
-    /// table per robot would cost a search of the whole graph per free robot and round:
-    /// with 1,000 robots on 10,000 waypoints, most of a run).
-    fn eta(&mut self, nav: &Nav, fleet: &FleetRt, goal: usize, f: &Free) -> f64 {
+    /// Free-flow times (s) from every vertex to `goal` for `fleet`'s robots: one table per
+    /// place, kept (a table per robot would cost a search of the whole graph per free robot
+    /// and round: with 1,000 robots on 10,000 waypoints, most of a run).
+    fn eta_table(&mut self, nav: &Nav, fleet: &FleetRt, goal: usize) -> &[f64] {
         let key = (fleet.slot, fleet.speed.to_bits(), goal);
-        if !self.eta_tables.contains_key(&key) {
-            if self.eta_tables.len() >= ETA_TABLES.max(ETA_TABLE_FLOATS / nav.vertices.len().max(1))
-            {
-                self.eta_tables.clear();
-            }
-            let table = nav.times_to(fleet.slot, goal, fleet.speed);
-            self.eta_tables.insert(key, table);
+        if !self.eta_tables.contains_key(&key)
+            && self.eta_tables.len() >= ETA_TABLES.max(ETA_TABLE_FLOATS / nav.vertices.len().max(1))
+        {
+            self.eta_tables.clear();
         }
-        self.eta_tables[&key][f.1] + f.2
+        self.eta_tables
+            .entry(key)
+            .or_insert_with(|| nav.times_to(fleet.slot, goal, fleet.speed))
     }
 }
 
@@ -473,18 +472,30 @@ impl Fleets {
             }
             let ti = self.dispatcher.pending[k].task;
             // The nearest free robots by free-flow time to the task's first place.
-            let mut near: Vec<(f64, usize, Vec<Step>)> = Vec::new();
+            // (time, robot, which of the task's fleets): the steps are cloned for the few
+            // kept only (with hundreds of robots free, cloning them for each was a tenth
+            // of a warehouse run, in the allocator).
+            let mut near: Vec<(f64, usize, usize)> = Vec::new();
             let only = self.dispatcher.pending[k].robot;
-            for (fi, steps) in self.dispatcher.pending[k].steps.clone() {
-                let Some(first) = first_goal(&steps) else {
+            let firsts: Vec<(usize, usize, usize)> = self.dispatcher.pending[k]
+                .steps
+                .iter()
+                .enumerate()
+                .filter_map(|(n, (fi, st))| first_goal(st).map(|g| (n, *fi, g)))
+                .collect();
+            for (n, fi, first) in firsts {
+                // One table lookup per task, not per robot: with hundreds of robots free
+                // and tasks queued, the lookups were a tenth of a warehouse run.
+                if !free.iter().any(|f| self.robots[f.0].fleet == fi) {
                     continue;
-                };
+                }
+                let fleet = &self.fleets[fi];
+                let table = self.dispatcher.eta_table(&self.nav, fleet, first);
                 for f in &free {
                     if self.robots[f.0].fleet == fi && only.is_none_or(|o| o == f.0) {
-                        let fleet = &self.fleets[fi];
-                        let eta = self.dispatcher.eta(&self.nav, fleet, first, f);
+                        let eta = table[f.1] + f.2;
                         if eta.is_finite() {
-                            near.push((eta, f.0, steps.clone()));
+                            near.push((eta, f.0, n));
                         }
                     }
                 }
@@ -499,7 +510,7 @@ impl Fleets {
                 .into_iter()
                 .enumerate()
                 .filter(|(n, c)| *n < CANDIDATES || holders.contains(&c.1))
-                .map(|(_, c)| c)
+                .map(|(_, (eta, ri, n))| (eta, ri, self.dispatcher.pending[k].steps[n].1.clone()))
                 .collect();
             // Task plans go through the others' ways to parking (see `schedule`).
             let task_soft = !self.dispatcher.pending[k].hard;
