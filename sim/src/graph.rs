@@ -85,7 +85,11 @@ pub struct Nav {
     pub members: Vec<Vec<usize>>,
     /// Number of IR lanes (lane resources follow the vertices).
     pub ir_lanes: usize,
+    /// Per graph slot: which vertices reach which (empty for a graph not built here).
+    reach: Vec<reach::Reach>,
 }
+
+mod reach;
 
 impl Nav {
     /// Builds the graphs `graphs` (graph indices) of `b`.
@@ -238,6 +242,17 @@ impl Nav {
         for (i, e) in nav.edges.iter().enumerate() {
             nav.out[e.graph][e.from].push(i);
         }
+        nav.reach = (0..graphs.len())
+            .map(|slot| {
+                let edges: Vec<(usize, usize)> = nav
+                    .edges
+                    .iter()
+                    .filter(|e| e.graph == slot)
+                    .map(|e| (e.from, e.to))
+                    .collect();
+                reach::Reach::build(nav.vertices.len(), &edges)
+            })
+            .collect();
         for e in 0..nav.edges.len() {
             if let EdgeKind::Lift(l) = nav.edges[e].kind {
                 let c = nav.edge_cost(e, 1.0);
@@ -365,7 +380,40 @@ impl Nav {
 
     /// Whether `to` can be reached from `from` on graph slot `slot`.
     pub fn times_reachable(&self, slot: usize, from: usize, to: usize) -> bool {
-        self.plan(slot, from, to, 1.0).is_some()
+        self.reachable_from_any(slot, &[from], to)
+    }
+
+    /// Whether `to` can be reached from one of `starts` on graph slot `slot`.
+    pub fn reachable_from_any(&self, slot: usize, starts: &[usize], to: usize) -> bool {
+        let n = self.vertices.len();
+        let Some(out) = self.out.get(slot) else {
+            return false;
+        };
+        if to >= n {
+            return false;
+        }
+        let known = self
+            .reach
+            .get(slot)
+            .and_then(|r| r.reached_from_any(&mut starts.iter().copied().filter(|&s| s < n), to));
+        if let Some(known) = known {
+            return known;
+        }
+        // A search from all of them at once.
+        let mut seen = vec![false; n];
+        let mut stack: Vec<usize> = starts.iter().copied().filter(|&s| s < n).collect();
+        while let Some(v) = stack.pop() {
+            if v == to {
+                return true;
+            }
+            if std::mem::replace(&mut seen[v], true) {
+                continue;
+            }
+            for &e in &out[v] {
+                stack.push(self.edges[e].to);
+            }
+        }
+        false
     }
 
     /// Travel times from `from` to every vertex of slot `slot` (Dijkstra).

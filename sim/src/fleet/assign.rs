@@ -358,22 +358,12 @@ impl Fleets {
             let Some(steps) = self.expand(fi, &task.kind) else {
                 continue;
             };
-            // The first place from some robot (one search from all of them), then each
-            // place from the one before.
-            let mut seen = vec![false; self.nav.vertices.len()];
-            let mut stack: Vec<usize> = f
+            // The first place from some robot, then each place from the one before.
+            let starts: Vec<usize> = f
                 .robots
                 .iter()
                 .map(|&ri| self.traffic.sched.itinerary(ri).at)
                 .collect();
-            while let Some(v) = stack.pop() {
-                if std::mem::replace(&mut seen[v], true) {
-                    continue;
-                }
-                for &e in &self.nav.out[f.slot][v] {
-                    stack.push(self.nav.edges[e].to);
-                }
-            }
             let goals: Vec<usize> = steps
                 .iter()
                 .filter_map(|s| match s {
@@ -381,7 +371,9 @@ impl Fleets {
                     _ => None,
                 })
                 .collect();
-            let reaches = goals.first().is_some_and(|&g| seen[g])
+            let reaches = goals
+                .first()
+                .is_some_and(|&g| self.nav.reachable_from_any(f.slot, &starts, g))
                 && goals
                     .windows(2)
                     .all(|w| self.nav.times_reachable(f.slot, w[0], w[1]));
