@@ -121,7 +121,8 @@ pub struct Cycle {
 
 #[derive(Debug)]
 pub struct Schedule {
-    conf: Conflicts,
+    /// Shared by the copies (fixed once built; a copy per soft plan copied it whole).
+    conf: std::sync::Arc<Conflicts>,
     queues: Vec<VecDeque<Span>>,
     its: Vec<Itinerary>,
     /// A traversal began or ended since the last retime: the estimates are stale.
@@ -134,6 +135,37 @@ pub struct Schedule {
     /// New for every copy: what was computed from one copy says nothing of another (see
     /// [`Schedule::lineage`]).
     lineage: u64,
+    /// What [`Schedule::retime`] reuses.
+    bufs: Bufs,
+}
+
+/// Buffers [`Schedule::retime`] reuses: a saturated run retimes thousands of times, and
+/// fresh ones of a 1,000-robot schedule were a fifth of its retiming. Not copied with
+/// the schedule.
+#[derive(Debug, Default)]
+struct Bufs {
+    offs: Vec<usize>,
+    edges: Vec<(u32, u32)>,
+    indeg: Vec<u32>,
+    first: Vec<u32>,
+    users: Vec<u32>,
+    at: Vec<u32>,
+    ready: Vec<usize>,
+    end: Vec<f64>,
+    start: Vec<f64>,
+    after: Vec<f64>,
+}
+
+impl Clone for Bufs {
+    fn clone(&self) -> Bufs {
+        Bufs::default()
+    }
+}
+
+/// `v` as `n` copies of `x`, in its own allocation.
+fn refill<T: Clone>(v: &mut Vec<T>, n: usize, x: T) {
+    v.clear();
+    v.resize(n, x);
 }
 
 impl Clone for Schedule {
@@ -146,6 +178,7 @@ impl Clone for Schedule {
             stamp: self.stamp,
             changed: self.changed.clone(),
             lineage: new_stamp(),
+            bufs: Bufs::default(),
         }
     }
 }
@@ -188,12 +221,13 @@ impl Schedule {
         let stamp = new_stamp();
         Schedule {
             changed: vec![stamp; conf.n_res],
-            conf,
+            conf: std::sync::Arc::new(conf),
             queues,
             its,
             stale: true,
             stamp,
             lineage: new_stamp(),
+            bufs: Bufs::default(),
         }
     }
 
@@ -571,16 +605,26 @@ impl Schedule {
         self.stamp = new_stamp();
         // Dependencies of each traversal on the last traversal of the span before its own.
         let nr = self.its.len();
-        let offs: Vec<usize> = {
-            let mut o = Vec::with_capacity(nr + 1);
-            let mut acc = 0;
-            for it in &self.its {
-                o.push(acc);
-                acc += it.travs.len();
-            }
-            o.push(acc);
-            o
-        };
+        let Bufs {
+            offs,
+            edges,
+            indeg,
+            first,
+            users,
+            at,
+            ready,
+            end,
+            start,
+            after,
+        } = &mut self.bufs;
+        offs.clear();
+        let mut acc = 0;
+        for it in &self.its {
+            offs.push(acc);
+            acc += it.travs.len();
+        }
+        offs.push(acc);
+        let offs = &*offs;
         let total = offs[nr];
         // Node id of (robot, seq), when that traversal is still in the itinerary.
         let node = |its: &[Itinerary], r: usize, seq: u64| -> Option<usize> {
@@ -591,7 +635,7 @@ impl Schedule {
         // The dependencies between queues (the last traversal of a span before the first of
         // the next), as one list of users per traversal (CSR: a saturated run retimes
         // thousands of times, and a vector per traversal cost most of it).
-        let mut edges: Vec<(u32, u32)> = Vec::new();
+        edges.clear();
         for q in &self.queues {
             for w in 1..q.len() {
                 let (p, s) = (&q[w - 1], &q[w]);
@@ -611,22 +655,21 @@ impl Schedule {
                 edges.push((a as u32, b as u32));
             }
         }
-        let mut indeg = vec![0u32; total];
-        let mut first = vec![0u32; total + 1];
-        for &(a, b) in &edges {
+        refill(indeg, total, 0);
+        refill(first, total + 1, 0);
+        for &(a, b) in edges.iter() {
             first[a as usize + 1] += 1;
             indeg[b as usize] += 1;
         }
         for k in 0..total {
             first[k + 1] += first[k];
         }
-        let mut users = vec![0u32; edges.len()];
-        {
-            let mut at = first.clone();
-            for &(a, b) in &edges {
-                users[at[a as usize] as usize] = b;
-                at[a as usize] += 1;
-            }
+        refill(users, edges.len(), 0);
+        at.clear();
+        at.extend_from_slice(first);
+        for &(a, b) in edges.iter() {
+            users[at[a as usize] as usize] = b;
+            at[a as usize] += 1;
         }
         // Each robot's own order: a traversal after the one before it.
         for it_off in offs.windows(2) {
@@ -635,11 +678,12 @@ impl Schedule {
             }
         }
         // Kahn's algorithm: a node whose dependencies are all timed is timed.
-        let mut ready: Vec<usize> = (0..total).filter(|&b| indeg[b] == 0).collect();
-        let mut end = vec![0.0f64; total];
-        let mut start = vec![0.0f64; total];
+        ready.clear();
+        ready.extend((0..total).filter(|&b| indeg[b] == 0));
+        refill(end, total, 0.0);
+        refill(start, total, 0.0);
         // The latest end of the other robots' traversals each waits for.
-        let mut after = vec![f64::NEG_INFINITY; total];
+        refill(after, total, f64::NEG_INFINITY);
         let robot_of = |b: usize| offs.partition_point(|&o| o <= b) - 1;
         let mut done = 0;
         while let Some(b) = ready.pop() {
