@@ -171,17 +171,12 @@ mod tests {
 
     #[test]
     fn agrees_with_a_search_on_random_graphs() {
-        let mut x: u64 = 7;
-        let mut next = |m: usize| {
-            x = x
-                .wrapping_mul(6_364_136_223_846_793_005)
-                .wrapping_add(1_442_695_040_888_963_407);
-            ((x >> 33) % m as u64) as usize
-        };
+        let mut rng = fastrand::Rng::with_seed(7);
         for case in 0..200 {
-            let n = 1 + next(40);
-            let m = next(3 * n);
-            let edges: Vec<(usize, usize)> = (0..m).map(|_| (next(n), next(n))).collect();
+            let n = rng.usize(1..=40);
+            let m = rng.usize(0..3 * n);
+            let edges: Vec<(usize, usize)> =
+                (0..m).map(|_| (rng.usize(0..n), rng.usize(0..n))).collect();
             let r = Reach::build(n, &edges);
             for a in 0..n {
                 for b in 0..n {
