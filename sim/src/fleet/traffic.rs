@@ -148,8 +148,8 @@ impl Traffic {
 
     /// Puts back the schedule as it was `before` a plan through soft spans that could not
     /// hold.
-    fn undo(&mut self, before: Schedule) {
-        self.sched = before;
+    fn undo(&mut self) {
+        self.sched.rollback();
         self.soft_undone += 1;
     }
 
@@ -293,21 +293,25 @@ impl Fleets {
         t0: f64,
         soft_at: Option<f64>,
     ) -> bool {
-        let before = soft_at.map(|_| self.traffic.sched.clone());
+        if soft_at.is_some() {
+            self.traffic.sched.open_tx();
+        }
         let soft = self.robots[i]
             .task
             .and_then(|_| plan.goal_at.last().copied());
         let jumped = self.traffic.sched.install(i, keep, &plan.steps, t0, soft);
-        if let (Some(now), Some(before)) = (soft_at, before) {
+        if let Some(now) = soft_at {
             // Every robot it went before plans again behind it, the order stays acyclic,
             // and it does not put the plan far behind itself; else nothing changes.
             let kept = jumped.iter().all(|&o| self.park_again(o, now))
-                && self.traffic.sched.retime(now).is_ok()
+                && self.traffic.sched.compute(now).is_ok()
                 && !self.later_than_planned(i, keep, &plan);
             if !kept {
-                self.traffic.undo(before);
+                self.traffic.undo();
                 return false;
             }
+            self.traffic.sched.apply(now);
+            self.traffic.sched.commit();
         }
         debug_assert!(jumped.is_empty() || soft_at.is_some(), "a hard plan jumped");
         self.traffic.planned(plan.expanded);
@@ -329,7 +333,7 @@ impl Fleets {
     }
 
     /// Whether robot `i`'s itinerary, just installed from `plan` after `keep` traversals and
-    /// retimed, reaches the plan's last place more than `SOFT_ORDER_SLACK` later than the
+    /// computed ([`Schedule::compute`]), reaches the plan's last place more than `SOFT_ORDER_SLACK` later than the
     /// plan did. A plan through others' soft spans goes after those the others hold now,
     /// whatever the plan assumed: on the airport a task planned to wait 51 s was put behind
     /// two robots' whole ways to parking, and its robot stood 513 s.
@@ -338,10 +342,10 @@ impl Fleets {
             return false;
         };
         let planned = plan.steps[last - 1].end;
-        let it = self.traffic.sched.itinerary(i);
-        it.travs
-            .get(keep + last - 1)
-            .is_some_and(|tr| tr.end > planned + SOFT_ORDER_SLACK)
+        self.traffic
+            .sched
+            .computed_end(i, keep + last - 1)
+            .is_some_and(|end| end > planned + SOFT_ORDER_SLACK)
     }
 
     /// Plans robot `o`'s way to parking again after its task's last place (its soft

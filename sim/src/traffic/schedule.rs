@@ -137,6 +137,17 @@ pub struct Schedule {
     lineage: u64,
     /// What [`Schedule::retime`] reuses.
     bufs: Bufs,
+    /// The open transaction's undo log ([`Schedule::begin`]).
+    tx: Option<Box<Tx>>,
+}
+
+/// What a transaction changed, as it was before: the queues and itineraries it changed
+/// (a plan touches a few hundred resources; copying a 1,000-robot schedule whole to undo
+/// one was a third of a warehouse run).
+#[derive(Debug, Default)]
+struct Tx {
+    queues: std::collections::BTreeMap<Res, VecDeque<Span>>,
+    its: std::collections::BTreeMap<usize, Itinerary>,
 }
 
 /// Buffers [`Schedule::retime`] reuses: a saturated run retimes thousands of times, and
@@ -154,6 +165,8 @@ struct Bufs {
     end: Vec<f64>,
     start: Vec<f64>,
     after: Vec<f64>,
+    /// `start` and `end` hold a successful compute's times.
+    computed: bool,
 }
 
 impl Clone for Bufs {
@@ -179,6 +192,7 @@ impl Clone for Schedule {
             changed: self.changed.clone(),
             lineage: new_stamp(),
             bufs: Bufs::default(),
+            tx: None,
         }
     }
 }
@@ -228,6 +242,46 @@ impl Schedule {
             stamp,
             lineage: new_stamp(),
             bufs: Bufs::default(),
+            tx: None,
+        }
+    }
+
+    /// Opens a transaction: [`Schedule::rollback`] puts back every queue and itinerary
+    /// as they are now; [`Schedule::commit`] keeps the changes. Retimes within it must be
+    /// [`Schedule::compute`] only (its times are not written until [`Schedule::apply`]).
+    pub fn open_tx(&mut self) {
+        debug_assert!(self.tx.is_none(), "transactions do not nest");
+        self.tx = Some(Box::default());
+    }
+
+    /// Keeps what the open transaction changed.
+    pub fn commit(&mut self) {
+        self.tx = None;
+    }
+
+    /// Undoes what the open transaction changed. Intervals computed from the restored
+    /// queues are stale ([`Schedule::changed_since`]); the others hold.
+    pub fn rollback(&mut self) {
+        let Some(tx) = self.tx.take() else { return };
+        self.stamp = new_stamp();
+        for (x, q) in tx.queues {
+            self.queues[x as usize] = q;
+            self.changed[x as usize] = self.stamp;
+        }
+        for (r, it) in tx.its {
+            self.its[r] = it;
+        }
+    }
+
+    /// Saves queues `set` and itinerary `r` in the open transaction, if not saved yet.
+    fn save(&mut self, set: &[Res], r: usize) {
+        if let Some(tx) = self.tx.as_mut() {
+            for &x in set {
+                tx.queues
+                    .entry(x)
+                    .or_insert_with(|| self.queues[x as usize].clone());
+            }
+            tx.its.entry(r).or_insert_with(|| self.its[r].clone());
         }
     }
 
@@ -324,6 +378,7 @@ impl Schedule {
     /// Robot `r` starts driving its first `n` remaining traversals (they are granted).
     /// Traversals sent together are driven one after the other.
     pub fn begin(&mut self, r: usize, n: usize, t: f64) {
+        debug_assert!(self.tx.is_none(), "robots drive outside transactions");
         self.stale = true;
         self.stamp = new_stamp();
         // Setting off on its soft traversals makes them hard.
@@ -349,6 +404,7 @@ impl Schedule {
     /// Robot `r` reached the end of its first remaining traversal at `t`: what it no
     /// longer needs is released.
     pub fn complete_front(&mut self, r: usize, t: f64) {
+        debug_assert!(self.tx.is_none(), "robots drive outside transactions");
         let Some(tr) = self.its[r].travs.pop_front() else {
             return;
         };
@@ -400,6 +456,7 @@ impl Schedule {
         }
         touched.sort_unstable();
         touched.dedup();
+        self.save(&touched, r);
         self.mark(&touched);
         // 1. Cut the itinerary after `keep`: spans wholly after go, spans reaching past end
         //    at the last kept traversal (they are extended below where the new steps need
@@ -554,6 +611,7 @@ impl Schedule {
         if self.its[r].soft.is_some() {
             self.stamp = new_stamp();
             let set = self.resources_of(r);
+            self.save(&[], r);
             self.mark(&set);
             self.its[r].soft = None;
         }
@@ -601,8 +659,15 @@ impl Schedule {
     /// a traversal starts when its robot is ready and every span before its own in the
     /// queues it needs has ended. Fails when the dependencies form a cycle.
     pub fn retime(&mut self, now: f64) -> Result<(), Cycle> {
-        self.stale = false;
-        self.stamp = new_stamp();
+        self.compute(now)?;
+        self.apply(now);
+        Ok(())
+    }
+
+    /// The times [`Schedule::retime`] would set, into its buffers (read them with
+    /// [`Schedule::computed_end`]); nothing else changes. Fails on a cycle.
+    pub fn compute(&mut self, now: f64) -> Result<(), Cycle> {
+        self.bufs.computed = false;
         // Dependencies of each traversal on the last traversal of the span before its own.
         let nr = self.its.len();
         let Bufs {
@@ -616,6 +681,7 @@ impl Schedule {
             end,
             start,
             after,
+            ..
         } = &mut self.bufs;
         offs.clear();
         let mut acc = 0;
@@ -731,8 +797,39 @@ impl Schedule {
             let mut robots: Vec<usize> =
                 (0..total).filter(|&b| indeg[b] > 0).map(robot_of).collect();
             robots.dedup();
+            // As before: a failed retime leaves the estimates and marks them fresh.
+            self.stale = false;
+            self.stamp = new_stamp();
             return Err(Cycle { robots });
         }
+        self.bufs.computed = true;
+        Ok(())
+    }
+
+    /// The end of robot `r`'s `k`-th remaining traversal by the last
+    /// [`Schedule::compute`], if it succeeded and the traversal exists.
+    pub fn computed_end(&self, r: usize, k: usize) -> Option<f64> {
+        let b = &self.bufs;
+        if !b.computed || k >= self.its[r].travs.len() {
+            return None;
+        }
+        b.end.get(b.offs[r] + k).copied()
+    }
+
+    /// Writes the times of the last successful [`Schedule::compute`] (at `now`, on the
+    /// schedule as it is still).
+    pub fn apply(&mut self, now: f64) {
+        debug_assert!(self.bufs.computed, "apply after a successful compute");
+        self.stale = false;
+        self.stamp = new_stamp();
+        let Bufs {
+            offs, start, end, ..
+        } = &self.bufs;
+        let node = |its: &[Itinerary], r: usize, seq: u64| -> Option<usize> {
+            let it = &its[r];
+            let k = seq.checked_sub(it.base)? as usize;
+            (k < it.travs.len()).then(|| offs[r] + k)
+        };
         for (r, it) in self.its.iter_mut().enumerate() {
             for (k, tr) in it.travs.iter_mut().enumerate() {
                 tr.start = start[offs[r] + k];
@@ -777,7 +874,6 @@ impl Schedule {
                 self.changed[x] = self.stamp;
             }
         }
-        Ok(())
     }
 
     /// Checks the schedule's invariants: spans name traversals that exist, every queue's

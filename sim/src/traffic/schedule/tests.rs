@@ -423,3 +423,42 @@ fn every_change_of_what_busy_says_is_stamped() {
     });
     stamps_follow(&mut s, "harden", |s| s.harden(0));
 }
+
+/// Everything a plan sees of a schedule: every resource's busy intervals (hard and soft
+/// alike, for a robot that is nobody) and every itinerary.
+fn seen(s: &Schedule) -> String {
+    let busy: Vec<Vec<(f64, f64)>> = (0..s.conf().n_res)
+        .map(|x| s.busy(x as Res, usize::MAX, false).collect())
+        .collect();
+    let its: Vec<String> = (0..2).map(|r| format!("{:?}", s.itinerary(r))).collect();
+    format!("{busy:?} {its:?}")
+}
+
+#[test]
+fn a_rolled_back_transaction_leaves_the_schedule_as_it_was() {
+    let (nav, mut s) = two_robots();
+    s.retime(0.0).expect("acyclic");
+    let before = seen(&s);
+    let stamp = s.stamp();
+    s.open_tx();
+    // Robot 1 goes another way: p2→c→d.
+    s.install(1, 1, &[step(&nav, e(&nav, "c", "d"), 5.0, 10.0)], 5.0, None);
+    s.harden(0);
+    s.compute(0.0).expect("acyclic");
+    assert_ne!(seen(&s), before);
+    s.rollback();
+    assert_eq!(seen(&s), before);
+    // What was computed from the queues put back is stale.
+    let set = &s.conf().trav[e(&nav, "c", "d")];
+    assert!(s.changed_since(set, stamp));
+    // A committed one keeps its change, and applies the computed times.
+    s.open_tx();
+    s.install(1, 1, &[step(&nav, e(&nav, "c", "d"), 5.0, 10.0)], 5.0, None);
+    s.compute(0.0).expect("acyclic");
+    assert_eq!(s.computed_end(1, 1), Some(15.0));
+    s.apply(0.0);
+    s.commit();
+    assert_eq!(s.end_vertex(1), v(&nav, "d"));
+    assert_eq!(s.itinerary(1).travs[1].end, 15.0);
+    assert!(s.check(0.0).is_ok());
+}
