@@ -260,25 +260,43 @@ fn check_generated(cases: u64, mix_of: impl Fn(u64) -> gen::Mix) {
 /// 319 to 265 tasks): not fixed yet, so not in CI (BENCHMARKS.md).
 #[test]
 fn generated_warehouses_never_deadlock() {
-    let cases: u64 = env_or("MAPC_TRAFFIC_GRIDS", 6);
+    // `MAPC_TRAFFIC_HOTSPOT=1`: every task goes to a station.
+    if std::env::var_os("MAPC_TRAFFIC_HOTSPOT").is_some() {
+        check_warehouses("grid", gen::grid_to_stations, 6);
+    } else {
+        check_warehouses("grid", gen::grid, 6);
+    }
+}
+
+/// Generated warehouses of one-way aisles with bays (`gen::grid_bays`, where idle robots
+/// stand out of the aisles, as in the 1,000-robot benchmark): the same checks and rule. In
+/// CI 4 of them (`MAPC_TRAFFIC_BAYS`), as above.
+#[test]
+fn generated_bay_warehouses_never_deadlock() {
+    check_warehouses("bays", gen::grid_bays, 4);
+}
+
+/// The checks and rule on `MAPC_TRAFFIC_GRIDS` (for `bays`: `MAPC_TRAFFIC_BAYS`, else
+/// `cases`) warehouses made by `make`.
+fn check_warehouses(what: &str, make: fn(u64) -> gen::Building, cases: u64) {
+    let var = if what == "bays" {
+        "MAPC_TRAFFIC_BAYS"
+    } else {
+        "MAPC_TRAFFIC_GRIDS"
+    };
+    let cases: u64 = env_or(var, cases);
     let minutes: f64 = env_or("MAPC_TRAFFIC_MINUTES", 8.0);
     let sizes = sizes_or(&[4, 16]);
     let first: u64 = env_or("MAPC_TRAFFIC_FIRST", 0);
     // A task every 2 s: more than 32 robots serve in these warehouses.
     let every: f64 = env_or("MAPC_TRAFFIC_EVERY", 2.0);
     let mut fewer = Vec::new();
-    // `MAPC_TRAFFIC_HOTSPOT=1`: every task goes to a station.
-    let hotspot = std::env::var_os("MAPC_TRAFFIC_HOTSPOT").is_some();
     for seed in first..first + cases {
-        let b = if hotspot {
-            gen::grid_to_stations(seed)
-        } else {
-            gen::grid(seed)
-        };
+        let b = make(seed);
         let (done, f) = check_building_every(&b, &sizes, minutes, every, gen::Mix::Loops);
         if std::env::var_os("MAPC_TRAFFIC_VERBOSE").is_some() {
             eprintln!(
-                "grid {seed} ({} waypoints): completed {done:?} at {sizes:?}",
+                "{what} {seed} ({} waypoints): completed {done:?} at {sizes:?}",
                 b.waypoints
             );
         }

@@ -61,9 +61,12 @@ const SEARCH_DELAY: Delay = Delay {
 /// No plan a task takes stands still for longer than this in one place (s), well under
 /// the 300 s after which a robot with a task counts as stuck (`report::STUCK_AFTER`).
 const LONGEST_WAIT: f64 = 180.0;
-/// Dispatch is tried again this often (s) while tasks wait (and at once when a robot
+/// Dispatch is tried again this often (s) while tasks wait (and sooner when a robot
 /// becomes free or a task comes).
 const DISPATCH_EVERY: f64 = 5.0;
+/// Least time (s) between a round and one that a task joining a queue with tasks
+/// waiting brings forward (RMF's dispatcher waits 2 s for bids on every task).
+const ROUND_GAP: f64 = 1.0;
 /// Robots in a waiting task's way are asked to make room at most this often (s).
 const DISPLACE_EVERY: f64 = 5.0;
 /// A robot that found no way to a task is planned for it again after this long (s): others
@@ -115,7 +118,8 @@ struct Pending {
 /// Invariant: the queue keeps tasks oldest first within a priority and a higher priority
 /// before every lower one; a task is in it from its request until a robot takes it or it
 /// is cancelled; while it is not empty a round is due within `DISPATCH_EVERY` s (at once
-/// when a task comes or a robot becomes free). Guarantees (with [`Fleets::dispatch`]):
+/// when a robot becomes free or a task comes to an empty queue, within `ROUND_GAP` of the
+/// last round when one comes to a queue with tasks waiting). Guarantees (with [`Fleets::dispatch`]):
 /// tasks are looked at oldest first, each goes to the free robot whose whole-task plan
 /// arrives first, a plan that would wait long for traffic is never taken, and a robot
 /// whose plan for a task waited too long (or found no way) is not planned for it, nor for
@@ -126,8 +130,9 @@ pub(super) struct Dispatcher {
     upcoming: VecDeque<(f64, usize, NewTask)>,
     /// Tasks no robot has taken yet, oldest first.
     pending: VecDeque<Pending>,
-    /// When the dispatcher runs next.
+    /// When the dispatcher runs next, and when it last ran (a round).
     next_dispatch: f64,
+    last_round: f64,
     /// Per category, the tasks requested so far (their ids count on).
     counters: BTreeMap<TaskCategory, usize>,
     /// Per (graph slot, speed, place): free-flow times to the place from every vertex.
@@ -196,6 +201,7 @@ impl Dispatcher {
             upcoming: upcoming.into(),
             pending: VecDeque::new(),
             next_dispatch: f64::INFINITY,
+            last_round: f64::NEG_INFINITY,
             counters: BTreeMap::new(),
             eta_tables: BTreeMap::new(),
             was_free: Vec::new(),
@@ -243,15 +249,24 @@ impl Dispatcher {
     }
 
     /// Queues `p` at `t`: oldest first within a priority; a higher priority before every
-    /// lower one. A round is due at once.
+    /// lower one. A round is due at once (into an empty queue) or soon.
     fn enqueue(&mut self, p: Pending, t: f64) {
+        // Into a queue with tasks waiting, a round comes `ROUND_GAP` after the last one
+        // at the soonest: the robots free now were looked at for the tasks before it, and
+        // a saturating stream would otherwise start a round (and retime the whole
+        // schedule) for every task it brings.
+        let due = if self.pending.is_empty() {
+            t
+        } else {
+            t.max(self.last_round + ROUND_GAP)
+        };
         let at = self
             .pending
             .iter()
             .position(|q| q.priority < p.priority)
             .unwrap_or(self.pending.len());
         self.pending.insert(at, p);
-        self.next_dispatch = self.next_dispatch.min(t);
+        self.next_dispatch = self.next_dispatch.min(due);
     }
 
     /// Takes task `ti` out of the queue. False when it was not queued.
@@ -408,6 +423,7 @@ impl Fleets {
         if t < self.dispatcher.next_dispatch || self.dispatcher.pending.is_empty() {
             return;
         }
+        self.dispatcher.last_round = t;
         self.dispatcher.next_dispatch = f64::INFINITY;
         self.traffic.retime(t);
         // Free robots: where they plan from, and how long until they may leave.

@@ -295,6 +295,27 @@ pub fn grid(seed: u64) -> Building {
     }
 }
 
+/// A warehouse of one-way aisles with bays from `seed` (`warehouse::bays`): 2 to 8 aisles
+/// of 11 or 31 waypoints, a rack in a bay off every other waypoint; tasks go between
+/// racks. Idle robots stand in bays, out of the aisles.
+pub fn grid_bays(seed: u64) -> Building {
+    let mut rng = fastrand::Rng::with_seed(seed ^ 0xba75_5eed);
+    let rows = 2 * rng.usize(1..5);
+    let cols = if rng.bool() { 11 } else { 31 };
+    let (yaml, places) = super::warehouse::bays(rows, cols, &format!("bays_{seed}"));
+    Building {
+        seed,
+        yaml,
+        waypoints: rows * cols + places.len(),
+        places,
+        levels: 1,
+        well_formed: true,
+        doors: Vec::new(),
+        lifts: Vec::new(),
+        sinks: Vec::new(),
+    }
+}
+
 /// [`grid`]`(seed)` with a hotspot: every task goes from a rack to a station (the west
 /// end of an aisle), as where goods are packed.
 pub fn grid_to_stations(seed: u64) -> Building {
