@@ -310,8 +310,8 @@ impl Fleets {
                 self.traffic.undo();
                 return false;
             }
-            self.traffic.sched.apply(now);
             self.traffic.sched.commit();
+            self.traffic.sched.apply(now);
         }
         debug_assert!(jumped.is_empty() || soft_at.is_some(), "a hard plan jumped");
         self.traffic.planned(plan.expanded);

@@ -167,6 +167,30 @@ struct Bufs {
     after: Vec<f64>,
     /// `start` and `end` hold a successful compute's times.
     computed: bool,
+    /// Per robot, what the loops over every span read of its itinerary, side by side
+    /// (reading the itineraries themselves was half of writing the times back).
+    robots: Vec<Brief>,
+}
+
+/// What [`Schedule::compute`] and [`Schedule::apply`] read of an itinerary.
+#[derive(Debug, Clone, Copy)]
+struct Brief {
+    /// `Itinerary::base`, its traversals and the node of its first one.
+    base: u64,
+    len: u32,
+    off: u32,
+    /// How many of its first traversals it was sent along (they are a prefix).
+    begun: u32,
+    /// Ready to go on and waiting for its turn now (its first traversal not begun).
+    waiting: bool,
+}
+
+impl Brief {
+    /// The node of its traversal `seq`, when that is still in the itinerary.
+    fn node(&self, seq: u64) -> Option<usize> {
+        let k = seq.checked_sub(self.base)?;
+        (k < u64::from(self.len)).then(|| (u64::from(self.off) + k) as usize)
+    }
 }
 
 impl Clone for Bufs {
@@ -681,23 +705,29 @@ impl Schedule {
             end,
             start,
             after,
+            robots,
             ..
         } = &mut self.bufs;
         offs.clear();
+        robots.clear();
         let mut acc = 0;
         for it in &self.its {
+            robots.push(Brief {
+                base: it.base,
+                len: it.travs.len() as u32,
+                off: acc as u32,
+                begun: it.travs.iter().take_while(|t| t.begun).count() as u32,
+                waiting: it.travs.front().is_some_and(|t| !t.begun) && it.ready <= now,
+            });
             offs.push(acc);
             acc += it.travs.len();
         }
         offs.push(acc);
         let offs = &*offs;
         let total = offs[nr];
+        let robots = &*robots;
         // Node id of (robot, seq), when that traversal is still in the itinerary.
-        let node = |its: &[Itinerary], r: usize, seq: u64| -> Option<usize> {
-            let it = &its[r];
-            let k = seq.checked_sub(it.base)? as usize;
-            (k < it.travs.len()).then(|| offs[r] + k)
-        };
+        let node = |_: &[Itinerary], r: usize, seq: u64| robots[r].node(seq);
         // The dependencies between queues (the last traversal of a span before the first of
         // the next), as one list of users per traversal (CSR: a saturated run retimes
         // thousands of times, and a vector per traversal cost most of it).
@@ -820,40 +850,38 @@ impl Schedule {
     /// schedule as it is still).
     pub fn apply(&mut self, now: f64) {
         debug_assert!(self.bufs.computed, "apply after a successful compute");
+        debug_assert!(self.tx.is_none(), "a rollback would not undo the times");
         self.stale = false;
         self.stamp = new_stamp();
         let Bufs {
-            offs, start, end, ..
+            offs,
+            start,
+            end,
+            robots,
+            ..
         } = &self.bufs;
-        let node = |its: &[Itinerary], r: usize, seq: u64| -> Option<usize> {
-            let it = &its[r];
-            let k = seq.checked_sub(it.base)? as usize;
-            (k < it.travs.len()).then(|| offs[r] + k)
-        };
         for (r, it) in self.its.iter_mut().enumerate() {
             for (k, tr) in it.travs.iter_mut().enumerate() {
                 tr.start = start[offs[r] + k];
                 tr.end = end[offs[r] + k];
             }
         }
-        let its = &self.its;
         for (x, q) in self.queues.iter_mut().enumerate() {
             let mut moved = false;
             for s in q.iter_mut() {
                 let was = (s.start, s.end);
-                let r = s.robot as usize;
-                if let Some(b) = node(its, r, s.first) {
+                let br = &robots[s.robot as usize];
+                if let Some(b) = br.node(s.first) {
                     s.start = start[b];
                     // Held now (sent along its first traversal): busy from now, as
                     // `install` never puts a span before it.
-                    if its[r].held_in(s.first) {
+                    if s.first < br.base + u64::from(br.begun) {
                         s.start = s.start.min(now);
                     }
                     // A robot ready to go on and waiting for its turn holds its next
                     // traversal's resources from now: nobody planned later goes before
                     // it (else a waiting robot could be overtaken for ever).
-                    let it = &its[r];
-                    if b == offs[r] && !it.travs[0].begun && it.ready <= now {
+                    if b == br.off as usize && br.waiting {
                         s.start = s.start.min(now);
                     }
                 } else {
@@ -863,7 +891,7 @@ impl Schedule {
                 }
                 s.end = if s.last == FOREVER {
                     f64::INFINITY
-                } else if let Some(b) = node(its, r, s.last) {
+                } else if let Some(b) = br.node(s.last) {
                     end[b]
                 } else {
                     s.end

@@ -296,17 +296,17 @@ pub fn grid(seed: u64) -> Building {
 }
 
 /// A warehouse of one-way aisles with bays from `seed` (`warehouse::bays`): 2 to 8 aisles
-/// of 11 or 31 waypoints, a rack in a bay off every other waypoint; tasks go between
-/// racks. Idle robots stand in bays, out of the aisles.
+/// of 13 or 29 waypoints, a bay off every other waypoint, every other bay a rack; tasks
+/// go between racks. Idle robots stand in bays, out of the aisles.
 pub fn grid_bays(seed: u64) -> Building {
     let mut rng = fastrand::Rng::with_seed(seed ^ 0xba75_5eed);
     let rows = 2 * rng.usize(1..5);
-    let cols = if rng.bool() { 11 } else { 31 };
+    let cols = if rng.bool() { 13 } else { 29 };
     let (yaml, places) = super::warehouse::bays(rows, cols, &format!("bays_{seed}"));
     Building {
         seed,
         yaml,
-        waypoints: rows * cols + places.len(),
+        waypoints: rows * cols + rows * (cols / 2),
         places,
         levels: 1,
         well_formed: true,

@@ -42,16 +42,17 @@ pub fn map(rows: usize, cols: usize, name: &str) -> (String, Vec<String>) {
 }
 
 /// A warehouse of one-way aisles with bays, as robot warehouses are laid out: `rows`
-/// aisles (even) of `cols` waypoints (`cols - 1` a multiple of 10 with an even number of
-/// cross aisles) 2 m apart, 4 m apart, driven east on even rows and west on odd ones; a
-/// one-way cross aisle every 10 waypoints, south on even ones and north on odd ones (so
-/// the outer ring is a loop and every waypoint reaches every other); and off every odd
-/// waypoint a bay 1.5 m to the north, reached by a two-way lane: a rack (`rack_<row>_<col>`)
-/// where a robot stands out of the aisle's way. Cartesian metres.
+/// aisles (even) of `cols` waypoints 2 m apart, 4 m apart, driven east on even rows and
+/// west on odd ones; a one-way cross aisle every 4 waypoints (`cols - 1` a multiple of 4,
+/// an even number of them), south on even ones and north on odd ones (so the outer ring
+/// is a loop and every waypoint reaches every other); and off every odd waypoint a bay
+/// 1.5 m to the north, reached by a two-way lane, where a robot stands out of the aisle's
+/// way: a rack (`rack_<row>_<col>`) at columns 1, 5, 9, ..., a parking bay between them.
+/// Cartesian metres.
 ///
 /// The map's `.building.yaml` text, and the names of its racks.
 pub fn bays(rows: usize, cols: usize, name: &str) -> (String, Vec<String>) {
-    assert!(rows % 2 == 0 && cols % 10 == 1 && (cols / 10 + 1) % 2 == 0);
+    assert!(rows % 2 == 0 && cols % 4 == 1 && (cols / 4 + 1) % 2 == 0);
     let mut s = format!(
         "coordinate_system: cartesian_meters\nname: {name}\nlevels:\n  L1:\n    elevation: 0\n    vertices:\n"
     );
@@ -62,20 +63,24 @@ pub fn bays(rows: usize, cols: usize, name: &str) -> (String, Vec<String>) {
         }
     }
     let mut racks = Vec::new();
+    let mut bays = rows * cols;
     let mut lanes = String::new();
     let two_way = "{bidirectional: [4, true], graph_idx: [2, 0]}";
     let one_way = "{bidirectional: [4, false], graph_idx: [2, 0]}";
     for r in 0..rows {
         for c in (1..cols).step_by(2) {
-            let bay = rows * cols + racks.len();
-            let rack = format!("rack_{r}_{c}");
-            s += &format!(
-                "      - [{}, {}, 0, \"{rack}\"]\n",
-                2 * c,
-                (4 * r) as f64 + 1.5
-            );
-            lanes += &format!("      - [{}, {bay}, {two_way}]\n", aisle(r, c));
-            racks.push(rack);
+            let rack = if c % 4 == 1 {
+                format!("rack_{r}_{c}")
+            } else {
+                String::new()
+            };
+            let y = (4 * r) as f64 + 1.5;
+            s += &format!("      - [{}, {y}, 0, \"{rack}\"]\n", 2 * c);
+            lanes += &format!("      - [{}, {bays}, {two_way}]\n", aisle(r, c));
+            bays += 1;
+            if !rack.is_empty() {
+                racks.push(rack);
+            }
         }
         for c in 0..cols - 1 {
             let (a, b) = (aisle(r, c), aisle(r, c + 1));
@@ -83,9 +88,9 @@ pub fn bays(rows: usize, cols: usize, name: &str) -> (String, Vec<String>) {
             lanes += &format!("      - [{a}, {b}, {one_way}]\n");
         }
     }
-    for k in 0..=cols / 10 {
+    for k in 0..=cols / 4 {
         for r in 0..rows - 1 {
-            let (a, b) = (aisle(r, 10 * k), aisle(r + 1, 10 * k));
+            let (a, b) = (aisle(r, 4 * k), aisle(r + 1, 4 * k));
             let (a, b) = if k % 2 == 1 { (a, b) } else { (b, a) };
             lanes += &format!("      - [{a}, {b}, {one_way}]\n");
         }
