@@ -146,8 +146,8 @@ impl Traffic {
         self.decisions.push(expanded as u32);
     }
 
-    /// Puts back the schedule as it was `before` a plan through soft spans that could not
-    /// hold.
+    /// Puts back the schedule as it was before a plan through soft spans that could not
+    /// hold (the transaction it was installed in).
     fn undo(&mut self) {
         self.sched.rollback();
         self.soft_undone += 1;
@@ -333,8 +333,8 @@ impl Fleets {
     }
 
     /// Whether robot `i`'s itinerary, just installed from `plan` after `keep` traversals and
-    /// computed ([`Schedule::compute`]), reaches the plan's last place more than `SOFT_ORDER_SLACK` later than the
-    /// plan did. A plan through others' soft spans goes after those the others hold now,
+    /// computed ([`Schedule::compute`]), reaches the plan's last place more than
+    /// `SOFT_ORDER_SLACK` later than the plan did. A plan through others' soft spans goes after those the others hold now,
     /// whatever the plan assumed: on the airport a task planned to wait 51 s was put behind
     /// two robots' whole ways to parking, and its robot stood 513 s.
     fn later_than_planned(&self, i: usize, keep: usize, plan: &Plan) -> bool {

@@ -137,7 +137,7 @@ pub struct Schedule {
     lineage: u64,
     /// What [`Schedule::retime`] reuses.
     bufs: Bufs,
-    /// The open transaction's undo log ([`Schedule::begin`]).
+    /// The open transaction's undo log ([`Schedule::open_tx`]).
     tx: Option<Box<Tx>>,
 }
 
@@ -148,6 +148,7 @@ pub struct Schedule {
 struct Tx {
     queues: std::collections::BTreeMap<Res, VecDeque<Span>>,
     its: std::collections::BTreeMap<usize, Itinerary>,
+    stale: bool,
 }
 
 /// Buffers [`Schedule::retime`] reuses: a saturated run retimes thousands of times, and
@@ -275,7 +276,10 @@ impl Schedule {
     /// [`Schedule::compute`] only (its times are not written until [`Schedule::apply`]).
     pub fn open_tx(&mut self) {
         debug_assert!(self.tx.is_none(), "transactions do not nest");
-        self.tx = Some(Box::default());
+        self.tx = Some(Box::new(Tx {
+            stale: self.stale,
+            ..Tx::default()
+        }));
     }
 
     /// Keeps what the open transaction changed.
@@ -288,6 +292,7 @@ impl Schedule {
     pub fn rollback(&mut self) {
         let Some(tx) = self.tx.take() else { return };
         self.stamp = new_stamp();
+        self.stale = tx.stale;
         for (x, q) in tx.queues {
             self.queues[x as usize] = q;
             self.changed[x as usize] = self.stamp;
