@@ -456,8 +456,8 @@ fn a_rolled_back_transaction_leaves_the_schedule_as_it_was() {
     s.install(1, 1, &[step(&nav, e(&nav, "c", "d"), 5.0, 10.0)], 5.0, None);
     s.compute(0.0).expect("acyclic");
     assert_eq!(s.computed_end(1, 1), Some(15.0));
-    s.apply(0.0);
     s.commit();
+    s.apply(0.0);
     assert_eq!(s.end_vertex(1), v(&nav, "d"));
     assert_eq!(s.itinerary(1).travs[1].end, 15.0);
     assert!(s.check(0.0).is_ok());
