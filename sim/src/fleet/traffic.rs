@@ -910,11 +910,10 @@ impl Fleets {
                 _ => continue,
             };
             let old_arrival = self.arrival(i, goals.len());
-            let snapshot = (
-                self.traffic.sched.clone(),
-                self.robots[i].legs.clone(),
-                self.robots[i].leg,
-            );
+            // An undo log, not a copy: a copy is a new lineage, and putting it back
+            // emptied the planner's cache of intervals every time.
+            let snapshot = (self.robots[i].legs.clone(), self.robots[i].leg);
+            self.traffic.sched.open_tx();
             let better = match self.plan_with(i, &goals, None, t) {
                 Ok(leg) => {
                     if !goals.is_empty() {
@@ -925,10 +924,12 @@ impl Fleets {
                 Err(_) => false,
             };
             if better {
+                self.traffic.sched.commit();
                 self.robots[i].dirty = true;
             } else {
                 // Not better: the old itinerary stays.
-                (self.traffic.sched, self.robots[i].legs, self.robots[i].leg) = snapshot;
+                self.traffic.sched.rollback();
+                (self.robots[i].legs, self.robots[i].leg) = snapshot;
                 debug_assert_eq!(before, self.traffic.sched.end_vertex(i));
             }
             self.robots[i].replan_at = t + REPLAN_DELAY;

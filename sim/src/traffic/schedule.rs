@@ -136,7 +136,7 @@ pub struct Schedule {
     /// [`Schedule::lineage`]).
     lineage: u64,
     /// What [`Schedule::retime`] reuses.
-    bufs: Bufs,
+    bufs: retime::Bufs,
     /// The open transaction's undo log ([`Schedule::open_tx`]).
     tx: Option<Box<Tx>>,
 }
@@ -151,61 +151,6 @@ struct Tx {
     stale: bool,
 }
 
-/// Buffers [`Schedule::retime`] reuses: a saturated run retimes thousands of times, and
-/// with 1,000 robots each retime allocated ten arrays as long as all itineraries (page
-/// faults and allocator time every time). Not copied with the schedule.
-#[derive(Debug, Default)]
-struct Bufs {
-    offs: Vec<usize>,
-    edges: Vec<(u32, u32)>,
-    indeg: Vec<u32>,
-    first: Vec<u32>,
-    users: Vec<u32>,
-    at: Vec<u32>,
-    ready: Vec<usize>,
-    end: Vec<f64>,
-    start: Vec<f64>,
-    after: Vec<f64>,
-    /// `start` and `end` hold a successful compute's times.
-    computed: bool,
-    /// Per robot, what the loops over every span read of its itinerary, side by side
-    /// (reading the itineraries themselves was half of writing the times back).
-    robots: Vec<Brief>,
-}
-
-/// What [`Schedule::compute`] and [`Schedule::apply`] read of an itinerary.
-#[derive(Debug, Clone, Copy)]
-struct Brief {
-    /// `Itinerary::base`, its traversals and the node of its first one.
-    base: u64,
-    len: u32,
-    off: u32,
-    /// How many of its first traversals it was sent along (they are a prefix).
-    begun: u32,
-    /// Ready to go on and waiting for its turn now (its first traversal not begun).
-    waiting: bool,
-}
-
-impl Brief {
-    /// The node of its traversal `seq`, when that is still in the itinerary.
-    fn node(&self, seq: u64) -> Option<usize> {
-        let k = seq.checked_sub(self.base)?;
-        (k < u64::from(self.len)).then(|| (u64::from(self.off) + k) as usize)
-    }
-}
-
-impl Clone for Bufs {
-    fn clone(&self) -> Bufs {
-        Bufs::default()
-    }
-}
-
-/// `v` as `n` copies of `x`, keeping its allocation.
-fn refill<T: Clone>(v: &mut Vec<T>, n: usize, x: T) {
-    v.clear();
-    v.resize(n, x);
-}
-
 impl Clone for Schedule {
     fn clone(&self) -> Schedule {
         Schedule {
@@ -216,7 +161,7 @@ impl Clone for Schedule {
             stamp: self.stamp,
             changed: self.changed.clone(),
             lineage: new_stamp(),
-            bufs: Bufs::default(),
+            bufs: retime::Bufs::default(),
             tx: None,
         }
     }
@@ -266,7 +211,7 @@ impl Schedule {
             stale: true,
             stamp,
             lineage: new_stamp(),
-            bufs: Bufs::default(),
+            bufs: retime::Bufs::default(),
             tx: None,
         }
     }
@@ -291,11 +236,13 @@ impl Schedule {
     /// queues are stale ([`Schedule::changed_since`]); the others hold.
     pub fn rollback(&mut self) {
         let Some(tx) = self.tx.take() else { return };
+        self.bufs.computed = false;
         self.stamp = new_stamp();
         self.stale = tx.stale;
         for (x, q) in tx.queues {
             self.queues[x as usize] = q;
             self.changed[x as usize] = self.stamp;
+            self.bufs.touch(x);
         }
         for (r, it) in tx.its {
             self.its[r] = it;
@@ -349,6 +296,7 @@ impl Schedule {
     fn mark(&mut self, set: &[Res]) {
         for &x in set {
             self.changed[x as usize] = self.stamp;
+            self.bufs.touch(x);
         }
     }
 
@@ -421,6 +369,10 @@ impl Schedule {
         let mut prev = t;
         for tr in self.its[r].travs.iter_mut().take(n) {
             if !tr.begun {
+                // Its spans are held from now on.
+                for &x in &self.conf.trav[tr.edge] {
+                    self.bufs.touch(x);
+                }
                 tr.begun = true;
                 tr.begun_at = t;
                 tr.start = prev.max(t);
@@ -441,6 +393,8 @@ impl Schedule {
         self.stamp = new_stamp();
 
         for &x in &self.conf.trav[tr.edge] {
+            // Spans from it on start at a traversal that is gone.
+            self.bufs.touch(x);
             let q = &mut self.queues[x as usize];
             if q.front()
                 .is_some_and(|s| s.robot as usize == r && s.last == tr.seq)
@@ -607,6 +561,7 @@ impl Schedule {
             let at = self.end_vertex(r);
             let last_kept = s0 - 1;
             for &x in &self.conf.vertex[at] {
+                self.bufs.touch(x);
                 for s in self.queues[x as usize].iter_mut() {
                     if s.robot as usize == r && s.last == last_kept {
                         s.last = FOREVER;
@@ -684,231 +639,6 @@ impl Schedule {
         self.stale
     }
 
-    /// Re-estimates every traversal's times from `now` on, keeping every queue's order:
-    /// a traversal starts when its robot is ready and every span before its own in the
-    /// queues it needs has ended. Fails when the dependencies form a cycle.
-    pub fn retime(&mut self, now: f64) -> Result<(), Cycle> {
-        self.compute(now)?;
-        self.apply(now);
-        Ok(())
-    }
-
-    /// The times [`Schedule::retime`] would set, into its buffers (read them with
-    /// [`Schedule::computed_end`]); nothing else changes. Fails on a cycle.
-    pub fn compute(&mut self, now: f64) -> Result<(), Cycle> {
-        self.bufs.computed = false;
-        // Dependencies of each traversal on the last traversal of the span before its own.
-        let nr = self.its.len();
-        let Bufs {
-            offs,
-            edges,
-            indeg,
-            first,
-            users,
-            at,
-            ready,
-            end,
-            start,
-            after,
-            robots,
-            ..
-        } = &mut self.bufs;
-        offs.clear();
-        robots.clear();
-        let mut acc = 0;
-        for it in &self.its {
-            robots.push(Brief {
-                base: it.base,
-                len: it.travs.len() as u32,
-                off: acc as u32,
-                begun: it.travs.iter().take_while(|t| t.begun).count() as u32,
-                waiting: it.travs.front().is_some_and(|t| !t.begun) && it.ready <= now,
-            });
-            offs.push(acc);
-            acc += it.travs.len();
-        }
-        offs.push(acc);
-        let offs = &*offs;
-        let total = offs[nr];
-        let robots = &*robots;
-        // Node id of (robot, seq), when that traversal is still in the itinerary.
-        let node = |r: usize, seq: u64| robots[r].node(seq);
-        // The dependencies between queues (the last traversal of a span before the first of
-        // the next), as one list of users per traversal (CSR: a saturated run retimes
-        // thousands of times, and a vector per traversal cost most of it).
-        edges.clear();
-        for q in &self.queues {
-            for w in 1..q.len() {
-                let (p, s) = (&q[w - 1], &q[w]);
-                if p.last == FOREVER {
-                    // A span after one held for good can never start (the callers say
-                    // whether that may happen on the way: robots set aside).
-                    return Err(Cycle {
-                        robots: vec![p.robot as usize, s.robot as usize],
-                    });
-                }
-                let (Some(a), Some(b)) = (
-                    node(p.robot as usize, p.last),
-                    node(s.robot as usize, s.first),
-                ) else {
-                    continue;
-                };
-                edges.push((a as u32, b as u32));
-            }
-        }
-        refill(indeg, total, 0);
-        refill(first, total + 1, 0);
-        for &(a, b) in edges.iter() {
-            first[a as usize + 1] += 1;
-            indeg[b as usize] += 1;
-        }
-        for k in 0..total {
-            first[k + 1] += first[k];
-        }
-        refill(users, edges.len(), 0);
-        at.clear();
-        at.extend_from_slice(first);
-        for &(a, b) in edges.iter() {
-            users[at[a as usize] as usize] = b;
-            at[a as usize] += 1;
-        }
-        // Each robot's own order: a traversal after the one before it.
-        for it_off in offs.windows(2) {
-            for d in indeg.iter_mut().take(it_off[1]).skip(it_off[0] + 1) {
-                *d += 1;
-            }
-        }
-        // Kahn's algorithm: a node whose dependencies are all timed is timed.
-        ready.clear();
-        ready.extend((0..total).filter(|&b| indeg[b] == 0));
-        refill(end, total, 0.0);
-        refill(start, total, 0.0);
-        // The latest end of the other robots' traversals each waits for.
-        refill(after, total, f64::NEG_INFINITY);
-        let robot_of = |b: usize| offs.partition_point(|&o| o <= b) - 1;
-        let mut done = 0;
-        while let Some(b) = ready.pop() {
-            done += 1;
-            let r = robot_of(b);
-            let k = b - offs[r];
-            let it = &self.its[r];
-            let tr = &it.travs[k];
-            if tr.begun {
-                // Driven now (the first), or next after it (sent together): the estimate
-                // from when it was sent may lie ahead of now if the one before ended early.
-                let s = if k == 0 {
-                    tr.start.min(now)
-                } else {
-                    end[b - 1]
-                };
-                start[b] = s;
-                end[b] = (s + tr.dur).max(now);
-            } else {
-                let own = if k == 0 {
-                    it.ready
-                } else {
-                    end[b - 1] + tr.hold
-                };
-                let s = now.max(own).max(after[b]);
-                start[b] = s;
-                end[b] = s + tr.dur;
-            }
-            for &u in &users[first[b] as usize..first[b + 1] as usize] {
-                let u = u as usize;
-                after[u] = after[u].max(end[b]);
-                indeg[u] -= 1;
-                if indeg[u] == 0 {
-                    ready.push(u);
-                }
-            }
-            if k + 1 < it.travs.len() {
-                indeg[b + 1] -= 1;
-                if indeg[b + 1] == 0 {
-                    ready.push(b + 1);
-                }
-            }
-        }
-        if done < total {
-            let mut robots: Vec<usize> =
-                (0..total).filter(|&b| indeg[b] > 0).map(robot_of).collect();
-            robots.dedup();
-            // As before: a failed retime leaves the estimates and marks them fresh.
-            self.stale = false;
-            self.stamp = new_stamp();
-            return Err(Cycle { robots });
-        }
-        self.bufs.computed = true;
-        Ok(())
-    }
-
-    /// The end of robot `r`'s `k`-th remaining traversal by the last
-    /// [`Schedule::compute`], if it succeeded and the traversal exists.
-    pub fn computed_end(&self, r: usize, k: usize) -> Option<f64> {
-        let b = &self.bufs;
-        if !b.computed || k >= self.its[r].travs.len() {
-            return None;
-        }
-        b.end.get(b.offs[r] + k).copied()
-    }
-
-    /// Writes the times of the last successful [`Schedule::compute`] (at `now`, on the
-    /// schedule as it is still).
-    pub fn apply(&mut self, now: f64) {
-        debug_assert!(self.bufs.computed, "apply after a successful compute");
-        debug_assert!(self.tx.is_none(), "a rollback would not undo the times");
-        self.stale = false;
-        self.stamp = new_stamp();
-        let Bufs {
-            offs,
-            start,
-            end,
-            robots,
-            ..
-        } = &self.bufs;
-        for (r, it) in self.its.iter_mut().enumerate() {
-            for (k, tr) in it.travs.iter_mut().enumerate() {
-                tr.start = start[offs[r] + k];
-                tr.end = end[offs[r] + k];
-            }
-        }
-        for (x, q) in self.queues.iter_mut().enumerate() {
-            let mut moved = false;
-            for s in q.iter_mut() {
-                let was = (s.start, s.end);
-                let br = &robots[s.robot as usize];
-                if let Some(b) = br.node(s.first) {
-                    s.start = start[b];
-                    // Held now (sent along its first traversal): busy from now, as
-                    // `install` never puts a span before it.
-                    if s.first < br.base + u64::from(br.begun) {
-                        s.start = s.start.min(now);
-                    }
-                    // A robot ready to go on and waiting for its turn holds its next
-                    // traversal's resources from now: nobody planned later goes before
-                    // it (else a waiting robot could be overtaken for ever).
-                    if b == br.off as usize && br.waiting {
-                        s.start = s.start.min(now);
-                    }
-                } else {
-                    // Its first traversal is done: the robot holds the resource now (an
-                    // estimate from before would hide the span from the planner).
-                    s.start = s.start.min(now);
-                }
-                s.end = if s.last == FOREVER {
-                    f64::INFINITY
-                } else if let Some(b) = br.node(s.last) {
-                    end[b]
-                } else {
-                    s.end
-                };
-                moved |= (s.start, s.end) != was;
-            }
-            if moved {
-                self.changed[x] = self.stamp;
-            }
-        }
-    }
-
     /// Checks the schedule's invariants: spans name traversals that exist, every queue's
     /// spans of one robot are in its order, and the whole is acyclic (by retiming a copy).
     pub fn check(&self, now: f64) -> Result<(), String> {
@@ -956,5 +686,6 @@ impl Schedule {
     }
 }
 
+mod retime;
 #[cfg(test)]
 mod tests;
