@@ -46,9 +46,10 @@ pub(super) struct Bufs {
     /// times are made of, other than the times of the traversals).
     dirty: Vec<Res>,
     is_dirty: Vec<bool>,
-    /// The queues whose spans the last apply held from `now`: they are written again at
-    /// the next (held or not, their times moved).
-    held: Vec<Res>,
+    /// Per robot: the running number of its first traversal if it waited for its turn
+    /// at the last apply (else `u64::MAX`). Its spans from there were written busy from
+    /// then, and stay so.
+    waited: Vec<u64>,
 }
 
 /// What [`Schedule::compute`] reads of a traversal.
@@ -361,26 +362,20 @@ impl Schedule {
         self.stale = false;
         self.stamp = new_stamp();
         // The traversals' times; the queues whose spans may move with them become dirty:
-        // those of the traversals whose times moved, and those of the spans held from now
-        // (a robot's traversals sent along after its first, and the first of a robot that
-        // waits for its turn), which move with `now`.
+        // those of the traversals whose times moved, and those of a robot that began to
+        // wait for its turn (its spans are held from now on). Setting off, arriving and
+        // planning made theirs dirty already.
         let known = self.bufs.known;
-        let mut held = std::mem::take(&mut self.bufs.held);
-        for &x in &held {
-            self.bufs.touch(x);
-        }
-        held.clear();
+        self.bufs.waited.resize(self.its.len(), u64::MAX);
         for (r, it) in self.its.iter_mut().enumerate() {
             let b = &mut self.bufs;
             let off = b.offs[r];
             let br = b.robots[r];
+            let began_to_wait = br.waiting && b.waited[r] != br.base;
+            b.waited[r] = if br.waiting { br.base } else { u64::MAX };
             for (k, tr) in it.travs.iter_mut().enumerate() {
                 let (s, e) = (b.start[off + k], b.end[off + k]);
-                let pinned = (tr.begun && k > 0) || (k == 0 && br.waiting);
-                if pinned {
-                    held.extend_from_slice(&self.conf.trav[tr.edge]);
-                }
-                if known && (pinned || tr.start != s || tr.end != e) {
+                if known && ((k == 0 && began_to_wait) || tr.start != s || tr.end != e) {
                     for &x in &self.conf.trav[tr.edge] {
                         b.touch(x);
                     }
@@ -389,7 +384,6 @@ impl Schedule {
                 tr.end = e;
             }
         }
-        self.bufs.held = held;
         if !known {
             for x in 0..self.queues.len() as Res {
                 self.bufs.touch(x);
@@ -408,14 +402,12 @@ impl Schedule {
         b.known = true;
         #[cfg(debug_assertions)]
         for x in 0..self.queues.len() {
-            {
-                let before = self.queues[x].clone();
-                assert!(
-                    !self.respan(x, now),
-                    "queue {x} was left with times to write: {before:?} -> {:?}",
-                    self.queues[x]
-                );
-            }
+            let before = self.queues[x].clone();
+            assert!(
+                !self.respan(x, now),
+                "queue {x} was left with times to write: {before:?} -> {:?}",
+                self.queues[x]
+            );
         }
     }
 
@@ -428,24 +420,20 @@ impl Schedule {
         for s in self.queues[x].iter_mut() {
             let was = (s.start, s.end);
             let br = &robots[s.robot as usize];
-            if let Some(b) = br.node(s.first) {
-                s.start = start[b];
-                // Held now (sent along its first traversal): busy from now, as
-                // `install` never puts a span before it.
-                if s.first < br.base + u64::from(br.begun) {
-                    s.start = s.start.min(now);
-                }
-                // A robot ready to go on and waiting for its turn holds its next
-                // traversal's resources from now: nobody planned later goes before
-                // it (else a waiting robot could be overtaken for ever).
-                if b == br.off as usize && br.waiting {
-                    s.start = s.start.min(now);
-                }
-            } else {
-                // Its first traversal is done: the robot holds the resource now (an
-                // estimate from before would hide the span from the planner).
-                s.start = s.start.min(now);
-            }
+            // A span held now is busy from now (or from any time before: nobody plans
+            // for the past, and a start that stays keeps the planner's intervals). Held:
+            // its first traversal is done (an estimate from before would hide the span
+            // from the planner), or the robot was sent along it (`install` never puts a
+            // span before it), or the robot is ready to go on and waits for its turn
+            // (nobody planned later goes before it, else a waiting robot could be
+            // overtaken for ever).
+            let held = br.node(s.first).is_none_or(|b| {
+                s.first < br.base + u64::from(br.begun) || (b == br.off as usize && br.waiting)
+            });
+            s.start = match br.node(s.first) {
+                Some(b) if !held => start[b],
+                _ => s.start.min(now),
+            };
             s.end = if s.last == FOREVER {
                 f64::INFINITY
             } else if let Some(b) = br.node(s.last) {
