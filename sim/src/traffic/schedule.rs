@@ -12,7 +12,8 @@
 //! acyclic. It holds because spans are only ever appended or inserted where their estimated
 //! times fit between their neighbours' (the planner plans against retimed estimates), never
 //! before a span its robot holds (it drives, or was sent along, the span's first traversal;
-//! such spans are busy from now for the planner), and removing spans removes dependencies.
+//! such spans are busy from no later than now for the planner), and removing spans removes
+//! dependencies.
 //! Hence at any time the unfinished traversal with the earliest estimated start has every
 //! dependency met: some robot can always go on.
 //!

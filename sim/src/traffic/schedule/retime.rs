@@ -6,7 +6,7 @@
 //! both halves remember what they read: the dependencies between neighbours in the
 //! queues are kept between retimes and read again only for the queues that changed, and
 //! spans are written only in the queues whose traversals' times moved, that changed, or
-//! that hold spans busy from now. Debug builds check both against a full pass.
+//! whose robot began to wait for its turn. Debug builds check both against a full pass.
 
 use super::{new_stamp, Cycle, Schedule, Span, FOREVER};
 use crate::traffic::conflicts::Res;

@@ -462,3 +462,83 @@ fn a_rolled_back_transaction_leaves_the_schedule_as_it_was() {
     assert_eq!(s.itinerary(1).travs[1].end, 15.0);
     assert!(s.check(0.0).is_ok());
 }
+
+/// Every traversal's times and what `busy` says everywhere.
+fn times(s: &Schedule) -> (Vec<Vec<(f64, f64)>>, Vec<Vec<(f64, f64)>>) {
+    let travs = (0..2)
+        .map(|r| {
+            s.itinerary(r)
+                .travs
+                .iter()
+                .map(|t| (t.start, t.end))
+                .collect()
+        })
+        .collect();
+    (travs, busy_everywhere(s))
+}
+
+#[test]
+fn a_retime_that_reads_only_what_changed_equals_a_full_one() {
+    // Robot 1 arrives at c early and waits there for robot 0, which is late; then both go
+    // on, robot 1 sent along two traversals at once. After every step, the schedule retimed in place
+    // (which reads again only the queues changed since its last retime) has the times of
+    // a copy retimed from nothing.
+    let nav = nav();
+    let mut s = Schedule::new(conflicts(&nav), &[v(&nav, "a"), v(&nav, "p2")], 0.0);
+    let mut retimes = 0;
+    let mut check = |s: &mut Schedule, now: f64, what: &str| {
+        let mut full = s.clone();
+        let kept = s.retime(now);
+        assert!(kept.is_ok(), "{what}: {kept:?}");
+        full.retime(now).expect("acyclic");
+        assert!(
+            times(s) == times(&full),
+            "{what} at {now}: kept and full retimes differ"
+        );
+        retimes += 1;
+    };
+    check(&mut s, 0.0, "standing");
+    // The plans of `two_robots`, each after a retime: the second's queues are read again.
+    s.install(
+        0,
+        0,
+        &[
+            step(&nav, e(&nav, "a", "b"), 0.0, 10.0),
+            step(&nav, e(&nav, "b", "p1"), 10.0, 10.0),
+        ],
+        0.0,
+        None,
+    );
+    check(&mut s, 0.0, "robot 0 planned");
+    s.install(
+        1,
+        0,
+        &[
+            step(&nav, e(&nav, "p2", "c"), 0.0, 5.0),
+            step(&nav, e(&nav, "c", "b"), 30.0, 10.0),
+            step(&nav, e(&nav, "b", "a"), 40.0, 10.0),
+        ],
+        0.0,
+        None,
+    );
+    check(&mut s, 0.0, "robot 1 planned");
+    s.begin(1, 1, 0.0);
+    s.complete_front(1, 3.0);
+    check(&mut s, 3.0, "robot 1 at c");
+    check(&mut s, 6.0, "robot 1 waits");
+    s.begin(0, 1, 2.0);
+    check(&mut s, 7.0, "robot 0 set off late");
+    check(&mut s, 15.0, "robot 0 overdue");
+    s.complete_front(0, 16.0);
+    check(&mut s, 16.0, "robot 0 at b");
+    check(&mut s, 17.0, "robot 0 waits at b");
+    s.begin(0, 1, 17.0);
+    s.complete_front(0, 29.0);
+    check(&mut s, 29.0, "robot 0 parked");
+    assert!(s.granted(1, 0), "robot 1 goes on");
+    s.begin(1, 2, 29.0);
+    check(&mut s, 30.0, "robot 1 sent along two");
+    s.complete_front(1, 39.0);
+    check(&mut s, 45.0, "robot 1 at b, late");
+    assert_eq!(retimes, 12);
+}
