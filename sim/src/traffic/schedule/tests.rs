@@ -18,30 +18,32 @@ fn step(nav: &crate::graph::Nav, edge: usize, start: f64, dur: f64) -> Step {
 /// Robot 0 at a drives a→b→p1 over [0, 20); robot 1 at p2 drives p2→c→b→a after it.
 fn two_robots() -> (crate::graph::Nav, Schedule) {
     let nav = nav();
-    let conf = conflicts(&nav);
-    let mut s = Schedule::new(conf, &[v(&nav, "a"), v(&nav, "p2")], 0.0);
-    s.install(
-        0,
-        0,
-        &[
-            step(&nav, e(&nav, "a", "b"), 0.0, 10.0),
-            step(&nav, e(&nav, "b", "p1"), 10.0, 10.0),
-        ],
-        0.0,
-        None,
-    );
-    s.install(
-        1,
-        0,
-        &[
-            step(&nav, e(&nav, "p2", "c"), 0.0, 5.0),
-            step(&nav, e(&nav, "c", "b"), 30.0, 10.0),
-            step(&nav, e(&nav, "b", "a"), 40.0, 10.0),
-        ],
-        0.0,
-        None,
-    );
+    let mut s = standing(&nav);
+    plan_two(&nav, &mut s, 0);
+    plan_two(&nav, &mut s, 1);
     (nav, s)
+}
+
+/// Robots 0 and 1 standing at a and p2.
+fn standing(nav: &crate::graph::Nav) -> Schedule {
+    Schedule::new(conflicts(nav), &[v(nav, "a"), v(nav, "p2")], 0.0)
+}
+
+/// Installs robot `r`'s plan of [`two_robots`].
+fn plan_two(nav: &crate::graph::Nav, s: &mut Schedule, r: usize) {
+    let steps = if r == 0 {
+        vec![
+            step(nav, e(nav, "a", "b"), 0.0, 10.0),
+            step(nav, e(nav, "b", "p1"), 10.0, 10.0),
+        ]
+    } else {
+        vec![
+            step(nav, e(nav, "p2", "c"), 0.0, 5.0),
+            step(nav, e(nav, "c", "b"), 30.0, 10.0),
+            step(nav, e(nav, "b", "a"), 40.0, 10.0),
+        ]
+    };
+    s.install(r, 0, &steps, 0.0, None);
 }
 
 #[test]
@@ -480,11 +482,11 @@ fn times(s: &Schedule) -> (Vec<Vec<(f64, f64)>>, Vec<Vec<(f64, f64)>>) {
 #[test]
 fn a_retime_that_reads_only_what_changed_equals_a_full_one() {
     // Robot 1 arrives at c early and waits there for robot 0, which is late; then both go
-    // on, robot 1 sent along two traversals at once. After every step, the schedule retimed in place
-    // (which reads again only the queues changed since its last retime) has the times of
-    // a copy retimed from nothing.
+    // on, robot 1 sent along two traversals at once. After every step, the schedule
+    // retimed in place (which reads again only the queues changed since its last retime)
+    // has the times of a copy retimed from nothing.
     let nav = nav();
-    let mut s = Schedule::new(conflicts(&nav), &[v(&nav, "a"), v(&nav, "p2")], 0.0);
+    let mut s = standing(&nav);
     let mut retimes = 0;
     let mut check = |s: &mut Schedule, now: f64, what: &str| {
         let mut full = s.clone();
@@ -499,28 +501,9 @@ fn a_retime_that_reads_only_what_changed_equals_a_full_one() {
     };
     check(&mut s, 0.0, "standing");
     // The plans of `two_robots`, each after a retime: the second's queues are read again.
-    s.install(
-        0,
-        0,
-        &[
-            step(&nav, e(&nav, "a", "b"), 0.0, 10.0),
-            step(&nav, e(&nav, "b", "p1"), 10.0, 10.0),
-        ],
-        0.0,
-        None,
-    );
+    plan_two(&nav, &mut s, 0);
     check(&mut s, 0.0, "robot 0 planned");
-    s.install(
-        1,
-        0,
-        &[
-            step(&nav, e(&nav, "p2", "c"), 0.0, 5.0),
-            step(&nav, e(&nav, "c", "b"), 30.0, 10.0),
-            step(&nav, e(&nav, "b", "a"), 40.0, 10.0),
-        ],
-        0.0,
-        None,
-    );
+    plan_two(&nav, &mut s, 1);
     check(&mut s, 0.0, "robot 1 planned");
     s.begin(1, 1, 0.0);
     s.complete_front(1, 3.0);
