@@ -465,8 +465,11 @@ fn a_rolled_back_transaction_leaves_the_schedule_as_it_was() {
     assert!(s.check(0.0).is_ok());
 }
 
+/// Intervals, per robot or per resource.
+type Intervals = Vec<Vec<(f64, f64)>>;
+
 /// Every traversal's times and what `busy` says everywhere.
-fn times(s: &Schedule) -> (Vec<Vec<(f64, f64)>>, Vec<Vec<(f64, f64)>>) {
+fn times(s: &Schedule) -> (Intervals, Intervals) {
     let travs = (0..2)
         .map(|r| {
             s.itinerary(r)
