@@ -80,6 +80,58 @@ fn unwritable_report_fails_before_simulating() {
     );
 }
 
+/// A report or trace sent to a FIFO (as `--report >(jq ...)` or `/dev/stdout` do) is written
+/// into it, not replaced by a file renamed over it: run as root with `--report /dev/null`,
+/// a rename had turned `/dev/null` itself into a regular file.
+#[cfg(unix)]
+#[test]
+fn outputs_into_a_fifo_are_written_in_place() {
+    use std::io::Read;
+    use std::os::unix::fs::FileTypeExt;
+    let dir = tempfile::tempdir().unwrap();
+    let fifo = |name: &str| {
+        let p = dir.path().join(name);
+        assert!(Command::new("mkfifo").arg(&p).status().unwrap().success());
+        p
+    };
+    let (report, trace) = (fifo("report"), fifo("trace"));
+    let reader = |p: PathBuf| {
+        std::thread::spawn(move || {
+            let mut s = String::new();
+            std::fs::File::open(&p)
+                .unwrap()
+                .read_to_string(&mut s)
+                .unwrap();
+            s
+        })
+    };
+    let (r, t) = (reader(report.clone()), reader(trace.clone()));
+    let scenario = long_scenario(dir.path());
+    let (code, _, err) = mapc(&[
+        "sim",
+        scenario.to_str().unwrap(),
+        "--until",
+        "30s",
+        "--report",
+        report.to_str().unwrap(),
+        "--trace",
+        trace.to_str().unwrap(),
+    ]);
+    assert_eq!(code, 0, "{err}");
+    // Checked before the readers are joined: a FIFO replaced by a file is never opened for
+    // writing, and its reader would wait for ever.
+    for p in [&report, &trace] {
+        let kind = std::fs::symlink_metadata(p).unwrap().file_type();
+        assert!(kind.is_fifo(), "{} is no longer a FIFO", p.display());
+    }
+    let report_text = r.join().unwrap();
+    let json: serde_json::Value = serde_json::from_str(&report_text).unwrap();
+    assert_eq!(json["end_time"], 30.0);
+    let trace_text = t.join().unwrap();
+    assert!(trace_text.lines().count() > 10, "{trace_text}");
+    assert!(temporaries(dir.path()).is_empty());
+}
+
 /// Runs mapc, and once the run is under way (its temporary trace in `dir` holds data: at
 /// least 1 MB has been buffered and flushed), sends `signals` SIGINTs.
 #[cfg(unix)]

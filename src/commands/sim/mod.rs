@@ -105,6 +105,10 @@ fn check_writable(path: &Path, what: &str) -> Result<(), String> {
             crate::ui::shown(path)
         ));
     }
+    if output::is_stream(path) {
+        // Written in place; opening a FIFO here would wait for its reader.
+        return Ok(());
+    }
     let dir = path
         .parent()
         .filter(|p| !p.as_os_str().is_empty())
@@ -537,9 +541,9 @@ fn count_line(name: &str, diags: &[Diagnostic]) {
 struct TraceFile {
     /// `None` only inside `finish`.
     writer: Option<TraceWriter>,
-    tmp: PathBuf,
+    /// Removes the temporary when dropped unfinished.
+    pending: Option<output::Pending>,
     path: PathBuf,
-    done: bool,
 }
 
 enum TraceWriter {
@@ -559,7 +563,7 @@ impl TraceFile {
             return Err(format!("{}: not a file path", crate::ui::shown(path)));
         }
         output::sweep_temporaries(dir);
-        let (tmp, file) = output::create_temporary(path).map_err(err)?;
+        let (pending, file) = output::Pending::create(path).map_err(err)?;
         let buffered = BufWriter::with_capacity(1 << 20, file);
         let writer = if path.extension().is_some_and(|e| e == "zst") {
             // Level 3, zstd's default: a trace compresses about 30x, fast enough to keep up.
@@ -569,9 +573,8 @@ impl TraceFile {
         };
         Ok(TraceFile {
             writer: Some(writer),
-            tmp,
+            pending: Some(pending),
             path: path.to_path_buf(),
-            done: false,
         })
     }
 
@@ -591,19 +594,9 @@ impl TraceFile {
             None => return Ok(()),
         };
         file.flush().map_err(err)?;
-        file.get_ref().sync_all().map_err(err)?;
-        std::fs::rename(&self.tmp, &self.path).map_err(err)?;
-        output::release_temporary(&self.tmp);
-        self.done = true;
-        Ok(())
-    }
-}
-
-impl Drop for TraceFile {
-    fn drop(&mut self) {
-        if !self.done {
-            let _ = std::fs::remove_file(&self.tmp);
-            output::release_temporary(&self.tmp);
+        match self.pending.take() {
+            Some(p) => p.commit(file.get_ref()).map_err(err),
+            None => Ok(()),
         }
     }
 }

@@ -63,7 +63,8 @@ fn parse_rate(s: &str) -> Result<f64, String> {
 /// An MCAP file being written: a temporary renamed when the run ends (as the trace is).
 struct McapFile {
     recorder: Option<mapc_ros2::mcap::Recorder<BufWriter<std::fs::File>>>,
-    tmp: PathBuf,
+    /// Removes the temporary when dropped unfinished.
+    pending: Option<output::Pending>,
     path: PathBuf,
     /// The first write error; the run goes on and the error is reported at the end.
     error: Option<String>,
@@ -78,10 +79,10 @@ impl McapFile {
             .unwrap_or(Path::new("."));
         std::fs::create_dir_all(dir).map_err(|e| err(e.to_string()))?;
         output::sweep_temporaries(dir);
-        let (tmp, f) = output::create_temporary(path).map_err(|e| err(e.to_string()))?;
+        let (pending, f) = output::Pending::create(path).map_err(|e| err(e.to_string()))?;
         let mut file = McapFile {
             recorder: None,
-            tmp,
+            pending: Some(pending),
             path: path.to_path_buf(),
             error: None,
         };
@@ -124,18 +125,9 @@ impl McapFile {
         };
         let mut w = r.finish().map_err(err)?;
         w.flush().map_err(|e| err(e.to_string()))?;
-        w.get_ref().sync_all().map_err(|e| err(e.to_string()))?;
-        std::fs::rename(&self.tmp, &self.path).map_err(|e| err(e.to_string()))?;
-        output::release_temporary(&self.tmp);
-        Ok(())
-    }
-}
-
-impl Drop for McapFile {
-    fn drop(&mut self) {
-        if self.recorder.is_some() || self.error.is_some() {
-            let _ = std::fs::remove_file(&self.tmp);
-            output::release_temporary(&self.tmp);
+        match self.pending.take() {
+            Some(p) => p.commit(w.get_ref()).map_err(|e| err(e.to_string())),
+            None => Ok(()),
         }
     }
 }

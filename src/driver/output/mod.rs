@@ -11,6 +11,9 @@
 //! renamed into place once (`fresh`).
 
 mod fresh;
+mod pending;
+
+pub use pending::{is_stream, Pending};
 
 use mapc_backends::OutputFile;
 use std::collections::{BTreeSet, HashMap, HashSet};
@@ -167,21 +170,16 @@ fn release_temporaries<'a>(done: impl IntoIterator<Item = &'a Path>) {
 }
 
 /// Writes `contents` to `path` via a temporary file in the same directory and a rename,
-/// so a reader never sees a half-written file and a failure leaves the old file intact.
+/// so a reader never sees a half-written file and a failure leaves the old file intact;
+/// a stream (`/dev/null`, a pipe) is written in place ([`Pending`]).
 pub fn write_atomic(path: &Path, contents: &[u8]) -> std::io::Result<()> {
-    let dir = path.parent().unwrap_or(Path::new("."));
-    std::fs::create_dir_all(dir)?;
-    let (tmp, mut f) = create_temporary(path)?;
-    let result = (|| {
-        f.write_all(contents)?;
-        f.sync_all()?;
-        std::fs::rename(&tmp, path)
-    })();
-    if result.is_err() {
-        let _ = std::fs::remove_file(&tmp);
+    if !is_stream(path) {
+        let dir = path.parent().unwrap_or(Path::new("."));
+        std::fs::create_dir_all(dir)?;
     }
-    release_temporary(&tmp);
-    result
+    let (pending, mut f) = Pending::create(path)?;
+    f.write_all(contents)?;
+    pending.commit(&f)
 }
 
 /// Whether process `pid` still runs (Linux: /proc; elsewhere assume it does not).
