@@ -1380,3 +1380,49 @@ fn tasks_no_free_robot_may_take_do_not_hold_up_those_behind_them() {
         .unwrap_or_else(|| panic!("not assigned in 30 s: {:?}", assignments(&events)));
     assert_eq!(last.robot, "c_1");
 }
+
+/// A robot on its way to its go-to-place, where it will stay, is not planned again to make
+/// room for a second task to the same place: its new plan would end there again. The
+/// second task waits until the first is done, then its robot, already there, takes it.
+#[test]
+fn a_robot_going_to_stay_at_a_place_is_not_moved_for_the_same_place() {
+    let text = r#"
+coordinate_system: cartesian_meters
+name: corridor
+levels:
+  L1:
+    elevation: 0
+    vertices:
+      - [0, 0, 0, park_a, {is_parking_spot: [4, true]}]
+      - [0, 5, 0, park_b, {is_parking_spot: [4, true]}]
+      - [10, 0, 0, x1]
+      - [20, 0, 0, x2]
+      - [30, 0, 0, room]
+    lanes:
+      - [0, 1, {bidirectional: [4, true], graph_idx: [2, 0]}]
+      - [0, 2, {bidirectional: [4, true], graph_idx: [2, 0]}]
+      - [2, 3, {bidirectional: [4, true], graph_idx: [2, 0]}]
+      - [3, 4, {bidirectional: [4, true], graph_idx: [2, 0]}]
+"#;
+    let b = parse_map("corridor", text);
+    let c = fleet(
+        "c",
+        2,
+        SpawnSpec::Waypoints(vec!["park_a".into(), "park_b".into()]),
+    );
+    let s = scenario(vec![c], vec![go(0.5, "room", None), go(1.0, "room", None)]);
+    let (events, _, fleets) = run(&b, &s, 300.0);
+    assert_eq!(
+        assignments(&events),
+        [("go_to_place_0", "c_0"), ("go_to_place_1", "c_0")]
+    );
+    let done: Vec<&str> = events
+        .iter()
+        .filter(|e| e.event == "completed")
+        .map(|e| e.task_id.as_str())
+        .collect();
+    assert_eq!(done, ["go_to_place_0", "go_to_place_1"]);
+    // c_0's plan at the start and one per task: nothing planned again on the way (15
+    // plans when it was moved for the second task every 5 s).
+    assert_eq!(fleets.traffic_report().plans_taken, 3);
+}

@@ -636,6 +636,13 @@ impl Fleets {
             if r.n_sent > 0 && !leg {
                 continue;
             }
+            // Its own task ends where it stays, at a place asked for (a go-to-place on its
+            // way there): planned again, it would end there again, yet count as room made
+            // (every `DISPLACE_EVERY` s while the task waits). It makes room once its task
+            // is done.
+            if self.stays_at(o, &own).is_some_and(|v| off[v]) {
+                continue;
+            }
             let slot = r.slot;
             let mask: Vec<u8> = self
                 .traffic
