@@ -319,6 +319,7 @@ fn docs_scenarios_parse_and_name_real_waypoints() {
         "expected the format example and three demo scenarios"
     );
     let shared = root().join("../shared/maps");
+    let tmp = tempfile::tempdir().unwrap();
     let mut checked = 0;
     for (line, text) in blocks {
         // A fleet from a config in ../shared (the RMF deployment example) needs it to read.
@@ -365,7 +366,7 @@ fn docs_scenarios_parse_and_name_real_waypoints() {
             map.to_str().unwrap(),
             "--until",
             "1min",
-            &write_tmp(&text),
+            &write_tmp(tmp.path(), &text),
         ]);
         assert_eq!(r.code, 0, "docs/sim.md:{line}: {}", r.stderr);
         checked += 1;
@@ -375,9 +376,7 @@ fn docs_scenarios_parse_and_name_real_waypoints() {
     }
 }
 
-fn write_tmp(text: &str) -> String {
-    let dir = std::env::temp_dir().join(format!("mapc-sim-docs-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
+fn write_tmp(dir: &std::path::Path, text: &str) -> String {
     let n = text.len();
     let p = dir.join(format!("doc{n}.scenario.yaml"));
     std::fs::write(&p, text).unwrap();

@@ -190,9 +190,7 @@ fn requests_and_states_follow_rmf_api_schemas() {
 }
 
 /// A requests file written next to a scenario in a scratch directory; the diagnostics.
-fn broken(lines: &str) -> Vec<(&'static str, u32, u32, u32)> {
-    let dir = std::env::temp_dir().join(format!("mapc-rmf-requests-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
+fn broken(dir: &Path, lines: &str) -> Vec<(&'static str, u32, u32, u32)> {
     std::fs::write(dir.join("r.jsonl"), lines).unwrap();
     std::fs::copy(
         fixtures().join("rmf/movers_config.yaml"),
@@ -200,7 +198,7 @@ fn broken(lines: &str) -> Vec<(&'static str, u32, u32, u32)> {
     )
     .unwrap();
     let text = "duration: 1h\nfleets: [{config: m.yaml}]\nrequests: r.jsonl\n";
-    let p = parse_scenario_files(mapc_ir::FileId(0), text, &dir);
+    let p = parse_scenario_files(mapc_ir::FileId(0), text, dir);
     let mut out: Vec<_> = p
         .diagnostics
         .iter()
@@ -224,37 +222,36 @@ fn broken(lines: &str) -> Vec<(&'static str, u32, u32, u32)> {
 
 #[test]
 fn broken_requests_are_located() {
+    let tmp = tempfile::tempdir().unwrap();
+    let dir = tmp.path();
     let ok = r#"{"at": 0, "request": {"type": "dispatch_task_request", "request": {"category": "patrol", "description": {"places": ["aisle_1"]}}}}"#;
     // A truncated line (file 2: the requests, after the fleet config).
-    let d = broken(&format!("{ok}\n{}\n", &ok[..60]));
+    let d = broken(dir, &format!("{ok}\n{}\n", &ok[..60]));
     assert_eq!(d, [("S0313", 2, 2, 60)]);
     // A wrong type: `rounds` must be an integer.
-    let d = broken(&format!(
-        "{ok}\n{}\n",
-        ok.replace("]}", "], \"rounds\": \"two\"}")
-    ));
+    let d = broken(
+        dir,
+        &format!("{ok}\n{}\n", ok.replace("]}", "], \"rounds\": \"two\"}")),
+    );
     assert_eq!(d, [("S0313", 2, 2, 139)], "{d:?}");
     // Missing `description` (required by task_request).
-    let d = broken(&ok.replace(r#", "description": {"places": ["aisle_1"]}"#, ""));
+    let d = broken(
+        dir,
+        &ok.replace(r#", "description": {"places": ["aisle_1"]}"#, ""),
+    );
     assert_eq!(d, [("S0313", 2, 1, 11)], "{d:?}");
     // A bad `at`.
-    let d = broken(&ok.replace(r#""at": 0"#, r#""at": "soon""#));
+    let d = broken(dir, &ok.replace(r#""at": 0"#, r#""at": "soon""#));
     assert_eq!(d, [("S0313", 2, 1, 2)], "{d:?}");
     // An unknown place: at the place, in the requests file.
-    let d = broken(&ok.replace("aisle_1", "aisle_7"));
+    let d = broken(dir, &ok.replace("aisle_1", "aisle_7"));
     assert_eq!(d, [("S0201", 2, 1, 118)], "{d:?}");
     // A missing file.
-    std::fs::remove_file(
-        std::env::temp_dir()
-            .join(format!("mapc-rmf-requests-{}", std::process::id()))
-            .join("r.jsonl"),
-    )
-    .unwrap();
-    let dir = std::env::temp_dir().join(format!("mapc-rmf-requests-{}", std::process::id()));
+    std::fs::remove_file(dir.join("r.jsonl")).unwrap();
     let p = parse_scenario_files(
         mapc_ir::FileId(0),
         "duration: 1h\nfleets: [{config: m.yaml}]\nrequests: r.jsonl\n",
-        &dir,
+        dir,
     );
     assert_eq!(p.diagnostics[0].code, "S0004");
     // Garbage never panics.
@@ -266,7 +263,7 @@ fn broken_requests_are_located() {
         "\u{0}",
         "{\"at\": -5, \"request\": {}}",
     ] {
-        let d = broken(g);
+        let d = broken(dir, g);
         assert!(d.iter().any(|x| x.0 == "S0313"), "{g}: {d:?}");
     }
 }

@@ -96,6 +96,7 @@ fn every_demo_config_runs_an_hour_on_its_map() {
     // rmf_api_msgs' request schemas, when they are there.
     let validators =
         validator("dispatch_task_request.json").zip(validator("robot_task_request.json"));
+    let tmp = tempfile::tempdir().unwrap();
     let mut ran = 0;
     for dir in dirs {
         let dname = dir.file_name().unwrap().to_str().unwrap().to_string();
@@ -168,9 +169,7 @@ fn every_demo_config_runs_an_hour_on_its_map() {
                     assert!(errs.is_empty(), "{what}: {errs:?} in {l}");
                 }
             }
-            let tmp = std::env::temp_dir().join(format!("mapc-rmf-shared-{}", std::process::id()));
-            std::fs::create_dir_all(&tmp).unwrap();
-            let req = tmp.join(format!("{dname}_{cname}.jsonl"));
+            let req = tmp.path().join(format!("{dname}_{cname}.jsonl"));
             std::fs::write(&req, &lines).unwrap();
             let text = format!(
                 "duration: 1h\nseed: 1\nfleets:\n  - {{config: {cname}, graph: {g}}}\nrequests: '{}'\n",

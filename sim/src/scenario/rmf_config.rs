@@ -631,12 +631,10 @@ mod tests {
 
     /// A config written into a scratch directory; returns the diagnostics of a scenario
     /// that names it, and the config's text.
-    fn broken(name: &str, config: &str) -> Vec<Diagnostic> {
-        let dir = std::env::temp_dir().join(format!("mapc-rmf-config-{}", std::process::id()));
-        std::fs::create_dir_all(&dir).expect("scratch dir");
+    fn broken(dir: &Path, name: &str, config: &str) -> Vec<Diagnostic> {
         std::fs::write(dir.join(name), config).expect("write config");
         let text = format!("duration: 1h\nfleets:\n  - {{config: {name}}}\n");
-        let p = parse_files(FileId(0), &text, &dir);
+        let p = parse_files(FileId(0), &text, dir);
         assert!(p.scenario.is_none() || !mapc_ir::has_errors(&p.diagnostics));
         p.diagnostics
     }
@@ -646,8 +644,8 @@ mod tests {
     /// `cleaning_system` power sink, RMF's merge and lane settings. Read, no warning.
     #[test]
     fn deployments_keys_and_values_are_read_quietly() {
-        let dir = std::env::temp_dir().join(format!("mapc-rmf-deploy-{}", std::process::id()));
-        std::fs::create_dir_all(&dir).expect("scratch dir");
+        let tmp = tempfile::tempdir().expect("scratch dir");
+        let dir = tmp.path();
         let config = "rmf_fleet:
   name: scrubbers
   limits: {linear: [0.5, 0.3], angular: [0.6, 1.0]}
@@ -672,7 +670,7 @@ robots:
 ";
         std::fs::write(dir.join("deploy.yaml"), config).expect("write config");
         let text = "duration: 1h\nfleets:\n  - {config: deploy.yaml}\n";
-        let p = parse_files(FileId(0), text, &dir);
+        let p = parse_files(FileId(0), text, dir);
         assert!(p.diagnostics.is_empty(), "{:#?}", p.diagnostics);
         let f = p.scenario.expect("scenario").fleets[0].clone();
         // Every power sink drains: 20 + 30 + 650 W.
@@ -685,6 +683,7 @@ robots:
         assert_eq!(f.spawn, SpawnSpec::Waypoints(vec!["charger_a".into()]));
         // Out of RMF's range is still an error.
         let d = broken(
+            dir,
             "soc.yaml",
             &config.replace("recharge_soc: 0.0", "recharge_soc: 1.5"),
         );
@@ -806,39 +805,43 @@ robots:
             v.sort_by_key(|x| (x.2, x.3));
             v
         };
-        let d = broken("no_fleet.yaml", "fleet_manager:\n  ip: 127.0.0.1\n");
+        let tmp = tempfile::tempdir().expect("scratch dir");
+        let dir = tmp.path();
+        let d = broken(dir, "no_fleet.yaml", "fleet_manager:\n  ip: 127.0.0.1\n");
         assert_eq!(at(&d), [("S0312", 1, 1, 1)], "{d:#?}");
         let d = broken(
+            dir,
             "negative.yaml",
             "rmf_fleet:\n  name: f\n  limits:\n    linear: [-0.5, 0.75]\n  robots:\n    r: {charger: c}\n",
         );
         assert_eq!(at(&d), [("S0106", 1, 4, 14)], "{d:#?}");
         let d = broken(
+            dir,
             "types.yaml",
             "rmf_fleet:\n  name: f\n  battery_system: {voltage: twelve}\n  reversible: maybe\n  robots:\n    r: {charger: c}\n",
         );
         assert_eq!(at(&d), [("S0101", 1, 3, 29), ("S0101", 1, 4, 15)], "{d:#?}");
-        let d = broken("no_robots.yaml", "rmf_fleet:\n  name: f\n");
+        let d = broken(dir, "no_robots.yaml", "rmf_fleet:\n  name: f\n");
         assert_eq!(at(&d), [("S0312", 1, 2, 3)], "{d:#?}");
         // Unknown keys warn; keys only a deployment uses are silent.
         let d = broken(
+            dir,
             "unknown.yaml",
             "rmf_fleet:\n  name: f\n  top_sped: 3\n  publish_fleet_state: 10.0\n  robots:\n    r: {charger: c, colour: red}\nfleet_manager: {ip: x}\n",
         );
         assert_eq!(at(&d), [("S0103", 1, 3, 3), ("S0103", 1, 6, 21)], "{d:#?}");
         assert!(!mapc_ir::has_errors(&d));
-        let d = broken("bad.yaml", "rmf_fleet: [\n");
+        let d = broken(dir, "bad.yaml", "rmf_fleet: [\n");
         assert_eq!(at(&d)[0].0, "S0001");
         // A missing file is said at the scenario's `config:`.
         let text = "duration: 1h\nfleets:\n  - {config: nowhere.yaml}\n";
         let p = parse_files(FileId(0), text, &fixtures());
         assert_eq!(at(&p.diagnostics), [("S0004", 0, 3, 14)]);
         // Through `parse`, a config's problem is put at `config:`, its position in the text.
-        let dir = std::env::temp_dir().join(format!("mapc-rmf-config-{}", std::process::id()));
         let (s, d) = parse(
             FileId(0),
             "duration: 1h\nfleets:\n  - {config: negative.yaml}\n",
-            &dir,
+            dir,
         );
         assert!(s.is_none());
         assert_eq!(at(&d), [("S0106", 0, 3, 14)]);
@@ -851,6 +854,8 @@ robots:
 
     #[test]
     fn garbage_configs_never_panic() {
+        let tmp = tempfile::tempdir().expect("scratch dir");
+        let dir = tmp.path();
         for text in [
             "",
             "~",
@@ -863,7 +868,7 @@ robots:
             "robots: {r: {rmf_config: {start: 5}}}",
             "rmf_fleet: {name: f, finishing_request: {type: fly}, robots: {r: {charger: c}}}",
         ] {
-            let d = broken("garbage.yaml", text);
+            let d = broken(dir, "garbage.yaml", text);
             assert!(mapc_ir::has_errors(&d), "{text}: {d:#?}");
             for x in &d {
                 assert!(x.span.line > 0, "{text}: {x:?}");
