@@ -322,10 +322,10 @@ pub const BAD_PROJECT: Code = Code {
 /// # W0101 null-as-empty
 ///
 /// **What:** a list or mapping is written as `null` (for example `lanes:` with nothing
-/// after it).
+/// after it), or a list as an empty mapping `{}` (public maps have `walls: {}`).
 ///
-/// **Why it matters:** the reference generator crashes on most of these; mapc reads them as
-/// empty, which is almost certainly what was meant.
+/// **Why it matters:** the reference generator crashes on most `null`s and reads `{}` as
+/// an empty list; mapc reads both as empty, which is almost certainly what was meant.
 ///
 /// **Fix:** write `[]` or `{}`, or remove the key.
 ///
@@ -337,7 +337,7 @@ pub const NULL_AS_EMPTY: Code = Code {
     code: "W0101",
     group: Group::Frontend,
     name: "null-as-empty",
-    summary: "a list or mapping is null and read as empty",
+    summary: "a list or mapping is null (or a list `{}`) and read as empty",
 };
 
 /// # W0102 duplicate-key

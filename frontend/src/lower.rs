@@ -237,6 +237,16 @@ impl Lower<'_> {
                 );
                 Some(&[])
             }
+            // The reference iterates it as an empty list, and public maps have `walls: {}`.
+            Kind::Map(m) if m.is_empty() => {
+                self.warn(
+                    "W0101",
+                    node.span,
+                    format!("{what} is an empty mapping `{{}}`; treated as an empty list"),
+                    "write `[]` for an empty list, or remove the key",
+                );
+                Some(&[])
+            }
             _ => {
                 self.wrong_type(node, &what.to_string(), "a sequence");
                 None
@@ -1667,6 +1677,18 @@ mod tests {
             parsed.diagnostics
         );
         assert_eq!(parsed.diagnostics[0].span.line, 9);
+    }
+
+    /// `walls: {}` (a public map has it; the reference reads it as no walls) is an empty
+    /// list with W0101 at the `{}`; a mapping with entries where a list belongs stays E0101.
+    #[test]
+    fn an_empty_mapping_is_an_empty_list() {
+        let (b, diags) = lower(&format!("{OK_BAD_OK}    walls: {{}}\n"));
+        assert_eq!(codes(&diags), ["E0101", "W0101"], "{diags:#?}");
+        assert_eq!((diags[1].span.line, diags[1].span.col), (9, 12));
+        assert_eq!((b.vertices.len(), b.walls.len()), (2, 0));
+        let (_, diags) = lower("    walls: {a: 1}\n");
+        assert_eq!(codes(&diags), ["E0101"], "{diags:#?}");
     }
 
     /// `[ok, bad, ok]`: the bad one (a string x) is E0101 and is not in the IR.
