@@ -32,6 +32,10 @@ pub(super) struct Bufs {
     after: Vec<f64>,
     /// `start` and `end` hold a successful compute's times.
     pub(super) computed: bool,
+    /// Per robot: whether the compute gave any of its traversals other times than they
+    /// have (the apply passes the others by: in a saturated warehouse most robots'
+    /// estimates hold from one retime to the next).
+    moved: Vec<bool>,
     /// Per robot, what the loops over every span read of its itinerary, side by side
     /// (reading the itineraries themselves was half of writing the times back).
     robots: Vec<Brief>,
@@ -57,6 +61,8 @@ pub(super) struct Bufs {
 struct Node {
     dur: f64,
     hold: f64,
+    /// `Trav::start` and `Trav::end` as they are.
+    was: (f64, f64),
     /// `Trav::start`, read when it has begun.
     start: f64,
     begun: bool,
@@ -159,6 +165,7 @@ impl Schedule {
             start,
             after,
             robots,
+            moved,
             known,
             deps,
             cur,
@@ -178,6 +185,7 @@ impl Schedule {
             nodes.extend(it.travs.iter().map(|t| Node {
                 dur: t.dur,
                 hold: t.hold,
+                was: (t.start, t.end),
                 start: t.start,
                 begun: t.begun,
             }));
@@ -288,6 +296,7 @@ impl Schedule {
         refill(start, total, 0.0);
         // The latest end of the other robots' traversals each waits for.
         refill(after, total, f64::NEG_INFINITY);
+        refill(moved, nr, false);
         let mut done = 0;
         while let Some(b) = ready.pop() {
             done += 1;
@@ -313,6 +322,10 @@ impl Schedule {
                 let s = now.max(own).max(after[b]);
                 start[b] = s;
                 end[b] = s + nd.dur;
+            }
+            // As `apply` compares them (NaN differs from itself).
+            if start[b] != nd.was.0 || end[b] != nd.was.1 {
+                moved[r] = true;
             }
             for &u in &users[first[b] as usize..first[b + 1] as usize] {
                 let u = u as usize;
@@ -373,6 +386,10 @@ impl Schedule {
             let br = b.robots[r];
             let began_to_wait = br.waiting && b.waited[r] != br.base;
             b.waited[r] = if br.waiting { br.base } else { u64::MAX };
+            if !b.moved[r] && !(known && began_to_wait) {
+                // Nothing to write, nothing touched.
+                continue;
+            }
             for (k, tr) in it.travs.iter_mut().enumerate() {
                 let (s, e) = (b.start[off + k], b.end[off + k]);
                 if known && ((k == 0 && began_to_wait) || tr.start != s || tr.end != e) {
