@@ -80,13 +80,21 @@ pub struct Itinerary {
 
 impl Itinerary {
     /// Whether a span of this robot from its traversal `first` on is soft: it lies after
-    /// the soft mark, and the robot has not set off on its soft traversals.
+    /// the soft mark, and the robot has not set off on its soft traversals (`begin`
+    /// removes the mark then).
     fn soft_in(&self, first: u64) -> bool {
-        let Some(mark) = self.soft else { return false };
-        first >= mark
-            && mark
-                .checked_sub(self.base)
-                .is_some_and(|k| self.travs.get(k as usize).is_none_or(|t| !t.begun))
+        let soft = self
+            .soft
+            .is_some_and(|mark| first >= mark && mark >= self.base);
+        debug_assert_eq!(
+            soft,
+            self.soft.is_some_and(|mark| first >= mark
+                && mark
+                    .checked_sub(self.base)
+                    .is_some_and(|k| self.travs.get(k as usize).is_none_or(|t| !t.begun))),
+            "a soft mark left on a traversal set off on"
+        );
+        soft
     }
 
     /// Whether the robot holds a span from its traversal `first` on now: it has driven,
@@ -359,12 +367,17 @@ impl Schedule {
         debug_assert!(self.tx.is_none(), "robots drive outside transactions");
         self.stale = true;
         self.stamp = new_stamp();
-        // Setting off on its soft traversals makes them hard.
+        // Setting off on its soft traversals makes them hard, for good: the mark goes, so
+        // that `soft_in` need not look at the traversal (the planner asks it of every
+        // span it reads).
         let it = &self.its[r];
         if let Some(k) = it.soft.and_then(|m| m.checked_sub(it.base)) {
-            if (k as usize) < n && it.travs.get(k as usize).is_some_and(|t| !t.begun) {
-                let set = self.resources_of(r);
-                self.mark(&set);
+            if (k as usize) < n {
+                if it.travs.get(k as usize).is_some_and(|t| !t.begun) {
+                    let set = self.resources_of(r);
+                    self.mark(&set);
+                }
+                self.its[r].soft = None;
             }
         }
         let mut prev = t;
