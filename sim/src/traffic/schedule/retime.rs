@@ -386,7 +386,7 @@ impl Schedule {
             let br = b.robots[r];
             let began_to_wait = br.waiting && b.waited[r] != br.base;
             b.waited[r] = if br.waiting { br.base } else { u64::MAX };
-            if !b.moved[r] && !(known && began_to_wait) {
+            if !(b.moved[r] || (known && began_to_wait)) {
                 // Nothing to write, nothing touched.
                 continue;
             }
