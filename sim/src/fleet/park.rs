@@ -292,6 +292,7 @@ pub(super) fn well_formed_warnings(
     let mut out = Vec::new();
     let mut seen: Vec<(usize, usize)> = Vec::new();
     for slot in 0..nav.graphs.len() {
+        let mut cuts = parks::Cuts::new(nav, conf, slot);
         let mut places: Vec<usize> = task_kinds(scenario)
             .flat_map(|(k, _, _)| k.places())
             .filter_map(|n| nav.find(slot, n))
@@ -307,7 +308,7 @@ pub(super) fn well_formed_warnings(
                     continue;
                 }
                 seen.push((slot, v));
-                let cut = parks::cut_by(nav, conf, slot, v, &places);
+                let cut = cuts.cut_by(v, &places);
                 if cut.is_empty() {
                     continue;
                 }

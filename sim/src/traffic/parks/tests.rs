@@ -82,6 +82,59 @@ fn a_robot_working_in_the_corridor_cuts_it() {
     assert!(cut_by(&nav, &conf, 0, v(&nav, "a"), &places).is_empty());
 }
 
+/// [`Cuts`] asked about every vertex in turn, on 80 random graphs, says what a search
+/// from scratch says: which vertices are no longer both reachable from and back to the
+/// first one left, with every edge and vertex the standing robot holds taken out.
+#[test]
+fn cuts_asked_in_turn_are_each_a_fresh_search() {
+    use crate::traffic::test_map::random_nav;
+    for seed in 0..80 {
+        let nav = random_nav(seed, 8 + (seed as usize % 24));
+        let conf = conflicts(&nav);
+        let n = nav.vertices.len();
+        let of: Vec<usize> = (0..n).collect();
+        let mut cuts = Cuts::new(&nav, &conf, 0);
+        for v in 0..n {
+            let set = &conf.vertex[v];
+            let held = |xs: &[u32]| xs.iter().any(|x| set.contains(x));
+            let gone: Vec<bool> = (0..n).map(|w| held(&conf.vertex[w])).collect();
+            let open = |e: usize| {
+                let ed = &nav.edges[e];
+                ed.graph == 0 && !held(&conf.trav[e]) && !gone[ed.from] && !gone[ed.to]
+            };
+            let want: Vec<usize> = match (0..n).find(|&w| !gone[w]) {
+                None => Vec::new(),
+                Some(root) => {
+                    // Fixed points of "reached, and one open edge further".
+                    let close = |fwd: bool| {
+                        let mut seen = vec![false; n];
+                        seen[root] = true;
+                        loop {
+                            let before = seen.iter().filter(|&&b| b).count();
+                            for (e, ed) in nav.edges.iter().enumerate() {
+                                let (a, b) = if fwd {
+                                    (ed.from, ed.to)
+                                } else {
+                                    (ed.to, ed.from)
+                                };
+                                if open(e) && seen[a] {
+                                    seen[b] = true;
+                                }
+                            }
+                            if seen.iter().filter(|&&b| b).count() == before {
+                                return seen;
+                            }
+                        }
+                    };
+                    let (f, b) = (close(true), close(false));
+                    (0..n).filter(|&w| !(gone[w] || f[w] && b[w])).collect()
+                }
+            };
+            assert_eq!(cuts.cut_by(v, &of), want, "seed {seed}, vertex {v}");
+        }
+    }
+}
+
 #[test]
 fn homes_are_taken_first_where_they_cut_nothing() {
     let nav = nav();
