@@ -569,15 +569,7 @@ impl<'a> Cuts<'a> {
 
     /// The vertices of `of` that a robot working at `v` separates from the main part.
     pub fn cut_by(&mut self, v: usize, of: &[usize]) -> Vec<usize> {
-        let set = &self.conf.vertex[v];
-        for &x in set {
-            for &e in &self.edges_of[x as usize] {
-                self.blocked[e as usize] = true;
-            }
-            for &w in &self.vertices_of[x as usize] {
-                self.gone[w as usize] = true;
-            }
-        }
+        self.hold(v, true);
         let (nav, blocked, gone) = (self.nav, &self.blocked, &self.gone);
         let usable = |e: usize| {
             let ed = &nav.edges[e];
@@ -594,15 +586,21 @@ impl<'a> Cuts<'a> {
                     .collect()
             }
         };
-        for &x in set {
+        self.hold(v, false);
+        cut
+    }
+
+    /// Marks (or clears) what a robot standing at `v` holds: the edges and vertices that
+    /// need a resource of its standing set.
+    fn hold(&mut self, v: usize, held: bool) {
+        for &x in &self.conf.vertex[v] {
             for &e in &self.edges_of[x as usize] {
-                self.blocked[e as usize] = false;
+                self.blocked[e as usize] = held;
             }
             for &w in &self.vertices_of[x as usize] {
-                self.gone[w as usize] = false;
+                self.gone[w as usize] = held;
             }
         }
-        cut
     }
 }
 
