@@ -217,6 +217,14 @@ struct Cache {
     who: Vec<u32>,
     /// The busy intervals being merged (a buffer).
     tmp: Vec<(f64, f64)>,
+    /// What `kept` answered for (robot, soft) at the schedule's stamp `memo_for`, per
+    /// vertex and per edge, valid where its generation is `memo_gen`: one search asks for
+    /// the same vertex and edge again and again, and the answer cannot change until the
+    /// schedule does.
+    memo_for: (u64, u64, usize, bool),
+    memo_gen: u32,
+    vertex_memo: Vec<(u32, (u32, u32))>,
+    edge_memo: Vec<(u32, (u32, u32))>,
 }
 
 /// The robot of the entries kept for everybody: no robot's spans are left out.
@@ -245,7 +253,38 @@ impl Cache {
             self.vertex_free.clear();
             self.arena.clear();
             self.who.clear();
+            self.forget();
         }
+    }
+
+    /// Drops every memo (their arena ranges may be gone, or the question changed).
+    fn forget(&mut self) {
+        self.memo_gen = self.memo_gen.wrapping_add(1);
+        if self.memo_gen == 0 {
+            // Wrapped: no memo of an old generation may pass for a new one.
+            self.vertex_memo.iter_mut().for_each(|m| m.0 = 0);
+            self.edge_memo.iter_mut().for_each(|m| m.0 = 0);
+            self.memo_gen = 1;
+        }
+    }
+
+    /// The memo slot of `kind`, for the question (`sched`'s lineage and stamp, robot and
+    /// soft) `key`: emptied first when the last question was another.
+    fn memo(&mut self, sched: &Schedule, key: (usize, bool), kind: Kind) -> &mut (u32, (u32, u32)) {
+        let now = (sched.lineage(), sched.stamp(), key.0, key.1);
+        if self.memo_for != now || self.memo_gen == 0 {
+            self.memo_for = now;
+            self.forget();
+        }
+        let conf = sched.conf();
+        let (memo, id, len) = match kind {
+            Kind::Vertex(v) => (&mut self.vertex_memo, v, conf.vertex.len()),
+            Kind::Edge(e) => (&mut self.edge_memo, e, conf.trav.len()),
+        };
+        if memo.len() < len {
+            memo.resize(len, (0, (0, 0)));
+        }
+        &mut memo[id]
     }
 
     fn get(&self, (a, n): (u32, u32)) -> &[(f64, f64)] {
@@ -291,7 +330,21 @@ impl Cache {
 
     /// The intervals of `kind` for robot `r`: those kept for everybody unless `r` has
     /// spans there, else those kept for `r`; computed and kept when none hold.
-    fn kept(&mut self, sched: &Schedule, (r, soft): (usize, bool), kind: Kind) -> (u32, u32) {
+    fn kept(&mut self, sched: &Schedule, rs: (usize, bool), kind: Kind) -> (u32, u32) {
+        let &mut (g, at) = self.memo(sched, rs, kind);
+        if g == self.memo_gen {
+            #[cfg(debug_assertions)]
+            self.check_kept(sched, rs, kind, at);
+            return at;
+        }
+        let at = self.kept_anew(sched, rs, kind);
+        let gen = self.memo_gen;
+        *self.memo(sched, rs, kind) = (gen, at);
+        at
+    }
+
+    /// `kept` without the memo.
+    fn kept_anew(&mut self, sched: &Schedule, (r, soft): (usize, bool), kind: Kind) -> (u32, u32) {
         let (set, id) = match kind {
             Kind::Vertex(v) => (&sched.conf().vertex[v], v),
             Kind::Edge(e) => (&sched.conf().trav[e], e),
@@ -317,16 +370,24 @@ impl Cache {
             return at;
         };
         #[cfg(debug_assertions)]
-        {
-            let (mut busy, mut fresh) = (Vec::new(), Vec::new());
-            merge_busy(sched, set, r, soft, &mut busy);
-            match kind {
-                Kind::Vertex(_) => gaps(&busy, &mut fresh),
-                Kind::Edge(_) => fresh = busy,
-            }
-            assert_eq!(self.get(at), &fresh[..], "intervals kept of {kind:?}");
-        }
+        self.check_kept(sched, (r, soft), kind, at);
         at
+    }
+
+    /// Debug builds: the intervals at `at` are those computed from scratch.
+    #[cfg(debug_assertions)]
+    fn check_kept(&self, sched: &Schedule, (r, soft): (usize, bool), kind: Kind, at: (u32, u32)) {
+        let set = match kind {
+            Kind::Vertex(v) => &sched.conf().vertex[v],
+            Kind::Edge(e) => &sched.conf().trav[e],
+        };
+        let (mut busy, mut fresh) = (Vec::new(), Vec::new());
+        merge_busy(sched, set, r, soft, &mut busy);
+        match kind {
+            Kind::Vertex(_) => gaps(&busy, &mut fresh),
+            Kind::Edge(_) => fresh = busy,
+        }
+        assert_eq!(self.get(at), &fresh[..], "intervals kept of {kind:?}");
     }
 
     /// The kept entries of `kind`'s intervals.
