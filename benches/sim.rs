@@ -33,6 +33,10 @@ use divan::Bencher;
 use mapc_sim::{parse_scenario, simulate, RunOptions};
 use std::path::Path;
 
+// The `mapc` binary's allocator, so the runtime is timed as `mapc sim` runs it.
+#[global_allocator]
+static ALLOC: mimalloc::MiMalloc = mimalloc::MiMalloc;
+
 fn main() {
     if !Path::new(HOTEL).is_file() {
         eprintln!("skipped: ../shared not found (hotel_8h, airport_8h_64 not benchmarked)");

@@ -17,6 +17,10 @@ use commands::{
 use driver::{signals, CliError};
 use std::process::ExitCode;
 
+// Faster than glibc's malloc for the runtime's many small vectors (ARCHITECTURE.md).
+#[global_allocator]
+static ALLOC: mimalloc::MiMalloc = mimalloc::MiMalloc;
+
 #[derive(Parser)]
 #[command(
     name = "mapc",
