@@ -134,6 +134,10 @@ pub struct Schedule {
     conf: std::sync::Arc<Conflicts>,
     queues: Vec<VecDeque<Span>>,
     its: Vec<Itinerary>,
+    /// Per robot: its soft mark (`Itinerary::soft`), or `u64::MAX` when it has none. The
+    /// planner asks whether a span is soft of every span it reads; one look-up in this
+    /// small array beats a cache miss on the robot's itinerary.
+    soft_from: Vec<u64>,
     /// A traversal began or ended since the last retime: the estimates are stale.
     stale: bool,
     /// Changes with every change of the schedule, and no two schedules share one (see
@@ -166,6 +170,7 @@ impl Clone for Schedule {
             conf: self.conf.clone(),
             queues: self.queues.clone(),
             its: self.its.clone(),
+            soft_from: self.soft_from.clone(),
             stale: self.stale,
             stamp: self.stamp,
             changed: self.changed.clone(),
@@ -216,6 +221,7 @@ impl Schedule {
             changed: vec![stamp; conf.n_res],
             conf: std::sync::Arc::new(conf),
             queues,
+            soft_from: vec![u64::MAX; its.len()],
             its,
             stale: true,
             stamp,
@@ -251,10 +257,12 @@ impl Schedule {
         for (x, q) in tx.queues {
             self.queues[x as usize] = q;
             self.changed[x as usize] = self.stamp;
-            self.bufs.touch(x);
+            self.bufs.touch_with(x, &self.queues[x as usize]);
         }
         for (r, it) in tx.its {
+            self.soft_from[r] = it.soft.unwrap_or(u64::MAX);
             self.its[r] = it;
+            self.bufs.seed(r);
         }
     }
 
@@ -305,7 +313,7 @@ impl Schedule {
     fn mark(&mut self, set: &[Res]) {
         for &x in set {
             self.changed[x as usize] = self.stamp;
-            self.bufs.touch(x);
+            self.bufs.touch_with(x, &self.queues[x as usize]);
         }
     }
 
@@ -378,14 +386,16 @@ impl Schedule {
                     self.mark(&set);
                 }
                 self.its[r].soft = None;
+                self.soft_from[r] = u64::MAX;
             }
         }
         let mut prev = t;
         for tr in self.its[r].travs.iter_mut().take(n) {
             if !tr.begun {
+                self.bufs.seed_at(r, tr.seq);
                 // Its spans are held from now on.
                 for &x in &self.conf.trav[tr.edge] {
-                    self.bufs.touch(x);
+                    self.bufs.touch_with(x, &self.queues[x as usize]);
                 }
                 tr.begun = true;
                 tr.begun_at = t;
@@ -405,10 +415,11 @@ impl Schedule {
         };
         self.stale = true;
         self.stamp = new_stamp();
-
+        // Its next traversal starts when it is ready now.
+        self.bufs.seed_at(r, tr.seq + 1);
         for &x in &self.conf.trav[tr.edge] {
             // Spans from it on start at a traversal that is gone.
-            self.bufs.touch(x);
+            self.bufs.touch_with(x, &self.queues[x as usize]);
             let q = &mut self.queues[x as usize];
             if q.front()
                 .is_some_and(|s| s.robot as usize == r && s.last == tr.seq)
@@ -455,6 +466,7 @@ impl Schedule {
         touched.dedup();
         self.save(&touched, r);
         self.mark(&touched);
+        self.bufs.seed(r);
         // 1. Cut the itinerary after `keep`: spans wholly after go, spans reaching past end
         //    at the last kept traversal (they are extended below where the new steps need
         //    the resource straight on).
@@ -470,6 +482,7 @@ impl Schedule {
         let it = &mut self.its[r];
         it.travs.truncate(keep);
         it.soft = soft.map(|k| s0 + k as u64);
+        self.soft_from[r] = it.soft.unwrap_or(u64::MAX);
         if keep == 0 {
             it.ready = ready;
         }
@@ -575,7 +588,7 @@ impl Schedule {
             let at = self.end_vertex(r);
             let last_kept = s0 - 1;
             for &x in &self.conf.vertex[at] {
-                self.bufs.touch(x);
+                self.bufs.touch_with(x, &self.queues[x as usize]);
                 for s in self.queues[x as usize].iter_mut() {
                     if s.robot as usize == r && s.last == last_kept {
                         s.last = FOREVER;
@@ -612,14 +625,27 @@ impl Schedule {
             self.save(&[], r);
             self.mark(&set);
             self.its[r].soft = None;
+            self.soft_from[r] = u64::MAX;
         }
+    }
+
+    /// Whether robot `r`'s span from its traversal `first` on is soft
+    /// (`Itinerary::soft_in`, from `soft_from`).
+    fn soft_span(&self, r: u32, first: u64) -> bool {
+        let soft = first >= self.soft_from[r as usize];
+        debug_assert_eq!(
+            soft,
+            self.its[r as usize].soft_in(first),
+            "soft_from of robot {r}"
+        );
+        soft
     }
 
     /// Whether robot other than `r` has a soft span on resource `x`.
     pub fn soft_on(&self, x: Res, r: usize) -> bool {
         self.queues[x as usize]
             .iter()
-            .any(|s| s.robot as usize != r && self.its[s.robot as usize].soft_in(s.first))
+            .any(|s| s.robot as usize != r && self.soft_span(s.robot, s.first))
     }
 
     /// The robot other than `r` that holds resource `x` for good (stays there), if any;
@@ -628,7 +654,7 @@ impl Schedule {
         self.queues[x as usize]
             .back()
             .filter(|s| s.last == FOREVER && s.robot as usize != r)
-            .filter(|s| !(soft && self.its[s.robot as usize].soft_in(s.first)))
+            .filter(|s| !(soft && self.soft_span(s.robot, s.first)))
             .map(|s| s.robot as usize)
     }
 
@@ -644,7 +670,7 @@ impl Schedule {
         self.queues[x as usize]
             .iter()
             .filter(move |s| s.robot as usize != r)
-            .filter(move |s| !(soft && self.its[s.robot as usize].soft_in(s.first)))
+            .filter(move |s| !(soft && self.soft_span(s.robot, s.first)))
             .map(|s| (s.start, s.end))
     }
 

@@ -3,14 +3,18 @@
 //! and writing them back into the itineraries and spans.
 //!
 //! A saturated warehouse retimes thousands of times an hour over 100,000 traversals, so
-//! both halves remember what they read: the dependencies between neighbours in the
-//! queues are kept between retimes and read again only for the queues that changed, and
-//! spans are written only in the queues whose traversals' times moved, that changed, or
-//! whose robot began to wait for its turn. Debug builds check both against a full pass.
+//! both halves remember what they read. A full pass reads again only the queues whose
+//! dependencies changed since it last read them; a retime at the time of the last one
+//! (within a dispatch round) times only the traversals downstream of a change
+//! (`follow.rs`); and spans are written only in the queues whose traversals' times moved,
+//! that changed, or whose robot began to wait for its turn. Debug builds check all three
+//! against a full pass.
 
-use super::{new_stamp, Cycle, Schedule, Span, FOREVER};
+use super::{new_stamp, Cycle, Itinerary, Schedule, Span, FOREVER};
 use crate::traffic::conflicts::Res;
 use std::collections::VecDeque;
+
+mod follow;
 
 /// Buffers [`Schedule::retime`] reuses: a saturated run retimes thousands of times, and
 /// with 1,000 robots each retime allocated ten arrays as long as all itineraries (page
@@ -38,18 +42,48 @@ pub(super) struct Bufs {
     moved: Vec<bool>,
     /// Per robot, what the loops over every span read of its itinerary, side by side
     /// (reading the itineraries themselves was half of writing the times back).
-    robots: Vec<Brief>,
-    /// The dependencies between neighbours in the queues as of the last
-    /// [`Schedule::apply`] (when `known`), and as of the last compute: only the queues
-    /// changed since are read again (reading all 40,000 queues of a warehouse, each in
-    /// its own allocation, was a third of a retime).
-    known: bool,
-    deps: Vec<Dep>,
-    cur: Vec<Dep>,
+    pub(super) robots: Vec<Brief>,
+    /// The itineraries hold the times of the last [`Schedule::apply`], at `applied_at`,
+    /// and `dirty` and `seeds` say what changed since: the next compute may follow the
+    /// changes only.
+    pub(super) known: bool,
+    pub(super) applied_at: f64,
     /// The queues changed since the last apply (their order, spans, or what their spans'
     /// times are made of, other than the times of the traversals).
-    dirty: Vec<Res>,
+    pub(super) dirty: Vec<Res>,
     is_dirty: Vec<bool>,
+    /// Per queue in `dirty`, where its dependencies as of the last apply begin in
+    /// `before` (robot and traversal of each span's predecessor, and of the span).
+    snap: Vec<u32>,
+    before: Vec<(u32, u64, u32, u64)>,
+    /// The robots whose itineraries changed since the last apply (other than by the
+    /// apply's times), and single traversals that did (robot, running number).
+    seeds: Vec<u32>,
+    is_seed: Vec<bool>,
+    seed_nodes: Vec<(u32, u64)>,
+    /// Per node of the last compute: whether it waits in `follow`'s work list, and
+    /// whether what waits for it is to be timed again whatever its own times.
+    queued: Vec<bool>,
+    forced: Vec<bool>,
+    /// Per node: `start` and `end` hold its times (else they are its itinerary's).
+    have: Vec<bool>,
+    work: std::collections::VecDeque<(u32, u32)>,
+    /// The spans just after the one `follow` times (robot, first traversal).
+    next: Vec<(u32, u64)>,
+    /// The dependencies between neighbours in the queues as of the last full compute that
+    /// was applied (when `deps_known`), and as of the last full compute: the next full
+    /// compute reads again only the queues changed since (`redo`; reading all 40,000
+    /// queues of a warehouse, each in its own allocation, was a third of a retime).
+    deps_known: bool,
+    deps: Vec<Dep>,
+    cur: Vec<Dep>,
+    redo: Vec<Res>,
+    is_redo: Vec<bool>,
+    /// The last compute was a full one (its `cur` may become `deps`).
+    last_full: bool,
+    /// Computes that followed the changes, and full ones (for the tests).
+    pub(super) followed: u64,
+    pub(super) full: u64,
     /// Per robot: the running number of its first traversal if it waited for its turn
     /// at the last apply (else `u64::MAX`). Its spans from there were written busy from
     /// then, and stay so.
@@ -58,7 +92,7 @@ pub(super) struct Bufs {
 
 /// What [`Schedule::compute`] reads of a traversal.
 #[derive(Debug, Clone, Copy)]
-struct Node {
+pub(super) struct Node {
     dur: f64,
     hold: f64,
     /// `Trav::start` and `Trav::end` as they are.
@@ -66,6 +100,18 @@ struct Node {
     /// `Trav::start`, read when it has begun.
     start: f64,
     begun: bool,
+}
+
+impl Node {
+    pub(super) fn of(t: &super::Trav) -> Node {
+        Node {
+            dur: t.dur,
+            hold: t.hold,
+            was: (t.start, t.end),
+            start: t.start,
+            begun: t.begun,
+        }
+    }
 }
 
 /// In queue `q`, robot `p`'s span ending at its traversal `last` comes just before robot
@@ -79,26 +125,38 @@ struct Dep {
     first: u64,
 }
 
+/// `Brief::off` of a robot whose times the compute left as they are.
+pub(super) const UNTOUCHED: u32 = u32::MAX;
+
 /// What [`Schedule::compute`] and [`Schedule::apply`] read of an itinerary.
 #[derive(Debug, Clone, Copy)]
-struct Brief {
-    /// `Itinerary::base`, its traversals and the node of its first one.
-    base: u64,
-    len: u32,
-    off: u32,
+pub(super) struct Brief {
+    /// `Itinerary::base`, its traversals, and where the compute's times of its first one
+    /// are in `Bufs::start` and `Bufs::end` (`UNTOUCHED`: they are the itinerary's).
+    pub(super) base: u64,
+    pub(super) len: u32,
+    pub(super) off: u32,
     /// How many of its first traversals it was sent along (they are a prefix).
     begun: u32,
     /// Ready to go on and waiting for its turn now (its first traversal not begun).
     waiting: bool,
-    /// `Itinerary::ready`.
-    ready: f64,
 }
 
 impl Brief {
-    /// The node of its traversal `seq`, when that is still in the itinerary.
-    fn node(&self, seq: u64) -> Option<usize> {
+    fn of(it: &Itinerary, now: f64) -> Brief {
+        Brief {
+            base: it.base,
+            len: it.travs.len() as u32,
+            off: UNTOUCHED,
+            begun: it.travs.iter().take_while(|t| t.begun).count() as u32,
+            waiting: it.travs.front().is_some_and(|t| !t.begun) && it.ready <= now,
+        }
+    }
+
+    /// The index in the itinerary of its traversal `seq`, when that is still in it.
+    pub(super) fn node(&self, seq: u64) -> Option<usize> {
         let k = seq.checked_sub(self.base)?;
-        (k < u64::from(self.len)).then(|| (u64::from(self.off) + k) as usize)
+        (k < u64::from(self.len)).then_some(k as usize)
     }
 }
 
@@ -118,15 +176,75 @@ impl Bufs {
         if !self.is_dirty[x] {
             self.is_dirty[x] = true;
             self.dirty.push(x as Res);
+            self.snap.push(self.before.len() as u32);
         }
     }
 
-    /// No queue changed since now.
+    /// Queue `x`, as it is (`q`), is about to change.
+    pub(super) fn touch_with(&mut self, x: Res, q: &VecDeque<Span>) {
+        let i = x as usize;
+        if self.is_redo.len() <= i {
+            self.is_redo.resize(i + 1, false);
+        }
+        if !self.is_redo[i] {
+            self.is_redo[i] = true;
+            self.redo.push(x);
+        }
+        if self.is_dirty.get(i).is_some_and(|&d| d) {
+            return;
+        }
+        self.touch(x);
+        if self.known {
+            self.before.extend(
+                q.iter()
+                    .zip(q.iter().skip(1))
+                    .map(|(p, s)| (p.robot, p.last, s.robot, s.first)),
+            );
+        }
+    }
+
+    /// Robot `r`'s itinerary changed (see `Bufs::seeds`).
+    pub(super) fn seed(&mut self, r: usize) {
+        if self.is_seed.len() <= r {
+            self.is_seed.resize(r + 1, false);
+        }
+        if !self.is_seed[r] {
+            self.is_seed[r] = true;
+            self.seeds.push(r as u32);
+        }
+    }
+
+    /// Robot `r`'s traversal `seq` changed (see `Bufs::seeds`).
+    pub(super) fn seed_at(&mut self, r: usize, seq: u64) {
+        self.seed_nodes.push((r as u32, seq));
+    }
+
+    /// Nothing changed since now.
     fn clean(&mut self) {
         for &x in &self.dirty {
             self.is_dirty[x as usize] = false;
         }
         self.dirty.clear();
+        self.snap.clear();
+        self.before.clear();
+        for &r in &self.seeds {
+            self.is_seed[r as usize] = false;
+        }
+        self.seeds.clear();
+        self.seed_nodes.clear();
+    }
+
+    /// The last compute's start and end of robot `r`'s `k`-th traversal (`its`: the
+    /// itineraries it computed them for).
+    pub(super) fn times(&self, its: &[Itinerary], r: usize, k: usize) -> (f64, f64) {
+        let off = self.robots[r].off;
+        let b = off as usize + k;
+        if off == UNTOUCHED || !self.have[b] {
+            let t = &its[r].travs[k];
+            (t.start, t.end)
+        } else {
+            (self.start[b], self.end[b])
+        }
     }
 }
 
@@ -134,6 +252,28 @@ impl Bufs {
 fn refill<T: Clone>(v: &mut Vec<T>, n: usize, x: T) {
     v.clear();
     v.resize(n, x);
+}
+
+/// A traversal's start and end: `prev_end`, the end of its robot's traversal before it
+/// (none for the first); `ready`, when its robot may go on; `after`, the latest end of the
+/// others' traversals it waits for.
+pub(super) fn node_times(
+    nd: Node,
+    prev_end: Option<f64>,
+    ready: f64,
+    after: f64,
+    now: f64,
+) -> (f64, f64) {
+    if nd.begun {
+        // Driven now (the first), or next after it (sent together): the estimate from
+        // when it was sent may lie ahead of now if the one before ended early.
+        let s = prev_end.unwrap_or(nd.start.min(now));
+        (s, (s + nd.dur).max(now))
+    } else {
+        let own = prev_end.map_or(ready, |e| e + nd.hold);
+        let s = now.max(own).max(after);
+        (s, s + nd.dur)
+    }
 }
 
 impl Schedule {
@@ -150,6 +290,59 @@ impl Schedule {
     /// [`Schedule::computed_end`]); nothing else changes. Fails on a cycle.
     pub fn compute(&mut self, now: f64) -> Result<(), Cycle> {
         self.bufs.computed = false;
+        let out = match self.follow(now) {
+            Some(out) => {
+                self.bufs.followed += 1;
+                self.bufs.last_full = false;
+                #[cfg(debug_assertions)]
+                self.check_followed(now, &out);
+                out
+            }
+            None => {
+                self.bufs.full += 1;
+                self.bufs.last_full = true;
+                self.compute_all(now)
+            }
+        };
+        match out {
+            Ok(()) => self.bufs.computed = true,
+            Err(_) => {
+                // As before: a failed retime leaves the estimates and marks them fresh.
+                self.stale = false;
+                self.stamp = new_stamp();
+            }
+        }
+        out
+    }
+
+    /// Debug builds: what followed the changes is what a full compute gives.
+    #[cfg(debug_assertions)]
+    fn check_followed(&self, now: f64, out: &Result<(), Cycle>) {
+        let mut all = self.clone();
+        let full = all.compute_all(now);
+        assert_eq!(out.is_ok(), full.is_ok(), "followed {out:?}, full {full:?}");
+        if full.is_err() {
+            return;
+        }
+        let same = |a: f64, b: f64| a.to_bits() == b.to_bits();
+        for (r, it) in self.its.iter().enumerate() {
+            for k in 0..it.travs.len() {
+                let (a, b) = (
+                    self.bufs.times(&self.its, r, k),
+                    all.bufs.times(&all.its, r, k),
+                );
+                assert!(
+                    same(a.0, b.0) && same(a.1, b.1),
+                    "robot {r}'s traversal {k} at {now}: followed {a:?}, full {b:?}"
+                );
+            }
+            assert_eq!(self.bufs.moved[r], all.bufs.moved[r], "robot {r} moved");
+        }
+    }
+
+    /// [`Schedule::compute`] over every traversal: a longest-path pass over the whole
+    /// dependency graph (Kahn's algorithm), which finds any cycle.
+    fn compute_all(&mut self, now: f64) -> Result<(), Cycle> {
         let nr = self.its.len();
         let Bufs {
             offs,
@@ -166,11 +359,12 @@ impl Schedule {
             after,
             robots,
             moved,
-            known,
+            have,
+            deps_known,
             deps,
             cur,
-            dirty,
-            is_dirty,
+            redo,
+            is_redo,
             ..
         } = &mut self.bufs;
         // What the times are made of, side by side (the itineraries' traversals are read
@@ -182,21 +376,11 @@ impl Schedule {
         for (r, it) in self.its.iter().enumerate() {
             let off = nodes.len();
             offs.push(off);
-            nodes.extend(it.travs.iter().map(|t| Node {
-                dur: t.dur,
-                hold: t.hold,
-                was: (t.start, t.end),
-                start: t.start,
-                begun: t.begun,
-            }));
+            nodes.extend(it.travs.iter().map(Node::of));
             owner.resize(nodes.len(), r as u32);
             robots.push(Brief {
-                base: it.base,
-                len: it.travs.len() as u32,
                 off: off as u32,
-                begun: it.travs.iter().take_while(|t| t.begun).count() as u32,
-                waiting: it.travs.front().is_some_and(|t| !t.begun) && it.ready <= now,
-                ready: it.ready,
+                ..Brief::of(it, now)
             });
         }
         offs.push(nodes.len());
@@ -204,10 +388,10 @@ impl Schedule {
         let total = offs[nr];
         let robots = &*robots;
         // The dependencies between neighbours in the queues: those of the queues that did
-        // not change since the last apply, and those of the others read again.
+        // not change since they were read, and those of the others read again.
         cur.clear();
-        let changed = |x: Res| is_dirty.get(x as usize).is_some_and(|&d| d);
-        if *known {
+        let changed = |x: Res| is_redo.get(x as usize).is_some_and(|&d| d);
+        if *deps_known {
             cur.extend(deps.iter().filter(|d| !changed(d.q)));
         }
         let mut read = |x: Res, q: &VecDeque<Span>| -> Result<(), Cycle> {
@@ -230,8 +414,8 @@ impl Schedule {
             }
             Ok(())
         };
-        if *known {
-            for &x in dirty.iter() {
+        if *deps_known {
+            for &x in redo.iter() {
                 read(x, &self.queues[x as usize])?;
             }
         } else {
@@ -263,9 +447,11 @@ impl Schedule {
         // times, and a vector per traversal cost most of it).
         edges.clear();
         edges.extend(cur.iter().filter_map(|d| {
-            let a = robots[d.p as usize].node(d.last)?;
-            let b = robots[d.s as usize].node(d.first)?;
-            Some((a as u32, b as u32))
+            let node = |r: u32, seq: u64| {
+                let br = &robots[r as usize];
+                br.node(seq).map(|k| (br.off as usize + k) as u32)
+            };
+            Some((node(d.p, d.last)?, node(d.s, d.first)?))
         }));
         refill(indeg, total, 0);
         refill(first, total + 1, 0);
@@ -294,6 +480,7 @@ impl Schedule {
         ready.extend((0..total).filter(|&b| indeg[b] == 0));
         refill(end, total, 0.0);
         refill(start, total, 0.0);
+        refill(have, total, true);
         // The latest end of the other robots' traversals each waits for.
         refill(after, total, f64::NEG_INFINITY);
         refill(moved, nr, false);
@@ -301,28 +488,11 @@ impl Schedule {
         while let Some(b) = ready.pop() {
             done += 1;
             let r = owner[b] as usize;
-            let first_of_robot = b == offs[r];
             let nd = nodes[b];
-            if nd.begun {
-                // Driven now (the first), or next after it (sent together): the estimate
-                // from when it was sent may lie ahead of now if the one before ended early.
-                let s = if first_of_robot {
-                    nd.start.min(now)
-                } else {
-                    end[b - 1]
-                };
-                start[b] = s;
-                end[b] = (s + nd.dur).max(now);
-            } else {
-                let own = if first_of_robot {
-                    robots[r].ready
-                } else {
-                    end[b - 1] + nd.hold
-                };
-                let s = now.max(own).max(after[b]);
-                start[b] = s;
-                end[b] = s + nd.dur;
-            }
+            let prev_end = (b > offs[r]).then(|| end[b - 1]);
+            let (s, e) = node_times(nd, prev_end, self.its[r].ready, after[b], now);
+            start[b] = s;
+            end[b] = e;
             // As `apply` compares them (NaN differs from itself).
             if start[b] != nd.was.0 || end[b] != nd.was.1 {
                 moved[r] = true;
@@ -348,23 +518,18 @@ impl Schedule {
                 .map(|b| owner[b] as usize)
                 .collect();
             robots.dedup();
-            // As before: a failed retime leaves the estimates and marks them fresh.
-            self.stale = false;
-            self.stamp = new_stamp();
             return Err(Cycle { robots });
         }
-        self.bufs.computed = true;
         Ok(())
     }
 
     /// The end of robot `r`'s `k`-th remaining traversal by the last
     /// [`Schedule::compute`], if it succeeded and the traversal exists.
     pub fn computed_end(&self, r: usize, k: usize) -> Option<f64> {
-        let b = &self.bufs;
-        if !b.computed || k >= self.its[r].travs.len() {
+        if !self.bufs.computed || k >= self.its[r].travs.len() {
             return None;
         }
-        b.end.get(b.offs[r] + k).copied()
+        Some(self.bufs.times(&self.its, r, k).1)
     }
 
     /// Writes the times of the last successful [`Schedule::compute`] (at `now`, on the
@@ -382,7 +547,6 @@ impl Schedule {
         self.bufs.waited.resize(self.its.len(), u64::MAX);
         for (r, it) in self.its.iter_mut().enumerate() {
             let b = &mut self.bufs;
-            let off = b.offs[r];
             let br = b.robots[r];
             let began_to_wait = br.waiting && b.waited[r] != br.base;
             b.waited[r] = if br.waiting { br.base } else { u64::MAX };
@@ -391,7 +555,12 @@ impl Schedule {
                 continue;
             }
             for (k, tr) in it.travs.iter_mut().enumerate() {
-                let (s, e) = (b.start[off + k], b.end[off + k]);
+                let n = br.off as usize + k;
+                let (s, e) = if br.off == UNTOUCHED || !b.have[n] {
+                    (tr.start, tr.end)
+                } else {
+                    (b.start[n], b.end[n])
+                };
                 if known && ((k == 0 && began_to_wait) || tr.start != s || tr.end != e) {
                     for &x in &self.conf.trav[tr.edge] {
                         b.touch(x);
@@ -414,9 +583,18 @@ impl Schedule {
         }
         self.bufs.dirty = dirty;
         self.bufs.clean();
+        self.bufs.known = true;
         let b = &mut self.bufs;
-        std::mem::swap(&mut b.deps, &mut b.cur);
-        b.known = true;
+        if b.last_full {
+            // Its dependencies are the queues' now.
+            std::mem::swap(&mut b.deps, &mut b.cur);
+            b.deps_known = true;
+            for &x in &b.redo {
+                b.is_redo[x as usize] = false;
+            }
+            b.redo.clear();
+        }
+        self.bufs.applied_at = now;
         #[cfg(debug_assertions)]
         for x in 0..self.queues.len() {
             let before = self.queues[x].clone();
@@ -430,13 +608,12 @@ impl Schedule {
 
     /// Writes the times of queue `x`'s spans from the last compute's; whether any moved.
     fn respan(&mut self, x: usize, now: f64) -> bool {
-        let Bufs {
-            start, end, robots, ..
-        } = &self.bufs;
+        let b = &self.bufs;
         let mut moved = false;
         for s in self.queues[x].iter_mut() {
             let was = (s.start, s.end);
-            let br = &robots[s.robot as usize];
+            let r = s.robot as usize;
+            let br = &b.robots[r];
             // A span held now is busy from now (or from any time before: nobody plans
             // for the past, and a start that stays keeps the planner's intervals). Held:
             // its first traversal is done (an estimate from before would hide the span
@@ -444,17 +621,17 @@ impl Schedule {
             // span before it), or the robot is ready to go on and waits for its turn
             // (nobody planned later goes before it, else a waiting robot could be
             // overtaken for ever).
-            let held = br.node(s.first).is_none_or(|b| {
-                s.first < br.base + u64::from(br.begun) || (b == br.off as usize && br.waiting)
-            });
+            let held = br
+                .node(s.first)
+                .is_none_or(|k| s.first < br.base + u64::from(br.begun) || (k == 0 && br.waiting));
             s.start = match br.node(s.first) {
-                Some(b) if !held => start[b],
+                Some(k) if !held => b.times(&self.its, r, k).0,
                 _ => s.start.min(now),
             };
             s.end = if s.last == FOREVER {
                 f64::INFINITY
-            } else if let Some(b) = br.node(s.last) {
-                end[b]
+            } else if let Some(k) = br.node(s.last) {
+                b.times(&self.its, r, k).1
             } else {
                 s.end
             };

@@ -527,4 +527,7 @@ fn a_retime_that_reads_only_what_changed_equals_a_full_one() {
     s.complete_front(1, 39.0);
     check(&mut s, 45.0, "robot 1 at b, late");
     assert_eq!(retimes, 12);
+    // The retimes at the time of the last one (after each plan at 0) followed the
+    // changes only; the others were full passes.
+    assert_eq!((s.bufs.followed, s.bufs.full), (2, 10));
 }
