@@ -96,11 +96,13 @@ impl Schedule {
                 push(b, its, r as usize, k, true);
             }
         }
+        // The spans whose predecessor in a queue changed (robot, first traversal).
+        let mut seeds: Vec<(u32, u64)> = Vec::new();
         for i in 0..b.dirty.len() {
             let q = &self.queues[b.dirty[i] as usize];
             let from = b.snap[i] as usize;
             let to = b.snap.get(i + 1).map_or(b.before.len(), |&t| t as usize);
-            let mut seeds: Vec<(u32, u64)> = Vec::new();
+            seeds.clear();
             {
                 let old = &b.before[from..to];
                 let now_deps = || {
@@ -115,7 +117,7 @@ impl Schedule {
                         .map(|d| (d.2, d.3)),
                 );
             }
-            for (r, seq) in seeds {
+            for &(r, seq) in &seeds {
                 if let Some(k) = b.robots[r as usize].node(seq) {
                     push(b, its, r as usize, k, false);
                 }
