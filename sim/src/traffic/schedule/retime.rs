@@ -195,11 +195,7 @@ impl Bufs {
         }
         self.touch(x);
         if self.known {
-            self.before.extend(
-                q.iter()
-                    .zip(q.iter().skip(1))
-                    .map(|(p, s)| (p.robot, p.last, s.robot, s.first)),
-            );
+            self.before.extend(neighbours(q));
         }
     }
 
@@ -246,6 +242,14 @@ impl Bufs {
             (self.start[b], self.end[b])
         }
     }
+}
+
+/// The dependencies between neighbours in queue `q`, in order: (the robot of a span, its
+/// last traversal, the robot of the span after it, that span's first traversal).
+fn neighbours(q: &VecDeque<Span>) -> impl Iterator<Item = (u32, u64, u32, u64)> + '_ {
+    q.iter()
+        .zip(q.iter().skip(1))
+        .map(|(p, s)| (p.robot, p.last, s.robot, s.first))
 }
 
 /// `v` as `n` copies of `x`, keeping its allocation.
@@ -432,9 +436,7 @@ impl Schedule {
                 .iter()
                 .enumerate()
                 .flat_map(|(x, q)| {
-                    q.iter()
-                        .zip(q.iter().skip(1))
-                        .map(move |(p, s)| (x as Res, p.robot, s.robot, p.last, s.first))
+                    neighbours(q).map(move |(p, last, s, first)| (x as Res, p, s, last, first))
                 })
                 .collect();
             let mut have: Vec<_> = cur.iter().map(key).collect();

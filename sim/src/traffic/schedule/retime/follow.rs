@@ -22,7 +22,7 @@
 //! traversal of no duration, a dependency on a traversal already begun, or on a later one
 //! of the same robot.
 
-use super::{node_times, Brief, Bufs, Node, UNTOUCHED};
+use super::{neighbours, node_times, Brief, Bufs, Node, UNTOUCHED};
 use crate::traffic::schedule::{Cycle, Itinerary, Schedule, FOREVER};
 
 /// Room for robot `r`'s times in `Bufs::start` and `Bufs::end` (empty: `Bufs::have`),
@@ -105,11 +105,7 @@ impl Schedule {
             seeds.clear();
             {
                 let old = &b.before[from..to];
-                let now_deps = || {
-                    q.iter()
-                        .zip(q.iter().skip(1))
-                        .map(|(p, s)| (p.robot, p.last, s.robot, s.first))
-                };
+                let now_deps = || neighbours(q);
                 seeds.extend(now_deps().filter(|d| !old.contains(d)).map(|d| (d.2, d.3)));
                 seeds.extend(
                     old.iter()
