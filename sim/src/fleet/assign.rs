@@ -20,6 +20,14 @@
 //! (Rounds looked at the 64 oldest tasks only, and under a saturating stream those were the
 //! tasks every robot had been refused for: robots stood idle while the tasks they could do
 //! waited behind them.)
+//!
+//! Busy robots bid too, as RMF's dispatcher queues a task after a robot's current one: a
+//! task that a busy robot gets to (when its itinerary has it done, then free flow) before
+//! any free robot could, or before the best free robot's plan with its waits for traffic
+//! between the task's places, waits for that robot. Only free robots were looked at
+//! before, so a bigger fleet sent a robot parked far away where a smaller one's robot,
+//! about to finish next door, would have taken the task: on the demo maps and generated
+//! buildings, fleets completed 22-24 % more with the bids (BENCHMARKS.md).
 
 use super::traffic::GRAPH_PARKS;
 use super::*;
@@ -59,8 +67,11 @@ const SEARCH_DELAY: Delay = Delay {
     share: 2.0 * WAIT_SHARE / (1.0 - WAIT_SHARE),
 };
 /// No plan a task takes stands still for longer than this in one place (s), well under
-/// the 300 s after which a robot with a task counts as stuck (`report::STUCK_AFTER`).
-const LONGEST_WAIT: f64 = 180.0;
+/// the 300 s after which a robot with a task counts as stuck (`report::STUCK_AFTER`):
+/// the others' delays lengthen planned waits. (It was 180 s: with busy robots bidding,
+/// the saturated airport's corridors were fuller, and a 180 s wait at a place grew to
+/// 476 s behind four delayed robots.)
+const LONGEST_WAIT: f64 = 120.0;
 /// Dispatch is tried again this often (s) while tasks wait (and sooner when a robot
 /// becomes free or a task comes).
 const DISPATCH_EVERY: f64 = 5.0;
@@ -81,6 +92,10 @@ const MAX_BACKOFF: f64 = 60.0;
 /// A free robot: its index, the vertex it plans from, and how long until it may leave
 /// (s).
 type Free = (usize, usize, f64);
+
+/// A busy robot: its index, the last place of its task, and how long until it is done
+/// there (s).
+type Busy = (usize, usize, f64);
 
 /// Free-flow time tables to places kept (each a float per vertex): at least this many, and
 /// as many as fit in `ETA_TABLE_FLOATS` (a warehouse's thousand racks each made again and
@@ -434,6 +449,14 @@ impl Fleets {
                 (i, at, t0 - t)
             })
             .collect();
+        // Busy robots: where their tasks end and when (s from now).
+        let busy: Vec<Busy> = (0..self.robots.len())
+            .filter(|&i| !self.free(i))
+            .filter_map(|i| {
+                let (last, done) = self.busy_end(i, t)?;
+                Some((i, last, done - t))
+            })
+            .collect();
         let d = &mut self.dispatcher;
         d.same.retain(|_, v| v.0 > t);
         d.was_free.resize(self.robots.len(), false);
@@ -484,6 +507,8 @@ impl Fleets {
             // kept only (with hundreds of robots free, cloning them for each was a tenth
             // of a warehouse run, in the allocator).
             let mut near: Vec<(f64, usize, usize)> = Vec::new();
+            // How soon a busy robot could get there after its task (s from now).
+            let mut after: Option<f64> = None;
             let only = self.dispatcher.pending[k].robot;
             let firsts: Vec<(usize, usize, usize)> = self.dispatcher.pending[k]
                 .steps
@@ -507,8 +532,28 @@ impl Fleets {
                         }
                     }
                 }
+                if only.is_some() {
+                    continue;
+                }
+                for &(ri, last, done) in &busy {
+                    if self.robots[ri].fleet == fi {
+                        let eta = done + table[last];
+                        if eta.is_finite() && after.is_none_or(|a| eta < a) {
+                            after = Some(eta);
+                        }
+                    }
+                }
             }
             near.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
+            // A busy robot gets there before any free one could (free flow is the
+            // soonest a plan arrives): the task waits for it, as RMF queues a task after
+            // a robot's current one. Not planned for the free robots now, so they stay
+            // for tasks only they are first to.
+            if let Some(eta) = after.filter(|&a| near.first().is_none_or(|n| a < n.0)) {
+                self.wait_for_busy(k, eta, t);
+                k += 1;
+                continue;
+            }
             // Free robots that stay for good on one of the task's places are candidates
             // too, however far: no other robot can get there while they stay, and doing
             // the task moves them off (as in Token Passing, a robot whose endpoint a task
@@ -679,6 +724,19 @@ impl Fleets {
                 k += 1;
                 continue;
             };
+            // A busy robot still gets there before the best plan does, counting that
+            // plan's waits for traffic after the first place (a plan that waits for the
+            // others between the task's places comes later, and holds them up).
+            let inner: f64 = {
+                let first = best.plan.goal_at.first().copied().unwrap_or(0);
+                waits(&best.plan, best.t0).skip(first).sum()
+            };
+            if let Some(eta) = after.filter(|&a| t + a < best.arrive + inner) {
+                self.dispatcher.pending[k].backoff = refused;
+                self.wait_for_busy(k, eta, t);
+                k += 1;
+                continue;
+            }
             let ri = best.robot;
             let start = (best.keep, best.t0, best.soft.then_some(t));
             if !self.start_task(ri, ti, best.steps, best.plan, start, t, out) {
@@ -697,6 +755,41 @@ impl Fleets {
         if !self.dispatcher.pending.is_empty() {
             self.dispatcher.next_dispatch = t + DISPATCH_EVERY;
         }
+    }
+
+    /// Pending task `k` waits for a busy robot that gets there first (`eta` s from `t`):
+    /// rounds pass it by until that robot should be done or a robot becomes free.
+    fn wait_for_busy(&mut self, k: usize, eta: f64, t: f64) {
+        let d = &mut self.dispatcher;
+        d.pending[k].asleep = Some((t + eta, d.freed));
+    }
+
+    /// Where busy robot `i`'s task ends and when it is done there (its itinerary's
+    /// estimate and the work still to do): None without a task or between steps.
+    fn busy_end(&self, i: usize, t: f64) -> Option<(usize, f64)> {
+        let r = &self.robots[i];
+        r.task?;
+        let (goals, working) = match r.cur {
+            Cur::GoTo { goal, .. } => (self.remaining_goals(i, goal), false),
+            Cur::Dwell { until } => (self.working_goals(i, (until - t).max(0.0)), true),
+            Cur::Workcell { .. } => (self.working_goals(i, WORKCELL_ESTIMATE), true),
+            Cur::Charge { pct, .. } => {
+                let rate = self.fleets[r.fleet].charge_rate.max(1e-9);
+                (
+                    self.working_goals(i, (pct - r.battery()).max(0.0) / rate),
+                    true,
+                )
+            }
+            Cur::None => return None,
+        };
+        let &(last, work) = goals.last()?;
+        let ahead = goals.len() - usize::from(working);
+        let at = if ahead == 0 {
+            t
+        } else {
+            self.arrival(i, ahead).max(t)
+        };
+        Some((last, at + work))
     }
 
     /// Whether `dispenser`'s item is away or promised: a robot carries it or brings it

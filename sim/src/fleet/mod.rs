@@ -295,6 +295,9 @@ pub struct Fleets {
     cancels: cancel::Cancels,
     /// Per IR lane: when robots drove it (the report's timeline).
     lane_use: drive::LaneUse,
+    /// Robots whose tasks ended in this update's ticks: they set off to park after its
+    /// last dispatch round, if they took no task there.
+    just_free: Vec<usize>,
 }
 
 impl Fleets {
@@ -351,8 +354,15 @@ impl Fleets {
                 break;
             }
         }
-        // Robots that became free in this update take waiting tasks.
+        // Robots that became free in this update take waiting tasks; those that took
+        // none set off to park.
         self.dispatch(t, out);
+        for i in std::mem::take(&mut self.just_free) {
+            if self.robots[i].idle() {
+                let n = self.traffic.sched.itinerary(i).travs.len();
+                self.advance(i, n, t, out);
+            }
+        }
         if t >= self.next_traffic {
             self.next_traffic = t + 1.0;
             self.replan_delayed(t);

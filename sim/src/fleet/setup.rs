@@ -562,6 +562,7 @@ impl Fleets {
             clean_duration: scenario.options.clean_duration,
             cancels: cancel::Cancels::new(scenario),
             lane_use: drive::LaneUse::new(crate::report::timeline::period_for(scenario.duration)),
+            just_free: Vec::new(),
         })
     }
 }

@@ -359,7 +359,8 @@ impl Fleets {
             };
             return true;
         }
-        if self.robots[i].task.is_some() {
+        let ended = self.robots[i].task.is_some();
+        if ended {
             self.end_task(i, t, true, String::new(), out);
         }
         // Charging comes before the next task when the battery is low.
@@ -379,6 +380,14 @@ impl Fleets {
                     r.wake = r.replan_at;
                 }
             }
+        }
+        if ended {
+            // Just free where its task ended: the dispatch round after this update's ticks
+            // may give it a task from here, so it sets off to park only after that round
+            // ([`Fleets::update`]). Sent on at once, it drove to park and back for a task
+            // at the place it stood on.
+            self.just_free.push(i);
+            return false;
         }
         let n = self.traffic.sched.itinerary(i).travs.len();
         self.advance(i, n, t, out);

@@ -223,7 +223,7 @@ impl Fleets {
 
     /// The places of robot `i`, working where it stands for `rest` s more, and then its
     /// task's remaining places.
-    fn working_goals(&self, i: usize, rest: f64) -> Vec<(usize, f64)> {
+    pub(super) fn working_goals(&self, i: usize, rest: f64) -> Vec<(usize, f64)> {
         let mut steps = vec![Step::GoTo(self.robots[i].at), Step::Dwell(rest)];
         steps.extend(self.robots[i].steps.iter().cloned());
         self.goals_of(i, &steps)
@@ -945,7 +945,7 @@ impl Fleets {
 
     /// When robot `i`'s itinerary estimates it at its last place (of `n` goals), or at its
     /// end when it has none.
-    fn arrival(&self, i: usize, n: usize) -> f64 {
+    pub(super) fn arrival(&self, i: usize, n: usize) -> f64 {
         let it = self.traffic.sched.itinerary(i);
         let legs: usize =
             self.robots[i].leg.unwrap_or(0) + self.robots[i].legs.iter().sum::<usize>();
