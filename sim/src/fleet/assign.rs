@@ -125,6 +125,21 @@ struct Pending {
     /// Its plans keep clear of the others' ways to parking too (one that went before them
     /// was undone: see [`Fleets::install`]).
     hard: bool,
+    /// It waits for a busy robot that gets there before the free robots' plans did: see
+    /// [`Deferred`].
+    deferred: Option<Deferred>,
+}
+
+/// A task that waits for a busy robot, its free robots' plans made and beaten: when the
+/// best of them would have got there (counting its waits between the task's places), and
+/// the robots planned for. Until the busy robot's bid stops beating that, or a robot not
+/// planned for could (by free flow) beat it, planning the free robots again cannot change
+/// the choice: their plans only got later as the schedule filled. (Planned again at every
+/// round where some robot became free, then dropped, the saturated airport's free robots
+/// cost 2.5 times as much planning per decision.)
+struct Deferred {
+    beat: f64,
+    planned: Vec<usize>,
 }
 
 /// The dispatcher's state: the tasks still to be requested, the queue of tasks no robot
@@ -370,6 +385,7 @@ impl Fleets {
             backoff: Vec::new(),
             asleep: None,
             hard: false,
+            deferred: None,
         };
         self.dispatcher.enqueue(p, t);
     }
@@ -449,14 +465,19 @@ impl Fleets {
                 (i, at, t0 - t)
             })
             .collect();
-        // Busy robots: where their tasks end and when (s from now).
-        let busy: Vec<Busy> = (0..self.robots.len())
-            .filter(|&i| !self.free(i))
-            .filter_map(|i| {
-                let (last, done) = self.busy_end(i, t)?;
-                Some((i, last, done - t))
-            })
-            .collect();
+        // Busy robots: where their tasks end and when (s from now). Not needed when no
+        // robot is free: no task is looked at then.
+        let busy: Vec<Busy> = if free.is_empty() {
+            Vec::new()
+        } else {
+            (0..self.robots.len())
+                .filter(|&i| !self.free(i))
+                .filter_map(|i| {
+                    let (last, done) = self.busy_end(i, t)?;
+                    Some((i, last, done - t))
+                })
+                .collect()
+        };
         let d = &mut self.dispatcher;
         d.same.retain(|_, v| v.0 > t);
         d.was_free.resize(self.robots.len(), false);
@@ -545,6 +566,21 @@ impl Fleets {
                 }
             }
             near.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
+            // Its free robots' plans lost to a busy robot that still gets there first, and
+            // no robot that was not planned for could beat it.
+            if let (Some(a), Some(d)) = (after, &self.dispatcher.pending[k].deferred) {
+                let unbeaten = t + a < d.beat
+                    && near
+                        .iter()
+                        .take(CANDIDATES)
+                        .all(|c| d.planned.contains(&c.1) || t + c.0 >= d.beat);
+                if unbeaten {
+                    self.wait_for_busy(k, a, t);
+                    k += 1;
+                    continue;
+                }
+            }
+            self.dispatcher.pending[k].deferred = None;
             // A busy robot gets there before any free one could (free flow is the
             // soonest a plan arrives): the task waits for it, as RMF queues a task after
             // a robot's current one. Not planned for the free robots now, so they stay
@@ -570,6 +606,7 @@ impl Fleets {
             let mut best: Option<Best> = None;
             let mut failed = false;
             let looked_at = near.len();
+            let planned: Vec<usize> = near.iter().map(|c| c.1).collect();
             // Robots whose plans for it waited too long now and will, planned again.
             let mut refused: Vec<(usize, f64)> = Vec::new();
             for (_, ri, steps) in near {
@@ -732,7 +769,12 @@ impl Fleets {
                 waits(&best.plan, best.t0).skip(first).sum()
             };
             if let Some(eta) = after.filter(|&a| t + a < best.arrive + inner) {
-                self.dispatcher.pending[k].backoff = refused;
+                let p = &mut self.dispatcher.pending[k];
+                p.backoff = refused;
+                p.deferred = Some(Deferred {
+                    beat: best.arrive + inner,
+                    planned,
+                });
                 self.wait_for_busy(k, eta, t);
                 k += 1;
                 continue;
