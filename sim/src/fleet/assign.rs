@@ -142,6 +142,19 @@ struct Deferred {
     planned: Vec<usize>,
 }
 
+impl Deferred {
+    /// At `t`, with the busy robot's bid `after` s away and `near` the free robots (free
+    /// flow time, robot, fleet), nearest first: the bid still beats the best plan made,
+    /// and no robot among those a round would plan for that was not planned for could.
+    fn holds(&self, t: f64, after: f64, near: &[(f64, usize, usize)]) -> bool {
+        t + after < self.beat
+            && near
+                .iter()
+                .take(CANDIDATES)
+                .all(|c| self.planned.contains(&c.1) || t + c.0 >= self.beat)
+    }
+}
+
 /// The dispatcher's state: the tasks still to be requested, the queue of tasks no robot
 /// has taken yet, and when it runs next.
 ///
@@ -569,12 +582,7 @@ impl Fleets {
             // Its free robots' plans lost to a busy robot that still gets there first, and
             // no robot that was not planned for could beat it.
             if let (Some(a), Some(d)) = (after, &self.dispatcher.pending[k].deferred) {
-                let unbeaten = t + a < d.beat
-                    && near
-                        .iter()
-                        .take(CANDIDATES)
-                        .all(|c| d.planned.contains(&c.1) || t + c.0 >= d.beat);
-                if unbeaten {
+                if d.holds(t, a, &near) {
                     self.wait_for_busy(k, a, t);
                     k += 1;
                     continue;
@@ -1027,4 +1035,39 @@ fn waits(plan: &Plan, t0: f64) -> impl Iterator<Item = f64> + '_ {
         prev = s.end;
         w
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The best free plan made at 0 s got there at 100 s; robots 1 and 2 were planned.
+    fn deferred() -> Deferred {
+        Deferred {
+            beat: 100.0,
+            planned: vec![1, 2],
+        }
+    }
+
+    #[test]
+    fn a_deferred_task_is_not_planned_again_while_its_bid_holds() {
+        let d = deferred();
+        // The same robots free, the busy robot still first: nothing to plan.
+        assert!(d.holds(10.0, 50.0, &[(20.0, 1, 0), (30.0, 2, 0)]));
+        // A robot that became free but cannot get there before the best plan did.
+        assert!(d.holds(10.0, 50.0, &[(20.0, 1, 0), (95.0, 7, 0)]));
+        // Only the nearest `CANDIDATES` are planned for: a near robot further down the
+        // list is not a reason.
+        let far = [(1.0, 1, 0), (2.0, 2, 0), (3.0, 1, 0), (4.0, 9, 0)];
+        assert!(d.holds(10.0, 50.0, &far));
+    }
+
+    #[test]
+    fn a_deferred_task_is_planned_again_when_its_bid_or_the_robots_change() {
+        let d = deferred();
+        // The busy robot was delayed: its bid no longer beats the best plan.
+        assert!(!d.holds(10.0, 90.0, &[(20.0, 1, 0)]));
+        // A robot not planned for became free and could get there before it.
+        assert!(!d.holds(10.0, 50.0, &[(20.0, 1, 0), (60.0, 7, 0)]));
+    }
 }
