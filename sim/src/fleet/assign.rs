@@ -27,7 +27,11 @@
 //! between the task's places, waits for that robot. Only free robots were looked at
 //! before, so a bigger fleet sent a robot parked far away where a smaller one's robot,
 //! about to finish next door, would have taken the task: on the demo maps and generated
-//! buildings, fleets completed 22-24 % more with the bids (BENCHMARKS.md).
+//! buildings, fleets completed 22-24 % more with the bids (BENCHMARKS.md). A free robot
+//! that gets there sooner still yields to the busy one when it gains the task less time
+//! than the longer drive it makes: under a saturating stream the fleet's throughput is its
+//! robot-time, and a drive across the building also loads its corridors (of the 95 %
+//! rule's breaches on the generated buildings and warehouses, all but one went).
 
 use super::traffic::GRAPH_PARKS;
 use super::*;
@@ -210,6 +214,8 @@ enum Refused {
 /// whether it goes through soft spans, and what it is a plan of.
 struct Best {
     arrive: f64,
+    /// Its robot's free-flow time to the first place (s).
+    eta: f64,
     robot: usize,
     steps: Vec<Step>,
     plan: Plan,
@@ -543,6 +549,8 @@ impl Fleets {
             let mut near: Vec<(f64, usize, usize)> = Vec::new();
             // How soon a busy robot could get there after its task (s from now).
             let mut after: Option<f64> = None;
+            // That robot's free-flow time from its task's last place.
+            let mut approach = 0.0;
             let only = self.dispatcher.pending[k].robot;
             let firsts: Vec<(usize, usize, usize)> = self.dispatcher.pending[k]
                 .steps
@@ -574,6 +582,7 @@ impl Fleets {
                         let eta = done + table[last];
                         if eta.is_finite() && after.is_none_or(|a| eta < a) {
                             after = Some(eta);
+                            approach = table[last];
                         }
                     }
                 }
@@ -617,7 +626,7 @@ impl Fleets {
             let planned: Vec<usize> = near.iter().map(|c| c.1).collect();
             // Robots whose plans for it waited too long now and will, planned again.
             let mut refused: Vec<(usize, f64)> = Vec::new();
-            for (_, ri, steps) in near {
+            for (eta, ri, steps) in near {
                 // Planning again for a robot before its backoff ends cannot succeed unless
                 // the others got ahead of their plans: a later start shortens a plan's
                 // waits by at most the delay, and the plans installed since only add spans.
@@ -724,6 +733,7 @@ impl Fleets {
                 if best.as_ref().is_none_or(|b| arrive < b.arrive) {
                     best = Some(Best {
                         arrive,
+                        eta,
                         robot: ri,
                         steps,
                         plan,
@@ -776,11 +786,15 @@ impl Fleets {
                 let first = best.plan.goal_at.first().copied().unwrap_or(0);
                 waits(&best.plan, best.t0).skip(first).sum()
             };
-            if let Some(eta) = after.filter(|&a| t + a < best.arrive + inner) {
+            // And it gets there so little later that the free robot's longer drive costs
+            // more (robot-time on the corridors, under a saturating stream the fleet's
+            // throughput) than the task gains by starting sooner.
+            let extra = (best.eta - approach).max(0.0);
+            if let Some(eta) = after.filter(|&a| t + a < best.arrive + inner + extra) {
                 let p = &mut self.dispatcher.pending[k];
                 p.backoff = refused;
                 p.deferred = Some(Deferred {
-                    beat: best.arrive + inner,
+                    beat: best.arrive + inner + extra,
                     planned,
                 });
                 self.wait_for_busy(k, eta, t);
