@@ -21,7 +21,9 @@
 //! tasks every robot had been refused for: robots stood idle while the tasks they could do
 //! waited behind them.)
 //!
-//! Busy robots bid too, as RMF's dispatcher queues a task after a robot's current one: a
+//! Busy robots bid too, as RMF's dispatcher queues a task after a robot's current one,
+//! those of every fleet that may do the task (a fleet with no robot free did not bid, and
+//! two fleets on a corridor between two rooms completed half what one robot did): a
 //! task that a busy robot gets to (when its itinerary has it done, then free flow) before
 //! any free robot could, or before the best free robot's plan with its waits for traffic
 //! between the task's places, waits for that robot. Only free robots were looked at
@@ -561,7 +563,11 @@ impl Fleets {
             for (n, fi, first) in firsts {
                 // One table lookup per task, not per robot: with hundreds of robots free
                 // and tasks queued, the lookups were a tenth of a warehouse run.
-                if !free.iter().any(|f| self.robots[f.0].fleet == fi) {
+                // A fleet with no robot free still bids with its busy ones: a robot of
+                // another fleet sent now would only get there after it.
+                let has_free = free.iter().any(|f| self.robots[f.0].fleet == fi);
+                let has_busy = only.is_none() && busy.iter().any(|b| self.robots[b.0].fleet == fi);
+                if !has_free && !has_busy {
                     continue;
                 }
                 let fleet = &self.fleets[fi];

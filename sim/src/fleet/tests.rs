@@ -1498,3 +1498,33 @@ fn a_task_waits_for_a_busy_robot_that_gets_there_first() {
     let took = at("go_to_place_0", "completed") - at("go_to_place_0", "assigned");
     assert!(took < 0.05, "{took}");
 }
+
+/// Busy robots bid across fleets: c_0's loop ends at b while the only robot of another
+/// fleet, e_0, stands free 33 m from b. The go-to-place to b waits for c_0, although its
+/// fleet has no robot free (only fleets with a free robot bid before, and two fleets on a
+/// corridor between two rooms then completed half what one robot alone did).
+#[test]
+fn a_busy_robot_of_another_fleet_that_gets_there_first_is_waited_for() {
+    let b = parse_map("corridor", CORRIDOR);
+    let c = fleet("c", 1, SpawnSpec::Waypoints(vec!["park_a".into()]));
+    let e = fleet("e", 1, SpawnSpec::Waypoints(vec!["park_d".into()]));
+    let s = scenario(
+        vec![c, e],
+        vec![
+            task(
+                0.5,
+                TaskKind::Loop {
+                    start: "a".into(),
+                    finish: "b".into(),
+                    loops: 1,
+                },
+            ),
+            go(1.0, "b", None),
+        ],
+    );
+    let (events, _, _) = run(&b, &s, 200.0);
+    assert_eq!(
+        assignments(&events),
+        [("loop_0", "c_0"), ("go_to_place_0", "c_0")]
+    );
+}
