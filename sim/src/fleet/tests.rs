@@ -53,6 +53,18 @@ fn scenario(fleets: Vec<FleetSpec>, tasks: Vec<TaskSpec>) -> Scenario {
     }
 }
 
+/// A loop from `start` to `finish`, once, requested at `at`.
+fn one_loop(at: f64, start: &str, finish: &str) -> TaskSpec {
+    task(
+        at,
+        TaskKind::Loop {
+            start: start.into(),
+            finish: finish.into(),
+            loops: 1,
+        },
+    )
+}
+
 fn task(at: f64, kind: TaskKind) -> TaskSpec {
     TaskSpec {
         at,
@@ -1338,14 +1350,7 @@ fn a_robot_with_no_parking_vertex_left_ends_its_plan_where_it_stands() {
         )],
         vec![TaskSpec {
             robot: Some("a_2".into()),
-            ..task(
-                0.5,
-                TaskKind::Loop {
-                    start: "e".into(),
-                    finish: "w".into(),
-                    loops: 1,
-                },
-            )
+            ..one_loop(0.5, "e", "w")
         }],
     );
     let (events, _, f) = run(&b, &s, 300.0);
@@ -1464,14 +1469,7 @@ fn a_task_waits_for_a_busy_robot_that_gets_there_first() {
     let s = scenario(
         vec![c],
         vec![
-            task(
-                0.5,
-                TaskKind::Loop {
-                    start: "a".into(),
-                    finish: "b".into(),
-                    loops: 1,
-                },
-            ),
+            one_loop(0.5, "a", "b"),
             go(1.0, "b", None),
             go(1.5, "d", None),
         ],
@@ -1510,17 +1508,7 @@ fn a_busy_robot_of_another_fleet_that_gets_there_first_is_waited_for() {
     let e = fleet("e", 1, SpawnSpec::Waypoints(vec!["park_d".into()]));
     let s = scenario(
         vec![c, e],
-        vec![
-            task(
-                0.5,
-                TaskKind::Loop {
-                    start: "a".into(),
-                    finish: "b".into(),
-                    loops: 1,
-                },
-            ),
-            go(1.0, "b", None),
-        ],
+        vec![one_loop(0.5, "a", "b"), go(1.0, "b", None)],
     );
     let (events, _, _) = run(&b, &s, 200.0);
     assert_eq!(
