@@ -565,9 +565,11 @@ impl Fleets {
                 // and tasks queued, the lookups were a tenth of a warehouse run.
                 // A fleet with no robot free still bids with its busy ones: a robot of
                 // another fleet sent now would only get there after it.
-                let has_free = free.iter().any(|f| self.robots[f.0].fleet == fi);
-                let has_busy = only.is_none() && busy.iter().any(|b| self.robots[b.0].fleet == fi);
-                if !has_free && !has_busy {
+                // (Busy robots looked up only then: with one fleet, never.)
+                let bids = |r: usize| self.robots[r].fleet == fi;
+                if !free.iter().any(|f| bids(f.0))
+                    && (only.is_some() || !busy.iter().any(|b| bids(b.0)))
+                {
                     continue;
                 }
                 let fleet = &self.fleets[fi];
