@@ -311,11 +311,9 @@ impl Dispatcher {
         } else {
             t.max(self.last_round + ROUND_GAP)
         };
-        let at = self
-            .pending
-            .iter()
-            .position(|q| q.priority < p.priority)
-            .unwrap_or(self.pending.len());
+        // Sorted by priority (a saturating stream queues tens of thousands: a scan for
+        // each request was a twentieth of the saturated airport).
+        let at = self.pending.partition_point(|q| q.priority >= p.priority);
         self.pending.insert(at, p);
         self.next_dispatch = self.next_dispatch.min(due);
     }
@@ -513,6 +511,10 @@ impl Fleets {
         d.work_at = t;
         let work_before = self.traffic.expanded();
         let mut budget = PLANS_PER_ROUND;
+        // Plans made this round, by what they are a plan of, with the schedule they were
+        // made against: the same plan asked again (the next task between the same places)
+        // is that plan while the schedule stays (a search is a function of the two).
+        let mut made: BTreeMap<Same, (u64, Option<Plan>, bool)> = BTreeMap::new();
         let mut displaced = false;
         let mut k = 0;
         let mut scanned = 0;
@@ -672,41 +674,15 @@ impl Fleets {
                     }
                 }
                 budget = budget.saturating_sub(1);
-                let f = &self.fleets[self.robots[ri].fleet];
-                // A place where another robot stays for good: no plan can get there (a
-                // search would only prove it, at length), that robot must make room.
-                let conf = self.traffic.sched.conf();
-                let held = goals.iter().any(|&(g, _)| {
-                    conf.vertex[g]
-                        .iter()
-                        .any(|&x| self.traffic.sched.held_for_good(x, ri, soft).is_some())
-                });
-                let mut found = None;
-                let mut late = false;
-                let ends = if held {
-                    Vec::new()
-                } else {
-                    self.ends(ri, &goals, from, stay)
-                };
-                for (own, stay) in ends {
-                    let q = Query {
-                        robot: ri,
-                        slot: f.slot,
-                        kin: f.kin,
-                        from,
-                        t0,
-                        goals: &goals,
-                        parks: own.as_deref().unwrap_or(GRAPH_PARKS),
-                        stay,
-                        soft,
-                        delay: Some(SEARCH_DELAY),
-                    };
-                    found = self.traffic.plan(&self.nav, q);
-                    if found.is_some() {
-                        break;
+                let stamp = self.traffic.sched.stamp();
+                let (found, late) = match made.get(&same) {
+                    Some((at, found, late)) if *at == stamp => (found.clone(), *late),
+                    _ => {
+                        let (found, late) = self.task_plan(ri, &goals, (from, t0), stay, soft);
+                        made.insert(same.clone(), (stamp, found.clone(), late));
+                        (found, late)
                     }
-                    late |= self.traffic.late();
-                }
+                };
                 let over = match &found {
                     // Every way there is later than the search looks: refused for long.
                     None if late => MAX_BACKOFF,
@@ -827,6 +803,53 @@ impl Fleets {
         if !self.dispatcher.pending.is_empty() {
             self.dispatcher.next_dispatch = t + DISPATCH_EVERY;
         }
+    }
+
+    /// Robot `i`'s plan to `goals` from `from` at `t0` for a task, against the schedule as
+    /// it is, with its ends in order of preference (`stay`: a go-to-place's place); or
+    /// None, and whether some way was cut only by the delay bound.
+    fn task_plan(
+        &mut self,
+        i: usize,
+        goals: &[(usize, f64)],
+        (from, t0): (usize, f64),
+        stay: Option<usize>,
+        soft: bool,
+    ) -> (Option<Plan>, bool) {
+        // A place where another robot stays for good: no plan can get there (a search
+        // would only prove it, at length), that robot must make room.
+        let conf = self.traffic.sched.conf();
+        let held = goals.iter().any(|&(g, _)| {
+            conf.vertex[g]
+                .iter()
+                .any(|&x| self.traffic.sched.held_for_good(x, i, soft).is_some())
+        });
+        if held {
+            return (None, false);
+        }
+        let f = &self.fleets[self.robots[i].fleet];
+        let (slot, kin) = (f.slot, f.kin);
+        let mut late = false;
+        for (own, stay) in self.ends(i, goals, from, stay) {
+            let q = Query {
+                robot: i,
+                slot,
+                kin,
+                from,
+                t0,
+                goals,
+                parks: own.as_deref().unwrap_or(GRAPH_PARKS),
+                stay,
+                soft,
+                delay: Some(SEARCH_DELAY),
+            };
+            let found = self.traffic.plan(&self.nav, q);
+            if found.is_some() {
+                return (found, late);
+            }
+            late |= self.traffic.late();
+        }
+        (None, late)
     }
 
     /// Pending task `k` waits for a busy robot that gets there first (`eta` s from `t`):

@@ -499,6 +499,9 @@ pub struct Planner {
     pub why: &'static str,
     /// The last plan failed for its [`Delay`]: ways later than it were not searched.
     pub late: bool,
+    /// The last search may have failed for want of ends: it got past the last place, or
+    /// could not tell. A search that did not fails the same way with more ends.
+    ends_mattered: bool,
     /// When set, the wall-clock time (s) of every plan, for benchmarks.
     pub times: Option<Vec<f64>>,
 }
@@ -528,6 +531,7 @@ impl Planner {
             expanded: 0,
             why: "",
             late: false,
+            ends_mattered: false,
             times: None,
         }
     }
@@ -564,8 +568,13 @@ impl Planner {
         self.late = false;
         let started = self.times.is_some().then(std::time::Instant::now);
         let plan = self.search(nav, sched, q, false).or_else(|| {
+            // Places as ends too: they matter only to a search that got past its last
+            // place. One stopped before (by its delay bound, or by the others' spans) stops
+            // at the same states with more ends: its states before the last place, the
+            // bound on them and their order do not depend on the ends (half of the
+            // saturated airport's searches were such second ones).
             let any_place = q.parks.contains(&PARK_ON_PLACE);
-            if any_place {
+            if any_place && self.ends_mattered {
                 self.search(nav, sched, q, true)
             } else {
                 None
@@ -602,39 +611,53 @@ impl Planner {
         scratch: &mut Scratch,
     ) -> Option<Plan> {
         let conf = sched.conf();
+        self.ends_mattered = true;
         // The parking vertices the plan may end on: those nobody else stays on for good
         // (a heuristic towards taken ones sends the search round every vertex of a large
-        // building before it gives up on them). The table of times to them is repaired
-        // from the last plan's set: robots park and leave, making room plans with other
-        // sets of them.
-        let parks: Vec<usize> = (0..nav.vertices.len())
-            .filter(|&v| {
-                (q.parks[v] == PARK || places && q.parks[v] == PARK_ON_PLACE)
-                    && conf.vertex[v]
-                        .iter()
-                        .all(|&x| sched.held_for_good(x, q.robot, false).is_none())
-            })
-            .collect();
+        // building before it gives up on them). Those nobody stays on are the same for
+        // every robot: their table of times is repaired from the last plan's set as robots
+        // park and leave. The robot's own (where it stays for good itself) are a few
+        // single-place tables, kept with the goals', and the times to the nearest of the
+        // whole set their minimum. (Repaired for each robot's set, which has its own park
+        // in it, the table cost a tenth of the saturated airport.)
+        let mut common = Vec::new();
+        let mut own = Vec::new();
+        for v in 0..nav.vertices.len() {
+            if !(q.parks[v] == PARK || places && q.parks[v] == PARK_ON_PLACE) {
+                continue;
+            }
+            let (mut mine, mut other) = (false, false);
+            for &x in &conf.vertex[v] {
+                match sched.held_for_good(x, usize::MAX, false) {
+                    Some(h) if h == q.robot => mine = true,
+                    Some(_) => other = true,
+                    None => {}
+                }
+            }
+            match (mine, other) {
+                (_, true) => {}
+                (true, false) => own.push(v),
+                (false, false) => common.push(v),
+            }
+        }
         let key = (q.slot, q.kin.speed.to_bits(), places);
         self.park_dist
             .entry(key)
             .or_insert_with(|| nearest::Nearest::new(nav.vertices.len()))
-            .update(nav, &self.inn[q.slot], &nav.out[q.slot], &q.kin, &parks);
-        debug_assert!(
-            self.park_dist[&key]
-                .d
-                .iter()
-                .zip(&self.dist_to(nav, q.slot, &q.kin, &parks))
-                .all(|(a, b)| a.to_bits() == b.to_bits()),
-            "repaired park times differ from computed ones"
-        );
+            .update(nav, &self.inn[q.slot], &nav.out[q.slot], &q.kin, &common);
         let nl = q.goals.len();
         // Bounded memory (`GOAL_TABLES`): dropped all at once when full.
         let most = GOAL_TABLES.max(GOAL_TABLE_FLOATS / nav.vertices.len().max(1));
-        if self.goal_dist.len() + nl + 1 > most {
+        if self.goal_dist.len() + nl + own.len() + 1 > most {
             self.goal_dist.clear();
         }
-        for g in q.goals.iter().map(|g| g.0).chain(q.stay) {
+        for g in q
+            .goals
+            .iter()
+            .map(|g| g.0)
+            .chain(q.stay)
+            .chain(own.iter().copied())
+        {
             let gk = (q.slot, q.kin.speed.to_bits(), g);
             if !self.goal_dist.contains_key(&gk) {
                 let d = self.dist_to(nav, q.slot, &q.kin, &[g]);
@@ -646,14 +669,39 @@ impl Planner {
         // h(v, label): to the goal of `label`, then through the rest, then to a park.
         let dist: Vec<&Vec<f64>> = q.goals.iter().map(|&(g, _)| table(g)).collect();
         // After the last goal: to a parking vertex, or back to where the robot may stay.
-        let end_dist: std::borrow::Cow<[f64]> = match q.stay {
-            Some(st) => park_dist
-                .iter()
-                .zip(table(st))
-                .map(|(a, b)| a.min(*b))
-                .collect(),
-            None => std::borrow::Cow::Borrowed(park_dist),
+        // (The nearest of a union is the least of the nearest of each: the same sums.)
+        let end_dist: std::borrow::Cow<[f64]> = if own.is_empty() && q.stay.is_none() {
+            std::borrow::Cow::Borrowed(park_dist)
+        } else {
+            let mut d = park_dist.clone();
+            for g in own.iter().copied().chain(q.stay) {
+                for (a, b) in d.iter_mut().zip(table(g)) {
+                    *a = a.min(*b);
+                }
+            }
+            std::borrow::Cow::Owned(d)
         };
+        debug_assert!(
+            {
+                let mut all = common.clone();
+                all.extend(&own);
+                all.extend(q.stay);
+                end_dist
+                    .iter()
+                    .zip(&self.dist_to(nav, q.slot, &q.kin, &all))
+                    .all(|(a, b)| a.to_bits() == b.to_bits())
+            },
+            "times to parking differ from those computed at once"
+        );
+        // Time from label `l`'s goal through the rest of the goals (no ends): the delay
+        // bound's measure, the same whatever the plan may end on.
+        let mut goals_rest = vec![0.0; nl + 1];
+        for l in (0..nl).rev() {
+            let (g, dwell) = q.goals[l];
+            let next = if l + 1 < nl { dist[l + 1][g] } else { 0.0 };
+            goals_rest[l] = dwell + next + goals_rest[l + 1];
+        }
+        let to_last = |v: usize, label: usize| dist[label][v] + goals_rest[label];
         let mut rest = vec![0.0; nl + 1];
         for l in (0..nl).rev() {
             let (g, dwell) = q.goals[l];
@@ -675,15 +723,10 @@ impl Planner {
             self.why = "unreachable";
             return None;
         }
-        // The latest a state may reach the last place at, and how much of `h` comes after
-        // it (to a park, and the dwell there).
-        let after_last = q
-            .goals
-            .last()
-            .map_or(0.0, |&(g, dwell)| dwell + end_dist[g]);
+        // The latest a state may reach the last place at (its dwell there done).
         let deadline = match (q.delay, nl) {
             (Some(d), 1..) => {
-                let free = h(q.from, 0) - after_last;
+                let free = to_last(q.from, 0);
                 q.t0 + free + d.fixed + d.share * free
             }
             _ => f64::INFINITY,
@@ -698,6 +741,7 @@ impl Planner {
             .position(|&(a, b)| a <= q.t0 && q.t0 < b)
         else {
             self.why = "start busy";
+            self.ends_mattered = false;
             return None;
         };
         let Scratch { nodes, best, open } = scratch;
@@ -712,6 +756,7 @@ impl Planner {
         });
         open.push(Open(q.t0 + h(q.from, 0), q.t0, 0));
         let mut expanded = 0usize;
+        self.ends_mattered = nl == 0;
         while let Some(Open(_, _, id)) = open.pop() {
             let n = nodes[id];
             if best.get(&(n.v, n.iv, n.label)).is_some_and(|&t| t < n.t) {
@@ -758,7 +803,7 @@ impl Planner {
                 if !hv.is_finite() {
                     return;
                 }
-                if node.label < nl && node.t + hv - after_last > deadline {
+                if node.label < nl && node.t + to_last(node.v, node.label) > deadline {
                     late = true;
                     return;
                 }
@@ -770,6 +815,7 @@ impl Planner {
             if n.label < nl && q.goals[n.label].0 == n.v {
                 let t = n.t + q.goals[n.label].1;
                 if t < hi {
+                    self.ends_mattered |= n.label + 1 == nl;
                     push(
                         Node {
                             label: n.label + 1,
@@ -827,6 +873,7 @@ impl Planner {
             }
         }
         self.expanded += expanded as u64;
+        self.ends_mattered |= expanded > MAX_EXPANSIONS;
         self.why = if expanded > MAX_EXPANSIONS {
             "search bound"
         } else if late && !blocked(nav, sched, q, &dist, &end_dist) {
