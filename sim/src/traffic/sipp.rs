@@ -616,10 +616,10 @@ impl Planner {
         // (a heuristic towards taken ones sends the search round every vertex of a large
         // building before it gives up on them). Those nobody stays on are the same for
         // every robot: their table of times is repaired from the last plan's set as robots
-        // park and leave. The robot's own (where it stays for good itself) are a few
-        // single-place tables, kept with the goals', and the times to the nearest of the
-        // whole set their minimum. (Repaired for each robot's set, which has its own park
-        // in it, the table cost a tenth of the saturated airport.)
+        // park and leave. The robot's own (where it stays for good itself) are added to a
+        // copy, searched from only as far as they are nearer than the others. (Repaired
+        // for each robot's set, which has its own park in it, the shared table cost a
+        // tenth of the saturated airport.)
         let mut common = Vec::new();
         let mut own = Vec::new();
         for v in 0..nav.vertices.len() {
@@ -648,16 +648,10 @@ impl Planner {
         let nl = q.goals.len();
         // Bounded memory (`GOAL_TABLES`): dropped all at once when full.
         let most = GOAL_TABLES.max(GOAL_TABLE_FLOATS / nav.vertices.len().max(1));
-        if self.goal_dist.len() + nl + own.len() + 1 > most {
+        if self.goal_dist.len() + nl + 1 > most {
             self.goal_dist.clear();
         }
-        for g in q
-            .goals
-            .iter()
-            .map(|g| g.0)
-            .chain(q.stay)
-            .chain(own.iter().copied())
-        {
+        for g in q.goals.iter().map(|g| g.0).chain(q.stay) {
             let gk = (q.slot, q.kin.speed.to_bits(), g);
             if !self.goal_dist.contains_key(&gk) {
                 let d = self.dist_to(nav, q.slot, &q.kin, &[g]);
@@ -674,8 +668,9 @@ impl Planner {
             std::borrow::Cow::Borrowed(park_dist)
         } else {
             let mut d = park_dist.clone();
-            for g in own.iter().copied().chain(q.stay) {
-                for (a, b) in d.iter_mut().zip(table(g)) {
+            nearer(nav, &self.inn[q.slot], &q.kin, &own, &mut d);
+            if let Some(st) = q.stay {
+                for (a, b) in d.iter_mut().zip(table(st)) {
                     *a = a.min(*b);
                 }
             }
@@ -883,6 +878,32 @@ impl Planner {
             "no way"
         };
         None
+    }
+}
+
+/// Lowers the times `d` (to the nearest of some targets) to those to the nearest of
+/// `targets` too: a reverse search from them that goes only where they are nearer. Where
+/// they are not, neither are they beyond (`d` is already a fixpoint of its edges).
+fn nearer(nav: &Nav, inn: &[Vec<usize>], kin: &Kinematics, targets: &[usize], d: &mut [f64]) {
+    let mut heap = BinaryHeap::new();
+    for &t in targets {
+        if d[t] > 0.0 {
+            d[t] = 0.0;
+            heap.push(Open(0.0, 0.0, t));
+        }
+    }
+    while let Some(Open(c, _, v)) = heap.pop() {
+        if c > d[v] {
+            continue;
+        }
+        for &e in &inn[v] {
+            let u = nav.edges[e].from;
+            let nc = c + kin.edge_bound(nav, e);
+            if nc < d[u] {
+                d[u] = nc;
+                heap.push(Open(nc, 0.0, u));
+            }
+        }
     }
 }
 
