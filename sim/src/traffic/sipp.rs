@@ -688,13 +688,12 @@ impl Planner {
             },
             "times to parking differ from those computed at once"
         );
-        // Time from label `l`'s goal through the rest of the goals (no ends): the delay
-        // bound's measure, the same whatever the plan may end on.
+        // Time from label `l`'s goal to arriving at the last place (its dwell there not
+        // counted): the delay bound's measure, the same whatever the plan may end on.
         let mut goals_rest = vec![0.0; nl + 1];
-        for l in (0..nl).rev() {
+        for l in (0..nl.saturating_sub(1)).rev() {
             let (g, dwell) = q.goals[l];
-            let next = if l + 1 < nl { dist[l + 1][g] } else { 0.0 };
-            goals_rest[l] = dwell + next + goals_rest[l + 1];
+            goals_rest[l] = dwell + dist[l + 1][g] + goals_rest[l + 1];
         }
         let to_last = |v: usize, label: usize| dist[label][v] + goals_rest[label];
         let mut rest = vec![0.0; nl + 1];
