@@ -1,8 +1,9 @@
-//! Times to the nearest of a set of targets that changes a little between uses: the free
-//! parking vertices, the heuristic of a plan's way to parking. Each plan's set differs
-//! from the last one's by the robots that parked or left since (and by the planning
-//! robot's own park), so the table is repaired, not computed again: on a 10,000-waypoint
-//! warehouse a full reverse Dijkstra per plan was a tenth of the run.
+//! Times to the nearest of a set of targets that changes a little between uses: the
+//! parking vertices nobody stays on, the heuristic of a plan's way to parking (the
+//! planning robot's own park is added to a copy: see `sipp::nearer`). Each plan's set
+//! differs from the last one's by the robots that parked or left since, so the table is
+//! repaired, not computed again: on a 10,000-waypoint warehouse a full reverse Dijkstra
+//! per plan was a tenth of the run.
 //!
 //! Guarantee: after [`Nearest::update`] the table is bit for bit what a full reverse
 //! Dijkstra to the new set gives (debug builds check it). Each time is the fixpoint
