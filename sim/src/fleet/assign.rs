@@ -608,14 +608,11 @@ impl Fleets {
                 }
             }
             self.dispatcher.pending[k].deferred = None;
-            // A busy robot gets there before any free one could, or so little later that
-            // the free robot's longer drive costs more than the task gains (the yield
-            // below, with free flow as the soonest a plan arrives): the task waits for it,
-            // as RMF queues a task after a robot's current one. No plan could change that,
-            // so none is made (made and beaten, they were most of the saturated airport's
-            // planning), and the free robots stay for tasks only they are first to.
-            let yields = |a: f64, n: f64| a < n + (n - approach).max(0.0);
-            if let Some(eta) = after.filter(|&a| near.first().is_none_or(|n| yields(a, n.0))) {
+            // A busy robot gets there before any free one could (free flow is the
+            // soonest a plan arrives): the task waits for it, as RMF queues a task after
+            // a robot's current one. Not planned for the free robots now, so they stay
+            // for tasks only they are first to.
+            if let Some(eta) = after.filter(|&a| near.first().is_none_or(|n| a < n.0)) {
                 self.wait_for_busy(k, eta, t);
                 k += 1;
                 continue;
