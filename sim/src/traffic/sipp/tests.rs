@@ -364,9 +364,9 @@ fn the_second_search_is_skipped_only_where_it_fails() {
             })
             .collect();
         // Some robots planned through the building first.
-        for r in 1..robots {
+        for (r, &at) in starts.iter().enumerate().skip(1) {
             let goals = [(rng.usize(0..n), 0.0)];
-            if let Some(plan) = planner.plan(&nav, &sched, &query(r, starts[r], &goals, &p)) {
+            if let Some(plan) = planner.plan(&nav, &sched, &query(r, at, &goals, &p)) {
                 sched.install(r, 0, &plan.steps, 0.0, None);
             }
         }
