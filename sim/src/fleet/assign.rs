@@ -35,9 +35,8 @@
 //! robot-time, and a drive across the building also loads its corridors (of the 95 %
 //! rule's breaches on the generated buildings and warehouses, all but one went).
 
-use super::traffic::GRAPH_PARKS;
 use super::*;
-use crate::traffic::sipp::{Delay, Plan, Query};
+use crate::traffic::sipp::{Delay, Plan};
 
 /// States the dispatcher's searches may expand per simulated second, and at most at once:
 /// its computing budget, as a real dispatcher has one (the League of Robot Runners plans
@@ -827,29 +826,15 @@ impl Fleets {
         if held {
             return (None, false);
         }
-        let f = &self.fleets[self.robots[i].fleet];
-        let (slot, kin) = (f.slot, f.kin);
-        let mut late = false;
-        for (own, stay) in self.ends(i, goals, from, stay) {
-            let q = Query {
-                robot: i,
-                slot,
-                kin,
-                from,
-                t0,
-                goals,
-                parks: own.as_deref().unwrap_or(GRAPH_PARKS),
-                stay,
-                soft,
-                delay: Some(SEARCH_DELAY),
-            };
-            let found = self.traffic.plan(&self.nav, q);
-            if found.is_some() {
-                return (found, late);
-            }
-            late |= self.traffic.late();
-        }
-        (None, late)
+        let ends = self.ends(i, goals, from, stay);
+        self.plan_over(
+            i,
+            &ends,
+            (from, t0),
+            goals,
+            (soft, Some(SEARCH_DELAY)),
+            None,
+        )
     }
 
     /// Pending task `k` waits for a busy robot that gets there first (`eta` s from `t`):

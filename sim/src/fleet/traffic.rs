@@ -10,7 +10,7 @@
 
 use super::*;
 use crate::traffic::parks::{PARK, PARK_ON_PLACE};
-use crate::traffic::sipp::{Plan, Query};
+use crate::traffic::sipp::{Delay, Plan, Query};
 use crate::traffic::Res;
 
 /// A failed plan is tried again after this long (s).
@@ -713,6 +713,45 @@ impl Fleets {
         moved
     }
 
+    /// Robot `i`'s plan from `from` at `t0` to `goals` with the first of `ends` (in order of
+    /// preference) it can end on, through the others' soft spans or not and within a delay
+    /// bound or not (`soft`, `delay`), ending where `parks` say when an end has none of its
+    /// own (default: the graph's parking vertices); and whether a way was cut only by the
+    /// delay bound.
+    pub(super) fn plan_over(
+        &mut self,
+        i: usize,
+        ends: &[End],
+        (from, t0): (usize, f64),
+        goals: &[(usize, f64)],
+        (soft, delay): (bool, Option<Delay>),
+        parks: Option<&[u8]>,
+    ) -> (Option<Plan>, bool) {
+        let f = &self.fleets[self.robots[i].fleet];
+        let (slot, kin) = (f.slot, f.kin);
+        let mut late = false;
+        for (own, stay) in ends {
+            let q = Query {
+                robot: i,
+                slot,
+                kin,
+                from,
+                t0,
+                goals,
+                parks: own.as_deref().or(parks).unwrap_or(GRAPH_PARKS),
+                stay: *stay,
+                soft,
+                delay,
+            };
+            let found = self.traffic.plan(&self.nav, q);
+            if found.is_some() {
+                return (found, late);
+            }
+            late |= self.traffic.late();
+        }
+        (None, late)
+    }
+
     /// [`Fleets::plan_to`] with the parking vertices `parks` (default: the graph's).
     fn plan_with(
         &mut self,
@@ -723,9 +762,7 @@ impl Fleets {
     ) -> Result<usize, NoPlan> {
         self.traffic.retime(t);
         let r = &self.robots[i];
-        let f = &self.fleets[r.fleet];
-        let slot = f.slot;
-        let kin = f.kin;
+        let slot = self.fleets[r.fleet].slot;
         let keep = r.n_sent;
         let it = self.traffic.sched.itinerary(i);
         let (from, t0) = match keep.checked_sub(1).and_then(|k| it.travs.get(k)) {
@@ -742,25 +779,7 @@ impl Fleets {
             Some(_) => vec![(None, stay)],
             None => self.ends(i, goals, from, stay),
         };
-        let mut found = None;
-        for (own, stay) in &ends {
-            let q = Query {
-                robot: i,
-                slot,
-                kin,
-                from,
-                t0,
-                goals,
-                parks: own.as_deref().or(parks).unwrap_or(GRAPH_PARKS),
-                stay: *stay,
-                soft: false,
-                delay: None,
-            };
-            found = self.traffic.plan(&self.nav, q);
-            if found.is_some() {
-                break;
-            }
-        }
+        let (found, _) = self.plan_over(i, &ends, (from, t0), goals, (false, None), parks);
         let Some(plan) = found else {
             return Err(NoPlan::Busy);
         };
