@@ -14,7 +14,9 @@ use super::conflicts::Res;
 use super::parks::{PARK, PARK_ON_PLACE};
 use super::schedule::{Schedule, Step};
 use crate::graph::{EdgeKind, Nav, DOOR_COST};
+use edge_times::EdgeTimes;
 use std::cmp::Ordering;
+use std::collections::hash_map::Entry as Slot;
 use std::collections::BinaryHeap;
 
 /// The search's maps are keyed by small integers and never iterated: a fast fixed hasher
@@ -61,7 +63,7 @@ impl Kinematics {
         self.edge_time_with(nav, e, prev, |x| heading(nav, x))
     }
 
-    /// [`Kinematics::edge_time`] with the edges' headings from `h` (the planner keeps them).
+    /// [`Kinematics::edge_time`] with the edges' headings from `h`.
     fn edge_time_with(
         &self,
         nav: &Nav,
@@ -69,6 +71,28 @@ impl Kinematics {
         prev: Option<usize>,
         h: impl Fn(usize) -> f64,
     ) -> f64 {
+        let edge = &nav.edges[e];
+        match edge.kind {
+            EdgeKind::Lift(_) => self.edge_base(nav, e),
+            EdgeKind::Lane => {
+                let turn = prev.map_or(0.0, |p| {
+                    if nav.edges[p].kind != EdgeKind::Lane || edge.length < 1e-6 {
+                        return 0.0;
+                    }
+                    let mut a = (h(e) - h(p)).abs() % std::f64::consts::TAU;
+                    if a > std::f64::consts::PI {
+                        a = std::f64::consts::TAU - a;
+                    }
+                    a / self.turn.max(0.05)
+                });
+                self.edge_base(nav, e) + turn + STOP_S
+            }
+        }
+    }
+
+    /// Edge `e`'s time without the turn towards it and the settling at its end (a lift
+    /// ride: all of it).
+    fn edge_base(&self, nav: &Nav, e: usize) -> f64 {
         let edge = &nav.edges[e];
         match edge.kind {
             EdgeKind::Lift(_) => nav.edge_cost(e, self.speed),
@@ -87,17 +111,7 @@ impl Kinematics {
                     (Some(l), from) if from != Some(l) => nav.lifts[l].call,
                     _ => 0.0,
                 };
-                let turn = prev.map_or(0.0, |p| {
-                    if nav.edges[p].kind != EdgeKind::Lane || edge.length < 1e-6 {
-                        return 0.0;
-                    }
-                    let mut a = (h(e) - h(p)).abs() % std::f64::consts::TAU;
-                    if a > std::f64::consts::PI {
-                        a = std::f64::consts::TAU - a;
-                    }
-                    a / self.turn.max(0.05)
-                });
-                self.drive(edge.length, v) + door + call + turn + STOP_S
+                self.drive(edge.length, v) + door + call
             }
         }
     }
@@ -478,8 +492,8 @@ struct Scratch {
 pub struct Planner {
     /// Per slot, per vertex: incoming edges.
     inn: Vec<Vec<Vec<usize>>>,
-    /// Per edge: its heading (rad), for turning times.
-    heading: Vec<f64>,
+    /// Edge times per kinematics met so far (a fleet's robots share theirs).
+    edge_times: Vec<EdgeTimes>,
     /// Time to the nearest free parking vertex, per (slot, speed bits, whether places
     /// count), repaired as parks are taken and left.
     park_dist: Map<(usize, u64, bool), nearest::Nearest>,
@@ -521,7 +535,7 @@ impl Planner {
             .collect();
         Planner {
             inn,
-            heading: (0..nav.edges.len()).map(|e| heading(nav, e)).collect(),
+            edge_times: Vec::new(),
             park_dist: Map::default(),
             goal_dist: Map::default(),
             cache: Cache::default(),
@@ -536,9 +550,24 @@ impl Planner {
         }
     }
 
+    /// Where in `edge_times` those of `kin` are (made when first asked).
+    fn times_for(&mut self, nav: &Nav, kin: Kinematics) -> usize {
+        let same = |k: &Kinematics| {
+            (k.speed.to_bits(), k.accel.to_bits(), k.turn.to_bits())
+                == (kin.speed.to_bits(), kin.accel.to_bits(), kin.turn.to_bits())
+        };
+        match self.edge_times.iter().position(|t| same(&t.kin)) {
+            Some(i) => i,
+            None => {
+                self.edge_times.push(EdgeTimes::new(nav, kin));
+                self.edge_times.len() - 1
+            }
+        }
+    }
+
     /// Travel times to the nearest of `targets` from every vertex (reverse Dijkstra).
-    fn dist_to(&self, nav: &Nav, slot: usize, kin: &Kinematics, targets: &[usize]) -> Vec<f64> {
-        let mut d = vec![f64::INFINITY; nav.vertices.len()];
+    fn dist_to(&self, slot: usize, et: &EdgeTimes, targets: &[usize]) -> Vec<f64> {
+        let mut d = vec![f64::INFINITY; self.inn[slot].len()];
         let mut heap = BinaryHeap::new();
         for &g in targets {
             d[g] = 0.0;
@@ -549,8 +578,8 @@ impl Planner {
                 continue;
             }
             for &e in &self.inn[slot][v] {
-                let u = nav.edges[e].from;
-                let nc = c + kin.edge_bound(nav, e);
+                let u = et.from[e];
+                let nc = c + et.bound(e);
                 if nc < d[u] {
                     d[u] = nc;
                     heap.push(Open(nc, 0.0, u));
@@ -640,11 +669,13 @@ impl Planner {
                 (false, false) => common.push(v),
             }
         }
+        let ti = self.times_for(nav, q.kin);
+        let et = &self.edge_times[ti];
         let key = (q.slot, q.kin.speed.to_bits(), places);
         self.park_dist
             .entry(key)
             .or_insert_with(|| nearest::Nearest::new(nav.vertices.len()))
-            .update(nav, &self.inn[q.slot], &nav.out[q.slot], &q.kin, &common);
+            .update(&self.inn[q.slot], &nav.out[q.slot], et, &common);
         let nl = q.goals.len();
         // Bounded memory (`GOAL_TABLES`): dropped all at once when full.
         let most = GOAL_TABLES.max(GOAL_TABLE_FLOATS / nav.vertices.len().max(1));
@@ -654,7 +685,7 @@ impl Planner {
         for g in q.goals.iter().map(|g| g.0).chain(q.stay) {
             let gk = (q.slot, q.kin.speed.to_bits(), g);
             if !self.goal_dist.contains_key(&gk) {
-                let d = self.dist_to(nav, q.slot, &q.kin, &[g]);
+                let d = self.dist_to(q.slot, et, &[g]);
                 self.goal_dist.insert(gk, d);
             }
         }
@@ -668,7 +699,7 @@ impl Planner {
             std::borrow::Cow::Borrowed(park_dist)
         } else {
             let mut d = park_dist.clone();
-            nearer(nav, &self.inn[q.slot], &q.kin, &own, &mut d);
+            nearer(&self.inn[q.slot], et, &own, &mut d);
             if let Some(st) = q.stay {
                 for (a, b) in d.iter_mut().zip(table(st)) {
                     *a = a.min(*b);
@@ -683,7 +714,7 @@ impl Planner {
                 all.extend(q.stay);
                 end_dist
                     .iter()
-                    .zip(&self.dist_to(nav, q.slot, &q.kin, &all))
+                    .zip(&self.dist_to(q.slot, et, &all))
                     .all(|(a, b)| a.to_bits() == b.to_bits())
             },
             "times to parking differ from those computed at once"
@@ -789,9 +820,12 @@ impl Planner {
                 break;
             }
             let mut push = |node: Node, nodes: &mut Vec<Node>, open: &mut BinaryHeap<Open>| {
-                let k = (node.v, node.iv, node.label);
-                if best.get(&k).is_some_and(|&t| t <= node.t) {
-                    return;
+                // One probe of the map for the look-up and the insert.
+                let slot = best.entry((node.v, node.iv, node.label));
+                if let Slot::Occupied(o) = &slot {
+                    if *o.get() <= node.t {
+                        return;
+                    }
                 }
                 let hv = h(node.v, node.label);
                 if !hv.is_finite() {
@@ -801,7 +835,7 @@ impl Planner {
                     late = true;
                     return;
                 }
-                best.insert(k, node.t);
+                slot.insert_entry(node.t);
                 nodes.push(node);
                 open.push(Open(node.t + hv, node.t, nodes.len() - 1));
             };
@@ -825,9 +859,15 @@ impl Planner {
                 }
             }
             for &e in &nav.out[q.slot][n.v] {
-                let w = nav.edges[e].to;
+                let w = et.to[e];
                 let prev = n.edge.map(|(p, _, _)| p);
-                let dur = q.kin.edge_time_with(nav, e, prev, |x| self.heading[x]);
+                let dur = et.time(e, prev);
+                debug_assert_eq!(
+                    dur.to_bits(),
+                    q.kin
+                        .edge_time_with(nav, e, prev, |x| heading(nav, x))
+                        .to_bits()
+                );
 
                 let busy_at = cache.busy(sched, rs, e);
                 let wi_at = cache.intervals(sched, rs, w);
@@ -883,7 +923,7 @@ impl Planner {
 /// Lowers the times `d` (to the nearest of some targets) to those to the nearest of
 /// `targets` too: a reverse search from them that goes only where they are nearer. Where
 /// they are not, neither are they beyond (`d` is already a fixpoint of its edges).
-fn nearer(nav: &Nav, inn: &[Vec<usize>], kin: &Kinematics, targets: &[usize], d: &mut [f64]) {
+fn nearer(inn: &[Vec<usize>], et: &EdgeTimes, targets: &[usize], d: &mut [f64]) {
     let mut heap = BinaryHeap::new();
     for &t in targets {
         if d[t] > 0.0 {
@@ -896,8 +936,8 @@ fn nearer(nav: &Nav, inn: &[Vec<usize>], kin: &Kinematics, targets: &[usize], d:
             continue;
         }
         for &e in &inn[v] {
-            let u = nav.edges[e].from;
-            let nc = c + kin.edge_bound(nav, e);
+            let u = et.from[e];
+            let nc = c + et.bound(e);
             if nc < d[u] {
                 d[u] = nc;
                 heap.push(Open(nc, 0.0, u));
@@ -1064,6 +1104,7 @@ fn unwind(nav: &Nav, nodes: &[Node], mut id: usize, nl: usize, expanded: usize) 
     }
 }
 
+mod edge_times;
 mod nearest;
 #[cfg(test)]
 mod tests;

@@ -11,8 +11,7 @@
 //! relaxation; `src[u]` is a target that a way of time `d[u]` reaches, so when targets go,
 //! only the vertices whose `src` went can have got further.
 
-use super::{Kinematics, Open};
-use crate::graph::Nav;
+use super::{EdgeTimes, Open};
 use std::collections::BinaryHeap;
 
 const NONE: u32 = u32::MAX;
@@ -39,10 +38,9 @@ impl Nearest {
     /// edges per vertex.
     pub(super) fn update(
         &mut self,
-        nav: &Nav,
         inn: &[Vec<usize>],
         out: &[Vec<usize>],
-        kin: &Kinematics,
+        et: &EdgeTimes,
         targets: &[usize],
     ) {
         let n = self.d.len();
@@ -68,8 +66,8 @@ impl Nearest {
             }
             for &u in &orphans {
                 for &e in &out[u] {
-                    let w = nav.edges[e].to;
-                    let c = self.d[w] + kin.edge_bound(nav, e);
+                    let w = et.to[e];
+                    let c = self.d[w] + et.bound(e);
                     if c < self.d[u] {
                         self.d[u] = c;
                         self.src[u] = self.src[w];
@@ -94,8 +92,8 @@ impl Nearest {
                 continue;
             }
             for &e in &inn[v] {
-                let u = nav.edges[e].from;
-                let nc = c + kin.edge_bound(nav, e);
+                let u = et.from[e];
+                let nc = c + et.bound(e);
                 if nc < self.d[u] {
                     self.d[u] = nc;
                     self.src[u] = self.src[v];
@@ -109,7 +107,7 @@ impl Nearest {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::traffic::sipp::Planner;
+    use crate::traffic::sipp::{Kinematics, Planner};
     use crate::traffic::test_map::random_nav;
 
     const KIN: Kinematics = Kinematics {
@@ -125,6 +123,7 @@ mod tests {
         for seed in 0..40u64 {
             let nav = random_nav(seed, 10 + (seed as usize % 30));
             let planner = Planner::new(&nav);
+            let et = EdgeTimes::new(&nav, KIN);
             let n = nav.vertices.len();
             let mut rng = fastrand::Rng::with_seed(seed);
             let mut table = Nearest::new(n);
@@ -140,8 +139,8 @@ mod tests {
                     }
                 }
                 let targets: Vec<usize> = (0..n).filter(|&v| set[v]).collect();
-                table.update(&nav, &planner.inn[0], &nav.out[0], &KIN, &targets);
-                let full = planner.dist_to(&nav, 0, &KIN, &targets);
+                table.update(&planner.inn[0], &nav.out[0], &et, &targets);
+                let full = planner.dist_to(0, &et, &targets);
                 assert!(
                     table
                         .d
