@@ -18,7 +18,7 @@ use super::conflicts::{Conflicts, Res};
 use crate::graph::Nav;
 use petgraph::algo::tarjan_scc;
 use petgraph::graph::{DiGraph, NodeIndex};
-use petgraph::visit::EdgeFiltered;
+use petgraph::visit::{EdgeFiltered, EdgeRef};
 
 mod through;
 
@@ -427,11 +427,11 @@ pub fn choose(nav: &Nav, conf: &Conflicts, needs: &Needs) -> Parks {
 /// alone (it cannot be left and reached again). Linear in the slot (Tarjan), since it runs
 /// once per parking candidate.
 fn parts(nav: &Nav, slot: &Slot, blocked: &[bool], gone: &[bool]) -> Vec<usize> {
-    let usable = |e: &usize| {
-        let ed = &nav.edges[*e];
-        !blocked[*e] && !gone[ed.from] && !gone[ed.to]
-    };
-    let g = EdgeFiltered::from_fn(&slot.graph, |e| usable(e.weight()));
+    // The edge's ends from the graph itself (its nodes are the vertices), not from the
+    // nav's edge records: large and far apart, they were most of the time of this search.
+    let g = EdgeFiltered::from_fn(&slot.graph, |e| {
+        !blocked[*e.weight()] && !gone[e.source().index()] && !gone[e.target().index()]
+    });
     let mut id = vec![usize::MAX; nav.vertices.len()];
     for part in tarjan_scc(&g) {
         if part.len() > 1 {
@@ -472,32 +472,25 @@ fn kept_together(before: &[usize], after: &[usize], gone: &[bool]) -> bool {
     true
 }
 
+/// The vertices `root` reaches (`forward`), or that reach it, on the edges `usable`
+/// accepts; `out`/`inn` are the slot's edges per vertex, `ends` every edge's (from, to).
 fn reach(
-    nav: &Nav,
-    slot: &Slot,
+    (out, inn): (&[Vec<usize>], &[Vec<usize>]),
+    ends: &[(u32, u32)],
     root: usize,
     forward: bool,
     usable: &dyn Fn(usize) -> bool,
 ) -> Vec<bool> {
-    let nv = nav.vertices.len();
-    let mut seen = vec![false; nv];
+    let mut seen = vec![false; out.len()];
     seen[root] = true;
     let mut stack = vec![root];
     while let Some(v) = stack.pop() {
-        let es: &[usize] = if forward {
-            &nav.out[slot.s][v]
-        } else {
-            &slot.inn[v]
-        };
+        let es: &[usize] = if forward { &out[v] } else { &inn[v] };
         for &e in es {
             if !usable(e) {
                 continue;
             }
-            let w = if forward {
-                nav.edges[e].to
-            } else {
-                nav.edges[e].from
-            };
+            let w = if forward { ends[e].1 } else { ends[e].0 } as usize;
             if !seen[w] {
                 seen[w] = true;
                 stack.push(w);
@@ -530,6 +523,9 @@ pub struct Cuts<'a> {
     /// (false between asks).
     blocked: Vec<bool>,
     gone: Vec<bool>,
+    /// Per edge: its (from, to), read at every step of the searches (the nav's edge
+    /// records are large and far apart).
+    ends: Vec<(u32, u32)>,
 }
 
 impl<'a> Cuts<'a> {
@@ -564,22 +560,28 @@ impl<'a> Cuts<'a> {
             vertices_of,
             blocked: vec![false; nav.edges.len()],
             gone: vec![false; nv],
+            ends: nav
+                .edges
+                .iter()
+                .map(|e| (e.from as u32, e.to as u32))
+                .collect(),
         }
     }
 
     /// The vertices of `of` that a robot working at `v` separates from the main part.
     pub fn cut_by(&mut self, v: usize, of: &[usize]) -> Vec<usize> {
         self.hold(v, true);
-        let (nav, blocked, gone) = (self.nav, &self.blocked, &self.gone);
+        let (nav, blocked, gone, ends) = (self.nav, &self.blocked, &self.gone, &self.ends);
         let usable = |e: usize| {
-            let ed = &nav.edges[e];
-            !blocked[e] && !gone[ed.from] && !gone[ed.to]
+            let (a, z) = ends[e];
+            !blocked[e] && !gone[a as usize] && !gone[z as usize]
         };
         let cut = match of.iter().find(|&&w| !gone[w]) {
             None => Vec::new(),
             Some(&root) => {
-                let fwd = reach(nav, &self.slot, root, true, &usable);
-                let bwd = reach(nav, &self.slot, root, false, &usable);
+                let sides = (&nav.out[self.slot.s][..], &self.slot.inn[..]);
+                let fwd = reach(sides, ends, root, true, &usable);
+                let bwd = reach(sides, ends, root, false, &usable);
                 of.iter()
                     .copied()
                     .filter(|&w| !(gone[w] || fwd[w] && bwd[w]))

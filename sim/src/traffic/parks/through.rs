@@ -41,7 +41,16 @@ pub(super) fn through(
     let n = nav.vertices.len();
     let mut out = vec![0.0; n];
     let mut target = vec![false; n];
-    let cost = |e: usize| nav.edge_cost(e, 1.0);
+    // Per edge, in flat arrays: its ends, its cost, whether it may be used. Read from the
+    // graph's edge records (large, far apart) at every step, they were most of the time
+    // of choosing a 10,000-waypoint warehouse's thousand parks.
+    let from: Vec<usize> = nav.edges.iter().map(|e| e.from).collect();
+    let to: Vec<usize> = nav.edges.iter().map(|e| e.to).collect();
+    let costs: Vec<f64> = (0..nav.edges.len())
+        .map(|e| nav.edge_cost(e, 1.0))
+        .collect();
+    let ok: Vec<bool> = (0..nav.edges.len()).map(usable).collect();
+    let cost = |e: usize| costs[e];
     let mut dist = vec![f64::INFINITY; n];
     let mut sigma = vec![0.0f64; n];
     let mut delta = vec![0.0f64; n];
@@ -68,16 +77,16 @@ pub(super) fn through(
             } else {
                 inn[v]
                     .iter()
-                    .filter(|&&e| usable(e) && on_shortest(&dist, nav.edges[e].from, d, cost(e)))
-                    .map(|&e| sigma[nav.edges[e].from])
+                    .filter(|&&e| ok[e] && on_shortest(&dist, from[e], d, cost(e)))
+                    .map(|&e| sigma[from[e]])
                     .sum()
             };
             settled.push(v);
             for &e in &nav.out[s][v] {
-                if !usable(e) {
+                if !ok[e] {
                     continue;
                 }
-                let w = nav.edges[e].to;
+                let w = to[e];
                 let dw = d + cost(e);
                 if dw < dist[w] - tol(dw) {
                     dist[w] = dw;
@@ -89,8 +98,8 @@ pub(super) fn through(
         for &w in settled.iter().rev() {
             let pass = (if target[w] && w != src { 1.0 } else { 0.0 }) + delta[w];
             for &e in &inn[w] {
-                let u = nav.edges[e].from;
-                if usable(e) && on_shortest(&dist, u, dist[w], cost(e)) && sigma[w] > 0.0 {
+                let u = from[e];
+                if ok[e] && on_shortest(&dist, u, dist[w], cost(e)) && sigma[w] > 0.0 {
                     delta[u] += sigma[u] / sigma[w] * pass;
                 }
             }
