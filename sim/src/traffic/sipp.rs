@@ -494,12 +494,12 @@ pub struct Planner {
     inn: Vec<Vec<Vec<usize>>>,
     /// Edge times per kinematics met so far (a fleet's robots share theirs).
     edge_times: Vec<EdgeTimes>,
-    /// Time to the nearest free parking vertex, per (slot, speed bits, whether places
-    /// count), repaired as parks are taken and left.
-    park_dist: Map<(usize, u64, bool), nearest::Nearest>,
-    /// Time to a goal, per (slot, speed bits, goal vertex): tasks go to the same places
-    /// again and again.
-    goal_dist: Map<(usize, u64, usize), Vec<f64>>,
+    /// Time to the nearest free parking vertex, per (slot, speed and acceleration bits,
+    /// whether places count), repaired as parks are taken and left.
+    park_dist: Map<(usize, (u64, u64), bool), nearest::Nearest>,
+    /// Time to a goal, per (slot, speed and acceleration bits, goal vertex): tasks go to
+    /// the same places again and again.
+    goal_dist: Map<(usize, (u64, u64), usize), Vec<f64>>,
     /// Busy and safe intervals computed from the schedule: the plans of one dispatch round
     /// (several robots per task, most refused) meet the same ones, and so do the next
     /// rounds' where the schedule did not change.
@@ -671,7 +671,10 @@ impl Planner {
         }
         let ti = self.times_for(nav, q.kin);
         let et = &self.edge_times[ti];
-        let key = (q.slot, q.kin.speed.to_bits(), places);
+        // Tables are shared by the kinematics whose bounds are the same: the same top speed
+        // and acceleration (the turning speed does not count in a bound).
+        let drive = (q.kin.speed.to_bits(), q.kin.accel.to_bits());
+        let key = (q.slot, drive, places);
         self.park_dist
             .entry(key)
             .or_insert_with(|| nearest::Nearest::new(nav.vertices.len()))
@@ -683,14 +686,14 @@ impl Planner {
             self.goal_dist.clear();
         }
         for g in q.goals.iter().map(|g| g.0).chain(q.stay) {
-            let gk = (q.slot, q.kin.speed.to_bits(), g);
+            let gk = (q.slot, drive, g);
             if !self.goal_dist.contains_key(&gk) {
                 let d = self.dist_to(q.slot, et, &[g]);
                 self.goal_dist.insert(gk, d);
             }
         }
         let park_dist = &self.park_dist[&key].d;
-        let table = |g: usize| &self.goal_dist[&(q.slot, q.kin.speed.to_bits(), g)];
+        let table = |g: usize| &self.goal_dist[&(q.slot, drive, g)];
         // h(v, label): to the goal of `label`, then through the rest, then to a park.
         let dist: Vec<&Vec<f64>> = q.goals.iter().map(|&(g, _)| table(g)).collect();
         // After the last goal: to a parking vertex, or back to where the robot may stay.

@@ -398,3 +398,41 @@ fn the_second_search_is_skipped_only_where_it_fails() {
     // The property is not vacuous: both kinds of failure came up.
     assert!(skipped > 20 && ran > 20, "skipped {skipped}, ran {ran}");
 }
+
+/// Robots of the same top speed but another acceleration have other free-flow times: a
+/// planner that planned for one plans for the other as a fresh planner does (its
+/// heuristic and its delay bound are its own, not the first robot's).
+#[test]
+fn robots_of_another_acceleration_get_their_own_tables() {
+    use crate::traffic::test_map::random_nav;
+    let slow = Kinematics { accel: 0.02, ..KIN };
+    let mut compared = 0;
+    for seed in 0..30u64 {
+        let nav = random_nav(seed, 8 + (seed as usize % 16));
+        let n = nav.vertices.len();
+        let mut rng = fastrand::Rng::with_seed(seed);
+        let sched = Schedule::new(conflicts(&nav), &[0], 0.0);
+        let p: Vec<u8> = (0..n)
+            .map(|_| if rng.u8(0..4) == 0 { PARK } else { 0 })
+            .collect();
+        let mut shared = Planner::new(&nav);
+        for _ in 0..10 {
+            let goals = [(rng.usize(0..n), 0.0)];
+            let delay = Some(Delay {
+                fixed: 0.0,
+                share: 0.05,
+            });
+            let q = |kin| Query {
+                kin,
+                delay,
+                ..query(0, 0, &goals, &p)
+            };
+            let first = shared.plan(&nav, &sched, &q(slow));
+            let again = shared.plan(&nav, &sched, &q(KIN));
+            let fresh = Planner::new(&nav).plan(&nav, &sched, &q(KIN));
+            compared += usize::from(first.is_some());
+            assert_eq!(again, fresh, "seed {seed}: to {goals:?}");
+        }
+    }
+    assert!(compared > 50, "only {compared} plans compared");
+}
