@@ -74,7 +74,13 @@ impl Fleets {
         r.leg = None;
         r.legs.clear();
         r.waiting = None;
-        match std::mem::replace(&mut r.gate, Gate::None) {
+        self.drop_gate(i, t, out);
+    }
+
+    /// Gives back the door or lift robot `i` had asked for (a lift it is in stays its
+    /// own until it drives out), and asks for none.
+    pub(super) fn drop_gate(&mut self, i: usize, t: f64, out: &mut Vec<(Topic, Msg)>) {
+        match std::mem::replace(&mut self.robots[i].gate, Gate::None) {
             Gate::Door { door, .. } => self.door_request(i, door, false, t, out),
             Gate::Lift { lift, .. } if self.nav.vertices[self.robots[i].at].lift.is_none() => {
                 self.lift_request(i, lift, None, t, out)
@@ -242,6 +248,8 @@ impl Fleets {
             _ => false,
         };
         if !same {
+            // Its way changed since it asked for another one: that one is given back.
+            self.drop_gate(i, t, out);
             self.robots[i].gate = want;
         }
         let name = self.robots[i].name.clone();

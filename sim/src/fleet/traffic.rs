@@ -795,6 +795,19 @@ impl Fleets {
     /// Sends robot `i` along what the schedule grants it, up to `limit` traversals from
     /// its first (the end of its leg). Doors and lifts on the way are waited for first.
     pub(super) fn advance(&mut self, i: usize, limit: usize, t: f64, out: &mut Vec<(Topic, Msg)>) {
+        // A gate asked for on a way the robot was planned off since (its way to parking
+        // moved for another robot's task while it waited at a door or lift) goes back. Kept,
+        // the robot never counted as free again, and stood where it was for good.
+        let front = self
+            .traffic
+            .sched
+            .itinerary(i)
+            .travs
+            .front()
+            .map(|tr| tr.edge);
+        if self.robots[i].n_sent == 0 && !front.is_some_and(|e| self.gate_is_for(i, e)) {
+            self.drop_gate(i, t, out);
+        }
         if limit == 0 {
             self.robots[i].waiting = None;
             return;
@@ -886,6 +899,8 @@ impl Fleets {
             self.robots[i].gate = Gate::None;
             self.robots[i].close_door = Some(d);
         } else {
+            // No gate on this way (any asked for before it was planned again goes back).
+            self.drop_gate(i, t, out);
             // Plain lanes: a few more in the same path while they stay plain and granted.
             let travs = &self.traffic.sched.itinerary(i).travs;
             while n < LOOKAHEAD.min(limit)
@@ -897,6 +912,26 @@ impl Fleets {
         }
         self.traffic.sched.begin(i, n, t);
         self.send_path(i, n, t, out);
+    }
+
+    /// Whether robot `i`'s gate (the door or lift it asked for, if any) is the one edge `e`
+    /// goes through, as [`Fleets::advance`] asks for it.
+    fn gate_is_for(&self, i: usize, e: usize) -> bool {
+        let edge = &self.nav.edges[e];
+        let lift_of = |v: usize| self.nav.vertices[v].lift;
+        let level = |v: usize| self.nav.vertices[v].level_name.as_str();
+        match &self.robots[i].gate {
+            Gate::None => true,
+            Gate::Door { door, .. } => edge.door == Some(*door),
+            Gate::Lift { lift, floor, .. } => match edge.kind {
+                EdgeKind::Lift(l) => l == *lift && level(edge.to) == floor,
+                _ => {
+                    lift_of(edge.to) == Some(*lift)
+                        && lift_of(edge.from) != Some(*lift)
+                        && level(edge.from) == floor
+                }
+            },
+        }
     }
 
     /// A lane without a controlled door, not into or out of a lift cabin.

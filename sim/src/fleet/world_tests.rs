@@ -357,6 +357,78 @@ fn world_door_is_passed_one_robot_at_a_time_and_only_open() {
     );
 }
 
+/// A robot waiting for a lift whose itinerary is planned again off the lift (as its way
+/// to parking is when another robot's task plan goes through it) gives the lift back and
+/// counts as free. It kept the lift it had asked for before: neither free nor working, it
+/// stood where it was for good, and on a public map with lifts (lift_test) the
+/// dispatcher took no task for the last 74 minutes of two hours (BENCHMARKS.md).
+#[test]
+fn world_a_robot_planned_off_its_lift_gives_it_back() {
+    let b = load("two_level_clinic", None);
+    let s = scenario(
+        vec![fleet(
+            "tiny",
+            1,
+            SpawnSpec::Waypoints(vec!["tinyRobot1_charger".into()]),
+        )],
+        vec![go_to(0.5, "ward_a")],
+    );
+    let placement = Fleets::place(&b, &s).expect("placement");
+    let mut fleets = Fleets::new(&b, &s, &placement).expect("fleets");
+    let setup = WorldSetup {
+        dt: s.step,
+        seed: s.seed,
+        robots: placement.robots.clone(),
+        workcells: placement.workcells.clone(),
+        lifts_start_at_initial_floor: true,
+    };
+    let mut world = World::new(&b, &setup);
+    let (mut inbox, mut out) = (Vec::new(), Vec::new());
+    let mut replanned_at = None;
+    let mut released = false;
+    for _ in 0..60_000 {
+        let t = world.time();
+        out.clear();
+        fleets.update(t, &inbox, &mut out);
+        inbox.clear();
+        for (topic, msg) in out.drain(..) {
+            if let Msg::LiftRequest(l) = &msg {
+                released |= replanned_at.is_some()
+                    && l.session_id == "tiny_0"
+                    && l.request_type == crate::msgs::lift_request::END_SESSION;
+            }
+            if !matches!(msg, Msg::TaskEvent(_)) {
+                world.deliver(topic, msg);
+            }
+        }
+        world.step(&mut inbox);
+        let r = &fleets.robots[0];
+        match replanned_at {
+            None if matches!(r.gate, Gate::Lift { .. }) && r.n_sent == 0 => {
+                // Its task ends here and its itinerary now stays where it stands.
+                let r = &mut fleets.robots[0];
+                r.task = None;
+                r.steps.clear();
+                r.cur = Cur::None;
+                r.leg = None;
+                r.legs.clear();
+                r.dirty = true;
+                fleets.traffic.sched.install(0, 0, &[], t, None);
+                replanned_at = Some(t);
+            }
+            Some(at) if t > at + 5.0 => break,
+            _ => {}
+        }
+    }
+    assert!(
+        replanned_at.is_some(),
+        "the robot never waited for the lift"
+    );
+    assert_eq!(fleets.robots[0].gate, Gate::None);
+    assert!(fleets.robots[0].idle(), "the robot is not idle");
+    assert!(released, "the lift was not given back");
+}
+
 #[test]
 fn world_two_robots_share_the_lift() {
     let b = load("two_level_clinic", None);
