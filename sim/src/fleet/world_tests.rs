@@ -97,15 +97,10 @@ thread_local! {
     static RUN_TO_END: std::cell::Cell<bool> = const { std::cell::Cell::new(false) };
 }
 
-/// Like `run`, calling `check(world, published this step)` after every step.
-fn run_checked(
-    b: &Building,
-    s: &Scenario,
-    seconds: f64,
-    check: &mut dyn FnMut(&mut World, &[Published]),
-) -> Run {
+/// The fleets and the world of scenario `s` on `b`, lifts at their initial floors.
+fn start(b: &Building, s: &Scenario) -> (Fleets, World) {
     let placement = Fleets::place(b, s).expect("placement");
-    let mut fleets = Fleets::new(b, s, &placement).expect("fleets");
+    let fleets = Fleets::new(b, s, &placement).expect("fleets");
     let setup = WorldSetup {
         dt: s.step,
         seed: s.seed,
@@ -113,7 +108,17 @@ fn run_checked(
         workcells: placement.workcells.clone(),
         lifts_start_at_initial_floor: true,
     };
-    let mut world = World::new(b, &setup);
+    (fleets, World::new(b, &setup))
+}
+
+/// Like `run`, calling `check(world, published this step)` after every step.
+fn run_checked(
+    b: &Building,
+    s: &Scenario,
+    seconds: f64,
+    check: &mut dyn FnMut(&mut World, &[Published]),
+) -> Run {
+    let (mut fleets, mut world) = start(b, s);
     let mut inbox = Vec::new();
     let mut out = Vec::new();
     let mut events = Vec::new();
@@ -373,16 +378,7 @@ fn world_a_robot_planned_off_its_lift_gives_it_back() {
         )],
         vec![go_to(0.5, "ward_a")],
     );
-    let placement = Fleets::place(&b, &s).expect("placement");
-    let mut fleets = Fleets::new(&b, &s, &placement).expect("fleets");
-    let setup = WorldSetup {
-        dt: s.step,
-        seed: s.seed,
-        robots: placement.robots.clone(),
-        workcells: placement.workcells.clone(),
-        lifts_start_at_initial_floor: true,
-    };
-    let mut world = World::new(&b, &setup);
+    let (mut fleets, mut world) = start(&b, &s);
     let (mut inbox, mut out) = (Vec::new(), Vec::new());
     let mut replanned_at = None;
     let mut released = false;
@@ -657,16 +653,7 @@ fn perf_many_robots_on_a_demo_map() {
             TaskKind::GoToPlace { place: n.clone() },
         ));
     }
-    let placement = Fleets::place(&b, &s).expect("placement");
-    let mut fleets = Fleets::new(&b, &s, &placement).expect("fleets");
-    let setup = WorldSetup {
-        dt: s.step,
-        seed: s.seed,
-        robots: placement.robots.clone(),
-        workcells: placement.workcells.clone(),
-        lifts_start_at_initial_floor: true,
-    };
-    let mut world = World::new(&b, &setup);
+    let (mut fleets, mut world) = start(&b, &s);
     let (mut inbox, mut out, mut events) = (Vec::new(), Vec::new(), Vec::new());
     let (mut t_fleet, mut t_world) = (std::time::Duration::ZERO, std::time::Duration::ZERO);
     let (mut idle_calls, mut t_idle) = (0u64, std::time::Duration::ZERO);
