@@ -248,8 +248,6 @@ impl Fleets {
             _ => false,
         };
         if !same {
-            // Its way changed since it asked for another one: that one is given back.
-            self.drop_gate(i, t, out);
             self.robots[i].gate = want;
         }
         let name = self.robots[i].name.clone();

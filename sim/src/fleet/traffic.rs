@@ -899,8 +899,6 @@ impl Fleets {
             self.robots[i].gate = Gate::None;
             self.robots[i].close_door = Some(d);
         } else {
-            // No gate on this way (any asked for before it was planned again goes back).
-            self.drop_gate(i, t, out);
             // Plain lanes: a few more in the same path while they stay plain and granted.
             let travs = &self.traffic.sched.itinerary(i).travs;
             while n < LOOKAHEAD.min(limit)
