@@ -1330,3 +1330,26 @@ fn guarantee_three_fleets_cross_in_a_lift_lobby() {
     let r = run(&b, &s, 3600.0);
     assert_all_completed(&r, 6);
 }
+
+#[test]
+fn world_a_robot_does_the_task_where_it_stands_first() {
+    // One robot goes to r2 and stays there. Then two go-to-places come at once: the older
+    // to r5 (across the ring), the younger to r2. The one at r2 takes no robot time, so
+    // it goes first and the older one waits for nothing (the older one used to be done
+    // first: a round trip before a task that was already done, which on a public map
+    // left hundreds waiting).
+    let b = load("ring", Some(RING));
+    let s = scenario(
+        vec![fleet("f", 1, spawn(&["r0"]))],
+        vec![go(0.5, "f", "r2"), go(60.0, "f", "r5"), go(60.0, "f", "r2")],
+    );
+    let r = run(&b, &s, 300.0);
+    assert_all_completed(&r, 3);
+    let done: Vec<String> = ended(&r.events).into_iter().map(|e| e.0).collect();
+    assert_eq!(
+        done,
+        ["go_to_place_0", "go_to_place_2", "go_to_place_1"],
+        "{}",
+        dump(&r.events)
+    );
+}
