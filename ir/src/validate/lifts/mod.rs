@@ -6,6 +6,7 @@ mod dimensions;
 mod door_never_opens;
 mod door_off_cabin;
 mod door_outside_range;
+mod floors_at_one_elevation;
 mod initial_floor_not_served;
 mod lane_between_lifts;
 mod level_without_waypoint;
@@ -26,4 +27,5 @@ pub(super) static RULES: &[&Rule] = &[
     &lane_between_lifts::RULE,
     &door_never_opens::RULE,
     &waypoint_on_unserved_level::RULE,
+    &floors_at_one_elevation::RULE,
 ];
