@@ -96,6 +96,9 @@ pub(crate) struct LiftSim {
     last_pub: f64,
     cabin: Cabin,
     first: bool,
+    /// The floor the cabin is at (or passing): by elevation, except that of levels drawn
+    /// at one elevation it is the one it was last sent to and reached.
+    at: usize,
 }
 
 impl LiftSim {
@@ -118,6 +121,7 @@ impl LiftSim {
             last_pub: 0.0,
             cabin,
             first: true,
+            at: initial,
         }
     }
 
@@ -172,12 +176,16 @@ impl LiftSim {
         self.active = Some(cmd);
     }
 
-    fn cur_floor(&self) -> usize {
+    /// The floor nearest the cabin by elevation; of floors as near, `dest` if it is one.
+    /// (By elevation alone, the first of levels drawn at one elevation was always the
+    /// current floor: a cabin sent to another never arrived there, and robots waited
+    /// for it for hours.)
+    fn nearest(&self, dest: usize) -> usize {
         let mut best = 0;
         let mut bd = f64::INFINITY;
         for (i, f) in self.floors.iter().enumerate() {
             let d = (f.elevation - self.z).abs();
-            if d < bd {
+            if d < bd || (d == bd && i == dest) {
                 bd = d;
                 best = i;
             }
@@ -284,12 +292,33 @@ impl LiftSim {
             self.first = false;
             return;
         }
-        let cur = self.cur_floor();
         let cmd = self.active.as_ref().unwrap_or(&self.last_cmd);
         let (dest, door_open) = (cmd.dest, cmd.door_open);
+        // Off the floor it was at (it moved): the floor is where it is now.
+        if self
+            .floors
+            .get(self.at)
+            .is_none_or(|f| (f.elevation - self.z).abs() >= CABIN_DX_MIN)
+        {
+            self.at = self.nearest(dest);
+        }
+        let cur = self.at;
         let target = self.floors.get(dest).map_or(self.z, |f| f.elevation);
         let mut finished = false;
-        if (self.z - target).abs() < CABIN_DX_MIN {
+        if dest != cur && dest < self.floors.len() && (self.z - target).abs() < CABIN_DX_MIN {
+            // Sent to a floor at the elevation it is at: it closes its doors here, then
+            // is there.
+            let mut closed = true;
+            for &d in &self.floors[cur].doors {
+                if let Some(door) = doors.get_mut(d) {
+                    door.command(false);
+                    closed &= door.mode() == door_mode::CLOSED;
+                }
+            }
+            if closed {
+                self.at = dest;
+            }
+        } else if (self.z - target).abs() < CABIN_DX_MIN {
             let want = if door_open {
                 door_mode::OPEN
             } else {

@@ -1165,3 +1165,33 @@ fn bench_demo_idle() {
         );
     }
 }
+
+#[test]
+fn a_lift_between_levels_at_one_elevation_gets_there() {
+    // The clinic with L2 drawn at L1's elevation (a public map does this with eight
+    // levels): the cabin has no way to go, closes its doors, and is at L2, doors open.
+    // By elevation alone it stayed "at L1" for good, and its riders waited for hours.
+    let path = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../fixtures/two_level_clinic.building.yaml"
+    );
+    let text = std::fs::read_to_string(path).expect("fixture");
+    assert!(text.contains("elevation: 4"));
+    let b = parse(&text.replace("elevation: 4", "elevation: 0"));
+    let mut w = World::new(&b, &setup(Vec::new()));
+    let mut out = Vec::new();
+    run_until(&mut w, &mut out, 0.5, |_, _| false);
+    lift_to(&mut w, &mut out, "L1", 20.0).expect("doors open at L1");
+    lift_to(&mut w, &mut out, "L2", 40.0).expect("at L2");
+    let s = out
+        .iter()
+        .rev()
+        .find_map(|p| match &p.msg {
+            Msg::LiftState(s) => Some(s.clone()),
+            _ => None,
+        })
+        .expect("a state");
+    assert_eq!(s.current_floor, "L2");
+    assert_eq!(s.door_state, lift_state_open());
+    assert!(w.lifts[0].z.abs() < 1e-9);
+}
