@@ -16,6 +16,10 @@
 //!   cabin's axis-aligned bounding box, from under its floor to its roof: a robot waiting
 //!   on the landing beside a turned cabin, or standing on the floor above the cabin's
 //!   path, would be lifted off its floor and left between floors.
+//! - The current floor is the nearest by elevation, as in the plugin, except among
+//!   levels drawn at one elevation (W0412): there it is the one the cabin was sent to,
+//!   once its doors closed where it was. The plugin reports the first of them for good,
+//!   so a cabin sent to another never arrives.
 
 use crate::msgs::{
     door_mode, lift_request, lift_state, LiftRequest, LiftState, Msg, Published, Time, Topic,
