@@ -197,6 +197,23 @@ impl LiftSim {
         best
     }
 
+    /// Commands floor `cur`'s doors open or closed; true when all of them are.
+    fn doors_to(&self, cur: usize, open: bool, doors: &mut [impl DoorControl]) -> bool {
+        let want = if open {
+            door_mode::OPEN
+        } else {
+            door_mode::CLOSED
+        };
+        let mut all = true;
+        for &d in &self.floors[cur].doors {
+            if let Some(door) = doors.get_mut(d) {
+                door.command(open);
+                all &= door.mode() == want;
+            }
+        }
+        all
+    }
+
     fn door_state(&self, cur: usize, doors: &[impl DoorControl]) -> u8 {
         let modes = || {
             self.floors[cur]
@@ -312,39 +329,14 @@ impl LiftSim {
         if dest != cur && dest < self.floors.len() && (self.z - target).abs() < CABIN_DX_MIN {
             // Sent to a floor at the elevation it is at: it closes its doors here, then
             // is there.
-            let mut closed = true;
-            for &d in &self.floors[cur].doors {
-                if let Some(door) = doors.get_mut(d) {
-                    door.command(false);
-                    closed &= door.mode() == door_mode::CLOSED;
-                }
-            }
-            if closed {
+            if self.doors_to(cur, false, doors) {
                 self.at = dest;
             }
         } else if (self.z - target).abs() < CABIN_DX_MIN {
-            let want = if door_open {
-                door_mode::OPEN
-            } else {
-                door_mode::CLOSED
-            };
-            let mut all = true;
-            for &d in &self.floors[cur].doors {
-                if let Some(door) = doors.get_mut(d) {
-                    door.command(door_open);
-                    all &= door.mode() == want;
-                }
-            }
+            let all = self.doors_to(cur, door_open, doors);
             finished = dest == cur && all;
         } else {
-            let mut closed = true;
-            for &d in &self.floors[cur].doors {
-                if let Some(door) = doors.get_mut(d) {
-                    door.command(false);
-                    closed &= door.mode() == door_mode::CLOSED;
-                }
-            }
-            if closed {
+            if self.doors_to(cur, false, doors) {
                 let mut s = target - self.z;
                 if s.abs() < CABIN_DX_MIN / 2.0 {
                     s = 0.0;
