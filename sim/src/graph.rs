@@ -111,6 +111,7 @@ impl Nav {
                 controlled: d.plugin,
             });
         }
+        let floors_z = crate::levels::elevations(b);
         let mut index: BTreeMap<Handle<Vertex>, usize> = BTreeMap::new();
         let mut add_vertex = |nav: &mut Nav, vh: Handle<Vertex>| -> usize {
             *index.entry(vh).or_insert_with(|| {
@@ -128,7 +129,7 @@ impl Nav {
                     pos: v.pos,
                     level: v.level,
                     level_name: level.name.clone(),
-                    elevation: level.elevation,
+                    elevation: floors_z[v.level.index()],
                     lift,
                     roles: (*v.roles).clone(),
                 });

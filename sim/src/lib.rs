@@ -10,6 +10,7 @@ mod crowd;
 mod door;
 mod fleet;
 mod graph;
+mod levels;
 mod lift;
 pub mod msgs;
 mod params;

@@ -16,10 +16,6 @@
 //!   cabin's axis-aligned bounding box, from under its floor to its roof: a robot waiting
 //!   on the landing beside a turned cabin, or standing on the floor above the cabin's
 //!   path, would be lifted off its floor and left between floors.
-//! - The current floor is the nearest by elevation, as in the plugin, except among
-//!   levels drawn at one elevation (W0412): there it is the one the cabin was sent to,
-//!   once its doors closed where it was. The plugin reports the first of them for good,
-//!   so a cabin sent to another never arrives.
 
 use crate::msgs::{
     door_mode, lift_request, lift_state, LiftRequest, LiftState, Msg, Published, Time, Topic,
@@ -100,9 +96,6 @@ pub(crate) struct LiftSim {
     last_pub: f64,
     cabin: Cabin,
     first: bool,
-    /// The floor the cabin is at (or passing): by elevation, except that of levels drawn
-    /// at one elevation it is the one it was last sent to and reached.
-    at: usize,
 }
 
 impl LiftSim {
@@ -125,7 +118,6 @@ impl LiftSim {
             last_pub: 0.0,
             cabin,
             first: true,
-            at: initial,
         }
     }
 
@@ -180,38 +172,17 @@ impl LiftSim {
         self.active = Some(cmd);
     }
 
-    /// The floor nearest the cabin by elevation; of floors as near, `dest` if it is one.
-    /// (By elevation alone, the first of levels drawn at one elevation was always the
-    /// current floor: a cabin sent to another never arrived there, and robots waited
-    /// for it for hours.)
-    fn nearest(&self, dest: usize) -> usize {
+    fn cur_floor(&self) -> usize {
         let mut best = 0;
         let mut bd = f64::INFINITY;
         for (i, f) in self.floors.iter().enumerate() {
             let d = (f.elevation - self.z).abs();
-            if d < bd || (d == bd && i == dest) {
+            if d < bd {
                 bd = d;
                 best = i;
             }
         }
         best
-    }
-
-    /// Commands floor `cur`'s doors open or closed; true when all of them are.
-    fn doors_to(&self, cur: usize, open: bool, doors: &mut [impl DoorControl]) -> bool {
-        let want = if open {
-            door_mode::OPEN
-        } else {
-            door_mode::CLOSED
-        };
-        let mut all = true;
-        for &d in &self.floors[cur].doors {
-            if let Some(door) = doors.get_mut(d) {
-                door.command(open);
-                all &= door.mode() == want;
-            }
-        }
-        all
     }
 
     fn door_state(&self, cur: usize, doors: &[impl DoorControl]) -> u8 {
@@ -313,30 +284,34 @@ impl LiftSim {
             self.first = false;
             return;
         }
+        let cur = self.cur_floor();
         let cmd = self.active.as_ref().unwrap_or(&self.last_cmd);
         let (dest, door_open) = (cmd.dest, cmd.door_open);
-        // Off the floor it was at (it moved): the floor is where it is now.
-        if self
-            .floors
-            .get(self.at)
-            .is_none_or(|f| (f.elevation - self.z).abs() >= CABIN_DX_MIN)
-        {
-            self.at = self.nearest(dest);
-        }
-        let cur = self.at;
         let target = self.floors.get(dest).map_or(self.z, |f| f.elevation);
         let mut finished = false;
-        if dest != cur && dest < self.floors.len() && (self.z - target).abs() < CABIN_DX_MIN {
-            // Sent to a floor at the elevation it is at: it closes its doors here, then
-            // is there.
-            if self.doors_to(cur, false, doors) {
-                self.at = dest;
+        if (self.z - target).abs() < CABIN_DX_MIN {
+            let want = if door_open {
+                door_mode::OPEN
+            } else {
+                door_mode::CLOSED
+            };
+            let mut all = true;
+            for &d in &self.floors[cur].doors {
+                if let Some(door) = doors.get_mut(d) {
+                    door.command(door_open);
+                    all &= door.mode() == want;
+                }
             }
-        } else if (self.z - target).abs() < CABIN_DX_MIN {
-            let all = self.doors_to(cur, door_open, doors);
             finished = dest == cur && all;
         } else {
-            if self.doors_to(cur, false, doors) {
+            let mut closed = true;
+            for &d in &self.floors[cur].doors {
+                if let Some(door) = doors.get_mut(d) {
+                    door.command(false);
+                    closed &= door.mode() == door_mode::CLOSED;
+                }
+            }
+            if closed {
                 let mut s = target - self.z;
                 if s.abs() < CABIN_DX_MIN / 2.0 {
                     s = 0.0;

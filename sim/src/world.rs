@@ -142,10 +142,12 @@ impl World {
     pub fn new(building: &Building, setup: &WorldSetup) -> World {
         let b = building;
         let mut rng = fastrand::Rng::with_seed(setup.seed);
+        let floors_z = crate::levels::elevations(b);
         let levels: Vec<(String, f64)> = b
             .levels
             .iter()
-            .map(|(_, l)| (l.name.clone(), l.elevation))
+            .zip(&floors_z)
+            .map(|((_, l), &z)| (l.name.clone(), z))
             .collect();
         let elev = |h: Handle<Level>| levels.get(h.index()).map_or(0.0, |l| l.1);
         let chargers = b

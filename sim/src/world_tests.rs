@@ -1169,8 +1169,9 @@ fn bench_demo_idle() {
 #[test]
 fn a_lift_between_levels_at_one_elevation_gets_there() {
     // The clinic with L2 drawn at L1's elevation (a public map does this with eight
-    // levels): the cabin has no way to go, closes its doors, and is at L2, doors open.
-    // By elevation alone it stayed "at L1" for good, and its riders waited for hours.
+    // levels): the world stacks L2 a storey above L1 (`levels.rs`), so the cabin rides
+    // there. With both floors at 0 m the cabin reported L1 for good, never arrived at L2,
+    // and its riders waited for hours.
     let path = concat!(
         env!("CARGO_MANIFEST_DIR"),
         "/../fixtures/two_level_clinic.building.yaml"
@@ -1193,5 +1194,9 @@ fn a_lift_between_levels_at_one_elevation_gets_there() {
         .expect("a state");
     assert_eq!(s.current_floor, "L2");
     assert_eq!(s.door_state, lift_state_open());
-    assert!(w.lifts[0].z.abs() < 1e-9);
+    assert!(
+        (w.lifts[0].z - 4.0).abs() < 0.001,
+        "cabin at {}",
+        w.lifts[0].z
+    );
 }

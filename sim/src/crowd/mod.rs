@@ -253,7 +253,7 @@ impl Crowd {
         let wall_segments = mesh.walls.clone();
         let mut crowd = Crowd {
             level_name: b.levels[level].name.clone(),
-            z: b.levels[level].elevation,
+            z: crate::levels::elevations(b)[level.index()],
             mesh,
             profiles,
             fsm,

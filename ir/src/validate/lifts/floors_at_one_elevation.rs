@@ -3,12 +3,13 @@
 //! **What:** a lift serves two or more levels drawn at the same `elevation`.
 //!
 //! **Why it matters:** a level's elevation is where its floor is in the world. Levels
-//! at one elevation lie on top of each other: in a simulated world their walls and
-//! floors overlap and robots on different levels meet in the same place, and a cabin
-//! "moving" between them travels nowhere. The reference lift plugin tells floors apart
-//! by elevation, so it always reports the first of them and a cabin sent to another
-//! never arrives. This is usually a map whose levels were drawn without setting their
-//! elevations.
+//! at one elevation lie on top of each other: in a Gazebo world their walls and floors
+//! overlap and robots on different levels meet in the same place, and a cabin "moving"
+//! between them travels nowhere. The reference lift plugin tells floors apart by
+//! elevation, so it always reports the first of them and a cabin sent to another never
+//! arrives. This is usually a map whose levels were drawn without setting their
+//! elevations. (`mapc sim` stacks such levels a storey apart, above the highest, so the
+//! run goes on; the other outputs keep the elevations as drawn.)
 //!
 //! **Fix:** give each level the height of its floor, e.g. `elevation: 4` for a floor
 //! 4 m above the first.
