@@ -139,14 +139,21 @@ pub fn simulate(
     }
     let o = &scenario.options;
     if o.crowd.enabled {
-        let crowd = crowd::Crowd::new(building, o.crowd.scale, scenario.seed, scenario.step)
-            .map_err(|e| {
-                SimError::Invalid(vec![Diagnostic::error(
-                    codes::CROWD.code,
-                    mapc_ir::Span::UNKNOWN,
-                    format!("the crowd cannot walk: {e}"),
-                )])
-            })?;
+        let floors = levels::elevations(building);
+        let crowd = crowd::Crowd::new(
+            building,
+            &floors,
+            o.crowd.scale,
+            scenario.seed,
+            scenario.step,
+        )
+        .map_err(|e| {
+            SimError::Invalid(vec![Diagnostic::error(
+                codes::CROWD.code,
+                mapc_ir::Span::UNKNOWN,
+                format!("the crowd cannot walk: {e}"),
+            )])
+        })?;
         if let Some(c) = crowd {
             world.set_crowd(c);
         }

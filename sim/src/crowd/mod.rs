@@ -172,10 +172,12 @@ pub(crate) struct Crowd {
 pub type CrowdError = String;
 
 impl Crowd {
-    /// The crowd of `b` when its crowd_sim is enabled and has people; `scale` multiplies
-    /// every human group; `physics_dt` is the world's step.
+    /// The crowd of `b` when its crowd_sim is enabled and has people; `floors` are the
+    /// levels' floor heights in the world (by level index); `scale` multiplies every human
+    /// group; `physics_dt` is the world's step.
     pub fn new(
         b: &Building,
+        floors: &[f64],
         scale: f64,
         seed: u64,
         physics_dt: f64,
@@ -253,7 +255,10 @@ impl Crowd {
         let wall_segments = mesh.walls.clone();
         let mut crowd = Crowd {
             level_name: b.levels[level].name.clone(),
-            z: crate::levels::elevations(b)[level.index()],
+            z: floors
+                .get(level.index())
+                .copied()
+                .unwrap_or(b.levels[level].elevation),
             mesh,
             profiles,
             fsm,

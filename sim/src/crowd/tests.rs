@@ -88,7 +88,10 @@ fn building(m: &MapSpec) -> Building {
 }
 
 fn crowd(b: &Building) -> Crowd {
-    Crowd::new(b, 1.0, 7, 0.01).unwrap().expect("people")
+    let floors: Vec<f64> = b.levels.iter().map(|(_, l)| l.elevation).collect();
+    Crowd::new(b, &floors, 1.0, 7, 0.01)
+        .unwrap()
+        .expect("people")
 }
 
 /// Smallest centre distance minus the radii over all pairs (brute force: tests only).
