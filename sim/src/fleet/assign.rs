@@ -457,7 +457,7 @@ impl Fleets {
     /// Where robot `i` plans from: where the traversals it was sent along end, and when
     /// (its first traversals still to be kept).
     fn plan_start(&self, i: usize, t: f64) -> (usize, usize, f64) {
-        let keep = self.robots[i].n_sent;
+        let keep = self.kept(i);
         let it = self.traffic.sched.itinerary(i);
         match keep.checked_sub(1).and_then(|k| it.travs.get(k)) {
             Some(tr) => (keep, tr.to, tr.end.max(t)),

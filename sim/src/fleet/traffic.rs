@@ -237,7 +237,15 @@ impl Fleets {
             .task
             .and_then(|ti| self.tasks.get(ti))
             .is_some_and(|tk| matches!(tk.kind, TaskKind::GoToPlace { .. }));
-        (go_to && r.steps.iter().all(|s| !matches!(s, Step::GoTo(_)))).then_some(last)
+        // The task's places left: none after the current leg's, or, before the task's
+        // first step starts, its one place.
+        let left = r
+            .steps
+            .iter()
+            .filter(|s| matches!(s, Step::GoTo(_)))
+            .count();
+        let last_place = left == 0 || (r.cur == Cur::None && left == 1);
+        (go_to && last_place).then_some(last)
     }
 
     /// Where robot `i`'s plan to `goals` from `from` may end, in order of preference:
@@ -622,7 +630,10 @@ impl Fleets {
         let mut moved = false;
         for o in blockers {
             let r = &self.robots[o];
-            // What it is doing stays: its leg's goal, or the work at its place.
+            // What it is doing stays: its leg's goal, the work at its place, or the task it
+            // took this round and has not started (planned again without its places, it
+            // went to park and started the task from there with no plan).
+            let pending = r.cur == Cur::None && !r.steps.is_empty();
             let (own, leg): (Vec<(usize, f64)>, bool) = match r.cur {
                 Cur::GoTo {
                     goal,
@@ -631,9 +642,13 @@ impl Fleets {
                 Cur::Dwell { until } => (self.working_goals(o, (until - t).max(0.0)), false),
                 Cur::Workcell { .. } => (self.working_goals(o, WORKCELL_ESTIMATE), false),
                 Cur::Charge { .. } => (self.working_goals(o, 60.0), false),
+                Cur::None if pending => {
+                    let steps: Vec<Step> = r.steps.iter().cloned().collect();
+                    (self.goals_of(o, &steps), false)
+                }
                 _ => (Vec::new(), false),
             };
-            if r.n_sent > 0 && !leg {
+            if r.n_sent > 0 && !leg && !pending {
                 continue;
             }
             // Its own task ends where it stays, at a place asked for (a go-to-place on its
@@ -667,7 +682,7 @@ impl Fleets {
             // Making room never delays a robot's own task: a new plan that reaches its
             // places later (it may have to wait out of the others' way, for minutes) is
             // undone, and the robot keeps its plan.
-            let task = leg && self.robots[o].task.is_some();
+            let task = (leg || pending) && self.robots[o].task.is_some();
             let before = task.then(|| {
                 let r = &self.robots[o];
                 let snap = (self.traffic.sched.clone(), r.legs.clone(), r.leg);
@@ -686,8 +701,18 @@ impl Fleets {
                     r => r,
                 }
             };
+            if pending {
+                // Its first leg is for the step it starts next, not a leg under way.
+                if let Ok(l) = res {
+                    self.robots[o].legs.push_front(l);
+                }
+            }
             if let (Ok(l), Some((snap, old))) = (&res, before) {
-                let was = self.robots[o].leg.replace(*l);
+                let was = if pending {
+                    self.robots[o].leg
+                } else {
+                    self.robots[o].leg.replace(*l)
+                };
                 if self.arrival(o, own.len()) > old + 1.0 {
                     (self.traffic.sched, self.robots[o].legs, self.robots[o].leg) = snap;
                     res = Err(NoPlan::Busy);
@@ -763,7 +788,7 @@ impl Fleets {
         self.traffic.retime(t);
         let r = &self.robots[i];
         let slot = self.fleets[r.fleet].slot;
-        let keep = r.n_sent;
+        let keep = self.kept(i);
         let it = self.traffic.sched.itinerary(i);
         let (from, t0) = match keep.checked_sub(1).and_then(|k| it.travs.get(k)) {
             Some(tr) => (tr.to, tr.end.max(t)),
@@ -930,6 +955,28 @@ impl Fleets {
                 }
             },
         }
+    }
+
+    /// How many of robot `i`'s first traversals a new plan keeps: those it was sent along,
+    /// or the ride of a lift cabin it stands in and has called to a floor. (Planned again
+    /// with none kept mid-ride, a robot drove out of a climbing cabin and stood between
+    /// floors for good.)
+    pub(super) fn kept(&self, i: usize) -> usize {
+        let r = &self.robots[i];
+        if r.n_sent > 0 {
+            return r.n_sent;
+        }
+        let Gate::Lift { lift, .. } = &r.gate else {
+            return 0;
+        };
+        let rides = self
+            .traffic
+            .sched
+            .itinerary(i)
+            .travs
+            .front()
+            .is_some_and(|tr| self.nav.edges[tr.edge].kind == EdgeKind::Lift(*lift));
+        usize::from(rides && self.nav.vertices[r.at].lift == Some(*lift))
     }
 
     /// A lane without a controlled door, not into or out of a lift cabin.

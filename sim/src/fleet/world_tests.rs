@@ -425,6 +425,64 @@ fn world_a_robot_planned_off_its_lift_gives_it_back() {
     assert!(released, "the lift was not given back");
 }
 
+/// A robot in a cabin that has called it to a floor rides it, whatever it is planned to
+/// next: planned again from the cabin with nothing kept (on a public map, a go-to-place
+/// started without its plan), a robot drove out of a climbing cabin and stood there for
+/// good.
+#[test]
+fn world_a_robot_planned_again_mid_ride_keeps_its_ride() {
+    let b = load("two_level_clinic", None);
+    let s = scenario(
+        vec![fleet(
+            "tiny",
+            1,
+            SpawnSpec::Waypoints(vec!["tinyRobot1_charger".into()]),
+        )],
+        vec![go_to(0.5, "ward_a")],
+    );
+    let (mut fleets, mut world) = start(&b, &s);
+    let (mut inbox, mut out) = (Vec::new(), Vec::new());
+    let home = fleets.robots[0].at;
+    let mut rode = None;
+    for _ in 0..60_000 {
+        let t = world.time();
+        out.clear();
+        fleets.update(t, &inbox, &mut out);
+        inbox.clear();
+        for (topic, msg) in out.drain(..) {
+            if !matches!(msg, Msg::TaskEvent(_)) {
+                world.deliver(topic, msg);
+            }
+        }
+        world.step(&mut inbox);
+        let r = &fleets.robots[0];
+        let front = fleets
+            .traffic
+            .sched
+            .itinerary(0)
+            .travs
+            .front()
+            .map(|tr| tr.edge);
+        let riding = matches!(r.gate, Gate::Lift { .. })
+            && fleets.nav.vertices[r.at].lift.is_some()
+            && front.is_some_and(|e| matches!(fleets.nav.edges[e].kind, EdgeKind::Lift(_)));
+        if riding {
+            // Back to where it came from, planned from the cabin.
+            assert!(fleets.plan_to(0, &[(home, 0.0)], t).is_ok());
+            rode = front;
+            break;
+        }
+    }
+    let ride = rode.expect("the robot never rode the lift");
+    let it = fleets.traffic.sched.itinerary(0);
+    assert_eq!(
+        it.travs.front().map(|tr| tr.edge),
+        Some(ride),
+        "the ride was dropped"
+    );
+    assert_eq!(fleets.traffic.sched.end_vertex(0), home);
+}
+
 #[test]
 fn world_two_robots_share_the_lift() {
     let b = load("two_level_clinic", None);
@@ -1352,4 +1410,40 @@ fn world_a_robot_does_the_task_where_it_stands_first() {
         "{}",
         dump(&r.events)
     );
+}
+
+#[test]
+fn world_a_robot_given_a_task_and_made_to_make_room_keeps_its_task() {
+    // Robot x, standing in the corridor at c2, takes a go-to-place to c2 in a dispatch
+    // round; before it starts the task, robot y's plan to far_end (through c2) asks it to
+    // make room. x's new plan still goes to its task's place (it used to be planned to
+    // park without it, then sent back there with no plan: on a public map with a lift, it
+    // was planned again mid-ride and drove out of a climbing cabin).
+    let b = load("comb", Some(COMB));
+    let s = scenario(
+        vec![
+            fleet("x", 1, spawn(&["c2"])),
+            fleet("y", 1, spawn(&["dead_end"])),
+        ],
+        vec![go(0.0, "x", "c2"), go(10.0, "y", "far_end")],
+    );
+    let (mut fleets, _world) = start(&b, &s);
+    let mut out = Vec::new();
+    while let Some(new) = fleets.dispatcher.take_request(0.0) {
+        fleets.request_task(0.0, new, &mut out);
+    }
+    fleets.dispatch(0.0, &mut out);
+    let slot = fleets.robots[0].slot;
+    let (c2, far) = (
+        fleets.nav.find(slot, "c2").expect("c2"),
+        fleets.nav.find(slot, "far_end").expect("far_end"),
+    );
+    let x = &fleets.robots[0];
+    assert!(x.task.is_some() && x.cur == Cur::None && !x.steps.is_empty());
+    fleets.displace_for(1, &[(far, 0.0)], 0.0);
+    let x = &fleets.robots[0];
+    let leg = *x.legs.front().expect("x keeps the leg to its task's place");
+    let it = fleets.traffic.sched.itinerary(0);
+    let at = leg.checked_sub(1).map_or(it.at, |k| it.travs[k].to);
+    assert_eq!(at, c2, "x's first leg ends at its task's place");
 }
