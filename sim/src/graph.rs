@@ -10,9 +10,9 @@ use std::collections::{BTreeMap, BinaryHeap};
 
 /// Fixed time charged for a door on a lane (open + close wait), seconds.
 pub const DOOR_COST: f64 = 8.0;
-/// Fixed time charged for a lift ride (call, doors), plus the travel at LIFT_SPEED.
-pub const LIFT_COST: f64 = 20.0;
-pub const LIFT_SPEED: f64 = 0.5;
+/// Time charged on every lift ride for its messages: the lift's state, which tells the
+/// fleet the cabin has come, comes once a second, and so may the request that sends it.
+pub const LIFT_MESSAGES: f64 = 2.0;
 /// Time lost stopping at a waypoint (the slotcar stops at every waypoint), seconds.
 pub const STOP_COST: f64 = 1.0;
 
@@ -61,6 +61,8 @@ pub struct NavLift {
     /// Longest ride between two of its floors (s, as `edge_cost` counts it): how long a
     /// call may take for the cabin to come.
     pub call: f64,
+    /// How long its slowest door takes to open or close (s), as the world moves it.
+    pub doors: f64,
 }
 
 #[derive(Debug, Clone)]
@@ -100,9 +102,17 @@ impl Nav {
             ..Nav::default()
         };
         for (_, l) in b.lifts.iter() {
+            // Each leaf of a lift door slides half its width (world.rs).
+            let p = crate::door::LIFT_DOOR.limits;
+            let doors = l
+                .doors
+                .iter()
+                .map(|d| crate::profile::trapezoid_time(d.width / 2.0, p.v_max, p.a_nom))
+                .fold(0.0, f64::max);
             nav.lifts.push(NavLift {
                 name: l.name.clone(),
                 call: 0.0,
+                doors,
             });
         }
         for (_, d) in b.doors.iter() {
@@ -292,7 +302,16 @@ impl Nav {
                 };
                 edge.length / v + STOP_COST + door
             }
-            EdgeKind::Lift(_) => LIFT_COST + edge.length / LIFT_SPEED,
+            // The world's ride: the doors close, the cabin travels at its profile, the
+            // doors open. (It was 20 s plus the travel at 0.5 m/s, a quarter of the
+            // cabin's speed: on 8 floors, every entry waited for a 76 s call, the plans
+            // booked the lift for 300 s per trip and robots were refused every task.)
+            EdgeKind::Lift(l) => {
+                let c = crate::lift::CABIN;
+                2.0 * self.lifts[l].doors
+                    + crate::profile::trapezoid_time(edge.length, c.v_max, c.a_nom)
+                    + LIFT_MESSAGES
+            }
         }
     }
 

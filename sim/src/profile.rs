@@ -53,7 +53,6 @@ pub(crate) fn building(s: f64, v: f64, p: Limits, dt: f64) -> f64 {
 }
 
 /// Travel time of a trapezoid (or triangle) over `d` at acceleration `a` up to `v`.
-#[cfg(test)]
 pub(crate) fn trapezoid_time(d: f64, v: f64, a: f64) -> f64 {
     if d >= v * v / a {
         d / v + v / a

@@ -344,6 +344,17 @@ fn lift_trip_time_is_doors_close_plus_cabin_plus_doors_open() {
     let got = t1 - t0;
     assert!((got - want).abs() < 0.01 * want, "{got} s vs {want} s");
     assert!((w.lifts[0].z - 4.0).abs() < 0.001);
+    // The traffic planner's estimate of the ride (graph.rs) is this, plus the messages, and
+    // a little more: it brakes at the nominal rate where the plugins brake harder.
+    let nav = crate::graph::Nav::build(&b, &[0]);
+    let ride = (0..nav.edges.len())
+        .find(|&e| matches!(nav.edges[e].kind, crate::graph::EdgeKind::Lift(_)))
+        .map(|e| nav.edge_cost(e, 1.0))
+        .expect("a ride on graph 0");
+    assert!(
+        ride >= got && ride <= 1.05 * got + crate::graph::LIFT_MESSAGES,
+        "{ride} s planned, {got} s ridden"
+    );
     // The robot in the cabin rode along.
     let r = w.robots()[0];
     assert!((r.z - 4.0).abs() < 0.001, "robot z {}", r.z);
