@@ -362,13 +362,9 @@ fn world_door_is_passed_one_robot_at_a_time_and_only_open() {
     );
 }
 
-/// A robot waiting for a lift whose itinerary is planned again off the lift (as its way
-/// to parking is when another robot's task plan goes through it) gives the lift back and
-/// counts as free. It kept the lift it had asked for before: neither free nor working, it
-/// stood where it was for good, and on a public map with lifts (lift_test) the
-/// dispatcher took no task for the last 74 minutes of two hours (BENCHMARKS.md).
-#[test]
-fn world_a_robot_planned_off_its_lift_gives_it_back() {
+/// One tiny robot at the clinic's `tinyRobot1_charger`, sent to `ward_a` on the floor
+/// above, with its fleets and world.
+fn clinic_rider() -> (Fleets, World) {
     let b = load("two_level_clinic", None);
     let s = scenario(
         vec![fleet(
@@ -378,26 +374,50 @@ fn world_a_robot_planned_off_its_lift_gives_it_back() {
         )],
         vec![go_to(0.5, "ward_a")],
     );
-    let (mut fleets, mut world) = start(&b, &s);
-    let (mut inbox, mut out) = (Vec::new(), Vec::new());
-    let mut replanned_at = None;
+    start(&b, &s)
+}
+
+/// One step at `t`: the fleets' messages (each shown to `seen` first, task events not
+/// delivered) go to the world, which steps.
+fn step_once(
+    (fleets, world): (&mut Fleets, &mut World),
+    t: f64,
+    inbox: &mut Vec<Published>,
+    seen: &mut dyn FnMut(&Msg),
+) {
+    let mut out = Vec::new();
+    fleets.update(t, inbox, &mut out);
+    inbox.clear();
+    for (topic, msg) in out {
+        seen(&msg);
+        if !matches!(msg, Msg::TaskEvent(_)) {
+            world.deliver(topic, msg);
+        }
+    }
+    world.step(inbox);
+}
+
+/// A robot waiting for a lift whose itinerary is planned again off the lift (as its way
+/// to parking is when another robot's task plan goes through it) gives the lift back and
+/// counts as free. It kept the lift it had asked for before: neither free nor working, it
+/// stood where it was for good, and on a public map with lifts (lift_test) the
+/// dispatcher took no task for the last 74 minutes of two hours (BENCHMARKS.md).
+#[test]
+fn world_a_robot_planned_off_its_lift_gives_it_back() {
+    let (mut fleets, mut world) = clinic_rider();
+    let mut inbox = Vec::new();
+    let mut replanned_at: Option<f64> = None;
     let mut released = false;
     for _ in 0..60_000 {
         let t = world.time();
-        out.clear();
-        fleets.update(t, &inbox, &mut out);
-        inbox.clear();
-        for (topic, msg) in out.drain(..) {
-            if let Msg::LiftRequest(l) = &msg {
-                released |= replanned_at.is_some()
+        let ended = replanned_at.is_some();
+        step_once((&mut fleets, &mut world), t, &mut inbox, &mut |msg| {
+            if let Msg::LiftRequest(l) = msg {
+                released |= ended
                     && l.session_id == "tiny_0"
                     && l.request_type == crate::msgs::lift_request::END_SESSION;
             }
-            if !matches!(msg, Msg::TaskEvent(_)) {
-                world.deliver(topic, msg);
-            }
-        }
-        world.step(&mut inbox);
+        });
         let r = &fleets.robots[0];
         match replanned_at {
             None if matches!(r.gate, Gate::Lift { .. }) && r.n_sent == 0 => {
@@ -431,30 +451,13 @@ fn world_a_robot_planned_off_its_lift_gives_it_back() {
 /// good.
 #[test]
 fn world_a_robot_planned_again_mid_ride_keeps_its_ride() {
-    let b = load("two_level_clinic", None);
-    let s = scenario(
-        vec![fleet(
-            "tiny",
-            1,
-            SpawnSpec::Waypoints(vec!["tinyRobot1_charger".into()]),
-        )],
-        vec![go_to(0.5, "ward_a")],
-    );
-    let (mut fleets, mut world) = start(&b, &s);
-    let (mut inbox, mut out) = (Vec::new(), Vec::new());
+    let (mut fleets, mut world) = clinic_rider();
+    let mut inbox = Vec::new();
     let home = fleets.robots[0].at;
     let mut rode = None;
     for _ in 0..60_000 {
         let t = world.time();
-        out.clear();
-        fleets.update(t, &inbox, &mut out);
-        inbox.clear();
-        for (topic, msg) in out.drain(..) {
-            if !matches!(msg, Msg::TaskEvent(_)) {
-                world.deliver(topic, msg);
-            }
-        }
-        world.step(&mut inbox);
+        step_once((&mut fleets, &mut world), t, &mut inbox, &mut |_| {});
         let r = &fleets.robots[0];
         let front = fleets
             .traffic
