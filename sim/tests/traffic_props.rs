@@ -78,10 +78,16 @@ fn run_with(
     }
     let (scenario, diags) = parse_scenario(mapc_ir::FileId(1), &text, Path::new("."));
     let scenario = scenario.unwrap_or_else(|| panic!("scenario of {}: {diags:?}\n{text}", b.seed));
-    match simulate(building, &scenario, RunOptions::default()) {
+    let r = match simulate(building, &scenario, RunOptions::default()) {
         Ok(r) => r,
         Err(e) => panic!("building {} with {robots} robots: {e:?}", b.seed),
+    };
+    if let Some(dir) = std::env::var_os("MAPC_TRAFFIC_DUMP") {
+        // And what `mapc sim --report` would write of it.
+        let path = Path::new(&dir).join(format!("gen_{}_{robots}.report.json", b.seed));
+        let _ = std::fs::write(path, serde_json::to_string(&r).unwrap_or_default());
     }
+    r
 }
 
 fn completed(r: &Report) -> usize {
