@@ -14,7 +14,9 @@
 //! Briefly in CI (`MAPC_TRAFFIC_CASES`, default 200 buildings of 8 simulated minutes at 1,
 //! 4 and 16 robots; shorter runs measure the start more than the traffic); long on demand:
 //! `MAPC_TRAFFIC_CASES=200 MAPC_TRAFFIC_MINUTES=60 MAPC_TRAFFIC_SIZES=1,2,4,8,16,32 cargo test
-//! -p mapc-sim --release --test traffic_props -- --nocapture`.
+//! -p mapc-sim --release --test traffic_props -- --nocapture`. `MAPC_TRAFFIC_VERBOSE=1`
+//! prints each building's counts; `MAPC_TRAFFIC_DUMP=<dir>` writes each run's map,
+//! scenario (for `mapc sim`) and report.
 
 mod support;
 
