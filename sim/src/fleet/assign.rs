@@ -133,6 +133,9 @@ struct Pending {
     /// It waits for a busy robot that gets there before the free robots' plans did: see
     /// [`Deferred`].
     deferred: Option<Deferred>,
+    /// A go-to-place: done the moment a robot standing at its place takes it
+    /// ([`Fleets::done_where_they_stand`]).
+    go_to: bool,
 }
 
 /// A task that waits for a busy robot, its free robots' plans made and beaten: when the
@@ -178,6 +181,10 @@ pub(super) struct Dispatcher {
     upcoming: VecDeque<(f64, usize, NewTask)>,
     /// Tasks no robot has taken yet, oldest first.
     pending: VecDeque<Pending>,
+    /// How many of them are go-to-places (`Pending::go_to`): with none, a round need not
+    /// look through the queue for them (a saturating stream of loops queues tens of
+    /// thousands, and that look was a twentieth of the saturated airport).
+    go_tos: usize,
     /// When the dispatcher runs next, and when it last ran (a round).
     next_dispatch: f64,
     last_round: f64,
@@ -250,6 +257,7 @@ impl Dispatcher {
         Dispatcher {
             upcoming: upcoming.into(),
             pending: VecDeque::new(),
+            go_tos: 0,
             next_dispatch: f64::INFINITY,
             last_round: f64::NEG_INFINITY,
             counters: BTreeMap::new(),
@@ -313,15 +321,28 @@ impl Dispatcher {
         // Sorted by priority (a saturating stream queues tens of thousands: a scan for
         // each request was a twentieth of the saturated airport).
         let at = self.pending.partition_point(|q| q.priority >= p.priority);
-        self.pending.insert(at, p);
+        self.insert(at, p);
         self.next_dispatch = self.next_dispatch.min(due);
+    }
+
+    /// Puts `p` at index `at` of the queue.
+    fn insert(&mut self, at: usize, p: Pending) {
+        self.go_tos += usize::from(p.go_to);
+        self.pending.insert(at, p);
+    }
+
+    /// Takes the task at index `k` out of the queue.
+    fn remove(&mut self, k: usize) -> Option<Pending> {
+        let p = self.pending.remove(k)?;
+        self.go_tos -= usize::from(p.go_to);
+        Some(p)
     }
 
     /// Takes task `ti` out of the queue. False when it was not queued.
     pub(super) fn withdraw(&mut self, ti: usize) -> bool {
         match self.pending.iter().position(|p| p.task == ti) {
             Some(k) => {
-                self.pending.remove(k);
+                self.remove(k);
                 true
             }
             None => false,
@@ -404,6 +425,7 @@ impl Fleets {
             asleep: None,
             hard: false,
             deferred: None,
+            go_to: matches!(self.tasks[ti].kind, TaskKind::GoToPlace { .. }),
         };
         self.dispatcher.enqueue(p, t);
     }
@@ -477,13 +499,17 @@ impl Fleets {
             .filter(|f| f.2 <= 0.0 && self.robots[f.0].n_sent == 0)
             .map(|f| (f.1, f.0))
             .collect();
-        if standing.is_empty() {
+        debug_assert_eq!(
+            self.dispatcher.go_tos,
+            self.dispatcher.pending.iter().filter(|p| p.go_to).count()
+        );
+        if standing.is_empty() || self.dispatcher.go_tos == 0 {
             return;
         }
         let mut first: Vec<(usize, usize)> = Vec::new();
         let mut served: Vec<usize> = Vec::new();
         for (k, p) in self.dispatcher.pending.iter().enumerate() {
-            if !matches!(self.tasks[p.task].kind, TaskKind::GoToPlace { .. }) {
+            if !p.go_to {
                 continue;
             }
             let here = p.steps.iter().find_map(|(fi, st)| match st.as_slice() {
@@ -506,7 +532,7 @@ impl Fleets {
         let moved: Vec<(Pending, usize)> = first
             .iter()
             .rev()
-            .filter_map(|&(k, ri)| Some((self.dispatcher.pending.remove(k)?, ri)))
+            .filter_map(|&(k, ri)| Some((self.dispatcher.remove(k)?, ri)))
             .collect();
         for (mut p, ri) in moved {
             // Whatever kept it waiting for this robot (asleep, backed off, deferred to a
@@ -518,7 +544,7 @@ impl Fleets {
                 .dispatcher
                 .pending
                 .partition_point(|q| q.priority > p.priority);
-            self.dispatcher.pending.insert(at, p);
+            self.dispatcher.insert(at, p);
         }
     }
 
@@ -853,7 +879,7 @@ impl Fleets {
                 k += 1;
                 continue;
             }
-            self.dispatcher.pending.remove(k);
+            self.dispatcher.remove(k);
             free.retain(|f| f.0 != ri);
         }
         self.dispatcher.work -= (self.traffic.expanded() - work_before) as f64;
