@@ -15,8 +15,9 @@
 //! them hold the rule as of 2026-11-30, BENCHMARKS.md). Long on
 //! demand: `MAPC_DEMO_SIZES=2,4,8,16,32,64 MAPC_DEMO_MINUTES=120 cargo test -p mapc-sim
 //! --release --test traffic_demo_maps -- --nocapture` (`MAPC_DEMO_ONLY=clinic` picks runs
-//! by name, `MAPC_DEMO_DUMP=DIR` writes each run's scenario there, `MAPC_DEMO_MAPS=DIR`
-//! takes the maps from DIR/<name>/<name>.building.yaml instead, skipping invalid ones: your
+//! by name, `MAPC_DEMO_DUMP=DIR` writes each run's scenario and report there,
+//! `MAPC_DEMO_MAPS=DIR` takes the maps from DIR/<name>/<name>.building.yaml instead,
+//! skipping invalid ones: your
 //! own buildings under the same rule; `MAPC_DEMO_SEED=N` draws the demo maps' task streams
 //! from another seed: other task mixes on the same maps; `MAPC_DEMO_TASKS=go_to_place` or
 //! `mixed` sends robots to places where they stay, or mixes those with loops, and
@@ -71,14 +72,14 @@ fn try_run(
     text: &str,
     dir: &Path,
 ) -> Result<Report, mapc_sim::SimError> {
-    if let Some(out) = std::env::var_os("MAPC_DEMO_DUMP") {
+    let file: String = name
+        .chars()
+        .map(|c| if c.is_ascii_alphanumeric() { c } else { '_' })
+        .collect();
+    let dump = std::env::var_os("MAPC_DEMO_DUMP").map(PathBuf::from);
+    if let Some(out) = &dump {
         // For a look with `mapc sim` (add the `map:` line): each run's scenario.
-        let out = Path::new(&out);
         let _ = std::fs::create_dir_all(out);
-        let file: String = name
-            .chars()
-            .map(|c| if c.is_ascii_alphanumeric() { c } else { '_' })
-            .collect();
         let _ = std::fs::write(out.join(format!("{file}.scenario.yaml")), text);
     }
     let (scenario, diags) = parse_scenario(mapc_ir::FileId(1), text, dir);
@@ -92,6 +93,11 @@ fn try_run(
             r.robots.len(),
             started.elapsed().as_secs_f64()
         );
+    }
+    if let Some(out) = &dump {
+        // And what `mapc sim --report` would write of it.
+        let path = out.join(format!("{file}.report.json"));
+        let _ = std::fs::write(path, serde_json::to_string(&r).unwrap_or_default());
     }
     Ok(r)
 }

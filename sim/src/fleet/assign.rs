@@ -26,9 +26,10 @@
 //! two fleets on a corridor between two rooms completed half what one robot did): a
 //! task that a busy robot gets to (when its itinerary has it done, then free flow) before
 //! any free robot could, or before the best free robot's plan with its waits for traffic
-//! between the task's places, waits for that robot. Only free robots were looked at
-//! before, so a bigger fleet sent a robot parked far away where a smaller one's robot,
-//! about to finish next door, would have taken the task: on the demo maps and generated
+//! counted once more, waits for that robot; a robot given a task in a round bids so for
+//! the tasks after it in that round. Only free robots were looked at before, so a bigger
+//! fleet sent a robot parked far away where a smaller one's robot, about to finish next
+//! door, would have taken the task: on the demo maps and generated
 //! buildings, fleets completed 22-24 % more with the bids (BENCHMARKS.md). A free robot
 //! that gets there sooner still yields to the busy one when it gains the task less time
 //! than the longer drive it makes: under a saturating stream the fleet's throughput is its
@@ -139,7 +140,7 @@ struct Pending {
 }
 
 /// A task that waits for a busy robot, its free robots' plans made and beaten: when the
-/// best of them would have got there (counting its waits between the task's places), and
+/// best of them would have got there (counting its waits for traffic once more), and
 /// the robots planned for. Until the busy robot's bid stops beating that, or a robot not
 /// planned for could (by free flow) beat it, planning the free robots again cannot change
 /// the choice: their plans only got later as the schedule filled. (Planned again at every
@@ -569,7 +570,7 @@ impl Fleets {
         self.done_where_they_stand(&free);
         // Busy robots: where their tasks end and when (s from now). Not needed when no
         // robot is free: no task is looked at then.
-        let busy: Vec<Busy> = if free.is_empty() {
+        let mut busy: Vec<Busy> = if free.is_empty() {
             Vec::new()
         } else {
             (0..self.robots.len())
@@ -847,21 +848,23 @@ impl Fleets {
                 continue;
             };
             // A busy robot still gets there before the best plan does, counting that
-            // plan's waits for traffic after the first place (a plan that waits for the
-            // others between the task's places comes later, and holds them up).
-            let inner: f64 = {
-                let first = best.plan.goal_at.first().copied().unwrap_or(0);
-                waits(&best.plan, best.t0).skip(first).sum()
-            };
+            // plan's waits for traffic once more, all of them up to its last place (those
+            // before the first place are in its arrival already): a plan that waits for
+            // the others contends with them for the way, spends robot-time standing that
+            // the busy robot would spend on the next task, and the plans made after it
+            // wait for it in turn. (Counting only the waits after the first place, two
+            // robots on one corridor between two rooms took turns waiting for each
+            // other, and completed 8 % less than one robot alone.)
+            let waited: f64 = waits(&best.plan, best.t0).sum();
             // And it gets there so little later that the free robot's longer drive costs
             // more (robot-time on the corridors, under a saturating stream the fleet's
             // throughput) than the task gains by starting sooner.
             let extra = (best.eta - approach).max(0.0);
-            if let Some(eta) = after.filter(|&a| t + a < best.arrive + inner + extra) {
+            if let Some(eta) = after.filter(|&a| t + a < best.arrive + waited + extra) {
                 let p = &mut self.dispatcher.pending[k];
                 p.backoff = refused;
                 p.deferred = Some(Deferred {
-                    beat: best.arrive + inner + extra,
+                    beat: best.arrive + waited + extra,
                     planned,
                 });
                 self.wait_for_busy(k, eta, t);
@@ -869,6 +872,8 @@ impl Fleets {
                 continue;
             }
             let ri = best.robot;
+            // Where and when the task will end, for its robot's bid on the next tasks.
+            let (last, done) = self.task_end(ri, &best.steps, &best.plan, best.t0);
             let start = (best.keep, best.t0, best.soft.then_some(t));
             if !self.start_task(ri, ti, best.steps, best.plan, start, t, out) {
                 // A robot it went before on its way to parking found no way behind it.
@@ -881,6 +886,13 @@ impl Fleets {
             }
             self.dispatcher.remove(k);
             free.retain(|f| f.0 != ri);
+            // The robot bids for the tasks after it in this round as a busy robot, from
+            // where this one ends. (Left out until the next round, robots free together
+            // each took a task, the second's plan waiting long behind the first's, where
+            // the first would have done both in turn.)
+            if let Some(last) = last {
+                busy.push((ri, last, done - t));
+            }
         }
         self.dispatcher.work -= (self.traffic.expanded() - work_before) as f64;
         if !self.dispatcher.pending.is_empty() {
@@ -1006,12 +1018,7 @@ impl Fleets {
         t: f64,
         out: &mut Vec<(Topic, Msg)>,
     ) -> bool {
-        // When the plan ends the task: at its last place, after the work there.
-        let last_dwell = self.goals_of(ri, &steps).last().map_or(0.0, |g| g.1);
-        let planned = match plan.goal_at.last() {
-            Some(&0) | None => t0,
-            Some(&n) => plan.steps[n - 1].end,
-        } + last_dwell;
+        let (_, planned) = self.task_end(ri, &steps, &plan, t0);
         // Its way to parking is soft from the start: the robot has the task.
         self.robots[ri].task = Some(ti);
         if !self.install(ri, keep, plan, t0, soft_at) {
@@ -1030,6 +1037,17 @@ impl Fleets {
         }
         self.event(t, ti, "started", Some(ri), String::new(), out);
         true
+    }
+
+    /// Where robot `i`'s task of `steps` ends (its last place, None without one) and when,
+    /// on `plan` from `t0`: at its last place, after the work there.
+    fn task_end(&self, i: usize, steps: &[Step], plan: &Plan, t0: f64) -> (Option<usize>, f64) {
+        let last = self.goals_of(i, steps).last().copied();
+        let arrive = match plan.goal_at.last() {
+            Some(&0) | None => t0,
+            Some(&n) => plan.steps[n - 1].end,
+        };
+        (last.map(|g| g.0), arrive + last.map_or(0.0, |g| g.1))
     }
 
     /// The places of `steps` in order, each with how long robot `i` stays there (the

@@ -495,7 +495,18 @@ fn world_two_robots_share_the_lift() {
             2,
             SpawnSpec::Waypoints(vec!["tinyRobot1_charger".into(), "pharmacy".into()]),
         )],
-        vec![go_to(0.5, "ward_a"), go_to(0.5, "ward_b")],
+        // One for each robot: left to the dispatcher, the robot that gets upstairs first
+        // does both (the other's plan waits for the lift), done 8 s sooner.
+        vec![
+            TaskSpec {
+                robot: Some("tiny_1".into()),
+                ..go_to(0.5, "ward_a")
+            },
+            TaskSpec {
+                robot: Some("tiny_0".into()),
+                ..go_to(0.5, "ward_b")
+            },
+        ],
     );
     let r = run(&b, &s, 1200.0);
     let done = ended(&r.events);
