@@ -11,11 +11,10 @@
 //! with). The scaling scenarios keep their own task mixes, with their fleets scaled together.
 //!
 //! Briefly in CI: the demo maps at 2, 8 and 32 robots for 15 simulated minutes, the
-//! scaling scenarios at 2 and 8 robots for 4 minutes. As of 2026-12-04 (BENCHMARKS.md) the
-//! demo maps hold the rule at 2-64 robots for 120 minutes, with four seeds and four task
-//! mixes; at 2-64 robots for 60 minutes, the scaling scenario airport_terminal does not
-//! (45 tasks at 64 robots, 49 at 32: its tasks are few, and wait in the queue while the
-//! free robots' plans wait too long). Long on
+//! scaling scenarios at 2 and 8 robots for 4 minutes, and the airport terminal's at 32 and
+//! 64 for an hour. As of 2026-12-04 (BENCHMARKS.md) the demo maps hold the rule at 2-64
+//! robots for 120 minutes, with four seeds and four task mixes, and the scaling scenarios
+//! at 2-64 robots for 60 minutes. Long on
 //! demand: `MAPC_DEMO_SIZES=2,4,8,16,32,64 MAPC_DEMO_MINUTES=120 cargo test -p mapc-sim
 //! --release --test traffic_demo_maps -- --nocapture` (`MAPC_DEMO_ONLY=clinic` picks runs
 //! by name, `MAPC_DEMO_DUMP=DIR` writes each run's scenario and report there,
