@@ -29,8 +29,8 @@
 //! counted once more, waits for that robot; a robot given a task in a round bids so for
 //! the tasks after it in that round. Only free robots were looked at before, so a bigger
 //! fleet sent a robot parked far away where a smaller one's robot, about to finish next
-//! door, would have taken the task: on the demo maps and generated
-//! buildings, fleets completed 22-24 % more with the bids (BENCHMARKS.md). A free robot
+//! door, would have taken the task: on the demo maps and generated buildings, fleets
+//! completed 22-24 % more with the bids (BENCHMARKS.md). A free robot
 //! that gets there sooner still yields to the busy one when it gains the task less time
 //! than the longer drive it makes: under a saturating stream the fleet's throughput is its
 //! robot-time, and a drive across the building also loads its corridors (of the 95 %
@@ -53,11 +53,11 @@ const CANDIDATES: usize = 3;
 const PLANS_PER_ROUND: usize = 32;
 const SCAN_PER_ROUND: usize = 64;
 /// A plan waiting longer than this for traffic (s, summed up to its last place, but for a
-/// wait where the robot stands idle before it leaves) is not taken. (It was 50 s: on every set of long runs, generated, demo and public buildings
-/// and other task streams, fleets completed more with 25 s, 2-8 %, and a breach of the
-/// rule went: the waits are held where the robot stands, often a task place on a
-/// corridor. The saturated airport completes 5 % less, and with 10 s a scaling scenario
-/// broke the rule. BENCHMARKS.md.)
+/// wait where the robot stands idle before it leaves) is not taken. (It was 50 s: on every
+/// set of long runs, generated, demo and public buildings and other task streams, fleets
+/// completed more with 25 s, 2-8 %, and a breach of the rule went: the waits are held
+/// where the robot stands, often a task place on a corridor. The saturated airport
+/// completes 5 % less, and with 10 s a scaling scenario broke the rule. BENCHMARKS.md.)
 const MAX_PLANNED_WAIT: f64 = 25.0;
 /// The share of a plan's length (to its last place) it may wait on top of that.
 const WAIT_SHARE: f64 = 0.25;
@@ -784,12 +784,13 @@ impl Fleets {
                     Some(plan) => {
                         let last = plan.goal_at.last().copied().unwrap_or(0);
                         let length = last.checked_sub(1).map_or(0.0, |k| plan.steps[k].end - t0);
-                        // A robot standing idle where its itinerary ends, waiting there before
-                        // it leaves, stands in nobody's way but as it stood: that wait is not
-                        // counted against the bound (it counts as the plan's longest, and
-                        // against a busy robot's bid). (Counted, tasks on the airport terminal waited in
-                        // the queue for minutes while 45 robots stood idle, their plans refused
-                        // for waiting at their parking spots for others to pass.)
+                        // A robot standing idle where its itinerary ends, waiting there
+                        // before it leaves, stands in nobody's way but as it stood: that
+                        // wait is not counted against the bound (it counts as the plan's
+                        // longest, and against a busy robot's bid). (Counted, tasks on the
+                        // airport terminal waited in the queue for minutes while 45 robots
+                        // stood idle, their plans refused for waiting at their parking
+                        // spots for others to pass.)
                         let idle_here = keep == 0 && self.traffic.sched.end_vertex(ri) == from;
                         let waited: f64 = waits(plan, t0).skip(usize::from(idle_here)).sum();
                         (waited - (MAX_PLANNED_WAIT + WAIT_SHARE * length))
