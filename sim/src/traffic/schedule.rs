@@ -641,11 +641,12 @@ impl Schedule {
         soft
     }
 
-    /// Whether robot other than `r` has a soft span on resource `x`.
-    pub fn soft_on(&self, x: Res, r: usize) -> bool {
+    /// Whether a robot other than `r` has a soft span on resource `x` that does not end
+    /// there for good (its way to parking passes there).
+    pub fn soft_passing(&self, x: Res, r: usize) -> bool {
         self.queues[x as usize]
             .iter()
-            .any(|s| s.robot as usize != r && self.soft_span(s.robot, s.first))
+            .any(|s| s.robot as usize != r && s.last != FOREVER && self.soft_span(s.robot, s.first))
     }
 
     /// The robot other than `r` that holds resource `x` for good (stays there), if any;

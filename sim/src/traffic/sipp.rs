@@ -496,7 +496,7 @@ pub struct Planner {
     edge_times: Vec<EdgeTimes>,
     /// Time to the nearest free parking vertex, per (slot, speed and acceleration bits,
     /// whether places count), repaired as parks are taken and left.
-    park_dist: Map<(usize, (u64, u64), bool), nearest::Nearest>,
+    park_dist: Map<(usize, (u64, u64), bool, bool), nearest::Nearest>,
     /// Time to a goal, per (slot, speed and acceleration bits, goal vertex): tasks go to
     /// the same places again and again.
     goal_dist: Map<(usize, (u64, u64), usize), Vec<f64>>,
@@ -651,13 +651,19 @@ impl Planner {
         // tenth of the saturated airport.)
         let mut common = Vec::new();
         let mut own = Vec::new();
+        // Through the others' soft spans, also the parks robots at work would go to after
+        // their tasks: such a robot plans its way to parking again behind this plan, to
+        // the park this one leaves or another (`Schedule::install` returns it as jumped).
+        // Else, with every park held, a robot at work could only go back to its own: on
+        // a full warehouse, every task ended with a drive back across the aisles.
+        let claim = q.soft;
         for v in 0..nav.vertices.len() {
             if !(q.parks[v] == PARK || places && q.parks[v] == PARK_ON_PLACE) {
                 continue;
             }
             let (mut mine, mut other) = (false, false);
             for &x in &conf.vertex[v] {
-                match sched.held_for_good(x, usize::MAX, false) {
+                match sched.held_for_good(x, usize::MAX, claim) {
                     Some(h) if h == q.robot => mine = true,
                     Some(_) => other = true,
                     None => {}
@@ -674,7 +680,7 @@ impl Planner {
         // Tables are shared by the kinematics whose bounds are the same: the same top speed
         // and acceleration (the turning speed does not count in a bound).
         let drive = (q.kin.speed.to_bits(), q.kin.accel.to_bits());
-        let key = (q.slot, drive, places);
+        let key = (q.slot, drive, places, claim);
         self.park_dist
             .entry(key)
             .or_insert_with(|| nearest::Nearest::new(nav.vertices.len()))
@@ -801,9 +807,9 @@ impl Planner {
             let may_stay = q.stay == Some(n.v)
                 || q.parks[n.v] == PARK
                 || (places && q.parks[n.v] == PARK_ON_PLACE);
-            // Not for good where another robot's soft span is: that robot's way to parking
-            // could not be planned behind a stay for good.
-            let soft_here = || q.soft && conf.vertex[n.v].iter().any(|&x| sched.soft_on(x, r));
+            // Not for good where another robot's soft way to parking passes: it could not
+            // be planned behind a stay for good. (Where it ends, it can: see `claim`.)
+            let soft_here = || q.soft && conf.vertex[n.v].iter().any(|&x| sched.soft_passing(x, r));
             if n.label == nl && may_stay && hi == f64::INFINITY && !soft_here() {
                 // Staying here for good: a candidate end, ranked with its penalty.
                 let pen = if q.parks[n.v] == PARK_ON_PLACE && q.stay != Some(n.v) {

@@ -612,6 +612,8 @@ impl Schedule {
     fn respan(&mut self, x: usize, now: f64) -> bool {
         let b = &self.bufs;
         let mut moved = false;
+        // When the span before in the queue ends, unless it is soft (see below).
+        let mut before_ends = f64::NEG_INFINITY;
         for s in self.queues[x].iter_mut() {
             let was = (s.start, s.end);
             let r = s.robot as usize;
@@ -623,11 +625,22 @@ impl Schedule {
             // span before it), or the robot is ready to go on and waits for its turn
             // (nobody planned later goes before it, else a waiting robot could be
             // overtaken for ever).
-            let held = br
+            let on_way = br
                 .node(s.first)
-                .is_none_or(|k| s.first < br.base + u64::from(br.begun) || (k == 0 && br.waiting));
+                .is_none_or(|_| s.first < br.base + u64::from(br.begun));
+            let waiting = !on_way && br.node(s.first) == Some(0) && br.waiting;
             s.start = match br.node(s.first) {
-                Some(k) if !held => b.times(&self.its, r, k).0,
+                Some(k) if !on_way && !waiting => b.times(&self.its, r, k).0,
+                // A robot that waits for its turn behind a span held now waits for that
+                // span to end: its own is busy from then, not from now. The robot before
+                // it holds the resource now (it stands there), and when it plans again
+                // from there (its own spans left out), a waiting span busy from now left
+                // it no way at all ("start busy"): on a full warehouse, most of the free
+                // robots' plans for tasks. For everybody else nothing changes: the span
+                // before covers the time until then. (Not behind a soft span, which a
+                // plan through soft spans leaves out, nor one that starts later: the
+                // time before it would open to robots planned after the waiting one.)
+                _ if waiting && before_ends > now => before_ends,
                 _ => s.start.min(now),
             };
             s.end = if s.last == FOREVER {
@@ -638,6 +651,11 @@ impl Schedule {
                 s.end
             };
             moved |= (s.start, s.end) != was;
+            before_ends = if s.start <= now && !self.its[r].soft_in(s.first) {
+                s.end
+            } else {
+                f64::NEG_INFINITY
+            };
         }
         moved
     }

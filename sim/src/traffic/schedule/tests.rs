@@ -291,17 +291,19 @@ fn a_way_to_parking_is_soft_until_the_task_is_done() {
     let at_p2 = s.conf().vertex[v(&nav, "p2")].clone();
     // A task plan (soft) does not see robot 0 at c or its stay at p2; others do.
     for &x in &at_c {
-        assert!(s.soft_on(x, 1));
+        assert!(s.soft_passing(x, 1));
         assert_eq!(s.busy(x, 1, true).count(), 0);
         assert!(s.busy(x, 1, false).count() > 0);
     }
+    // At p2 its soft way ends: a task plan may end there (robot 0 then parks elsewhere).
     for &x in &at_p2 {
         assert_eq!(s.held_for_good(x, 1, false), Some(0));
         assert_eq!(s.held_for_good(x, 1, true), None);
+        assert!(!s.soft_passing(x, 1));
     }
     // Robot 0's last place is hard: its span at b began with its task's traversal.
     for &x in &s.conf().vertex[v(&nav, "b")] {
-        assert!(!s.soft_on(x, 1));
+        assert!(!s.soft_passing(x, 1));
     }
     // Robot 1 at d, planned through c over [0, 16) (overlapping robot 0's soft span
     // there): it goes before robot 0 at c, and says so.
@@ -326,7 +328,7 @@ fn a_way_to_parking_is_soft_until_the_task_is_done() {
     s.harden(0);
     assert_eq!(s.soft_keep(0), None);
     for &x in &at_c {
-        assert!(!s.soft_on(x, 1));
+        assert!(!s.soft_passing(x, 1));
         assert!(s.busy(x, 1, true).count() > 0);
     }
 }
@@ -354,7 +356,7 @@ fn a_plan_that_fits_goes_before_nobody() {
     s.begin(0, 1, 10.0);
     assert_eq!(s.soft_keep(0), None);
     for &x in &s.conf().vertex[v(&nav, "c")] {
-        assert!(!s.soft_on(x, 1));
+        assert!(!s.soft_passing(x, 1));
     }
 }
 

@@ -286,7 +286,7 @@ fn intervals_kept_between_plans_are_dropped_when_the_schedule_changes() {
 }
 
 #[test]
-fn a_task_plan_goes_through_a_way_to_parking_but_does_not_stay_on_it() {
+fn a_task_plan_goes_through_a_way_to_parking_and_may_take_its_park() {
     let nav = nav();
     let conf = conflicts(&nav);
     // Robot 0 finished its task at b; its way to parking is soft: b→c→p2 over [10, 30).
@@ -335,8 +335,13 @@ fn a_task_plan_goes_through_a_way_to_parking_but_does_not_stay_on_it() {
         "soft: at c at {}",
         at_c(&soft)
     );
-    // Not to stay for good at p2, where robot 0 is to park: at p1.
-    assert_eq!(soft.steps.last().map(|s| s.to), Some(v(&nav, "p1")));
+    // It parks at p2, beside c, where robot 0 was to park (p1 is 4 m further); the hard
+    // plan, which keeps clear of robot 0's way, parks at p1.
+    assert_eq!(soft.steps.last().map(|s| s.to), Some(v(&nav, "p2")));
+    assert_eq!(hard.steps.last().map(|s| s.to), Some(v(&nav, "p1")));
+    // Installed, it goes before robot 0 there, which must plan its way to parking again.
+    let jumped = sched.install(1, 0, &soft.steps, 0.0, None);
+    assert_eq!(jumped, vec![0]);
 }
 
 /// On random maps with random robots planned through and parked: a plan is the first
