@@ -612,7 +612,7 @@ impl Schedule {
     fn respan(&mut self, x: usize, now: f64) -> bool {
         let b = &self.bufs;
         let mut moved = false;
-        // When the span before in the queue ends, unless it is soft (see below).
+        // When the span before in the queue ends (NEG_INFINITY when it is soft: see below).
         let mut before_ends = f64::NEG_INFINITY;
         for s in self.queues[x].iter_mut() {
             let was = (s.start, s.end);
@@ -631,16 +631,16 @@ impl Schedule {
             let waiting = !on_way && br.node(s.first) == Some(0) && br.waiting;
             s.start = match br.node(s.first) {
                 Some(k) if !on_way && !waiting => b.times(&self.its, r, k).0,
-                // A robot that waits for its turn behind a span held now waits for that
-                // span to end: its own is busy from then, not from now. The robot before
-                // it holds the resource now (it stands there), and when it plans again
-                // from there (its own spans left out), a waiting span busy from now left
-                // it no way at all ("start busy"): on a full warehouse, most of the free
-                // robots' plans for tasks. For everybody else nothing changes: the span
-                // before covers the time until then. (Not behind a soft span, which a
-                // plan through soft spans leaves out, nor one that starts later: the
-                // time before it would open to robots planned after the waiting one.)
-                _ if waiting && before_ends > now => before_ends,
+                // A robot that waits for its turn behind another robot's span waits for
+                // that span to end: its own is busy from then, not from now. When the
+                // robot before it plans again (its own spans left out), a waiting span
+                // busy from now took its place: standing where it stands, it found no
+                // way at all ("start busy", on a full warehouse most of the free robots'
+                // plans for tasks), or none out. The waiting robot cannot go before that
+                // span anyway; robots planned later may use the time before it starts,
+                // as without the waiting one. (Not behind a soft span, which a plan
+                // through soft spans leaves out: it would go between the two.)
+                _ if waiting && before_ends > now && before_ends.is_finite() => before_ends,
                 _ => s.start.min(now),
             };
             s.end = if s.last == FOREVER {
@@ -651,7 +651,7 @@ impl Schedule {
                 s.end
             };
             moved |= (s.start, s.end) != was;
-            before_ends = if s.start <= now && !self.its[r].soft_in(s.first) {
+            before_ends = if !self.its[r].soft_in(s.first) {
                 s.end
             } else {
                 f64::NEG_INFINITY

@@ -441,3 +441,43 @@ fn robots_of_another_acceleration_get_their_own_tables() {
     }
     assert!(compared > 50, "only {compared} plans compared");
 }
+
+/// Robot 0 stands at b until it leaves for c at 10 s; robot 1 at a waits for its turn to
+/// drive into b after it (its lane a→b meets b→c near b). At 5 s robot 0 plans again from
+/// b: robot 1's spans are busy from when robot 0's end, not from now. (Busy from now, they
+/// took robot 0's place at b and its way out: it found no way at all.)
+#[test]
+fn a_robot_waiting_behind_another_does_not_take_its_place() {
+    let nav = nav();
+    let mut sched = Schedule::new(conflicts(&nav), &[v(&nav, "b"), v(&nav, "a")], 0.0);
+    let step = |a: &str, z: &str, start: f64| Step {
+        edge: e(&nav, a, z),
+        from: v(&nav, a),
+        to: v(&nav, z),
+        dur: 10.0,
+        hold: 0.0,
+        start,
+        end: start + 10.0,
+    };
+    sched.install(0, 0, &[step("b", "c", 10.0)], 10.0, None);
+    sched.install(1, 0, &[step("a", "b", 20.0)], 0.0, None);
+    sched.retime(5.0).expect("acyclic");
+    let at_b = sched.conf().vertex[v(&nav, "b")].clone();
+    for &x in &at_b {
+        for (start, _) in sched.busy(x, 0, false) {
+            assert!(start >= 10.0, "robot 1 busy at b from {start}");
+        }
+    }
+    let p = parks(&nav, &["p1", "p2"]);
+    let goals = [(v(&nav, "c"), 0.0)];
+    let mut planner = Planner::new(&nav);
+    let plan = planner.plan(
+        &nav,
+        &sched,
+        &Query {
+            t0: 5.0,
+            ..query(0, v(&nav, "b"), &goals, &p)
+        },
+    );
+    assert!(plan.is_some(), "robot 0 found {}", planner.why);
+}
