@@ -281,8 +281,9 @@ fn check_generated(cases: u64, mix_of: impl Fn(u64) -> gen::Mix) {
 /// between racks and stations): the same checks and rule as the generated buildings. In CI
 /// 6 of them at 4 and 16 robots for 8 minutes, a task every 2 s. Long runs on demand
 /// (`MAPC_TRAFFIC_GRIDS`, `MAPC_TRAFFIC_EVERY`, and the sizes and minutes as above) still
-/// find breaches: with 60 minutes, a task every second and 8 to 128 robots, warehouse 2
-/// completes 412 tasks with 72 robots on the floor against 442 with 64 (BENCHMARKS.md).
+/// find breaches: with 60 minutes, a task every second and 8 to 128 robots, grids 2, 4
+/// and 5 complete 92-94 % of what 32 robots did once every parking vertex is taken (grid
+/// 4: 587 tasks with 54 robots on the floor against 638 with 32; BENCHMARKS.md).
 /// `MAPC_TRAFFIC_HOTSPOT=1` sends every task to a station (`gen::grid_to_stations`); 4 of
 /// the 6 break the rule then from 32 to 64 robots, a task a second, 60 minutes (grid 5:
 /// 319 to 265 tasks): not fixed yet, so not in CI (BENCHMARKS.md).
