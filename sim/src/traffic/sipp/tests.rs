@@ -27,6 +27,19 @@ fn query<'a>(robot: usize, from: usize, goals: &'a [(usize, f64)], parks: &'a [u
     }
 }
 
+/// The 10 s step from `a` to `z` starting at `start`.
+fn step10(nav: &Nav, a: &str, z: &str, start: f64) -> Step {
+    Step {
+        edge: e(nav, a, z),
+        from: v(nav, a),
+        to: v(nav, z),
+        dur: 10.0,
+        hold: 0.0,
+        start,
+        end: start + 10.0,
+    }
+}
+
 fn parks(nav: &Nav, names: &[&str]) -> Vec<u8> {
     let mut p = vec![0; nav.vertices.len()];
     for n in names {
@@ -291,18 +304,7 @@ fn a_task_plan_goes_through_a_way_to_parking_and_may_take_its_park() {
     let conf = conflicts(&nav);
     // Robot 0 finished its task at b; its way to parking is soft: b→c→p2 over [10, 30).
     let mut sched = Schedule::new(conf, &[v(&nav, "b"), v(&nav, "d")], 0.0);
-    let step = |a: &str, z: &str, start: f64| {
-        let edge = e(&nav, a, z);
-        Step {
-            edge,
-            from: v(&nav, a),
-            to: v(&nav, z),
-            dur: 10.0,
-            hold: 0.0,
-            start,
-            end: start + 10.0,
-        }
-    };
+    let step = |a: &str, z: &str, start: f64| step10(&nav, a, z, start);
     sched.install(
         0,
         0,
@@ -450,15 +452,7 @@ fn robots_of_another_acceleration_get_their_own_tables() {
 fn a_robot_waiting_behind_another_does_not_take_its_place() {
     let nav = nav();
     let mut sched = Schedule::new(conflicts(&nav), &[v(&nav, "b"), v(&nav, "a")], 0.0);
-    let step = |a: &str, z: &str, start: f64| Step {
-        edge: e(&nav, a, z),
-        from: v(&nav, a),
-        to: v(&nav, z),
-        dur: 10.0,
-        hold: 0.0,
-        start,
-        end: start + 10.0,
-    };
+    let step = |a: &str, z: &str, start: f64| step10(&nav, a, z, start);
     sched.install(0, 0, &[step("b", "c", 10.0)], 10.0, None);
     sched.install(1, 0, &[step("a", "b", 20.0)], 0.0, None);
     sched.retime(5.0).expect("acyclic");
