@@ -495,7 +495,8 @@ pub struct Planner {
     /// Edge times per kinematics met so far (a fleet's robots share theirs).
     edge_times: Vec<EdgeTimes>,
     /// Time to the nearest free parking vertex, per (slot, speed and acceleration bits,
-    /// whether places count), repaired as parks are taken and left.
+    /// whether places count, whether busy robots' parks count: soft plans), repaired as
+    /// parks are taken and left.
     park_dist: Map<(usize, (u64, u64), bool, bool), nearest::Nearest>,
     /// Time to a goal, per (slot, speed and acceleration bits, goal vertex): tasks go to
     /// the same places again and again.
