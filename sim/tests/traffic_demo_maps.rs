@@ -23,7 +23,9 @@
 //! own buildings under the same rule; `MAPC_DEMO_SEED=N` draws the demo maps' task streams
 //! from another seed: other task mixes on the same maps; `MAPC_DEMO_TASKS=go_to_place` or
 //! `mixed` sends robots to places where they stay, or mixes those with loops, and
-//! `delivery` makes deliveries between the places, with a dispenser and an ingestor at each).
+//! `delivery` makes deliveries between the places, with a dispenser and an ingestor at each;
+//! `MAPC_DEMO_EVERY=S` sends a task every S seconds instead of 3: a stream some fleets
+//! keep up with).
 
 #[path = "support/places.rs"]
 mod places;
@@ -191,7 +193,8 @@ fn problems(name: &str, runs: &[Run]) -> Vec<String> {
     out
 }
 
-/// A saturating stream on graph `graph`: `robots` TinyRobots and a task every `every` s: a
+/// A saturating stream on graph `graph`: `robots` TinyRobots and a task every 3 s
+/// (`MAPC_DEMO_EVERY`): a
 /// loop between two random places, or (`MAPC_DEMO_TASKS=go_to_place`) a go-to-place to a
 /// random place, after which the robot stays there until it is sent elsewhere or the place
 /// is needed, or (`mixed`) either, at random, or (`delivery`) a delivery between two random
@@ -204,7 +207,7 @@ fn stream(places: &[String], graph: i64, robots: usize, minutes: f64, seed: u64)
         "delivery" => "delivery",
         _ => "loop",
     };
-    let every = 3.0;
+    let every = env_or("MAPC_DEMO_EVERY", 3.0_f64).max(0.1);
     let mut rng = fastrand::Rng::with_seed(seed);
     let mut out = String::new();
     let _ = writeln!(
