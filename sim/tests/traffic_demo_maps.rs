@@ -195,9 +195,10 @@ fn problems(name: &str, runs: &[Run]) -> Vec<String> {
 
 /// A saturating stream on graph `graph`: `robots` TinyRobots and a task every 3 s
 /// (`MAPC_DEMO_EVERY`): a loop between two random places, or
-/// (`MAPC_DEMO_TASKS=go_to_place`) a go-to-place to a random place, after which the robot stays there until it is sent elsewhere or the place
-/// is needed, or (`mixed`) either, at random, or (`delivery`) a delivery between two random
-/// places, each with a dispenser and an ingestor of the scenario's.
+/// (`MAPC_DEMO_TASKS=go_to_place`) a go-to-place to a random place, after which the robot
+/// stays there until it is sent elsewhere or the place is needed, or (`mixed`) either, at
+/// random, or (`delivery`) a delivery between two random places, each with a dispenser and
+/// an ingestor of the scenario's.
 fn stream(places: &[String], graph: i64, robots: usize, minutes: f64, seed: u64) -> String {
     let mix = std::env::var("MAPC_DEMO_TASKS").unwrap_or_else(|_| "loop".into());
     let kinds = match mix.as_str() {
