@@ -123,8 +123,15 @@ if atts:
     }
 
 # 3. Liveliness tokens: mapc's node, publishers and subscriptions.
-tokens = [str(r.ok.key_expr) for r in session.liveliness().get(f"@ros2_lv/{D}/**", timeout=5)
-          if r.ok is not None]
+# Asked again if the answer is empty: a query can reach the router before the tokens
+# mapc declared have (a CI run saw none once, with door states already flowing).
+tokens = []
+for _ in range(5):
+    tokens = [str(r.ok.key_expr) for r in session.liveliness().get(f"@ros2_lv/{D}/**", timeout=5)
+              if r.ok is not None]
+    if tokens:
+        break
+    time.sleep(0.5)
 result["tokens"] = sorted(tokens)
 door_pub = [t for t in tokens if "/MP/" in t and "/%door_states/" in t]
 if door_pub and atts:
