@@ -4,6 +4,7 @@
 //! sorted), and every struct serialises its fields in declaration order.
 
 pub mod bound;
+mod idle;
 pub mod rmf_states;
 pub mod timeline;
 use crate::msgs::{door_mode, lift_request, lift_state, robot_mode, Msg, TaskWaits, Topic};
@@ -221,6 +222,10 @@ pub struct FleetReport {
     pub utilisation: f64,
     /// Horizontal distance driven by all its robots (m), from ground truth every 0.1 s.
     pub distance_m: f64,
+    /// Robot-time its robots stood without a task while a task waited that the fleet went
+    /// on to do, or that no robot took (s): under a saturating stream, robots the
+    /// building's traffic does not keep busy.
+    pub idle_with_work_s: f64,
 }
 
 #[derive(Debug, Clone, Default, PartialEq, Serialize)]
@@ -230,6 +235,9 @@ pub struct RobotReport {
     pub distance_m: f64,
     /// Time with at least one assigned, unfinished task (s).
     pub busy_s: f64,
+    /// Time without a task while a task waited that its fleet went on to do, or that no
+    /// robot took (s).
+    pub idle_with_work_s: f64,
     /// State of charge at the end of the run (0..1).
     pub battery_soc: f64,
 }
@@ -879,6 +887,12 @@ impl ReportBuilder {
         self.stuck
             .sort_by(|a, b| a.t.total_cmp(&b.t).then_with(|| a.robot.cmp(&b.robot)));
 
+        let names: Vec<(&str, &str)> = self
+            .robots
+            .iter()
+            .map(|r| (r.name.as_str(), r.fleet.as_str()))
+            .collect();
+        let idle = idle::idle_with_work(&self.tasks, &names, t);
         let robots: Vec<RobotReport> = self
             .robots
             .iter()
@@ -887,6 +901,7 @@ impl ReportBuilder {
                 fleet: r.fleet.clone(),
                 distance_m: r.distance,
                 busy_s: r.busy.total(),
+                idle_with_work_s: idle.get(&r.name).copied().unwrap_or(0.0),
                 battery_soc: 1.0,
             })
             .collect();
@@ -917,6 +932,7 @@ impl ReportBuilder {
                         0.0
                     },
                     distance_m: mine.iter().map(|r| r.distance_m).sum(),
+                    idle_with_work_s: mine.iter().map(|r| r.idle_with_work_s).sum(),
                 }
             })
             .collect();
@@ -1032,9 +1048,20 @@ impl Report {
             } else {
                 String::new()
             };
+            // Robots idle on average while work waited: the ones the traffic did not take.
+            let idle = if self.end_time > 0.0 {
+                f.idle_with_work_s / self.end_time
+            } else {
+                0.0
+            };
+            let idle = if idle >= 0.05 {
+                format!(", {idle:.1} robot(s) idle on average while tasks waited")
+            } else {
+                String::new()
+            };
             let _ = writeln!(
                 s,
-                "  fleet {}: {} robot(s){reserve}, {} completed, {} failed, {:.2} tasks/h, utilisation {:.1} %, {:.1} m driven",
+                "  fleet {}: {} robot(s){reserve}, {} completed, {} failed, {:.2} tasks/h, utilisation {:.1} %{idle}, {:.1} m driven",
                 f.name,
                 f.robots,
                 f.tasks_completed,
@@ -1649,6 +1676,15 @@ mod tests {
         assert_eq!(a.utilisation, (90.0 + 20.0) / (2.0 * 600.0));
         // b0 busy from 70 s to the end.
         assert_eq!(r.fleets[1].utilisation, 530.0 / 600.0);
+        // Idle while work waited: t1 waits 0..10 and t2 20..30 for fleet a; a0 (busy from
+        // 10 s) is idle through t1's wait, a1 (busy from 30 s) through both; b0 through
+        // t3's (60..70).
+        let idle: Vec<f64> = r.robots.iter().map(|x| x.idle_with_work_s).collect();
+        assert_eq!(idle, [10.0, 20.0, 10.0]);
+        assert_eq!(
+            (a.idle_with_work_s, r.fleets[1].idle_with_work_s),
+            (30.0, 10.0)
+        );
         assert_eq!(r.fleets[1].tasks_unfinished, 1);
         let reasons: Vec<(&str, &str, f64)> = r
             .stuck

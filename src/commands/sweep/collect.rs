@@ -46,6 +46,7 @@ pub(crate) const COLUMNS: &[&str] = &[
     "tasks_unfinished",
     "throughput_per_hour",
     "utilisation",
+    "idle_with_work",
     "wait_traffic_s",
     "wait_lift_s",
     "wait_door_s",
@@ -116,6 +117,11 @@ fn headline(report: &Value) -> Vec<Value> {
         Value::from(sum("tasks_unfinished") as u64),
         num(sum("throughput_per_hour")),
         num(if robots > 0.0 { busy / robots } else { 0.0 }),
+        // Robots idle on average while work waited (see the report's `idle_with_work_s`).
+        num(match report["end_time"].as_f64() {
+            Some(t) if t > 0.0 => sum("idle_with_work_s") / t,
+            _ => 0.0,
+        }),
         waits["traffic_s"].clone(),
         waits["lift_s"].clone(),
         waits["door_s"].clone(),
@@ -230,4 +236,26 @@ pub(crate) fn json(plan: &PlanFile, rows: &[Row]) -> Result<Vec<u8>, String> {
     let mut out = serde_json::to_vec_pretty(&runs).map_err(|e| e.to_string())?;
     out.push(b'\n');
     Ok(out)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn idle_with_work_is_robots_idle_on_average() {
+        let report = serde_json::json!({
+            "end_time": 600.0,
+            "fleets": [
+                {"robots": 2, "utilisation": 0.5, "idle_with_work_s": 300.0},
+                {"robots": 1, "utilisation": 1.0, "idle_with_work_s": 60.0},
+            ],
+        });
+        let row = headline(&report);
+        let col = |c: &str| row[COLUMNS.iter().position(|x| *x == c).unwrap()].as_f64();
+        // (300 + 60) robot-s over 600 s; utilisation weighted by robots: (1 + 1) / 3.
+        assert_eq!(col("idle_with_work"), Some(0.6));
+        assert_eq!(col("utilisation"), Some(2.0 / 3.0));
+        assert_eq!(row.len(), COLUMNS.len());
+    }
 }
