@@ -23,7 +23,8 @@
 //! own buildings under the same rule; `MAPC_DEMO_SEED=N` draws the demo maps' task streams
 //! from another seed: other task mixes on the same maps; `MAPC_DEMO_TASKS=go_to_place` or
 //! `mixed` sends robots to places where they stay, or mixes those with loops, and
-//! `delivery` makes deliveries between the places, with a dispenser and an ingestor at each;
+//! `delivery` makes deliveries between the places, with a dispenser and an ingestor at each,
+//! and `rounds` loops of one to three rounds;
 //! `MAPC_DEMO_EVERY=S` sends a task every S seconds instead of 3: a stream some fleets
 //! keep up with).
 
@@ -198,7 +199,7 @@ fn problems(name: &str, runs: &[Run]) -> Vec<String> {
 /// (`MAPC_DEMO_TASKS=go_to_place`) a go-to-place to a random place, after which the robot
 /// stays there until it is sent elsewhere or the place is needed, or (`mixed`) either, at
 /// random, or (`delivery`) a delivery between two random places, each with a dispenser and
-/// an ingestor of the scenario's.
+/// an ingestor of the scenario's, or (`rounds`) loops of one to three rounds.
 fn stream(places: &[String], graph: i64, robots: usize, minutes: f64, seed: u64) -> String {
     let mix = std::env::var("MAPC_DEMO_TASKS").unwrap_or_else(|_| "loop".into());
     let kinds = match mix.as_str() {
@@ -264,9 +265,15 @@ fn stream(places: &[String], graph: i64, robots: usize, minutes: f64, seed: u64)
             );
             continue;
         }
+        // `rounds`: loops of one to three rounds (a longer task, back and forth).
+        let loops = if mix == "rounds" {
+            1 + rng.usize(0..3)
+        } else {
+            1
+        };
         let _ = writeln!(
             out,
-            "  - {{at: {}s, loop: {{start: {}, finish: {}, loops: 1}}}}",
+            "  - {{at: {}s, loop: {{start: {}, finish: {}, loops: {loops}}}}}",
             k as f64 * every,
             q(&places[a]),
             q(&places[c])
