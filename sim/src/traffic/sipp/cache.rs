@@ -124,7 +124,12 @@ impl Cache {
     }
 
     /// The safe intervals of vertex `v` for robot `r`.
-    pub(super) fn intervals(&mut self, sched: &Schedule, rs: (usize, bool), v: usize) -> (u32, u32) {
+    pub(super) fn intervals(
+        &mut self,
+        sched: &Schedule,
+        rs: (usize, bool),
+        v: usize,
+    ) -> (u32, u32) {
         self.kept(sched, rs, Kind::Vertex(v))
     }
 
