@@ -1,5 +1,5 @@
-//! Doors and lifts, matched by name: added, removed, moved, and their kind, size and levels
-//! changed.
+//! Doors and lifts, matched by name: added, removed, and what changed (level, type, size,
+//! place).
 
 use super::*;
 

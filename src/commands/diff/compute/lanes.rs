@@ -1,5 +1,5 @@
-//! Lanes, matched by the waypoints they join: added, removed, and their direction, speed
-//! limit and graph changed.
+//! Lanes, matched by the waypoints they join: added, removed, and what changed (graph,
+//! direction, speed limit, orientation).
 
 use super::*;
 
