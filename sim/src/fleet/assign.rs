@@ -37,6 +37,7 @@
 //! rule's breaches on the generated buildings and warehouses, all but one went).
 
 mod busy;
+mod retreat;
 mod round;
 mod steps;
 use super::*;
@@ -290,6 +291,11 @@ impl Dispatcher {
         }
         self.work = (self.work + (t - self.work_at) * WORK_PER_S).min(WORK_MAX);
         self.work_at = t;
+    }
+
+    /// Whether robot `i` was free in the last round.
+    fn was_free(&self, i: usize) -> bool {
+        self.was_free.get(i).copied().unwrap_or(false)
     }
 
     /// The next task requested by `t`, if any (in request order).

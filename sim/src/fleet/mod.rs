@@ -219,6 +219,12 @@ struct Robot {
     /// What it waits for now (cause, place, since) and the waits of its current task.
     waiting_for: Option<(WaitCause, waits::Place, f64)>,
     waits: TaskWaits,
+    /// The parking vertex out of the way it was sent to while idle with tasks waiting
+    /// (`assign/retreat.rs`), until it takes a task.
+    retreat: Option<usize>,
+    /// Since when it has had no task (the start of the dispatch round that first found it
+    /// free; infinite from when it takes one).
+    free_since: f64,
 }
 
 impl Robot {
@@ -298,6 +304,9 @@ pub struct Fleets {
     /// Robots whose tasks ended in this update's ticks: they set off to park after its
     /// last dispatch round, if they took no task there.
     just_free: Vec<usize>,
+    /// Per graph slot, per vertex: a parking vertex where a robot standing idle is out of
+    /// the way (`traffic::parks::out_of_the_way`).
+    out_of_the_way: Vec<Vec<bool>>,
 }
 
 impl Fleets {

@@ -394,6 +394,8 @@ impl Fleets {
                     dirty: true,
                     waiting: None,
                     replan_at: 0.0,
+                    retreat: None,
+                    free_since: 0.0,
                     stuck_reported: false,
                     last_pos: (spawn.x, spawn.y),
                     last_moved: 0.0,
@@ -546,6 +548,7 @@ impl Fleets {
             };
         }
         let starts: Vec<usize> = robots.iter().map(|r| r.at).collect();
+        let out_of_the_way = crate::traffic::parks::out_of_the_way(&nav, &parks);
         let traffic = traffic::Traffic::new(&nav, conf, &starts, parks);
         Ok(Fleets {
             devices: devices::Devices::new(&nav),
@@ -563,6 +566,7 @@ impl Fleets {
             cancels: cancel::Cancels::new(scenario),
             lane_use: drive::LaneUse::new(crate::report::timeline::period_for(scenario.duration)),
             just_free: Vec::new(),
+            out_of_the_way,
         })
     }
 }

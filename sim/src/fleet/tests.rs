@@ -1516,3 +1516,91 @@ fn a_busy_robot_of_another_fleet_that_gets_there_first_is_waited_for() {
         [("loop_0", "c_0"), ("go_to_place_0", "c_0")]
     );
 }
+
+/// Two rooms, `a` and `b`, joined by a main way through `m` and a second, longer one
+/// through `p`, `q` and `r`; `c` and `d` are corners of triangles of lanes (out of the way:
+/// the ways around them are shorter than through them); `q`, a parking spot too, is the
+/// middle of the second way (around it from `p` to `r` is 36 m against 20 m through it).
+const TWO_WAYS: &str = r#"
+coordinate_system: cartesian_meters
+name: two_ways
+levels:
+  L1:
+    elevation: 0
+    vertices:
+      - [0, 0, 0, a]
+      - [10, 0, 0, m]
+      - [20, 0, 0, b]
+      - [0, -8, 0, p]
+      - [10, -8, 0, q, {is_parking_spot: [4, true]}]
+      - [20, -8, 0, r]
+      - [4, 4, 0, c, {is_parking_spot: [4, true]}]
+      - [16, 4, 0, d, {is_parking_spot: [4, true]}]
+    lanes:
+      - [0, 1, {bidirectional: [4, true], graph_idx: [2, 0]}]
+      - [1, 2, {bidirectional: [4, true], graph_idx: [2, 0]}]
+      - [0, 3, {bidirectional: [4, true], graph_idx: [2, 0]}]
+      - [3, 4, {bidirectional: [4, true], graph_idx: [2, 0]}]
+      - [4, 5, {bidirectional: [4, true], graph_idx: [2, 0]}]
+      - [5, 2, {bidirectional: [4, true], graph_idx: [2, 0]}]
+      - [0, 6, {bidirectional: [4, true], graph_idx: [2, 0]}]
+      - [6, 1, {bidirectional: [4, true], graph_idx: [2, 0]}]
+      - [2, 7, {bidirectional: [4, true], graph_idx: [2, 0]}]
+      - [7, 1, {bidirectional: [4, true], graph_idx: [2, 0]}]
+"#;
+
+/// A robot left idle while tasks wait, on the second way between two rooms, goes to a
+/// parking vertex out of the way; with no task waiting it stays where it is.
+#[test]
+fn an_idle_robot_in_the_way_while_tasks_wait_goes_out_of_the_way() {
+    let b = parse_map("two_ways", TWO_WAYS);
+    let c = fleet("c", 2, SpawnSpec::Waypoints(vec!["c".into(), "q".into()]));
+    // Tasks for c_0 only: c_1 is free while they wait.
+    let tasks: Vec<TaskSpec> = (0..6)
+        .map(|k| TaskSpec {
+            robot: Some("c_0".into()),
+            ..one_loop(k as f64, "a", "b")
+        })
+        .collect();
+    let s = scenario(vec![c.clone()], tasks);
+    let placement = Fleets::place(&b, &s).expect("placement");
+    let mut fleets = Fleets::new(&b, &s, &placement).expect("fleets");
+    let v = |f: &Fleets, n: &str| f.nav.find(f.fleets[0].slot, n).expect(n);
+    let (q, corners) = (v(&fleets, "q"), [v(&fleets, "c"), v(&fleets, "d")]);
+    let slot = fleets.fleets[0].slot;
+    assert_eq!(fleets.traffic.parks(slot)[q], crate::traffic::parks::PARK);
+    assert!(!fleets.out_of_the_way[slot][q]);
+    assert!(corners.iter().all(|&x| fleets.out_of_the_way[slot][x]));
+    assert_eq!(fleets.robots[1].at, q);
+    let mut mock = Mock::new(&b, &placement);
+    let events = settle(&mut fleets, &mut mock, &s, 60.0);
+    let assigned: Vec<&str> = events
+        .iter()
+        .filter(|e| e.event == "assigned")
+        .map(|e| e.robot.as_str())
+        .collect();
+    assert!(assigned.iter().all(|&r| r == "c_0"), "{assigned:?}");
+    // Left q within a few rounds of `RETREAT_AFTER`, for a corner (d: c_0 parks on c).
+    let end = fleets.traffic.sched.end_vertex(1);
+    assert!(corners.contains(&end), "c_1 ends at {end}, q is {q}");
+    assert_eq!(fleets.robots[1].retreat, Some(end));
+
+    // The same tasks requested only at 300 s: nothing waits for the first minute, and
+    // c_1 stays on q.
+    let later = s
+        .tasks
+        .iter()
+        .map(|t| TaskSpec {
+            at: t.at + 300.0,
+            ..t.clone()
+        })
+        .collect();
+    let s = scenario(vec![c], later);
+    let placement = Fleets::place(&b, &s).expect("placement");
+    let mut fleets = Fleets::new(&b, &s, &placement).expect("fleets");
+    assert_eq!(fleets.traffic.parks(slot)[q], crate::traffic::parks::PARK);
+    let mut mock = Mock::new(&b, &placement);
+    settle(&mut fleets, &mut mock, &s, 60.0);
+    assert_eq!(fleets.traffic.sched.end_vertex(1), q);
+    assert_eq!(fleets.robots[1].retreat, None);
+}

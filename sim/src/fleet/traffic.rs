@@ -260,7 +260,13 @@ impl Fleets {
         stay: Option<usize>,
     ) -> Vec<End> {
         let r = &self.robots[i];
+        // Sent out of the way while idle: back there when planned again (made to make room).
         let mut ends = match r.finish {
+            _ if r.retreat.is_some() && r.task.is_none() => {
+                let mut only = vec![0u8; self.nav.vertices.len()];
+                only[r.retreat.unwrap_or(0)] = PARK;
+                vec![(Some(only), None), (None, stay)]
+            }
             Finish::Park => vec![(None, stay)],
             Finish::Home(h) => {
                 let mut only = vec![0u8; self.nav.vertices.len()];

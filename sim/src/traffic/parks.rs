@@ -20,7 +20,10 @@ use petgraph::algo::tarjan_scc;
 use petgraph::graph::{DiGraph, NodeIndex};
 use petgraph::visit::{EdgeFiltered, EdgeRef};
 
+mod around;
 mod through;
+
+pub use around::out_of_the_way;
 
 /// Per graph slot, per vertex: 0 not a parking vertex, [`PARK`], [`PARK_ON_PLACE`] or
 /// [`PARK_HOME`].

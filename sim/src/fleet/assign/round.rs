@@ -111,6 +111,12 @@ impl Fleets {
         } else {
             self.busy_robots(t)
         };
+        for f in &free {
+            let r = &mut self.robots[f.0];
+            if !self.dispatcher.was_free(f.0) || r.free_since == f64::INFINITY {
+                r.free_since = t;
+            }
+        }
         self.dispatcher.start_round(t, &free, self.robots.len());
         let work_before = self.traffic.expanded();
         let mut round = Round {
@@ -229,6 +235,9 @@ impl Fleets {
             if let Some(last) = last {
                 busy.push((ri, last, done - t));
             }
+        }
+        if !self.dispatcher.pending.is_empty() {
+            self.retreat(&free, t);
         }
         self.dispatcher.work -= (self.traffic.expanded() - work_before) as f64;
         if !self.dispatcher.pending.is_empty() {
@@ -590,6 +599,8 @@ impl Fleets {
         let (_, planned) = self.task_end(ri, &steps, &plan, t0);
         // Its way to parking is soft from the start: the robot has the task.
         self.robots[ri].task = Some(ti);
+        self.robots[ri].retreat = None;
+        self.robots[ri].free_since = f64::INFINITY;
         if !self.install(ri, keep, plan, t0, soft_at) {
             self.robots[ri].task = None;
             return false;

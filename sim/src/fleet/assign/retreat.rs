@@ -1,0 +1,109 @@
+//! Out of the way while idle: a robot that a dispatch round leaves without a task while
+//! tasks wait (the bids went to busy robots, or its plans waited too long), on a parking
+//! vertex whose way around is long, goes to a free one whose way around is short
+//! (`traffic::parks::out_of_the_way`), and stays there until it takes a task.
+//!
+//! Why: a bigger fleet has more robots standing idle, and where a building's parking
+//! vertices include a corridor that is the second way between two parts of it, the idle
+//! ones stand there and every route that corridor offered becomes a detour. On the public
+//! reroute_demo map six robots completed 91 % of what four did; six robots of which only
+//! four ever worked, the other two standing on the building's corners, completed 96 %; with
+//! this step six complete as much as four (BENCHMARKS.md).
+
+use super::*;
+use crate::traffic::parks::PARK;
+
+/// A robot left without a task this long (s) with tasks waiting goes out of the way: four
+/// dispatch rounds, so a robot between two tasks of a stream does not drive off.
+const RETREAT_AFTER: f64 = 4.0 * DISPATCH_EVERY;
+/// Robots sent out of the way per round, at most (each is a plan).
+const RETREATS_PER_ROUND: usize = 2;
+
+impl Fleets {
+    /// Sends robots of `free` (those the round at `t` left without a task) that have stood
+    /// idle `RETREAT_AFTER` on a parking vertex in the way to the nearest free one out of
+    /// the way. Each plan may go before others' ways to parking (they plan theirs again
+    /// behind it, as for a task's plan); one that cannot changes nothing.
+    pub(super) fn retreat(&mut self, free: &[Free], t: f64) {
+        let ready: Vec<usize> = free
+            .iter()
+            .filter(|&&(i, from, wait)| self.in_the_way(i, from, wait, t))
+            .map(|f| f.0)
+            .take(RETREATS_PER_ROUND)
+            .collect();
+        // Per graph slot, the parking vertices out of the way nobody stays on for good
+        // (robots at work's ways to parking may be taken: they plan theirs again).
+        let mut open: BTreeMap<usize, Vec<usize>> = BTreeMap::new();
+        for i in ready {
+            let r = &self.robots[i];
+            let (slot, fleet) = (r.slot, r.fleet);
+            let here = self.traffic.sched.end_vertex(i);
+            let vs = open
+                .entry(slot)
+                .or_insert_with(|| self.open_out_of_the_way(slot));
+            if vs.is_empty() {
+                continue;
+            }
+            // Times to `here`: the way back, as good as the way there to rank them (one
+            // search, not one per candidate).
+            let f = &self.fleets[fleet];
+            let times = self.nav.times_to(slot, here, f.speed);
+            let Some(k) = (0..vs.len())
+                .filter(|&k| times[vs[k]].is_finite())
+                .min_by(|&a, &b| {
+                    times[vs[a]]
+                        .total_cmp(&times[vs[b]])
+                        .then(vs[a].cmp(&vs[b]))
+                })
+            else {
+                continue;
+            };
+            let to = vs.remove(k);
+            let mut only = vec![0u8; self.nav.vertices.len()];
+            only[to] = PARK;
+            let ends = [(Some(only), None)];
+            let (keep, from, t0) = self.plan_start(i, t);
+            let (plan, _) = self.plan_over(i, &ends, (from, t0), &[], (true, None), None);
+            if plan.is_some_and(|plan| self.install(i, keep, plan, t0, Some(t))) {
+                let r = &mut self.robots[i];
+                r.retreat = Some(to);
+                r.dirty = true;
+                r.wake = t;
+            }
+        }
+    }
+
+    /// Whether free robot `i` (planning from `from`, after `wait` s) stands in the way: it
+    /// parks where any robot may (a fleet config's homes and stays are the user's), stands
+    /// where its itinerary ends, on a parking vertex whose way around is long, and has had
+    /// no task for `RETREAT_AFTER`.
+    fn in_the_way(&self, i: usize, from: usize, wait: f64, t: f64) -> bool {
+        let r = &self.robots[i];
+        let here = self.traffic.sched.end_vertex(i);
+        r.finish == Finish::Park
+            && wait <= 0.0
+            && from == here
+            && t - r.free_since >= RETREAT_AFTER
+            && self.traffic.parks(r.slot)[here] == PARK
+            && !self.out_of_the_way[r.slot][here]
+    }
+
+    /// The parking vertices out of the way of graph slot `slot` that nobody stays on for
+    /// good, in vertex order.
+    fn open_out_of_the_way(&self, slot: usize) -> Vec<usize> {
+        let conf = self.traffic.sched.conf();
+        self.nav.members[slot]
+            .iter()
+            .copied()
+            .filter(|&v| self.out_of_the_way[slot][v])
+            .filter(|&v| {
+                conf.vertex[v].iter().all(|&x| {
+                    self.traffic
+                        .sched
+                        .held_for_good(x, usize::MAX, true)
+                        .is_none()
+                })
+            })
+            .collect()
+    }
+}
