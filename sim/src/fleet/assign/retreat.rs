@@ -11,7 +11,7 @@
 //! this step six complete as much as four (BENCHMARKS.md).
 
 use super::*;
-use crate::traffic::parks::PARK;
+use crate::traffic::parks::{lookout, within, PARK};
 
 /// A robot left without a task this long (s) with tasks waiting goes out of the way: four
 /// dispatch rounds, so a robot between two tasks of a stream does not drive off.
@@ -36,7 +36,7 @@ impl Fleets {
         let mut open: BTreeMap<usize, Vec<usize>> = BTreeMap::new();
         for i in ready {
             let r = &self.robots[i];
-            let (slot, fleet) = (r.slot, r.fleet);
+            let slot = r.slot;
             let here = self.traffic.sched.end_vertex(i);
             let vs = open
                 .entry(slot)
@@ -44,17 +44,13 @@ impl Fleets {
             if vs.is_empty() {
                 continue;
             }
-            // Times to `here`: the way back, as good as the way there to rank them (one
-            // search, not one per candidate).
-            let f = &self.fleets[fleet];
-            let times = self.nav.times_to(slot, here, f.speed);
-            let Some(k) = (0..vs.len())
-                .filter(|&k| times[vs[k]].is_finite())
-                .min_by(|&a, &b| {
-                    times[vs[a]]
-                        .total_cmp(&times[vs[b]])
-                        .then(vs[a].cmp(&vs[b]))
-                })
+            // Nearby only (as far as its way-around search looked): a robot does not cross
+            // the building to stand aside, to come back for its next task, and the search
+            // stays small on a large building.
+            let near = within(&self.nav, slot, here, lookout(&self.nav, slot, here));
+            let Some(k) = near
+                .iter()
+                .find_map(|&(v, _)| vs.iter().position(|&x| x == v))
             else {
                 continue;
             };

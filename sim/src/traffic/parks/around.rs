@@ -67,6 +67,35 @@ fn way_around(adj: &[Vec<(usize, f64)>], v: usize) -> f64 {
 /// Ratios are counted up to this.
 const CAP: f64 = 3.0;
 
+/// The vertices of graph slot `s` within `radius` metres of `from` by its lanes (either way),
+/// with their distances: where a robot at `from` may go out of the way nearby.
+pub fn within(nav: &Nav, s: usize, from: usize, radius: f64) -> Vec<(usize, f64)> {
+    near(&undirected(nav, s), from, radius)
+}
+
+/// [`within`] on undirected lanes `adj`.
+fn near(adj: &[Vec<(usize, f64)>], from: usize, radius: f64) -> Vec<(usize, f64)> {
+    let mut dist = HashMap::new();
+    avoiding(adj, from, usize::MAX, radius, &mut dist);
+    let mut out: Vec<(usize, f64)> = dist.into_iter().filter(|x| x.1 <= radius).collect();
+    out.sort_by(|a, b| a.1.total_cmp(&b.1).then(a.0.cmp(&b.0)));
+    out
+}
+
+/// How far from `v` a robot standing there looks for a parking vertex out of the way: as
+/// far as its way-around search may go ([`CAP`] times twice its longest lane).
+pub fn lookout(nav: &Nav, s: usize, v: usize) -> f64 {
+    let far = nav
+        .edges
+        .iter()
+        .filter(|e| {
+            e.graph == s && (e.from == v || e.to == v) && !matches!(e.kind, EdgeKind::Lift(_))
+        })
+        .map(|e| e.length)
+        .fold(0.0, f64::max);
+    CAP * 2.0 * far
+}
+
 /// Shortest distances from `from` without passing `gone`, up to `cutoff`, into `dist`.
 fn avoiding(
     adj: &[Vec<(usize, f64)>],
@@ -146,6 +175,14 @@ mod tests {
         );
         assert!((way_around(&adj, 4) - 2.0).abs() < 1e-9);
         assert!(way_around(&adj, 4) > SHORT_WAY_AROUND);
+    }
+
+    #[test]
+    fn nearby_vertices_are_found_nearest_first_within_the_radius() {
+        // A line 0-1-2-3 of 2 m lanes, and 4 off 1 at 1 m.
+        let adj = graph(5, &[(0, 1, 2.0), (1, 2, 2.0), (2, 3, 2.0), (1, 4, 1.0)]);
+        assert_eq!(near(&adj, 0, 4.0), [(0, 0.0), (1, 2.0), (4, 3.0), (2, 4.0)]);
+        assert_eq!(near(&adj, 3, 1.0), [(3, 0.0)]);
     }
 
     #[test]
