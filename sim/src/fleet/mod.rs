@@ -304,9 +304,9 @@ pub struct Fleets {
     /// Robots whose tasks ended in this update's ticks: they set off to park after its
     /// last dispatch round, if they took no task there.
     just_free: Vec<usize>,
-    /// Per graph slot, per vertex: a parking vertex where a robot standing idle is out of
-    /// the way (`traffic::parks::out_of_the_way`).
-    out_of_the_way: Vec<Vec<bool>>,
+    /// Per graph slot, per vertex: for a parking vertex in the way, the parking vertices out
+    /// of the way nearby, nearest first (`traffic::parks::out_of_the_way`).
+    ways_out: Vec<Vec<Vec<usize>>>,
 }
 
 impl Fleets {

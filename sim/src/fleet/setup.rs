@@ -548,7 +548,7 @@ impl Fleets {
             };
         }
         let starts: Vec<usize> = robots.iter().map(|r| r.at).collect();
-        let out_of_the_way = crate::traffic::parks::out_of_the_way(&nav, &parks);
+        let ways_out = crate::traffic::parks::out_of_the_way(&nav, &parks);
         let traffic = traffic::Traffic::new(&nav, conf, &starts, parks);
         Ok(Fleets {
             devices: devices::Devices::new(&nav),
@@ -566,7 +566,7 @@ impl Fleets {
             cancels: cancel::Cancels::new(scenario),
             lane_use: drive::LaneUse::new(crate::report::timeline::period_for(scenario.duration)),
             just_free: Vec::new(),
-            out_of_the_way,
+            ways_out,
         })
     }
 }

@@ -1569,8 +1569,11 @@ fn an_idle_robot_in_the_way_while_tasks_wait_goes_out_of_the_way() {
     let (q, corners) = (v(&fleets, "q"), [v(&fleets, "c"), v(&fleets, "d")]);
     let slot = fleets.fleets[0].slot;
     assert_eq!(fleets.traffic.parks(slot)[q], crate::traffic::parks::PARK);
-    assert!(!fleets.out_of_the_way[slot][q]);
-    assert!(corners.iter().all(|&x| fleets.out_of_the_way[slot][x]));
+    // q is in the way, with both corners nearby; the corners are out of the way.
+    let mut out = fleets.ways_out[slot][q].clone();
+    out.sort_unstable();
+    assert_eq!(out, corners);
+    assert!(corners.iter().all(|&x| fleets.ways_out[slot][x].is_empty()));
     assert_eq!(fleets.robots[1].at, q);
     let mut mock = Mock::new(&b, &placement);
     let events = settle(&mut fleets, &mut mock, &s, 60.0);

@@ -23,7 +23,7 @@ use petgraph::visit::{EdgeFiltered, EdgeRef};
 mod around;
 mod through;
 
-pub use around::{lookout, out_of_the_way, within};
+pub use around::out_of_the_way;
 
 /// Per graph slot, per vertex: 0 not a parking vertex, [`PARK`], [`PARK_ON_PLACE`] or
 /// [`PARK_HOME`].

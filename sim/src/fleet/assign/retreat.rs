@@ -11,7 +11,7 @@
 //! this step six complete as much as four (BENCHMARKS.md).
 
 use super::*;
-use crate::traffic::parks::{lookout, within, PARK};
+use crate::traffic::parks::PARK;
 
 /// A robot left without a task this long (s) with tasks waiting goes out of the way: four
 /// dispatch rounds, so a robot between two tasks of a stream does not drive off.
@@ -22,8 +22,8 @@ const RETREATS_PER_ROUND: usize = 2;
 impl Fleets {
     /// Sends robots of `free` (those the round at `t` left without a task) that have stood
     /// idle `RETREAT_AFTER` on a parking vertex in the way to the nearest free one out of
-    /// the way. Each plan may go before others' ways to parking (they plan theirs again
-    /// behind it, as for a task's plan); one that cannot changes nothing.
+    /// the way nearby. Each plan may go before others' ways to parking (they plan theirs
+    /// again behind it, as for a task's plan); one that cannot changes nothing.
     pub(super) fn retreat(&mut self, free: &[Free], t: f64) {
         let ready: Vec<usize> = free
             .iter()
@@ -31,30 +31,30 @@ impl Fleets {
             .map(|f| f.0)
             .take(RETREATS_PER_ROUND)
             .collect();
-        // Per graph slot, the parking vertices out of the way nobody stays on for good
-        // (robots at work's ways to parking may be taken: they plan theirs again).
-        let mut open: BTreeMap<usize, Vec<usize>> = BTreeMap::new();
+        let mut taken: Vec<usize> = Vec::new();
         for i in ready {
-            let r = &self.robots[i];
-            let slot = r.slot;
+            let slot = self.robots[i].slot;
             let here = self.traffic.sched.end_vertex(i);
-            let vs = open
-                .entry(slot)
-                .or_insert_with(|| self.open_out_of_the_way(slot));
-            if vs.is_empty() {
-                continue;
-            }
-            // Nearby only (as far as its way-around search looked): a robot does not cross
-            // the building to stand aside, to come back for its next task, and the search
-            // stays small on a large building.
-            let near = within(&self.nav, slot, here, lookout(&self.nav, slot, here));
-            let Some(k) = near
+            // Nobody stays there for good (robots at work's ways to parking may be taken:
+            // they plan theirs again), and not taken in this round.
+            let conf = self.traffic.sched.conf();
+            let free_park = |v: usize| {
+                !taken.contains(&v)
+                    && conf.vertex[v].iter().all(|&x| {
+                        self.traffic
+                            .sched
+                            .held_for_good(x, usize::MAX, true)
+                            .is_none()
+                    })
+            };
+            let Some(to) = self.ways_out[slot][here]
                 .iter()
-                .find_map(|&(v, _)| vs.iter().position(|&x| x == v))
+                .copied()
+                .find(|&v| free_park(v))
             else {
                 continue;
             };
-            let to = vs.remove(k);
+            taken.push(to);
             let mut only = vec![0u8; self.nav.vertices.len()];
             only[to] = PARK;
             let ends = [(Some(only), None)];
@@ -69,10 +69,10 @@ impl Fleets {
         }
     }
 
-    /// Whether free robot `i` (planning from `from`, after `wait` s) stands in the way: it
-    /// parks where any robot may (a fleet config's homes and stays are the user's), stands
-    /// where its itinerary ends, on a parking vertex whose way around is long, and has had
-    /// no task for `RETREAT_AFTER`.
+    /// Whether free robot `i` (planning from `from`, after `wait` s) stands in the way with
+    /// a way out: it parks where any robot may (a fleet config's homes and stays are the
+    /// user's), stands where its itinerary ends, on a parking vertex in the way with parking
+    /// vertices out of the way nearby, and has had no task for `RETREAT_AFTER`.
     fn in_the_way(&self, i: usize, from: usize, wait: f64, t: f64) -> bool {
         let r = &self.robots[i];
         let here = self.traffic.sched.end_vertex(i);
@@ -80,26 +80,6 @@ impl Fleets {
             && wait <= 0.0
             && from == here
             && t - r.free_since >= RETREAT_AFTER
-            && self.traffic.parks(r.slot)[here] == PARK
-            && !self.out_of_the_way[r.slot][here]
-    }
-
-    /// The parking vertices out of the way of graph slot `slot` that nobody stays on for
-    /// good, in vertex order.
-    fn open_out_of_the_way(&self, slot: usize) -> Vec<usize> {
-        let conf = self.traffic.sched.conf();
-        self.nav.members[slot]
-            .iter()
-            .copied()
-            .filter(|&v| self.out_of_the_way[slot][v])
-            .filter(|&v| {
-                conf.vertex[v].iter().all(|&x| {
-                    self.traffic
-                        .sched
-                        .held_for_good(x, usize::MAX, true)
-                        .is_none()
-                })
-            })
-            .collect()
+            && !self.ways_out[r.slot][here].is_empty()
     }
 }

@@ -5,7 +5,7 @@
 //! between two halves of a building makes every way that corridor offered a detour.
 
 use super::{Parks, PARK};
-use crate::graph::{EdgeKind, Nav};
+use crate::graph::{EdgeKind, Nav, NavEdge};
 use std::cmp::Reverse;
 use std::collections::{BinaryHeap, HashMap};
 
@@ -13,14 +13,29 @@ use std::collections::{BinaryHeap, HashMap};
 /// where a robot standing idle is out of the way ([`out_of_the_way`]).
 pub const SHORT_WAY_AROUND: f64 = 1.5;
 
-/// Per slot, per vertex: a [`PARK`] whose way around is short ([`SHORT_WAY_AROUND`]).
-pub fn out_of_the_way(nav: &Nav, parks: &Parks) -> Vec<Vec<bool>> {
+/// Per slot, per vertex: for a [`PARK`] in the way (its way around is longer than
+/// [`SHORT_WAY_AROUND`] times the way through it), the parks out of the way (no longer than
+/// that) within its [`lookout`], nearest first; empty for every other vertex.
+pub fn out_of_the_way(nav: &Nav, parks: &Parks) -> Vec<Vec<Vec<usize>>> {
     let n = nav.vertices.len();
     (0..parks.per_slot.len())
         .map(|s| {
-            let adj = undirected(nav, s);
+            let adj = undirected(&nav.edges, s, n);
+            let park = |v: usize| parks.per_slot[s][v] == PARK;
+            let out: Vec<bool> = (0..n)
+                .map(|v| park(v) && way_around(&adj, v) <= SHORT_WAY_AROUND)
+                .collect();
             (0..n)
-                .map(|v| parks.per_slot[s][v] == PARK && way_around(&adj, v) <= SHORT_WAY_AROUND)
+                .map(|v| {
+                    if !park(v) || out[v] {
+                        return Vec::new();
+                    }
+                    near(&adj, v, lookout(&adj, v))
+                        .into_iter()
+                        .filter(|&(w, _)| out[w])
+                        .map(|(w, _)| w)
+                        .collect()
+                })
                 .collect()
         })
         .collect()
@@ -28,9 +43,9 @@ pub fn out_of_the_way(nav: &Nav, parks: &Parks) -> Vec<Vec<bool>> {
 
 /// Slot `s`'s lanes as undirected edges with their lengths (lift rides left out: a way
 /// around through another floor is no way around), each neighbour once (the shortest).
-fn undirected(nav: &Nav, s: usize) -> Vec<Vec<(usize, f64)>> {
-    let mut adj: Vec<Vec<(usize, f64)>> = vec![Vec::new(); nav.vertices.len()];
-    for e in &nav.edges {
+fn undirected(edges: &[NavEdge], s: usize, n: usize) -> Vec<Vec<(usize, f64)>> {
+    let mut adj: Vec<Vec<(usize, f64)>> = vec![Vec::new(); n];
+    for e in edges {
         if e.graph != s || e.from == e.to || matches!(e.kind, EdgeKind::Lift(_)) {
             continue;
         }
@@ -67,13 +82,8 @@ fn way_around(adj: &[Vec<(usize, f64)>], v: usize) -> f64 {
 /// Ratios are counted up to this.
 const CAP: f64 = 3.0;
 
-/// The vertices of graph slot `s` within `radius` metres of `from` by its lanes (either way),
-/// with their distances: where a robot at `from` may go out of the way nearby.
-pub fn within(nav: &Nav, s: usize, from: usize, radius: f64) -> Vec<(usize, f64)> {
-    near(&undirected(nav, s), from, radius)
-}
-
-/// [`within`] on undirected lanes `adj`.
+/// The vertices within `radius` metres of `from` by the lanes `adj` (either way), with
+/// their distances, nearest first.
 fn near(adj: &[Vec<(usize, f64)>], from: usize, radius: f64) -> Vec<(usize, f64)> {
     let mut dist = HashMap::new();
     avoiding(adj, from, usize::MAX, radius, &mut dist);
@@ -84,16 +94,8 @@ fn near(adj: &[Vec<(usize, f64)>], from: usize, radius: f64) -> Vec<(usize, f64)
 
 /// How far from `v` a robot standing there looks for a parking vertex out of the way: as
 /// far as its way-around search may go ([`CAP`] times twice its longest lane).
-pub fn lookout(nav: &Nav, s: usize, v: usize) -> f64 {
-    let far = nav
-        .edges
-        .iter()
-        .filter(|e| {
-            e.graph == s && (e.from == v || e.to == v) && !matches!(e.kind, EdgeKind::Lift(_))
-        })
-        .map(|e| e.length)
-        .fold(0.0, f64::max);
-    CAP * 2.0 * far
+fn lookout(adj: &[Vec<(usize, f64)>], v: usize) -> f64 {
+    CAP * 2.0 * adj[v].iter().map(|x| x.1).fold(0.0, f64::max)
 }
 
 /// Shortest distances from `from` without passing `gone`, up to `cutoff`, into `dist`.
