@@ -61,22 +61,10 @@ impl Fleets {
         let edge = self.nav.edges[tr.edge].clone();
         if let EdgeKind::Lift(l) = edge.kind {
             let floor = self.nav.vertices[edge.to].level_name.clone();
-            if !self.gate(
-                i,
-                Gate::Lift {
-                    lift: l,
-                    floor,
-                    next_send: t,
-                    since: t,
-                },
-                t,
-                out,
-            ) {
+            if !self.lift_at(i, l, floor, t, out) {
                 return;
             }
             // The cabin is at the destination floor: the robot is on its other vertex.
-            self.robots[i].gate = Gate::None;
-            self.robots[i].end_lift = Some(l);
             self.traffic.sched.begin(i, 1, t);
             self.reach_next(i, t, out);
             self.robots[i].dirty = true;
@@ -87,21 +75,9 @@ impl Fleets {
         let mut n = 1;
         if let Some(l) = to_lift.filter(|&l| from_lift != Some(l)) {
             let floor = self.nav.vertices[edge.from].level_name.clone();
-            if !self.gate(
-                i,
-                Gate::Lift {
-                    lift: l,
-                    floor,
-                    next_send: t,
-                    since: t,
-                },
-                t,
-                out,
-            ) {
+            if !self.lift_at(i, l, floor, t, out) {
                 return;
             }
-            self.robots[i].gate = Gate::None;
-            self.robots[i].end_lift = Some(l);
         } else if let Some(d) = edge.door.filter(|&d| self.nav.doors[d].controlled) {
             if !self.gate(
                 i,
@@ -129,6 +105,30 @@ impl Fleets {
         }
         self.traffic.sched.begin(i, n, t);
         self.send_path(i, n, t, out);
+    }
+
+    /// Waits for lift `l`'s cabin at `floor` with its doors open; once it is, the robot's
+    /// gate is done and its leg ends in that lift. True when it is ready.
+    fn lift_at(
+        &mut self,
+        i: usize,
+        l: usize,
+        floor: String,
+        t: f64,
+        out: &mut Vec<(Topic, Msg)>,
+    ) -> bool {
+        let want = Gate::Lift {
+            lift: l,
+            floor,
+            next_send: t,
+            since: t,
+        };
+        if !self.gate(i, want, t, out) {
+            return false;
+        }
+        self.robots[i].gate = Gate::None;
+        self.robots[i].end_lift = Some(l);
+        true
     }
 
     /// Whether robot `i`'s gate (the door or lift it asked for, if any) is the one edge `e`
