@@ -258,9 +258,17 @@ fn refill<T: Clone>(v: &mut Vec<T>, n: usize, x: T) {
     v.resize(n, x);
 }
 
+/// How long after the others' traversals it waits for end a traversal starts (s). Retimed
+/// to start the very instant they end, a robot's spans touched the others' on both sides,
+/// and planning it again along its own way failed: the search's half-open intervals and
+/// its floating-point sums do not fit a plan into a gap exactly its length (on a full
+/// house, robots on their way to parking found no way to a task four times as often). Any
+/// margin well above rounding does; this one costs a millisecond per robot followed.
+pub(super) const HEADWAY: f64 = 1e-3;
+
 /// A traversal's start and end: `prev_end`, the end of its robot's traversal before it
 /// (none for the first); `ready`, when its robot may go on; `after`, the latest end of the
-/// others' traversals it waits for.
+/// others' traversals it waits for (`NEG_INFINITY` for none).
 pub(super) fn node_times(
     nd: Node,
     prev_end: Option<f64>,
@@ -275,7 +283,7 @@ pub(super) fn node_times(
         (s, (s + nd.dur).max(now))
     } else {
         let own = prev_end.map_or(ready, |e| e + nd.hold);
-        let s = now.max(own).max(after);
+        let s = now.max(own).max(after + HEADWAY);
         (s, s + nd.dur)
     }
 }

@@ -78,11 +78,19 @@ fn retiming_pushes_the_later_robot_back_by_the_delay() {
     let it0 = s.itinerary(0);
     assert_eq!((it0.travs[0].start, it0.travs[0].end), (0.0, 25.0));
     assert_eq!((it0.travs[1].start, it0.travs[1].end), (25.0, 35.0));
-    // Robot 1: p2→c depends on nobody (from now: 25-30), c→b waits for b (35-45), then
-    // b→a (45-55).
+    // Robot 1: p2→c depends on nobody (from now: 25-30), c→b waits for b (from 35 and
+    // the headway on, for 10 s), then b→a (10 s).
     let it1 = s.itinerary(1);
     let times: Vec<(f64, f64)> = it1.travs.iter().map(|t| (t.start, t.end)).collect();
-    assert_eq!(times, [(25.0, 30.0), (35.0, 45.0), (45.0, 55.0)]);
+    let h = super::retime::HEADWAY;
+    assert_eq!(
+        times,
+        [
+            (25.0, 30.0),
+            (35.0 + h, 35.0 + h + 10.0),
+            (35.0 + h + 10.0, 35.0 + h + 20.0)
+        ]
+    );
     let _ = nav;
 }
 
@@ -321,7 +329,8 @@ fn a_way_to_parking_is_soft_until_the_task_is_done() {
     s.retime(0.0).expect("acyclic");
     let it0 = s.itinerary(0);
     assert_eq!(
-        it0.travs[1].start, 16.0,
+        it0.travs[1].start,
+        16.0 + super::retime::HEADWAY,
         "robot 0 leaves b after robot 1 left c"
     );
     // Its task done, robot 0's way to parking is hard: everybody plans around it.
