@@ -728,5 +728,6 @@ impl Schedule {
 }
 
 mod retime;
+pub(super) use retime::HEADWAY;
 #[cfg(test)]
 mod tests;

@@ -12,7 +12,7 @@
 
 use super::conflicts::Res;
 use super::parks::{PARK, PARK_ON_PLACE};
-use super::schedule::{Schedule, Step};
+use super::schedule::{Schedule, Step, HEADWAY};
 use crate::graph::{EdgeKind, Nav, DOOR_COST};
 use cache::Cache;
 use edge_times::EdgeTimes;
@@ -549,7 +549,9 @@ impl Planner {
                         }
                     }
                     let Some(&(_, b)) = busy.get(k) else { break };
-                    from = b;
+                    // Behind another robot, as the schedule's retime would put it: the plan
+                    // holds its times when installed, and those behind it keep their slack.
+                    from = b + HEADWAY;
                     k += 1;
                 }
             }

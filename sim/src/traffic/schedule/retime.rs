@@ -264,7 +264,7 @@ fn refill<T: Clone>(v: &mut Vec<T>, n: usize, x: T) {
 /// its floating-point sums do not fit a plan into a gap exactly its length (on a full
 /// house, robots on their way to parking found no way to a task four times as often). Any
 /// margin well above rounding does; this one costs a millisecond per robot followed.
-pub(super) const HEADWAY: f64 = 1e-3;
+pub(in crate::traffic) const HEADWAY: f64 = 1e-3;
 
 /// A traversal's start and end: `prev_end`, the end of its robot's traversal before it
 /// (none for the first); `ready`, when its robot may go on; `after`, the latest end of the

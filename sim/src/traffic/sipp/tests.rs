@@ -128,6 +128,16 @@ fn it_waits_for_a_robot_planned_through_first() {
         plan0.steps.first().is_some_and(|s| s.start > 0.0),
         "it waits at a: {plan0:?}"
     );
+    // Behind robot 1 as the schedule puts it: retimed, the plan keeps its times.
+    sched.retime(0.0).expect("acyclic");
+    let retimed: Vec<(f64, f64)> = sched
+        .itinerary(0)
+        .travs
+        .iter()
+        .map(|t| (t.start, t.end))
+        .collect();
+    let planned: Vec<(f64, f64)> = plan0.steps.iter().map(|s| (s.start, s.end)).collect();
+    assert_eq!(retimed, planned);
 }
 
 #[test]
