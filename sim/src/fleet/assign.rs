@@ -26,7 +26,8 @@
 //! two fleets on a corridor between two rooms completed half what one robot did): a
 //! task that a busy robot gets to (when its itinerary has it done, then free flow) before
 //! any free robot could, or before the best free robot's plan with its waits for traffic
-//! counted once more, waits for that robot; a robot given a task in a round bids so for
+//! counted once more, waits for that robot, when it would also have the task done first
+//! (at each fleet's speed, from the first place on); a robot given a task in a round bids so for
 //! the tasks after it in that round. Only free robots were looked at before, so a bigger
 //! fleet sent a robot parked far away where a smaller one's robot, about to finish next
 //! door, would have taken the task: on the demo maps and generated buildings, fleets
@@ -153,15 +154,20 @@ struct Pending {
 /// cost 2.5 times as much planning per decision.)
 struct Deferred {
     beat: f64,
+    /// When the best plan would have had the task done (`beat` and its robot's free-flow
+    /// time from the first place on).
+    beat_done: f64,
     planned: Vec<usize>,
 }
 
 impl Deferred {
-    /// At `t`, with the busy robot's bid `after` s away and `near` the free robots (free
-    /// flow time, robot, fleet), nearest first: the bid still beats the best plan made,
-    /// and no robot among those a round would plan for that was not planned for could.
-    fn holds(&self, t: f64, after: f64, near: &[(f64, usize, usize)]) -> bool {
+    /// At `t`, with the busy robot's bid `after` s away (`done`, s until it would have
+    /// the task done) and `near` the free robots (free flow time, robot, fleet), nearest
+    /// first: the bid still beats the best plan made, there and done, and no robot among
+    /// those a round would plan for that was not planned for could.
+    fn holds(&self, t: f64, (after, done): (f64, f64), near: &[(f64, usize, usize)]) -> bool {
         t + after < self.beat
+            && t + done < self.beat_done
             && near
                 .iter()
                 .take(CANDIDATES)
@@ -524,6 +530,7 @@ mod tests {
     fn deferred() -> Deferred {
         Deferred {
             beat: 100.0,
+            beat_done: 150.0,
             planned: vec![1, 2],
         }
     }
@@ -532,21 +539,24 @@ mod tests {
     fn a_deferred_task_is_not_planned_again_while_its_bid_holds() {
         let d = deferred();
         // The same robots free, the busy robot still first: nothing to plan.
-        assert!(d.holds(10.0, 50.0, &[(20.0, 1, 0), (30.0, 2, 0)]));
+        assert!(d.holds(10.0, (50.0, 90.0), &[(20.0, 1, 0), (30.0, 2, 0)]));
         // A robot that became free but cannot get there before the best plan did.
-        assert!(d.holds(10.0, 50.0, &[(20.0, 1, 0), (95.0, 7, 0)]));
+        assert!(d.holds(10.0, (50.0, 90.0), &[(20.0, 1, 0), (95.0, 7, 0)]));
         // Only the nearest `CANDIDATES` are planned for: a near robot further down the
         // list is not a reason.
         let far = [(1.0, 1, 0), (2.0, 2, 0), (3.0, 1, 0), (4.0, 9, 0)];
-        assert!(d.holds(10.0, 50.0, &far));
+        assert!(d.holds(10.0, (50.0, 90.0), &far));
     }
 
     #[test]
     fn a_deferred_task_is_planned_again_when_its_bid_or_the_robots_change() {
         let d = deferred();
         // The busy robot was delayed: its bid no longer beats the best plan.
-        assert!(!d.holds(10.0, 90.0, &[(20.0, 1, 0)]));
+        assert!(!d.holds(10.0, (90.0, 130.0), &[(20.0, 1, 0)]));
         // A robot not planned for became free and could get there before it.
-        assert!(!d.holds(10.0, 50.0, &[(20.0, 1, 0), (60.0, 7, 0)]));
+        assert!(!d.holds(10.0, (50.0, 90.0), &[(20.0, 1, 0), (60.0, 7, 0)]));
+        // Still there first, but slower: it would have the task done after the best
+        // plan would (at 155 s against 150 s).
+        assert!(!d.holds(10.0, (50.0, 145.0), &[(20.0, 1, 0)]));
     }
 }
