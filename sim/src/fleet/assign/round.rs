@@ -321,8 +321,9 @@ impl Fleets {
         let mut after: Option<f64> = None;
         // That robot's free-flow time from its task's last place.
         let mut approach = 0.0;
-        let mut rest: Vec<(usize, f64)> = Vec::new();
         let mut after_fleet = usize::MAX;
+        // The fleets that bid, by their steps.
+        let mut bidding: Vec<(usize, usize)> = Vec::new();
         let only = self.dispatcher.pending[k].robot;
         let firsts: Vec<(usize, usize, usize)> = self.dispatcher.pending[k]
             .steps
@@ -330,8 +331,6 @@ impl Fleets {
             .enumerate()
             .filter_map(|(n, (fi, st))| first_goal(st).map(|g| (n, *fi, g)))
             .collect();
-        // With one fleet bidding, every bid's time from the first place on is the same.
-        let several = firsts.len() > 1;
         for (n, fi, first) in firsts {
             // One table lookup per task, not per robot: with hundreds of robots free
             // and tasks queued, the lookups were a tenth of a warehouse run.
@@ -344,10 +343,7 @@ impl Fleets {
             {
                 continue;
             }
-            if several {
-                let r = self.rest_of(k, n, free, busy);
-                rest.push((fi, r));
-            }
+            bidding.push((n, fi));
             let fleet = &self.fleets[fi];
             let table = self.dispatcher.eta_table(&self.nav, fleet, first);
             for f in free {
@@ -373,6 +369,16 @@ impl Fleets {
             }
         }
         near.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
+        // Needed only against a busy robot's bid, and only with two fleets or more bidding
+        // (with one, every bid's time from the first place on is the same).
+        let rest: Vec<(usize, f64)> = if after.is_some() && bidding.len() > 1 {
+            bidding
+                .iter()
+                .map(|&(n, fi)| (fi, self.rest_of(k, n, free, busy)))
+                .collect()
+        } else {
+            Vec::new()
+        };
         Bids {
             near,
             after,
