@@ -38,12 +38,10 @@
 //! rule's breaches on the generated buildings and warehouses, all but one went).
 
 mod busy;
-mod retreat;
 mod round;
-mod steps;
+use super::steps::first_goal;
 use super::*;
 use crate::traffic::sipp::{Delay, Plan};
-use steps::first_goal;
 
 /// States the dispatcher's searches may expand per simulated second, and at most at once:
 /// its computing budget, as a real dispatcher has one (the League of Robot Runners plans
@@ -86,7 +84,7 @@ const SEARCH_DELAY: Delay = Delay {
 const LONGEST_WAIT: f64 = 120.0;
 /// Dispatch is tried again this often (s) while tasks wait (and sooner when a robot
 /// becomes free or a task comes).
-const DISPATCH_EVERY: f64 = 5.0;
+pub(super) const DISPATCH_EVERY: f64 = 5.0;
 /// Least time (s) between a round and one that a task joining a queue with tasks
 /// waiting brings forward (RMF's dispatcher waits 2 s for bids on every task).
 const ROUND_GAP: f64 = 1.0;
@@ -103,7 +101,7 @@ const MAX_BACKOFF: f64 = 60.0;
 
 /// A free robot: its index, the vertex it plans from, and how long until it may leave
 /// (s).
-type Free = (usize, usize, f64);
+pub(super) type Free = (usize, usize, f64);
 
 /// A busy robot: its index, the last place of its task, and how long until it is done
 /// there (s).
@@ -127,7 +125,7 @@ struct Pending {
     /// When robots were last asked to make room for it.
     displaced_at: f64,
     /// Robots whose plans for it waited too long, each with when planning for it again
-    /// may first succeed (see [`Fleets::dispatch`]).
+    /// may first succeed (see [`Dispatcher::round`]).
     backoff: Vec<(usize, f64)>,
     /// Every robot it was looked at for is in `backoff`: until when, and
     /// [`Dispatcher::freed`] then. Rounds pass it by until then unless a robot became free
@@ -135,13 +133,13 @@ struct Pending {
     /// that was most of a round).
     asleep: Option<(f64, u64)>,
     /// Its plans keep clear of the others' ways to parking too (one that went before them
-    /// was undone: see [`Fleets::install`]).
+    /// was undone: see [`Floor::install`]).
     hard: bool,
     /// It waits for a busy robot that gets there before the free robots' plans did: see
     /// [`Deferred`].
     deferred: Option<Deferred>,
     /// A go-to-place: done the moment a robot standing at its place takes it
-    /// ([`Fleets::done_where_they_stand`]).
+    /// ([`Dispatcher::done_where_they_stand`]).
     go_to: bool,
 }
 
@@ -182,7 +180,7 @@ impl Deferred {
 /// before every lower one; a task is in it from its request until a robot takes it or it
 /// is cancelled; while it is not empty a round is due within `DISPATCH_EVERY` s (at once
 /// when a robot becomes free or a task comes to an empty queue, within `ROUND_GAP` of the
-/// last round when one comes to a queue with tasks waiting). Guarantees (with [`Fleets::dispatch`]):
+/// last round when one comes to a queue with tasks waiting). Guarantees (with [`Dispatcher::round`]):
 /// tasks are looked at oldest first, each goes to the free robot whose whole-task plan
 /// arrives first, a plan that would wait long for traffic is never taken, and a robot
 /// whose plan for a task waited too long (or found no way) is not planned for it, nor for
@@ -399,8 +397,16 @@ impl Dispatcher {
     }
 }
 
-impl Fleets {
-    pub(super) fn request_task(&mut self, t: f64, new: NewTask, out: &mut Vec<(Topic, Msg)>) {
+impl Dispatcher {
+    /// Task `new`, requested at `t`: queued, or failed at once when no robot of the
+    /// task's fleets can do it.
+    pub(super) fn request(
+        &mut self,
+        fl: &mut Floor,
+        t: f64,
+        new: NewTask,
+        out: &mut Vec<(Topic, Msg)>,
+    ) {
         let NewTask {
             kind,
             fleet,
@@ -408,38 +414,38 @@ impl Fleets {
             priority,
         } = new;
         let category = kind.category();
-        let id = self.dispatcher.new_id(category);
-        let ti = self.tasks.len();
-        self.tasks.push(Task {
+        let id = self.new_id(category);
+        let ti = fl.tasks.len();
+        fl.tasks.push(Task {
             id,
             category,
             kind,
             fleet: fleet.clone(),
             ended: false,
         });
-        self.event(t, ti, "queued", None, String::new(), out);
+        fl.event(t, ti, "queued", None, String::new(), out);
         // A robot task: that robot of the task's fleet, or nobody.
         let only = robot.as_ref().map(|name| {
-            self.by_name.get(name).copied().filter(|&i| {
+            fl.by_name.get(name).copied().filter(|&i| {
                 fleet
                     .as_ref()
-                    .is_none_or(|f| self.fleets[self.robots[i].fleet].name == *f)
+                    .is_none_or(|f| fl.fleets[fl.robots[i].fleet].name == *f)
             })
         });
         if let (Some(None), Some(name)) = (only, &robot) {
-            self.tasks[ti].ended = true;
+            fl.tasks[ti].ended = true;
             let detail = format!("no robot named `{name}` in the task's fleet");
-            self.event(t, ti, "failed", None, detail, out);
+            fl.event(t, ti, "failed", None, detail, out);
             return;
         }
-        let steps: Vec<(usize, Vec<Step>)> = self
+        let steps: Vec<(usize, Vec<Step>)> = fl
             .fleets_for(ti)
             .into_iter()
-            .filter(|(fi, _)| only.flatten().is_none_or(|i| self.robots[i].fleet == *fi))
+            .filter(|(fi, _)| only.flatten().is_none_or(|i| fl.robots[i].fleet == *fi))
             .collect();
         if steps.is_empty() {
-            self.tasks[ti].ended = true;
-            self.event(
+            fl.tasks[ti].ended = true;
+            fl.event(
                 t,
                 ti,
                 "failed",
@@ -459,11 +465,19 @@ impl Fleets {
             asleep: None,
             hard: false,
             deferred: None,
-            go_to: matches!(self.tasks[ti].kind, TaskKind::GoToPlace { .. }),
+            go_to: matches!(fl.tasks[ti].kind, TaskKind::GoToPlace { .. }),
         };
-        self.dispatcher.enqueue(p, t);
+        self.enqueue(p, t);
     }
 
+    /// Pending task `k` waits for a busy robot that gets there first (`eta` s from `t`):
+    /// rounds pass it by until that robot should be done or a robot becomes free.
+    pub(super) fn wait_for_busy(&mut self, k: usize, eta: f64, t: f64) {
+        self.pending[k].asleep = Some((t + eta, self.freed));
+    }
+}
+
+impl Floor {
     /// (fleet, its steps for the task) of every fleet that may do task `ti` and has a
     /// robot that can reach the task's places in order.
     pub(super) fn fleets_for(&self, ti: usize) -> Vec<(usize, Vec<Step>)> {
@@ -512,7 +526,7 @@ impl Fleets {
 
     /// Where robot `i` plans from: where the traversals it was sent along end, and when
     /// (its first traversals still to be kept).
-    fn plan_start(&self, i: usize, t: f64) -> (usize, usize, f64) {
+    pub(super) fn plan_start(&self, i: usize, t: f64) -> (usize, usize, f64) {
         let keep = self.kept(i);
         let it = self.traffic.sched.itinerary(i);
         match keep.checked_sub(1).and_then(|k| it.travs.get(k)) {

@@ -43,7 +43,7 @@ struct LegUse {
     lifts: Vec<usize>,
 }
 
-impl Fleets {
+impl Floor {
     /// Lower bound of the time a robot of fleet `fi` takes over edge `e`.
     fn edge_floor(&self, fi: usize, e: usize) -> f64 {
         let f = &self.fleets[fi];
@@ -69,7 +69,7 @@ impl Fleets {
     /// resource, the least over the fleets that may do it. `broken_off`: some task ended
     /// half-way (failed or cancelled under way), so a robot may start its next task from
     /// anywhere.
-    pub fn demands(&self, broken_off: bool) -> Demands {
+    pub(super) fn demands(&self, broken_off: bool) -> Demands {
         let nav = &self.nav;
         // The steps of each task per fleet that may do it, and their legs.
         let mut per_task: Vec<Vec<(usize, Vec<Step>)>> = Vec::with_capacity(self.tasks.len());

@@ -89,7 +89,7 @@ impl Fleets {
             return;
         }
         for (k, id) in due {
-            match self.tasks.iter().position(|tk| tk.id == id) {
+            match self.floor.tasks.iter().position(|tk| tk.id == id) {
                 None => self.cancels.wait(k, id),
                 Some(ti) => {
                     let result = self.cancel(ti, t, out);
@@ -101,27 +101,29 @@ impl Fleets {
 
     /// Cancels task `ti` at `t`, or says why it cannot (it has already ended).
     fn cancel(&mut self, ti: usize, t: f64, out: &mut Vec<(Topic, Msg)>) -> Result<(), String> {
-        if self.tasks[ti].ended {
+        if self.floor.tasks[ti].ended {
             return Err(format!(
                 "cancel_task_request for `{}`: the task had already ended",
-                self.tasks[ti].id
+                self.floor.tasks[ti].id
             ));
         }
         const DETAIL: &str = "cancelled by cancel_task_request";
         if self.dispatcher.withdraw(ti) {
-            self.tasks[ti].ended = true;
-            self.event(t, ti, "cancelled", None, DETAIL.into(), out);
+            self.floor.tasks[ti].ended = true;
+            self.floor
+                .event(t, ti, "cancelled", None, DETAIL.into(), out);
             return Ok(());
         }
-        match self.robots.iter().position(|r| r.task == Some(ti)) {
+        match self.floor.robots.iter().position(|r| r.task == Some(ti)) {
             Some(i) => {
-                self.end_task_as(i, t, "cancelled", DETAIL.into(), out);
+                self.floor
+                    .end_task_as(i, t, "cancelled", DETAIL.into(), out);
                 Ok(())
             }
             // Every task not ended is queued or with a robot.
             None => Err(format!(
                 "cancel_task_request for `{}`: the task is neither queued nor under way",
-                self.tasks[ti].id
+                self.floor.tasks[ti].id
             )),
         }
     }

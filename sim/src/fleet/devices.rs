@@ -22,7 +22,7 @@ struct LiftView {
 /// Invariant: a door's or lift's view is the last state the world published for it (a
 /// door's sessions those of the last heartbeat), a workcell request's result the last
 /// final answer (never ACKNOWLEDGED) under its guid; a charger is held by at most one
-/// robot. On that the gates (`Fleets::gate`) rest: a robot drives through a controlled
+/// robot. On that the gates (`Floor::gate`) rest: a robot drives through a controlled
 /// door only when it is OPEN in our heartbeat session, into or out of a lift cabin only
 /// when the lift is at the floor with its doors open in our session; and no two robots
 /// are sent to one charger.

@@ -66,7 +66,7 @@ impl LaneUse {
     }
 }
 
-impl Fleets {
+impl Floor {
     /// Drops the leg being driven (the robot finishes the traversals it was sent along, then
     /// its itinerary takes it to park) and gives back any door/lift it had asked for.
     pub(super) fn abandon_route(&mut self, i: usize, t: f64, out: &mut Vec<(Topic, Msg)>) {

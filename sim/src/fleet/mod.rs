@@ -13,12 +13,17 @@
 //! dispensers are asked again (without limit while their item is on its way back); a
 //! delivery that fails while carrying its item still takes it to the ingestor.
 //!
+//! Three types share the work, each with its own state: [`Fleets`] runs the others in
+//! turn; `assign::Dispatcher` keeps the task queue and runs the dispatch rounds (which robot
+//! takes a task); [`Floor`] is the robots executing their tasks against the schedule.
+//!
 //! Modules: `setup` (placement, graphs, the schedule), `spawn` (where auto-spawned robots
-//! start), `assign` (which robot takes a task), `task` (the steps of a task and their
-//! sessions), `drive` (path requests, doors and lifts on the way), `devices` (doors, lifts,
-//! workcells and chargers as last heard of), `cancel` (cancel requests), `traffic`
-//! (planning legs into the schedule and driving what it grants), `waits` (why robots
-//! wait).
+//! start), `assign` (the dispatcher), `steps` (a task's steps and places), `task` (the
+//! steps of a task and their sessions), `drive` (path requests, doors and lifts on the
+//! way), `devices` (doors, lifts, workcells and chargers as last heard of), `cancel`
+//! (cancel requests), `traffic` (planning legs into the schedule and driving what it
+//! grants), `retreat` (out of the way while idle), `park` (what a robot does with no task
+//! left), `waits` (why robots wait), `bound` (the throughput bound's demands).
 
 use crate::graph::{EdgeKind, Nav};
 use crate::msgs::{
@@ -41,8 +46,10 @@ mod cancel;
 mod devices;
 mod drive;
 mod park;
+mod retreat;
 mod setup;
 mod spawn;
+mod steps;
 mod task;
 mod traffic;
 mod waits;
@@ -272,16 +279,36 @@ struct Task {
     ended: bool,
 }
 
-/// The fleet adapter: the nav graphs, the fleets, their robots (each with its task's steps
-/// and the step in progress), the tasks and the robots' names, and one component per job,
-/// each keeping its own state and invariant: `traffic::Traffic` (the schedule shared by
-/// all fleets, the planner, the parking vertices), `assign::Dispatcher` (the task queue),
-/// `devices::Devices` (doors, lifts, workcells and chargers as last heard of),
-/// `cancel::Cancels` and `drive::LaneUse`. `Fleets` orchestrates them in
-/// [`Fleets::update`]; what needs the robots and several components at once (a robot's
-/// legs and steps, planning into the schedule, making room) stays here, its `impl` split
-/// over the modules by job.
+/// The fleet adapter: the robots on the floor with their tasks ([`Floor`]), the task queue
+/// and its rounds (`assign::Dispatcher`) and the scenario's cancels, run in turn by
+/// [`Fleets::update`]. It owns no rule of its own: it hands each message, request and
+/// timer to the component whose job it is.
 pub struct Fleets {
+    floor: Floor,
+    /// The task queue and what is still to be requested.
+    dispatcher: assign::Dispatcher,
+    /// The scenario's cancels.
+    cancels: cancel::Cancels,
+    next_wake: f64,
+    next_fleet_state: f64,
+    next_traffic: f64,
+}
+
+/// The robots executing their tasks: the nav graphs, the fleets, their robots (each with
+/// its task's steps, the step in progress and its itinerary in the schedule), the tasks and
+/// the robots' names, with the components they execute against: `traffic::Traffic` (the
+/// schedule shared by all fleets, the planner, the parking vertices), `devices::Devices`
+/// (doors, lifts, workcells and chargers as last heard of) and `drive::LaneUse`. Its
+/// `impl` is split by job: `task` (the steps of a task), `drive` (paths, doors and lifts),
+/// `traffic` (plans into the schedule), `traffic/grant` (driving what the schedule
+/// grants), `traffic/room` (making room), `retreat` (out of the way while idle), `steps`
+/// (a task's steps and places), `waits` (why robots wait), `bound` (the throughput bound's
+/// demands).
+///
+/// Invariant: a robot with a task has a plan in the schedule to its next place (or is
+/// planning one, waiting where it blocks nobody), and every itinerary ends on a vertex its
+/// robot may stand on for good; a robot drives only what the schedule grants it.
+struct Floor {
     nav: Nav,
     /// The schedule every robot's plan goes into, and the planner.
     traffic: traffic::Traffic,
@@ -289,16 +316,9 @@ pub struct Fleets {
     robots: Vec<Robot>,
     by_name: BTreeMap<String, usize>,
     tasks: Vec<Task>,
-    /// The task queue and what is still to be requested.
-    dispatcher: assign::Dispatcher,
-    next_wake: f64,
-    next_fleet_state: f64,
-    next_traffic: f64,
     clean_duration: f64,
     /// Doors, lifts, workcells and chargers as last heard of.
     devices: devices::Devices,
-    /// The scenario's cancels.
-    cancels: cancel::Cancels,
     /// Per IR lane: when robots drove it (the report's timeline).
     lane_use: drive::LaneUse,
     /// Robots whose tasks ended in this update's ticks: they set off to park after its
@@ -307,6 +327,9 @@ pub struct Fleets {
     /// Per graph slot, per vertex: for a parking vertex in the way, the parking vertices out
     /// of the way nearby, nearest first (`traffic::parks::out_of_the_way`).
     ways_out: Vec<Vec<Vec<usize>>>,
+    /// The earliest time a robot became free since the dispatcher last heard (a round is
+    /// then due: [`Fleets::freed`]).
+    freed_at: f64,
 }
 
 impl Fleets {
@@ -316,6 +339,104 @@ impl Fleets {
         if inbox.is_empty() && t < self.next_wake {
             return;
         }
+        self.floor.hear(t, inbox);
+        // New tasks.
+        while let Some(new) = self.dispatcher.take_request(t) {
+            self.dispatcher.request(&mut self.floor, t, new, out);
+        }
+        self.cancel_due(t, out);
+        self.dispatch(t, out);
+        self.floor.tick_due(t, out);
+        // Robots that became free in this update take waiting tasks; those that took
+        // none set off to park.
+        self.dispatch(t, out);
+        self.floor.set_off_to_park(t, out);
+        if t >= self.next_traffic {
+            self.next_traffic = t + 1.0;
+            self.floor.replan_delayed(t);
+            self.floor.watch_waits(t, out);
+        }
+        if t >= self.next_fleet_state {
+            self.next_fleet_state = t + 1.0;
+            self.floor.publish_states(out);
+        }
+        let any_waiting = self.floor.account_waits(t);
+        self.next_traffic = if any_waiting {
+            self.next_traffic.min(t + 1.0).max(t + 1e-9)
+        } else {
+            f64::INFINITY
+        };
+        if self.next_traffic <= t {
+            self.next_traffic = t + 1.0;
+        }
+        self.freed();
+        let mut next = self
+            .next_fleet_state
+            .min(self.next_traffic)
+            .min(self.dispatcher.next_at());
+        if let Some(c) = self.cancels.next_at() {
+            next = next.min(c);
+        }
+        for r in &self.floor.robots {
+            next = next.min(r.wake);
+        }
+        self.next_wake = next;
+    }
+
+    /// A dispatch round, if one is due (robots that became free since the last one make
+    /// it due at once).
+    fn dispatch(&mut self, t: f64, out: &mut Vec<(Topic, Msg)>) {
+        self.freed();
+        self.dispatcher.round(&mut self.floor, t, out);
+        debug_assert!(
+            self.floor.freed_at.is_infinite(),
+            "a robot became free in a round"
+        );
+    }
+
+    /// Tells the dispatcher when robots became free on the floor.
+    fn freed(&mut self) {
+        let at = std::mem::replace(&mut self.floor.freed_at, f64::INFINITY);
+        self.dispatcher.wake(at);
+    }
+
+    /// Records the wall-clock time of every plan from now on (see `RunOptions::plan_times`).
+    pub fn time_plans(&mut self) {
+        self.floor.traffic.time_plans();
+    }
+
+    /// The wall-clock time (s) of every plan since [`Fleets::time_plans`].
+    pub fn plan_times(&mut self) -> Vec<f64> {
+        self.floor.traffic.plan_times()
+    }
+
+    /// The ten lanes robots drove longest, each with its busy share per interval of a run
+    /// of `end` seconds (the report's timeline).
+    pub fn lane_series(&self, end: f64) -> Vec<crate::report::timeline::Series> {
+        self.floor.lane_use.series(&self.floor.nav, end)
+    }
+
+    /// The traffic planner's work so far.
+    pub fn traffic_report(&self) -> crate::report::TrafficReport {
+        self.floor.traffic.report()
+    }
+
+    /// True when every task has ended (completed or failed) and no generator is pending.
+    pub fn all_done(&self, _t: f64) -> bool {
+        self.dispatcher.requested_all() && self.floor.tasks.iter().all(|t| t.ended)
+    }
+
+    /// Per task that arrived (and was not refused): its least use of each exclusive
+    /// resource (see `bound`). `broken_off`: some task ended half-way.
+    pub fn demands(&self, broken_off: bool) -> crate::report::bound::Demands {
+        self.floor.demands(broken_off)
+    }
+}
+
+impl Floor {
+    /// Reads what the world published: robot states, and doors, lifts and workcells
+    /// (robots waiting for one of them look again).
+    fn hear(&mut self, t: f64, inbox: &[Published]) {
         let mut external = false;
         for p in inbox {
             match &p.msg {
@@ -341,14 +462,11 @@ impl Fleets {
                 }
             }
         }
-        // New tasks.
-        while let Some(new) = self.dispatcher.take_request(t) {
-            self.request_task(t, new, out);
-        }
-        self.cancel_due(t, out);
-        self.dispatch(t, out);
-        // Robots with news or an expired timer; repeat while reservations were released
-        // (a release can unblock robots that are waiting).
+    }
+
+    /// Robots with news or an expired timer go on; repeated while reservations were
+    /// released (a release can unblock robots that are waiting).
+    fn tick_due(&mut self, t: f64, out: &mut Vec<(Topic, Msg)>) {
         for pass in 0..4 {
             self.traffic.begin_pass();
             for i in 0..self.robots.len() {
@@ -363,86 +481,42 @@ impl Fleets {
                 break;
             }
         }
-        // Robots that became free in this update take waiting tasks; those that took
-        // none set off to park.
-        self.dispatch(t, out);
+    }
+
+    /// Robots whose tasks ended in this update and that took no task set off to park.
+    fn set_off_to_park(&mut self, t: f64, out: &mut Vec<(Topic, Msg)>) {
         for i in std::mem::take(&mut self.just_free) {
             if self.robots[i].idle() {
                 let n = self.traffic.sched.itinerary(i).travs.len();
                 self.advance(i, n, t, out);
             }
         }
-        if t >= self.next_traffic {
-            self.next_traffic = t + 1.0;
-            self.replan_delayed(t);
-            self.watch_waits(t, out);
+    }
+
+    /// Each fleet's state (its robots' last states).
+    fn publish_states(&self, out: &mut Vec<(Topic, Msg)>) {
+        for f in &self.fleets {
+            let robots = f
+                .robots
+                .iter()
+                .filter_map(|&i| self.robots[i].state.clone())
+                .collect();
+            out.push((
+                Topic::FleetStates,
+                Msg::FleetState(FleetState {
+                    name: f.name.clone(),
+                    robots,
+                }),
+            ));
         }
-        if t >= self.next_fleet_state {
-            self.next_fleet_state = t + 1.0;
-            for f in &self.fleets {
-                let robots = f
-                    .robots
-                    .iter()
-                    .filter_map(|&i| self.robots[i].state.clone())
-                    .collect();
-                out.push((
-                    Topic::FleetStates,
-                    Msg::FleetState(FleetState {
-                        name: f.name.clone(),
-                        robots,
-                    }),
-                ));
-            }
-        }
+    }
+
+    /// Counts each robot's wait so far; true when some robot waits for traffic.
+    fn account_waits(&mut self, t: f64) -> bool {
         for i in 0..self.robots.len() {
             self.account_wait(i, t);
         }
-        let any_waiting = self.robots.iter().any(|r| r.waiting.is_some());
-        self.next_traffic = if any_waiting {
-            self.next_traffic.min(t + 1.0).max(t + 1e-9)
-        } else {
-            f64::INFINITY
-        };
-        if self.next_traffic <= t {
-            self.next_traffic = t + 1.0;
-        }
-        let mut next = self
-            .next_fleet_state
-            .min(self.next_traffic)
-            .min(self.dispatcher.next_at());
-        if let Some(c) = self.cancels.next_at() {
-            next = next.min(c);
-        }
-        for r in &self.robots {
-            next = next.min(r.wake);
-        }
-        self.next_wake = next;
-    }
-
-    /// Records the wall-clock time of every plan from now on (see `RunOptions::plan_times`).
-    pub fn time_plans(&mut self) {
-        self.traffic.time_plans();
-    }
-
-    /// The wall-clock time (s) of every plan since [`Fleets::time_plans`].
-    pub fn plan_times(&mut self) -> Vec<f64> {
-        self.traffic.plan_times()
-    }
-
-    /// The ten lanes robots drove longest, each with its busy share per interval of a run
-    /// of `end` seconds (the report's timeline).
-    pub fn lane_series(&self, end: f64) -> Vec<crate::report::timeline::Series> {
-        self.lane_use.series(&self.nav, end)
-    }
-
-    /// The traffic planner's work so far.
-    pub fn traffic_report(&self) -> crate::report::TrafficReport {
-        self.traffic.report()
-    }
-
-    /// True when every task has ended (completed or failed) and no generator is pending.
-    pub fn all_done(&self, _t: f64) -> bool {
-        self.dispatcher.requested_all() && self.tasks.iter().all(|t| t.ended)
+        self.robots.iter().any(|r| r.waiting.is_some())
     }
 
     // ----- tasks -----

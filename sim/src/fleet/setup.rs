@@ -550,7 +550,7 @@ impl Fleets {
         let starts: Vec<usize> = robots.iter().map(|r| r.at).collect();
         let ways_out = crate::traffic::parks::out_of_the_way(&nav, &parks);
         let traffic = traffic::Traffic::new(&nav, conf, &starts, parks);
-        Ok(Fleets {
+        let floor = Floor {
             devices: devices::Devices::new(&nav),
             nav,
             traffic,
@@ -558,15 +558,19 @@ impl Fleets {
             robots,
             by_name,
             tasks: Vec::new(),
-            dispatcher: assign::Dispatcher::new(upcoming),
-            next_wake: 0.0,
-            next_fleet_state: 0.0,
-            next_traffic: f64::INFINITY,
             clean_duration: scenario.options.clean_duration,
-            cancels: cancel::Cancels::new(scenario),
             lane_use: drive::LaneUse::new(crate::report::timeline::period_for(scenario.duration)),
             just_free: Vec::new(),
             ways_out,
+            freed_at: f64::INFINITY,
+        };
+        Ok(Fleets {
+            floor,
+            dispatcher: assign::Dispatcher::new(upcoming),
+            cancels: cancel::Cancels::new(scenario),
+            next_wake: 0.0,
+            next_fleet_state: 0.0,
+            next_traffic: f64::INFINITY,
         })
     }
 }

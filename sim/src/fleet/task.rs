@@ -3,7 +3,7 @@
 
 use super::*;
 
-impl Fleets {
+impl Floor {
     pub(super) fn end_task(
         &mut self,
         i: usize,
@@ -33,7 +33,7 @@ impl Fleets {
         // Its way to parking is what it drives next: nobody's plan goes before it now.
         self.traffic.sched.harden(i);
         // The robot is free (once its steps are done): waiting tasks may go to it.
-        self.dispatcher.wake(t);
+        self.freed_at = self.freed_at.min(t);
         if let Some(tk) = self.tasks.get_mut(ti) {
             tk.ended = true;
         }

@@ -718,9 +718,9 @@ fn delivery_through_doors_and_lift_completes() {
     assert!(r.pos.minus(goal).norm() < 1e-6);
     // Then it parks off the task places (its itinerary ends on a parking vertex).
     settle(&mut f, &mut mock, &s, 300.0);
-    let end = f.traffic.sched.end_vertex(0);
-    assert_eq!(f.traffic.parks(0)[end], crate::traffic::parks::PARK);
-    assert_eq!(f.robots[0].at, end);
+    let end = f.floor.traffic.sched.end_vertex(0);
+    assert_eq!(f.floor.traffic.parks(0)[end], crate::traffic::parks::PARK);
+    assert_eq!(f.floor.robots[0].at, end);
     // Every door that was opened was opened for the robot, and all are closed again.
     assert!(mock
         .door_open_log
@@ -875,9 +875,12 @@ fn clean_without_dock_waits_clean_duration() {
     assert!((phases[1].1 - phases[0].1 - 30.0).abs() < 1.0, "{phases:?}");
     assert_eq!(phases[1].1, t);
     // Then it parks on the nearest parking vertex off the task places: park_e, beside e.
-    assert_eq!(f.traffic.sched.end_vertex(0), vertex(&f.nav, "park_e"));
     assert_eq!(
-        f.traffic.parks(0)[vertex(&f.nav, "park_e")],
+        f.floor.traffic.sched.end_vertex(0),
+        vertex(&f.floor.nav, "park_e")
+    );
+    assert_eq!(
+        f.floor.traffic.parks(0)[vertex(&f.floor.nav, "park_e")],
         crate::traffic::parks::PARK
     );
 }
@@ -897,9 +900,10 @@ fn clean_with_dock_is_two_phases() {
     );
     let (events, _, f) = run(&b, &s, 300.0);
     let steps = f
+        .floor
         .expand(0, &TaskKind::Clean { zone: "e".into() })
         .expect("on the graph");
-    let (e, d) = (vertex(&f.nav, "e"), vertex(&f.nav, "e_dock"));
+    let (e, d) = (vertex(&f.floor.nav, "e"), vertex(&f.floor.nav, "e_dock"));
     assert_eq!(steps, [Step::GoTo(e), Step::GoTo(d), Step::GoTo(e)]);
     let names = ["go_to_place e", "clean e"];
     let started = events
@@ -1195,21 +1199,21 @@ fn an_empty_dispensers_item_is_coming_while_its_carrier_is_on_its_way() {
         )],
     );
     let (_, _, mut f) = run(&b, &s, 2.0);
-    assert!(matches!(f.robots[0].cur, Cur::GoTo { .. }));
-    assert!(!f.item_coming("disp", 2.0), "nothing carried yet");
-    f.robots[0].item_from = Some("disp".into());
-    assert!(f.item_coming("disp", 2.0));
-    assert!(!f.item_coming("other", 2.0));
-    f.robots[0].cur = Cur::None;
-    f.robots[0].steps.clear();
+    assert!(matches!(f.floor.robots[0].cur, Cur::GoTo { .. }));
+    assert!(!f.floor.item_coming("disp", 2.0), "nothing carried yet");
+    f.floor.robots[0].item_from = Some("disp".into());
+    assert!(f.floor.item_coming("disp", 2.0));
+    assert!(!f.floor.item_coming("other", 2.0));
+    f.floor.robots[0].cur = Cur::None;
+    f.floor.robots[0].steps.clear();
     assert!(
-        !f.item_coming("disp", 2.0),
+        !f.floor.item_coming("disp", 2.0),
         "a carrier with nothing to do brings nothing back"
     );
     // Ingested: the plugin sends it home after a few seconds, so it is still coming then.
-    f.devices.ingested("disp".into(), 2.0);
-    assert!(f.item_coming("disp", 2.0 + ITEM_HOME - 1.0));
-    assert!(!f.item_coming("disp", 2.0 + ITEM_HOME + 1.0));
+    f.floor.devices.ingested("disp".into(), 2.0);
+    assert!(f.floor.item_coming("disp", 2.0 + ITEM_HOME - 1.0));
+    assert!(!f.floor.item_coming("disp", 2.0 + ITEM_HOME + 1.0));
 }
 
 #[test]
@@ -1231,9 +1235,9 @@ fn a_robot_waiting_at_an_empty_dispenser_makes_room() {
     let placement = Fleets::place(&b, &s).expect("placement");
     let mut f = Fleets::new(&b, &s, &placement).expect("fleets");
     let mut mock = Mock::new(&b, &placement);
-    let a = f.by_name["a_0"];
-    let e = f.robots[a].at;
-    f.robots[a].cur = Cur::Workcell {
+    let a = f.floor.by_name["a_0"];
+    let e = f.floor.robots[a].at;
+    f.floor.robots[a].cur = Cur::Workcell {
         guid: "x_pickup_retry1".into(),
         target: "disp".into(),
         dispenser: true,
@@ -1268,7 +1272,7 @@ fn a_robot_waiting_at_an_empty_dispenser_makes_room() {
     );
     // a_0 came back to its dispenser and asked for the item again.
     assert!(asked_again);
-    assert_eq!(f.robots[a].at, e);
+    assert_eq!(f.floor.robots[a].at, e);
 }
 
 fn parse_map(name: &str, text: &str) -> Building {
@@ -1295,15 +1299,23 @@ fn a_patrol_of_three_places_visits_them_in_order_each_round() {
         span: Span::UNKNOWN,
     });
     let (events, _, fleets) = run(&b, &s, 900.0);
-    let v = |n: &str| Step::GoTo(fleets.nav.find(fleets.fleets[0].slot, n).expect(n));
-    let steps = fleets.expand(0, &kind).expect("on the graph");
+    let v = |n: &str| {
+        Step::GoTo(
+            fleets
+                .floor
+                .nav
+                .find(fleets.floor.fleets[0].slot, n)
+                .expect(n),
+        )
+    };
+    let steps = fleets.floor.expand(0, &kind).expect("on the graph");
     let round = [v("lobby"), v("pharmacy"), v("corridor")];
     assert_eq!(steps, [round.clone(), round].concat());
     let off = TaskKind::Patrol {
         places: vec!["lobby".into(), "nowhere".into(), "corridor".into()],
         rounds: 1,
     };
-    assert_eq!(fleets.expand(0, &off), None);
+    assert_eq!(fleets.floor.expand(0, &off), None);
     let done: Vec<(&str, &str)> = events
         .iter()
         .filter(|e| e.event == "completed" || e.event == "failed")
@@ -1359,8 +1371,11 @@ fn a_robot_with_no_parking_vertex_left_ends_its_plan_where_it_stands() {
         vec![("loop_0".to_string(), "completed".to_string())],
         "{events:#?}"
     );
-    let i = f.by_name["a_2"];
-    assert_eq!(f.nav.vertices[f.traffic.sched.end_vertex(i)].name, "w");
+    let i = f.floor.by_name["a_2"];
+    assert_eq!(
+        f.floor.nav.vertices[f.floor.traffic.sched.end_vertex(i)].name,
+        "w"
+    );
 }
 
 #[test]
@@ -1565,16 +1580,21 @@ fn an_idle_robot_in_the_way_while_tasks_wait_goes_out_of_the_way() {
     let s = scenario(vec![c.clone()], tasks);
     let placement = Fleets::place(&b, &s).expect("placement");
     let mut fleets = Fleets::new(&b, &s, &placement).expect("fleets");
-    let v = |f: &Fleets, n: &str| f.nav.find(f.fleets[0].slot, n).expect(n);
+    let v = |f: &Fleets, n: &str| f.floor.nav.find(f.floor.fleets[0].slot, n).expect(n);
     let (q, corners) = (v(&fleets, "q"), [v(&fleets, "c"), v(&fleets, "d")]);
-    let slot = fleets.fleets[0].slot;
-    assert_eq!(fleets.traffic.parks(slot)[q], crate::traffic::parks::PARK);
+    let slot = fleets.floor.fleets[0].slot;
+    assert_eq!(
+        fleets.floor.traffic.parks(slot)[q],
+        crate::traffic::parks::PARK
+    );
     // q is in the way, with both corners nearby; the corners are out of the way.
-    let mut out = fleets.ways_out[slot][q].clone();
+    let mut out = fleets.floor.ways_out[slot][q].clone();
     out.sort_unstable();
     assert_eq!(out, corners);
-    assert!(corners.iter().all(|&x| fleets.ways_out[slot][x].is_empty()));
-    assert_eq!(fleets.robots[1].at, q);
+    assert!(corners
+        .iter()
+        .all(|&x| fleets.floor.ways_out[slot][x].is_empty()));
+    assert_eq!(fleets.floor.robots[1].at, q);
     let mut mock = Mock::new(&b, &placement);
     let events = settle(&mut fleets, &mut mock, &s, 60.0);
     let assigned: Vec<&str> = events
@@ -1584,9 +1604,9 @@ fn an_idle_robot_in_the_way_while_tasks_wait_goes_out_of_the_way() {
         .collect();
     assert!(assigned.iter().all(|&r| r == "c_0"), "{assigned:?}");
     // Left q within a few rounds of `RETREAT_AFTER`, for a corner (d: c_0 parks on c).
-    let end = fleets.traffic.sched.end_vertex(1);
+    let end = fleets.floor.traffic.sched.end_vertex(1);
     assert!(corners.contains(&end), "c_1 ends at {end}, q is {q}");
-    assert_eq!(fleets.robots[1].retreat, Some(end));
+    assert_eq!(fleets.floor.robots[1].retreat, Some(end));
 
     // The same tasks requested only at 300 s: nothing waits for the first minute, and
     // c_1 stays on q.
@@ -1601,9 +1621,12 @@ fn an_idle_robot_in_the_way_while_tasks_wait_goes_out_of_the_way() {
     let s = scenario(vec![c], later);
     let placement = Fleets::place(&b, &s).expect("placement");
     let mut fleets = Fleets::new(&b, &s, &placement).expect("fleets");
-    assert_eq!(fleets.traffic.parks(slot)[q], crate::traffic::parks::PARK);
+    assert_eq!(
+        fleets.floor.traffic.parks(slot)[q],
+        crate::traffic::parks::PARK
+    );
     let mut mock = Mock::new(&b, &placement);
     settle(&mut fleets, &mut mock, &s, 60.0);
-    assert_eq!(fleets.traffic.sched.end_vertex(1), q);
-    assert_eq!(fleets.robots[1].retreat, None);
+    assert_eq!(fleets.floor.traffic.sched.end_vertex(1), q);
+    assert_eq!(fleets.floor.robots[1].retreat, None);
 }

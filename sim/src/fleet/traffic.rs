@@ -23,7 +23,7 @@ const REPLAN_DELAY: f64 = 30.0;
 /// long (s).
 const HOME_AGAIN: f64 = 60.0;
 
-/// Where a plan may end, tried in order by [`Fleets::ends`]: parking vertices of the
+/// Where a plan may end, tried in order by [`Floor::ends`]: parking vertices of the
 /// robot's own (None: the graph's), and a vertex where it may stay.
 pub(super) type End = (Option<Vec<u8>>, Option<usize>);
 
@@ -65,7 +65,7 @@ pub(super) struct Traffic {
     released: bool,
     /// Dependency cycles found (never expected; counted for the tests).
     cycles: u64,
-    /// Robots are being set aside ([`Fleets::aside`]): the order may not hold until they
+    /// Robots are being set aside ([`Floor::aside`]): the order may not hold until they
     /// have all planned again, and is checked then.
     pub(super) aside: bool,
     /// Task plans undone because a robot they went before on its way to parking could not
@@ -211,7 +211,7 @@ impl Traffic {
     }
 }
 
-impl Fleets {
+impl Floor {
     /// The places robot `i` goes to from its current GoTo's `goal` on (its task's
     /// remaining places), each with the work there.
     pub(super) fn remaining_goals(&self, i: usize, goal: usize) -> Vec<(usize, f64)> {
@@ -296,7 +296,7 @@ impl Fleets {
     ///
     /// `soft_at`: the time now, when the plan was made through the others' soft spans
     /// (`Query::soft`). The robots it went before plan their ways to parking again behind
-    /// it ([`Fleets::park_again`]); when one cannot, or the order would have a cycle,
+    /// it ([`Floor::park_again`]); when one cannot, or the order would have a cycle,
     /// nothing changes and this returns false.
     pub(super) fn install(
         &mut self,
@@ -467,7 +467,7 @@ impl Fleets {
         (None, late)
     }
 
-    /// [`Fleets::plan_to`] with the parking vertices `parks` (default: the graph's).
+    /// [`Floor::plan_to`] with the parking vertices `parks` (default: the graph's).
     fn plan_with(
         &mut self,
         i: usize,

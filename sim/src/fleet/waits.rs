@@ -13,7 +13,7 @@ pub(super) enum Place {
     Charging,
 }
 
-impl Fleets {
+impl Floor {
     /// What robot `i` waits for now, if anything: a reservation (traffic, at the vertex
     /// it stands on), a door, a lift, a workcell, or charging while a task waits for it.
     fn wait_cause(&self, i: usize) -> Option<(WaitCause, Place)> {

@@ -418,18 +418,18 @@ fn world_a_robot_planned_off_its_lift_gives_it_back() {
                     && l.request_type == crate::msgs::lift_request::END_SESSION;
             }
         });
-        let r = &fleets.robots[0];
+        let r = &fleets.floor.robots[0];
         match replanned_at {
             None if matches!(r.gate, Gate::Lift { .. }) && r.n_sent == 0 => {
                 // Its task ends here and its itinerary now stays where it stands.
-                let r = &mut fleets.robots[0];
+                let r = &mut fleets.floor.robots[0];
                 r.task = None;
                 r.steps.clear();
                 r.cur = Cur::None;
                 r.leg = None;
                 r.legs.clear();
                 r.dirty = true;
-                fleets.traffic.sched.install(0, 0, &[], t, None);
+                fleets.floor.traffic.sched.install(0, 0, &[], t, None);
                 replanned_at = Some(t);
             }
             Some(at) if t > at + 5.0 => break,
@@ -440,8 +440,8 @@ fn world_a_robot_planned_off_its_lift_gives_it_back() {
         replanned_at.is_some(),
         "the robot never waited for the lift"
     );
-    assert_eq!(fleets.robots[0].gate, Gate::None);
-    assert!(fleets.robots[0].idle(), "the robot is not idle");
+    assert_eq!(fleets.floor.robots[0].gate, Gate::None);
+    assert!(fleets.floor.robots[0].idle(), "the robot is not idle");
     assert!(released, "the lift was not given back");
 }
 
@@ -453,13 +453,14 @@ fn world_a_robot_planned_off_its_lift_gives_it_back() {
 fn world_a_robot_planned_again_mid_ride_keeps_its_ride() {
     let (mut fleets, mut world) = clinic_rider();
     let mut inbox = Vec::new();
-    let home = fleets.robots[0].at;
+    let home = fleets.floor.robots[0].at;
     let mut rode = None;
     for _ in 0..60_000 {
         let t = world.time();
         step_once((&mut fleets, &mut world), t, &mut inbox, &mut |_| {});
-        let r = &fleets.robots[0];
+        let r = &fleets.floor.robots[0];
         let front = fleets
+            .floor
             .traffic
             .sched
             .itinerary(0)
@@ -467,23 +468,23 @@ fn world_a_robot_planned_again_mid_ride_keeps_its_ride() {
             .front()
             .map(|tr| tr.edge);
         let riding = matches!(r.gate, Gate::Lift { .. })
-            && fleets.nav.vertices[r.at].lift.is_some()
-            && front.is_some_and(|e| matches!(fleets.nav.edges[e].kind, EdgeKind::Lift(_)));
+            && fleets.floor.nav.vertices[r.at].lift.is_some()
+            && front.is_some_and(|e| matches!(fleets.floor.nav.edges[e].kind, EdgeKind::Lift(_)));
         if riding {
             // Back to where it came from, planned from the cabin.
-            assert!(fleets.plan_to(0, &[(home, 0.0)], t).is_ok());
+            assert!(fleets.floor.plan_to(0, &[(home, 0.0)], t).is_ok());
             rode = front;
             break;
         }
     }
     let ride = rode.expect("the robot never rode the lift");
-    let it = fleets.traffic.sched.itinerary(0);
+    let it = fleets.floor.traffic.sched.itinerary(0);
     assert_eq!(
         it.travs.front().map(|tr| tr.edge),
         Some(ride),
         "the ride was dropped"
     );
-    assert_eq!(fleets.traffic.sched.end_vertex(0), home);
+    assert_eq!(fleets.floor.traffic.sched.end_vertex(0), home);
 }
 
 #[test]
@@ -1444,20 +1445,22 @@ fn world_a_robot_given_a_task_and_made_to_make_room_keeps_its_task() {
     let (mut fleets, _world) = start(&b, &s);
     let mut out = Vec::new();
     while let Some(new) = fleets.dispatcher.take_request(0.0) {
-        fleets.request_task(0.0, new, &mut out);
+        fleets
+            .dispatcher
+            .request(&mut fleets.floor, 0.0, new, &mut out);
     }
     fleets.dispatch(0.0, &mut out);
-    let slot = fleets.robots[0].slot;
+    let slot = fleets.floor.robots[0].slot;
     let (c2, far) = (
-        fleets.nav.find(slot, "c2").expect("c2"),
-        fleets.nav.find(slot, "far_end").expect("far_end"),
+        fleets.floor.nav.find(slot, "c2").expect("c2"),
+        fleets.floor.nav.find(slot, "far_end").expect("far_end"),
     );
-    let x = &fleets.robots[0];
+    let x = &fleets.floor.robots[0];
     assert!(x.task.is_some() && x.cur == Cur::None && !x.steps.is_empty());
-    fleets.displace_for(1, &[(far, 0.0)], 0.0);
-    let x = &fleets.robots[0];
+    fleets.floor.displace_for(1, &[(far, 0.0)], 0.0);
+    let x = &fleets.floor.robots[0];
     let leg = *x.legs.front().expect("x keeps the leg to its task's place");
-    let it = fleets.traffic.sched.itinerary(0);
+    let it = fleets.floor.traffic.sched.itinerary(0);
     let at = leg.checked_sub(1).map_or(it.at, |k| it.travs[k].to);
     assert_eq!(at, c2, "x's first leg ends at its task's place");
 }

@@ -3,14 +3,7 @@
 
 use super::*;
 
-impl Fleets {
-    /// Pending task `k` waits for a busy robot that gets there first (`eta` s from `t`):
-    /// rounds pass it by until that robot should be done or a robot becomes free.
-    pub(super) fn wait_for_busy(&mut self, k: usize, eta: f64, t: f64) {
-        let d = &mut self.dispatcher;
-        d.pending[k].asleep = Some((t + eta, d.freed));
-    }
-
+impl Floor {
     /// Where busy robot `i`'s task ends and when it is done there (its itinerary's
     /// estimate and the work still to do): None without a task or between steps.
     pub(super) fn busy_end(&self, i: usize, t: f64) -> Option<(usize, f64)> {
@@ -40,7 +33,7 @@ impl Fleets {
     }
 
     /// Whether `dispenser`'s item is away or promised: a robot carries it or brings it
-    /// back ([`Fleets::item_coming`]), or a robot's task will take it (before it did).
+    /// back ([`Floor::item_coming`]), or a robot's task will take it (before it did).
     pub(super) fn dispenser_taken(&self, dispenser: &str, t: f64) -> bool {
         let asks = |c: &Cur| matches!(c, Cur::Workcell { target, dispenser: true, .. } if target == dispenser);
         self.item_coming(dispenser, t)

@@ -42,36 +42,33 @@ struct Tried {
     failed: bool,
 }
 
-impl Fleets {
+impl Dispatcher {
     /// A go-to-place to where a free robot stands (and may stay) is done the moment that
     /// robot takes it, at no robot time and in nobody's way, so it delays no other task:
     /// for each such robot, the oldest such task goes first in its priority. (A robot
     /// standing at one of two places at the end of a long single track took the oldest
     /// task, for the other, a 200 s round trip, while the tasks for its own place waited
     /// behind it.)
-    pub(super) fn done_where_they_stand(&mut self, free: &[Free]) {
+    pub(super) fn done_where_they_stand(&mut self, fl: &Floor, free: &[Free]) {
         let standing: BTreeMap<usize, usize> = free
             .iter()
-            .filter(|f| f.2 <= 0.0 && self.robots[f.0].n_sent == 0)
+            .filter(|f| f.2 <= 0.0 && fl.robots[f.0].n_sent == 0)
             .map(|f| (f.1, f.0))
             .collect();
-        debug_assert_eq!(
-            self.dispatcher.go_tos,
-            self.dispatcher.pending.iter().filter(|p| p.go_to).count()
-        );
-        if standing.is_empty() || self.dispatcher.go_tos == 0 {
+        debug_assert_eq!(self.go_tos, self.pending.iter().filter(|p| p.go_to).count());
+        if standing.is_empty() || self.go_tos == 0 {
             return;
         }
         let mut first: Vec<(usize, usize)> = Vec::new();
         let mut served: Vec<usize> = Vec::new();
-        for (k, p) in self.dispatcher.pending.iter().enumerate() {
+        for (k, p) in self.pending.iter().enumerate() {
             if !p.go_to {
                 continue;
             }
             let here = p.steps.iter().find_map(|(fi, st)| match st.as_slice() {
                 [Step::GoTo(v)] => standing
                     .get(v)
-                    .filter(|&&ri| self.robots[ri].fleet == *fi)
+                    .filter(|&&ri| fl.robots[ri].fleet == *fi)
                     .filter(|&&ri| p.robot.is_none_or(|o| o == ri)),
                 _ => None,
             });
@@ -88,7 +85,7 @@ impl Fleets {
         let moved: Vec<(Pending, usize)> = first
             .iter()
             .rev()
-            .filter_map(|&(k, ri)| Some((self.dispatcher.remove(k)?, ri)))
+            .filter_map(|&(k, ri)| Some((self.remove(k)?, ri)))
             .collect();
         for (mut p, ri) in moved {
             // Whatever kept it waiting for this robot (asleep, backed off, deferred to a
@@ -96,40 +93,37 @@ impl Fleets {
             p.asleep = None;
             p.deferred = None;
             p.backoff.retain(|b| b.0 != ri);
-            let at = self
-                .dispatcher
-                .pending
-                .partition_point(|q| q.priority > p.priority);
-            self.dispatcher.insert(at, p);
+            let at = self.pending.partition_point(|q| q.priority > p.priority);
+            self.insert(at, p);
         }
     }
 
     /// One dispatch round: tasks oldest first, each to the free robot whose plan gets
     /// there first. Tasks no robot can take now stay queued. A round looks at no more
     /// than `SCAN_PER_ROUND` tasks and makes no more than `PLANS_PER_ROUND` plans.
-    pub(in crate::fleet) fn dispatch(&mut self, t: f64, out: &mut Vec<(Topic, Msg)>) {
-        if t < self.dispatcher.next_dispatch || self.dispatcher.pending.is_empty() {
+    pub(in crate::fleet) fn round(&mut self, fl: &mut Floor, t: f64, out: &mut Vec<(Topic, Msg)>) {
+        if t < self.next_dispatch || self.pending.is_empty() {
             return;
         }
-        self.dispatcher.last_round = t;
-        self.dispatcher.next_dispatch = f64::INFINITY;
-        self.traffic.retime(t);
-        let mut free = self.free_robots(t);
-        self.done_where_they_stand(&free);
+        self.last_round = t;
+        self.next_dispatch = f64::INFINITY;
+        fl.traffic.retime(t);
+        let mut free = fl.free_robots(t);
+        self.done_where_they_stand(fl, &free);
         // Not needed when no robot is free: no task is looked at then.
         let mut busy = if free.is_empty() {
             Vec::new()
         } else {
-            self.busy_robots(t)
+            fl.busy_robots(t)
         };
         for f in &free {
-            let r = &mut self.robots[f.0];
-            if !self.dispatcher.was_free(f.0) || r.free_since == f64::INFINITY {
+            let r = &mut fl.robots[f.0];
+            if !self.was_free(f.0) || r.free_since == f64::INFINITY {
                 r.free_since = t;
             }
         }
-        self.dispatcher.start_round(t, &free, self.robots.len());
-        let work_before = self.traffic.expanded();
+        self.start_round(t, &free, fl.robots.len());
+        let work_before = fl.traffic.expanded();
         let mut round = Round {
             budget: PLANS_PER_ROUND,
             made: BTreeMap::new(),
@@ -137,44 +131,44 @@ impl Fleets {
         };
         let mut k = 0;
         let mut scanned = 0;
-        while k < self.dispatcher.pending.len()
+        while k < self.pending.len()
             && round.budget > 0
-            && (self.traffic.expanded() - work_before) as f64 <= self.dispatcher.work
+            && (fl.traffic.expanded() - work_before) as f64 <= self.work
             && !free.is_empty()
             && scanned < SCAN_PER_ROUND
         {
             // Asleep: nothing changed that could let it be taken.
-            if let Some((until, freed)) = self.dispatcher.pending[k].asleep {
-                if t < until && freed == self.dispatcher.freed {
+            if let Some((until, freed)) = self.pending[k].asleep {
+                if t < until && freed == self.freed {
                     k += 1;
                     continue;
                 }
             }
-            self.dispatcher.pending[k].asleep = None;
+            self.pending[k].asleep = None;
             scanned += 1;
-            if self.item_away(k, t) {
+            if self.item_away(fl, k, t) {
                 k += 1;
                 continue;
             }
-            let ti = self.dispatcher.pending[k].task;
+            let ti = self.pending[k].task;
             let Bids {
                 near,
                 after,
                 approach,
                 rest,
                 after_fleet,
-            } = self.bids(k, &free, &busy);
+            } = self.bids(fl, k, &free, &busy);
             let after_rest = rest_for(&rest, after_fleet);
             // Its free robots' plans lost to a busy robot that still gets there first, and
             // no robot that was not planned for could beat it.
-            if let (Some(a), Some(d)) = (after, &self.dispatcher.pending[k].deferred) {
+            if let (Some(a), Some(d)) = (after, &self.pending[k].deferred) {
                 if d.holds(t, (a, a + after_rest), &near) {
                     self.wait_for_busy(k, a, t);
                     k += 1;
                     continue;
                 }
             }
-            self.dispatcher.pending[k].deferred = None;
+            self.pending[k].deferred = None;
             // A busy robot gets there before any free one could (free flow is the
             // soonest a plan arrives): the task waits for it, as RMF queues a task after
             // a robot's current one. Not planned for the free robots now, so they stay
@@ -185,7 +179,7 @@ impl Fleets {
             // DeliveryRobot idle 2,768 s of the hour while the Tiny robots chained tasks).
             let free_done = near
                 .iter()
-                .map(|c| c.0 + rest_for(&rest, self.robots[c.1].fleet))
+                .map(|c| c.0 + rest_for(&rest, fl.robots[c.1].fleet))
                 .fold(f64::INFINITY, f64::min);
             if let Some(eta) = after
                 .filter(|&a| near.first().is_none_or(|n| a < n.0) && a + after_rest < free_done)
@@ -194,16 +188,17 @@ impl Fleets {
                 k += 1;
                 continue;
             }
-            let near = self.candidates(k, near, &free);
+            let near = self.candidates(fl, k, near, &free);
             let looked_at = near.len();
             let planned: Vec<usize> = near.iter().map(|c| c.1).collect();
             let Tried {
                 best,
                 refused,
                 failed,
-            } = self.plan_candidates(k, ti, near, t, &mut round);
+            } = self.plan_candidates(fl, k, ti, near, t, &mut round);
             let Some(best) = best else {
                 self.no_taker(
+                    fl,
                     k,
                     (refused, failed, looked_at),
                     &free,
@@ -227,12 +222,12 @@ impl Fleets {
             // throughput) than the task gains by starting sooner. And, as above, it would
             // have the task done first too.
             let extra = (best.eta - approach).max(0.0);
-            let best_rest = rest_for(&rest, self.robots[best.robot].fleet);
+            let best_rest = rest_for(&rest, fl.robots[best.robot].fleet);
             let beat = best.arrive + waited + extra;
             if let Some(eta) =
                 after.filter(|&a| t + a < beat && t + a + after_rest < beat + best_rest)
             {
-                let p = &mut self.dispatcher.pending[k];
+                let p = &mut self.pending[k];
                 p.backoff = refused;
                 p.deferred = Some(Deferred {
                     beat,
@@ -245,18 +240,17 @@ impl Fleets {
             }
             let ri = best.robot;
             // Where and when the task will end, for its robot's bid on the next tasks.
-            let (last, done) = self.task_end(ri, &best.steps, &best.plan, best.t0);
+            let (last, done) = fl.task_end(ri, &best.steps, &best.plan, best.t0);
             let start = (best.keep, best.t0, best.soft.then_some(t));
-            if !self.start_task(ri, ti, best.steps, best.plan, start, t, out) {
+            if !fl.start_task(ri, ti, best.steps, best.plan, start, t, out) {
                 // A robot it went before on its way to parking found no way behind it.
-                self.dispatcher.pending[k].hard = true;
-                self.dispatcher
-                    .same
+                self.pending[k].hard = true;
+                self.same
                     .insert(best.same, (t + MAX_BACKOFF, Refused::Undone));
                 k += 1;
                 continue;
             }
-            self.dispatcher.remove(k);
+            self.remove(k);
             free.retain(|f| f.0 != ri);
             // The robot bids for the tasks after it in this round as a busy robot, from
             // where this one ends. (Left out until the next round, robots free together
@@ -266,52 +260,30 @@ impl Fleets {
                 busy.push((ri, last, done - t));
             }
         }
-        if !self.dispatcher.pending.is_empty() {
-            self.retreat(&free, t);
+        if !self.pending.is_empty() {
+            fl.retreat(&free, t);
         }
-        self.dispatcher.work -= (self.traffic.expanded() - work_before) as f64;
-        if !self.dispatcher.pending.is_empty() {
-            self.dispatcher.next_dispatch = t + DISPATCH_EVERY;
+        self.work -= (fl.traffic.expanded() - work_before) as f64;
+        if !self.pending.is_empty() {
+            self.next_dispatch = t + DISPATCH_EVERY;
         }
-    }
-
-    /// The free robots: where they plan from, and how long until they may leave (s).
-    fn free_robots(&self, t: f64) -> Vec<Free> {
-        (0..self.robots.len())
-            .filter(|&i| self.free(i))
-            .map(|i| {
-                let (_, at, t0) = self.plan_start(i, t);
-                (i, at, t0 - t)
-            })
-            .collect()
-    }
-
-    /// The busy robots: where their tasks end and when (s from now).
-    fn busy_robots(&self, t: f64) -> Vec<Busy> {
-        (0..self.robots.len())
-            .filter(|&i| !self.free(i))
-            .filter_map(|i| {
-                let (last, done) = self.busy_end(i, t)?;
-                Some((i, last, done - t))
-            })
-            .collect()
     }
 
     /// A delivery whose dispenser's item is away (on a robot, on its way home, or
     /// promised to a robot on its way there) waits in the queue: a robot sent now
     /// would stand at the empty dispenser until the item is back (minutes, on a
     /// large building), in others' way.
-    fn item_away(&self, k: usize, t: f64) -> bool {
-        self.dispatcher.pending[k].steps.iter().any(|(_, st)| {
+    fn item_away(&self, fl: &Floor, k: usize, t: f64) -> bool {
+        self.pending[k].steps.iter().any(|(_, st)| {
             st.iter()
-                .any(|s| matches!(s, Step::Dispense(d) if self.dispenser_taken(d, t)))
+                .any(|s| matches!(s, Step::Dispense(d) if fl.dispenser_taken(d, t)))
         })
     }
 
     /// The bids for pending task `k`: its free robots (of `free`) by free-flow time to its
     /// first place, nearest first, and the soonest a busy robot (of `busy`) could get
     /// there after its task.
-    fn bids(&mut self, k: usize, free: &[Free], busy: &[Busy]) -> Bids {
+    fn bids(&mut self, fl: &Floor, k: usize, free: &[Free], busy: &[Busy]) -> Bids {
         // The nearest free robots by free-flow time to the task's first place.
         // (time, robot, which of the task's fleets): the steps are cloned for the few
         // kept only (with hundreds of robots free, cloning them for each was a tenth
@@ -324,8 +296,8 @@ impl Fleets {
         let mut after_fleet = usize::MAX;
         // The fleets that bid, by their steps.
         let mut bidding: Vec<(usize, usize)> = Vec::new();
-        let only = self.dispatcher.pending[k].robot;
-        let firsts: Vec<(usize, usize, usize)> = self.dispatcher.pending[k]
+        let only = self.pending[k].robot;
+        let firsts: Vec<(usize, usize, usize)> = self.pending[k]
             .steps
             .iter()
             .enumerate()
@@ -337,17 +309,17 @@ impl Fleets {
             // A fleet with no robot free still bids with its busy ones: a robot of
             // another fleet sent now would only get there after it.
             // (Busy robots looked up only then: with one fleet, never.)
-            let bids = |r: usize| self.robots[r].fleet == fi;
+            let bids = |r: usize| fl.robots[r].fleet == fi;
             if !free.iter().any(|f| bids(f.0))
                 && (only.is_some() || !busy.iter().any(|b| bids(b.0)))
             {
                 continue;
             }
             bidding.push((n, fi));
-            let fleet = &self.fleets[fi];
-            let table = self.dispatcher.eta_table(&self.nav, fleet, first);
+            let fleet = &fl.fleets[fi];
+            let table = self.eta_table(&fl.nav, fleet, first);
             for f in free {
-                if self.robots[f.0].fleet == fi && only.is_none_or(|o| o == f.0) {
+                if fl.robots[f.0].fleet == fi && only.is_none_or(|o| o == f.0) {
                     let eta = table[f.1] + f.2;
                     if eta.is_finite() {
                         near.push((eta, f.0, n));
@@ -358,7 +330,7 @@ impl Fleets {
                 continue;
             }
             for &(ri, last, done) in busy {
-                if self.robots[ri].fleet == fi {
+                if fl.robots[ri].fleet == fi {
                     let eta = done + table[last];
                     if eta.is_finite() && after.is_none_or(|a| eta < a) {
                         after = Some(eta);
@@ -374,7 +346,7 @@ impl Fleets {
         let rest: Vec<(usize, f64)> = if after.is_some() && bidding.len() > 1 {
             bidding
                 .iter()
-                .map(|&(n, fi)| (fi, self.rest_of(k, n, free, busy)))
+                .map(|&(n, fi)| (fi, self.rest_of(fl, k, n, free, busy)))
                 .collect()
         } else {
             Vec::new()
@@ -391,19 +363,16 @@ impl Fleets {
     /// The free-flow time of pending task `k` from its first place on, for its fleet of
     /// steps `n` (at that fleet's speed, with the work at each place; one of the fleet's
     /// robots, of `free` or `busy`, stands for it).
-    fn rest_of(&mut self, k: usize, n: usize, free: &[Free], busy: &[Busy]) -> f64 {
-        let fi = self.dispatcher.pending[k].steps[n].0;
+    fn rest_of(&mut self, fl: &Floor, k: usize, n: usize, free: &[Free], busy: &[Busy]) -> f64 {
+        let fi = self.pending[k].steps[n].0;
         let robot = free.iter().map(|f| f.0).chain(busy.iter().map(|b| b.0));
-        let Some(ri) = robot.into_iter().find(|&r| self.robots[r].fleet == fi) else {
+        let Some(ri) = robot.into_iter().find(|&r| fl.robots[r].fleet == fi) else {
             return 0.0;
         };
-        let goals = self.goals_of(ri, &self.dispatcher.pending[k].steps[n].1);
+        let goals = fl.goals_of(ri, &self.pending[k].steps[n].1);
         let mut rest = goals.first().map_or(0.0, |g| g.1);
         for w in goals.windows(2) {
-            rest += self
-                .dispatcher
-                .eta_table(&self.nav, &self.fleets[fi], w[1].0)[w[0].0]
-                + w[1].1;
+            rest += self.eta_table(&fl.nav, &fl.fleets[fi], w[1].0)[w[0].0] + w[1].1;
         }
         rest
     }
@@ -415,15 +384,16 @@ impl Fleets {
     /// Passing, a robot whose endpoint a task needs takes the task or makes room).
     fn candidates(
         &self,
+        fl: &Floor,
         k: usize,
         near: Vec<(f64, usize, usize)>,
         free: &[Free],
     ) -> Vec<(f64, usize, Vec<Step>)> {
-        let holders = self.holders(k, free);
+        let holders = self.holders(fl, k, free);
         near.into_iter()
             .enumerate()
             .filter(|(n, c)| *n < CANDIDATES || holders.contains(&c.1))
-            .map(|(_, (eta, ri, n))| (eta, ri, self.dispatcher.pending[k].steps[n].1.clone()))
+            .map(|(_, (eta, ri, n))| (eta, ri, self.pending[k].steps[n].1.clone()))
             .collect()
     }
 
@@ -433,6 +403,7 @@ impl Fleets {
     /// whether some found no way.
     fn plan_candidates(
         &mut self,
+        fl: &mut Floor,
         k: usize,
         ti: usize,
         near: Vec<(f64, usize, Vec<Step>)>,
@@ -440,7 +411,7 @@ impl Fleets {
         round: &mut Round,
     ) -> Tried {
         // Task plans go through the others' ways to parking (see `schedule`).
-        let task_soft = !self.dispatcher.pending[k].hard;
+        let task_soft = !self.pending[k].hard;
         let mut best: Option<Best> = None;
         let mut failed = false;
         // Robots whose plans for it waited too long now and will, planned again.
@@ -449,33 +420,29 @@ impl Fleets {
             // Planning again for a robot before its backoff ends cannot succeed unless
             // the others got ahead of their plans: a later start shortens a plan's
             // waits by at most the delay, and the plans installed since only add spans.
-            if let Some(&(_, until)) = self.dispatcher.pending[k]
-                .backoff
-                .iter()
-                .find(|b| b.0 == ri)
-            {
+            if let Some(&(_, until)) = self.pending[k].backoff.iter().find(|b| b.0 == ri) {
                 if t < until {
                     refused.push((ri, until));
                     continue;
                 }
             }
-            let goals = self.goals_of(ri, &steps);
-            let stay = matches!(self.tasks[ti].kind, TaskKind::GoToPlace { .. })
+            let goals = fl.goals_of(ri, &steps);
+            let stay = matches!(fl.tasks[ti].kind, TaskKind::GoToPlace { .. })
                 .then(|| goals.last().map(|g| g.0))
                 .flatten();
-            let (keep, from, t0) = self.plan_start(ri, t);
+            let (keep, from, t0) = fl.plan_start(ri, t);
             // The same plan through soft spans was undone for another task (a robot it
             // went before found no way behind it): this one keeps clear of them. With
             // a few places and a saturating stream, one task after another was
             // planned, installed and undone while robots stood idle.
             let undone = Same::new(ri, from, true, stay, &goals);
             let soft = task_soft
-                && !matches!(self.dispatcher.same.get(&undone), Some(&(until, Refused::Undone)) if t < until);
+                && !matches!(self.same.get(&undone), Some(&(until, Refused::Undone)) if t < until);
             // The same plan (robot, start, places) was refused for another task: the
             // reason above holds for it too (a saturating stream queues many tasks
             // between the same places).
             let same = Same::new(ri, from, soft, stay, &goals);
-            if let Some(&(until, why)) = self.dispatcher.same.get(&same) {
+            if let Some(&(until, why)) = self.same.get(&same) {
                 if t < until && why != Refused::Undone {
                     failed |= why == Refused::NoWay;
                     refused.push((ri, until));
@@ -483,11 +450,11 @@ impl Fleets {
                 }
             }
             round.budget = round.budget.saturating_sub(1);
-            let stamp = self.traffic.sched.stamp();
+            let stamp = fl.traffic.sched.stamp();
             let (found, late) = match round.made.get(&same) {
                 Some((at, found, late)) if *at == stamp => (found.clone(), *late),
                 _ => {
-                    let (found, late) = self.task_plan(ri, &goals, (from, t0), stay, soft);
+                    let (found, late) = fl.task_plan(ri, &goals, (from, t0), stay, soft);
                     round
                         .made
                         .insert(same.clone(), (stamp, found.clone(), late));
@@ -500,9 +467,7 @@ impl Fleets {
                 None => {
                     failed = true;
                     refused.push((ri, t + NO_WAY_BACKOFF));
-                    self.dispatcher
-                        .same
-                        .insert(same, (t + NO_WAY_BACKOFF, Refused::NoWay));
+                    self.same.insert(same, (t + NO_WAY_BACKOFF, Refused::NoWay));
                     continue;
                 }
                 // Long tasks may wait longer in all: a share of their length. No single
@@ -518,7 +483,7 @@ impl Fleets {
                     // airport terminal waited in the queue for minutes while 45 robots
                     // stood idle, their plans refused for waiting at their parking
                     // spots for others to pass.)
-                    let idle_here = keep == 0 && self.traffic.sched.end_vertex(ri) == from;
+                    let idle_here = keep == 0 && fl.traffic.sched.end_vertex(ri) == from;
                     let waited: f64 = waits(plan, t0).skip(usize::from(idle_here)).sum();
                     (waited - (MAX_PLANNED_WAIT + WAIT_SHARE * length))
                         .max(longest_wait(plan, t0) - LONGEST_WAIT)
@@ -527,7 +492,7 @@ impl Fleets {
             let Some(plan) = found.filter(|_| over <= 0.0) else {
                 let until = t + over.clamp(DISPATCH_EVERY, MAX_BACKOFF);
                 refused.push((ri, until));
-                self.dispatcher.same.insert(same, (until, Refused::Late));
+                self.same.insert(same, (until, Refused::Late));
                 continue;
             };
             let arrive = match plan.goal_at.first() {
@@ -561,6 +526,7 @@ impl Fleets {
     /// round: `displaced`).
     fn no_taker(
         &mut self,
+        fl: &mut Floor,
         k: usize,
         (refused, failed, looked_at): (Vec<(usize, f64)>, bool, usize),
         free: &[Free],
@@ -573,28 +539,70 @@ impl Fleets {
         // free changes that.
         if refused.len() == looked_at {
             let until = refused.iter().map(|r| r.1).fold(f64::INFINITY, f64::min);
-            self.dispatcher.pending[k].asleep = Some((until, self.dispatcher.freed));
+            self.pending[k].asleep = Some((until, self.freed));
         }
-        self.dispatcher.pending[k].backoff = refused;
+        self.pending[k].backoff = refused;
         // Room is made for one task per round, the oldest that needs it: for two
         // tasks in turn, the same robot would be sent back and forth between them.
-        if failed && !*displaced && t >= self.dispatcher.pending[k].displaced_at + DISPLACE_EVERY {
+        if failed && !*displaced && t >= self.pending[k].displaced_at + DISPLACE_EVERY {
             *displaced = true;
-            self.dispatcher.pending[k].displaced_at = t;
+            self.pending[k].displaced_at = t;
             // Maybe a robot stays for good where the task must go: it makes room.
-            let found = self.dispatcher.pending[k]
-                .steps
-                .iter()
-                .find_map(|(fi, st)| {
-                    free.iter()
-                        .find(|f| self.robots[f.0].fleet == *fi)
-                        .map(|f| (f.0, st.clone()))
-                });
+            let found = self.pending[k].steps.iter().find_map(|(fi, st)| {
+                free.iter()
+                    .find(|f| fl.robots[f.0].fleet == *fi)
+                    .map(|f| (f.0, st.clone()))
+            });
             if let Some((ri, steps)) = found {
-                let goals = self.goals_of(ri, &steps);
-                self.displace_for(ri, &goals, t);
+                let goals = fl.goals_of(ri, &steps);
+                fl.displace_for(ri, &goals, t);
             }
         }
+    }
+
+    /// The free robots (of `free`) that stay for good on a place of pending task `k`.
+    pub(super) fn holders(&self, fl: &Floor, k: usize, free: &[Free]) -> Vec<usize> {
+        let conf = fl.traffic.sched.conf();
+        let mut out = Vec::new();
+        for (_, steps) in &self.pending[k].steps {
+            for s in steps {
+                let Step::GoTo(g) = s else { continue };
+                for &x in &conf.vertex[*g] {
+                    if let Some(o) = fl.traffic.sched.held_for_good(x, usize::MAX, false) {
+                        if free.iter().any(|f| f.0 == o) && !out.contains(&o) {
+                            out.push(o);
+                        }
+                    }
+                }
+            }
+        }
+        out
+    }
+}
+
+/// What a round asks of the floor: its free and busy robots, a task's plan, and the robot
+/// that takes it.
+impl Floor {
+    /// The free robots: where they plan from, and how long until they may leave (s).
+    fn free_robots(&self, t: f64) -> Vec<Free> {
+        (0..self.robots.len())
+            .filter(|&i| self.free(i))
+            .map(|i| {
+                let (_, at, t0) = self.plan_start(i, t);
+                (i, at, t0 - t)
+            })
+            .collect()
+    }
+
+    /// The busy robots: where their tasks end and when (s from now).
+    fn busy_robots(&self, t: f64) -> Vec<Busy> {
+        (0..self.robots.len())
+            .filter(|&i| !self.free(i))
+            .filter_map(|i| {
+                let (last, done) = self.busy_end(i, t)?;
+                Some((i, last, done - t))
+            })
+            .collect()
     }
 
     /// Robot `i`'s plan to `goals` from `from` at `t0` for a task, against the schedule as
@@ -630,28 +638,9 @@ impl Fleets {
         )
     }
 
-    /// The free robots (of `free`) that stay for good on a place of pending task `k`.
-    pub(super) fn holders(&self, k: usize, free: &[Free]) -> Vec<usize> {
-        let conf = self.traffic.sched.conf();
-        let mut out = Vec::new();
-        for (_, steps) in &self.dispatcher.pending[k].steps {
-            for s in steps {
-                let Step::GoTo(g) = s else { continue };
-                for &x in &conf.vertex[*g] {
-                    if let Some(o) = self.traffic.sched.held_for_good(x, usize::MAX, false) {
-                        if free.iter().any(|f| f.0 == o) && !out.contains(&o) {
-                            out.push(o);
-                        }
-                    }
-                }
-            }
-        }
-        out
-    }
-
     /// Robot `ri` takes task `ti` with its plan (against the schedule as it is now, after
     /// its first `keep` traversals, from `t0`; through soft spans when `soft_at`). False
-    /// when the plan could not be installed (see [`Fleets::install`]): nothing changed.
+    /// when the plan could not be installed (see [`Floor::install`]): nothing changed.
     #[allow(clippy::too_many_arguments)]
     pub(super) fn start_task(
         &mut self,

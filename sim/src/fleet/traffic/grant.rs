@@ -4,7 +4,7 @@
 
 use super::*;
 
-impl Fleets {
+impl Floor {
     /// Sends robot `i` along what the schedule grants it, up to `limit` traversals from
     /// its first (the end of its leg). Doors and lifts on the way are waited for first.
     pub(in crate::fleet) fn advance(
@@ -132,7 +132,7 @@ impl Fleets {
     }
 
     /// Whether robot `i`'s gate (the door or lift it asked for, if any) is the one edge `e`
-    /// goes through, as [`Fleets::advance`] asks for it.
+    /// goes through, as [`Floor::advance`] asks for it.
     pub(super) fn gate_is_for(&self, i: usize, e: usize) -> bool {
         let edge = &self.nav.edges[e];
         let lift_of = |v: usize| self.nav.vertices[v].lift;

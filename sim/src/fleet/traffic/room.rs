@@ -4,10 +4,10 @@
 
 use super::*;
 
-/// The schedule, and the legs of the robots [`Fleets::aside`] plans again.
+/// The schedule, and the legs of the robots [`Floor::aside`] plans again.
 type AsideSnapshot = (Schedule, Vec<(VecDeque<usize>, Option<usize>)>);
 
-impl Fleets {
+impl Floor {
     /// Robot `j` stands (not driving, at no door or lift) with nothing but a way to go:
     /// its itinerary may be dropped and planned again.
     pub(super) fn may_stand_aside(&self, j: usize) -> bool {

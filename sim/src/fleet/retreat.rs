@@ -12,6 +12,7 @@
 
 use super::*;
 use crate::traffic::parks::PARK;
+use assign::{Free, DISPATCH_EVERY};
 
 /// A robot left without a task this long (s) with tasks waiting goes out of the way: four
 /// dispatch rounds, so a robot between two tasks of a stream does not drive off.
@@ -19,7 +20,7 @@ const RETREAT_AFTER: f64 = 4.0 * DISPATCH_EVERY;
 /// Robots sent out of the way per round, at most (each is a plan).
 const RETREATS_PER_ROUND: usize = 2;
 
-impl Fleets {
+impl Floor {
     /// Sends robots of `free` (those the round at `t` left without a task) that have stood
     /// idle `RETREAT_AFTER` on a parking vertex in the way to the nearest free one out of
     /// the way nearby. Each plan may go before others' ways to parking (they plan theirs

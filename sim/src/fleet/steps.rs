@@ -3,7 +3,7 @@
 
 use super::*;
 
-impl Fleets {
+impl Floor {
     /// The places of `steps` in order, each with how long robot `i` stays there (the
     /// work of the steps up to the next place).
     pub(in crate::fleet) fn goals_of(&self, i: usize, steps: &[Step]) -> Vec<(usize, f64)> {
