@@ -37,7 +37,6 @@
 //! robot-time, and a drive across the building also loads its corridors (of the 95 %
 //! rule's breaches on the generated buildings and warehouses, all but one went).
 
-mod busy;
 mod round;
 use super::steps::first_goal;
 use super::*;
@@ -105,7 +104,7 @@ pub(super) type Free = (usize, usize, f64);
 
 /// A busy robot: its index, the last place of its task, and how long until it is done
 /// there (s).
-type Busy = (usize, usize, f64);
+pub(super) type Busy = (usize, usize, f64);
 
 /// Free-flow time tables to places kept (each a float per vertex): at least this many, and
 /// as many as fit in `ETA_TABLE_FLOATS` (a warehouse's thousand racks each made again and
@@ -474,65 +473,6 @@ impl Dispatcher {
     /// rounds pass it by until that robot should be done or a robot becomes free.
     pub(super) fn wait_for_busy(&mut self, k: usize, eta: f64, t: f64) {
         self.pending[k].asleep = Some((t + eta, self.freed));
-    }
-}
-
-impl Floor {
-    /// (fleet, its steps for the task) of every fleet that may do task `ti` and has a
-    /// robot that can reach the task's places in order.
-    pub(super) fn fleets_for(&self, ti: usize) -> Vec<(usize, Vec<Step>)> {
-        let task = &self.tasks[ti];
-        let mut out = Vec::new();
-        for (fi, f) in self.fleets.iter().enumerate() {
-            if task.fleet.as_ref().is_some_and(|n| *n != f.name)
-                || !(f.kinds.is_empty() || f.kinds.contains(&task.category))
-            {
-                continue;
-            }
-            let Some(steps) = self.expand(fi, &task.kind) else {
-                continue;
-            };
-            // The first place from some robot, then each place from the one before.
-            let starts: Vec<usize> = f
-                .robots
-                .iter()
-                .map(|&ri| self.traffic.sched.itinerary(ri).at)
-                .collect();
-            let goals: Vec<usize> = steps
-                .iter()
-                .filter_map(|s| match s {
-                    Step::GoTo(v) => Some(*v),
-                    _ => None,
-                })
-                .collect();
-            let reaches = goals
-                .first()
-                .is_some_and(|&g| self.nav.reachable_from_any(f.slot, &starts, g))
-                && goals
-                    .windows(2)
-                    .all(|w| self.nav.times_reachable(f.slot, w[0], w[1]));
-            if reaches {
-                out.push((fi, steps));
-            }
-        }
-        out
-    }
-
-    /// Whether robot `i` may take a task now: idle, and not at a door or lift.
-    fn free(&self, i: usize) -> bool {
-        let r = &self.robots[i];
-        r.idle() && r.gate == Gate::None
-    }
-
-    /// Where robot `i` plans from: where the traversals it was sent along end, and when
-    /// (its first traversals still to be kept).
-    pub(super) fn plan_start(&self, i: usize, t: f64) -> (usize, usize, f64) {
-        let keep = self.kept(i);
-        let it = self.traffic.sched.itinerary(i);
-        match keep.checked_sub(1).and_then(|k| it.travs.get(k)) {
-            Some(tr) => (keep, tr.to, tr.end.max(t)),
-            None => (0, it.at, t),
-        }
     }
 }
 

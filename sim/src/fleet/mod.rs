@@ -18,12 +18,13 @@
 //! takes a task); [`Floor`] is the robots executing their tasks against the schedule.
 //!
 //! Modules: `setup` (placement, graphs, the schedule), `spawn` (where auto-spawned robots
-//! start), `assign` (the dispatcher), `steps` (a task's steps and places), `task` (the
-//! steps of a task and their sessions), `drive` (path requests, doors and lifts on the
-//! way), `devices` (doors, lifts, workcells and chargers as last heard of), `cancel`
-//! (cancel requests), `traffic` (planning legs into the schedule and driving what it
-//! grants), `retreat` (out of the way while idle), `park` (what a robot does with no task
-//! left), `waits` (why robots wait), `bound` (the throughput bound's demands).
+//! start), `assign` (the dispatcher), `takers` (the floor's side of dispatch), `steps` (a
+//! task's steps and places), `task` (the steps of a task and their sessions), `drive` (path
+//! requests, doors and lifts on the way), `devices` (doors, lifts, workcells and chargers
+//! as last heard of), `cancel` (cancel requests), `traffic` (planning legs into the
+//! schedule and driving what it grants), `retreat` (out of the way while idle), `park`
+//! (what a robot does with no task left), `waits` (why robots wait), `bound` (the
+//! throughput bound's demands).
 
 use crate::graph::{EdgeKind, Nav};
 use crate::msgs::{
@@ -50,6 +51,7 @@ mod retreat;
 mod setup;
 mod spawn;
 mod steps;
+mod takers;
 mod task;
 mod traffic;
 mod waits;
@@ -227,7 +229,7 @@ struct Robot {
     waiting_for: Option<(WaitCause, waits::Place, f64)>,
     waits: TaskWaits,
     /// The parking vertex out of the way it was sent to while idle with tasks waiting
-    /// (`assign/retreat.rs`), until it takes a task.
+    /// (`retreat.rs`), until it takes a task.
     retreat: Option<usize>,
     /// Since when it has had no task (the start of the dispatch round that first found it
     /// free; infinite from when it takes one).
@@ -301,7 +303,7 @@ pub struct Fleets {
 /// (doors, lifts, workcells and chargers as last heard of) and `drive::LaneUse`. Its
 /// `impl` is split by job: `task` (the steps of a task), `drive` (paths, doors and lifts),
 /// `traffic` (plans into the schedule), `traffic/grant` (driving what the schedule
-/// grants), `traffic/room` (making room), `retreat` (out of the way while idle), `steps`
+/// grants), `traffic/room` (making room), `retreat` (out of the way while idle), `takers` (what the dispatcher asks of it), `steps`
 /// (a task's steps and places), `waits` (why robots wait), `bound` (the throughput bound's
 /// demands).
 ///

@@ -454,7 +454,8 @@ impl Dispatcher {
             let (found, late) = match round.made.get(&same) {
                 Some((at, found, late)) if *at == stamp => (found.clone(), *late),
                 _ => {
-                    let (found, late) = fl.task_plan(ri, &goals, (from, t0), stay, soft);
+                    let (found, late) =
+                        fl.task_plan(ri, &goals, (from, t0), stay, (soft, SEARCH_DELAY));
                     round
                         .made
                         .insert(same.clone(), (stamp, found.clone(), late));
@@ -577,119 +578,6 @@ impl Dispatcher {
             }
         }
         out
-    }
-}
-
-/// What a round asks of the floor: its free and busy robots, a task's plan, and the robot
-/// that takes it.
-impl Floor {
-    /// The free robots: where they plan from, and how long until they may leave (s).
-    fn free_robots(&self, t: f64) -> Vec<Free> {
-        (0..self.robots.len())
-            .filter(|&i| self.free(i))
-            .map(|i| {
-                let (_, at, t0) = self.plan_start(i, t);
-                (i, at, t0 - t)
-            })
-            .collect()
-    }
-
-    /// The busy robots: where their tasks end and when (s from now).
-    fn busy_robots(&self, t: f64) -> Vec<Busy> {
-        (0..self.robots.len())
-            .filter(|&i| !self.free(i))
-            .filter_map(|i| {
-                let (last, done) = self.busy_end(i, t)?;
-                Some((i, last, done - t))
-            })
-            .collect()
-    }
-
-    /// Robot `i`'s plan to `goals` from `from` at `t0` for a task, against the schedule as
-    /// it is, with its ends in order of preference (`stay`: a go-to-place's place); or
-    /// None, and whether some way was cut only by the delay bound.
-    pub(super) fn task_plan(
-        &mut self,
-        i: usize,
-        goals: &[(usize, f64)],
-        (from, t0): (usize, f64),
-        stay: Option<usize>,
-        soft: bool,
-    ) -> (Option<Plan>, bool) {
-        // A place where another robot stays for good: no plan can get there (a search
-        // would only prove it, at length), that robot must make room.
-        let conf = self.traffic.sched.conf();
-        let held = goals.iter().any(|&(g, _)| {
-            conf.vertex[g]
-                .iter()
-                .any(|&x| self.traffic.sched.held_for_good(x, i, soft).is_some())
-        });
-        if held {
-            return (None, false);
-        }
-        let ends = self.ends(i, goals, from, stay);
-        self.plan_over(
-            i,
-            &ends,
-            (from, t0),
-            goals,
-            (soft, Some(SEARCH_DELAY)),
-            None,
-        )
-    }
-
-    /// Robot `ri` takes task `ti` with its plan (against the schedule as it is now, after
-    /// its first `keep` traversals, from `t0`; through soft spans when `soft_at`). False
-    /// when the plan could not be installed (see [`Floor::install`]): nothing changed.
-    #[allow(clippy::too_many_arguments)]
-    pub(super) fn start_task(
-        &mut self,
-        ri: usize,
-        ti: usize,
-        steps: Vec<Step>,
-        plan: Plan,
-        (keep, t0, soft_at): (usize, f64, Option<f64>),
-        t: f64,
-        out: &mut Vec<(Topic, Msg)>,
-    ) -> bool {
-        let (_, planned) = self.task_end(ri, &steps, &plan, t0);
-        // Its way to parking is soft from the start: the robot has the task.
-        self.robots[ri].task = Some(ti);
-        self.robots[ri].retreat = None;
-        self.robots[ri].free_since = f64::INFINITY;
-        if !self.install(ri, keep, plan, t0, soft_at) {
-            self.robots[ri].task = None;
-            return false;
-        }
-        let r = &mut self.robots[ri];
-        r.task_started = t;
-        r.steps = steps.into();
-        r.park_pending = false;
-        r.dirty = true;
-        r.wake = t;
-        self.event(t, ti, "assigned", Some(ri), String::new(), out);
-        if let Some((_, Msg::TaskEvent(e))) = out.last_mut() {
-            e.planned_finish = Some(planned);
-        }
-        self.event(t, ti, "started", Some(ri), String::new(), out);
-        true
-    }
-
-    /// Where robot `i`'s task of `steps` ends (its last place, None without one) and when,
-    /// on `plan` from `t0`: at its last place, after the work there.
-    pub(super) fn task_end(
-        &self,
-        i: usize,
-        steps: &[Step],
-        plan: &Plan,
-        t0: f64,
-    ) -> (Option<usize>, f64) {
-        let last = self.goals_of(i, steps).last().copied();
-        let arrive = match plan.goal_at.last() {
-            Some(&0) | None => t0,
-            Some(&n) => plan.steps[n - 1].end,
-        };
-        (last.map(|g| g.0), arrive + last.map_or(0.0, |g| g.1))
     }
 }
 
