@@ -303,9 +303,9 @@ pub struct Fleets {
 /// (doors, lifts, workcells and chargers as last heard of) and `drive::LaneUse`. Its
 /// `impl` is split by job: `task` (the steps of a task), `drive` (paths, doors and lifts),
 /// `traffic` (plans into the schedule), `traffic/grant` (driving what the schedule
-/// grants), `traffic/room` (making room), `retreat` (out of the way while idle), `takers` (what the dispatcher asks of it), `steps`
-/// (a task's steps and places), `waits` (why robots wait), `bound` (the throughput bound's
-/// demands).
+/// grants), `traffic/room` (making room), `retreat` (out of the way while idle), `takers`
+/// (what the dispatcher asks of it), `steps` (a task's steps and places), `waits` (why
+/// robots wait), `bound` (the throughput bound's demands).
 ///
 /// Invariant: a robot with a task has a plan in the schedule to its next place (or is
 /// planning one, waiting where it blocks nobody), and every itinerary ends on a vertex its
