@@ -2,7 +2,7 @@
 //! time at every state it expands, and the distance tables read every edge's bound; read
 //! from the graph's edge and vertex records (large, and far apart in memory) they were a
 //! third of the search's own time on a 10,000-waypoint warehouse. The values are those of
-//! [`Kinematics::edge_time`] bit for bit (the sums are made in the same order; debug builds
+//! [`Kinematics::edge_time_with`] bit for bit (the sums are made in the same order; debug builds
 //! compare them).
 
 use super::{heading, Kinematics, STOP_S};
@@ -14,7 +14,7 @@ pub(super) struct EdgeTimes {
     pub(super) to: Vec<usize>,
     /// Lanes take a turn and settle at their end; lift rides do not.
     lane: Vec<bool>,
-    /// Lanes long enough to turn towards (see [`Kinematics::edge_time`]).
+    /// Lanes long enough to turn towards (see [`Kinematics::edge_time_with`]).
     turns: Vec<bool>,
     heading: Vec<f64>,
     /// The time without the turn and the settling (a lift ride: all of it).
@@ -80,7 +80,7 @@ mod tests {
     use crate::traffic::test_map;
 
     /// Every edge after every edge into its start (and after none), on random maps and
-    /// the corridor map: the same bits as [`Kinematics::edge_time`] and `edge_bound`.
+    /// the corridor map: the same bits as [`Kinematics::edge_time_with`] and `edge_bound`.
     #[test]
     fn flat_times_are_the_kinematics_times() {
         let kins = [

@@ -31,7 +31,7 @@ impl Kinematics {
         self.edge_time_with(nav, e, prev, |x| heading(nav, x))
     }
 
-    /// [`Kinematics::edge_time`] with the edges' headings from `h`.
+    /// [`Kinematics::edge_time_with`] with the edges' headings from `h`.
     pub(super) fn edge_time_with(
         &self,
         nav: &Nav,
@@ -84,7 +84,7 @@ impl Kinematics {
         }
     }
 
-    /// A lower bound of [`Kinematics::edge_time`] (for the search's heuristic): the same
+    /// A lower bound of [`Kinematics::edge_time_with`] (for the search's heuristic): the same
     /// time without the turn, which depends on the edge before. Every lane is driven from
     /// rest to rest, so a bound without the braking and settling (a third of a tiny
     /// robot's 2 m lane) would let A* spread over most of a large building.
