@@ -729,6 +729,11 @@ impl Body for Slotcar {
     fn ride(&mut self, vz: f64) {
         self.vz = vz;
     }
+
+    #[inline]
+    fn settle(&mut self, z: f64) {
+        self.z = z;
+    }
 }
 
 #[cfg(test)]

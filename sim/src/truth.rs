@@ -24,6 +24,9 @@ pub(crate) trait Body {
     fn pose(&self) -> [f64; 4];
     /// Sets the body's vertical velocity for this step (a lift carrying it).
     fn ride(&mut self, vz: f64);
+    /// Puts the body's origin at height `z` (a lift cabin that stopped at a floor sets
+    /// what stands on it on the floor's elevation).
+    fn settle(&mut self, z: f64);
 }
 
 /// A door as a lift drives its cabin and shaft doors.
