@@ -16,6 +16,9 @@
 //!   cabin's axis-aligned bounding box, from under its floor to its roof: a robot waiting
 //!   on the landing beside a turned cabin, or standing on the floor above the cabin's
 //!   path, would be lifted off its floor and left between floors.
+//! - A cabin that stops at a floor is at the floor's elevation exactly, and so is what
+//!   stands on it (Gazebo's contacts keep a robot on the cabin floor; here each stop's
+//!   error stayed with the robot until a cabin left it behind).
 
 use crate::msgs::{
     door_mode, lift_request, lift_state, LiftRequest, LiftState, Msg, Published, Time, Topic,

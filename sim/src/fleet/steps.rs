@@ -7,8 +7,6 @@ impl Floor {
     /// The places of `steps` in order, each with how long robot `i` stays there (the
     /// work of the steps up to the next place).
     pub(in crate::fleet) fn goals_of(&self, i: usize, steps: &[Step]) -> Vec<(usize, f64)> {
-        let r = &self.robots[i];
-        let f = &self.fleets[r.fleet];
         let mut goals: Vec<(usize, f64)> = Vec::new();
         for s in steps {
             let dwell = match s {
@@ -18,13 +16,19 @@ impl Floor {
                 }
                 Step::Dwell(x) => *x,
                 Step::Dispense(_) | Step::Ingest(_) | Step::Resume(_) => WORKCELL_ESTIMATE,
-                Step::Charge(pct) => (pct - r.battery()).max(0.0) / f.charge_rate.max(1e-9),
+                Step::Charge(pct) => self.charge_left(i, *pct),
             };
             if let Some(g) = goals.last_mut() {
                 g.1 = (g.1 + dwell).min(4.0 * 3600.0);
             }
         }
         goals
+    }
+
+    /// How long robot `i` still charges to reach `pct` percent (s), at its fleet's rate.
+    pub(in crate::fleet) fn charge_left(&self, i: usize, pct: f64) -> f64 {
+        let r = &self.robots[i];
+        (pct - r.battery()).max(0.0) / self.fleets[r.fleet].charge_rate.max(1e-9)
     }
 
     /// The steps of a task for fleet `fi`, or None if its waypoints are not on the graph.

@@ -74,13 +74,7 @@ impl Floor {
             Cur::GoTo { goal, .. } => (self.remaining_goals(i, goal), false),
             Cur::Dwell { until } => (self.working_goals(i, (until - t).max(0.0)), true),
             Cur::Workcell { .. } => (self.working_goals(i, WORKCELL_ESTIMATE), true),
-            Cur::Charge { pct, .. } => {
-                let rate = self.fleets[r.fleet].charge_rate.max(1e-9);
-                (
-                    self.working_goals(i, (pct - r.battery()).max(0.0) / rate),
-                    true,
-                )
-            }
+            Cur::Charge { pct, .. } => (self.working_goals(i, self.charge_left(i, pct)), true),
             Cur::None => return None,
         };
         let &(last, work) = goals.last()?;

@@ -435,7 +435,8 @@ impl Schedule {
     }
 
     /// Replaces robot `r`'s traversals after the first `keep` with `steps` (which start
-    /// where the kept ones end); `ready`: the earliest the first new step may start. The
+    /// where the kept ones end); `ready`: when the plan starts (with nothing kept, the
+    /// first step's hold, the work where the robot stands, comes after it). The
     /// steps' times must fit the others' spans (the planner's result against this
     /// schedule as it is), or overlap only soft ones (a plan that ignored them). The
     /// steps from `soft` on are soft.
@@ -484,7 +485,11 @@ impl Schedule {
         it.soft = soft.map(|k| s0 + k as u64);
         self.soft_from[r] = it.soft.unwrap_or(u64::MAX);
         if keep == 0 {
-            it.ready = ready;
+            // The work where the robot stands comes before its first traversal, as after
+            // any other arrival ([`Schedule::complete_front`]). (Without it the retime let
+            // a robot charging where it stood leave at once: others were planned behind it
+            // and waited for hours.)
+            it.ready = ready + steps.first().map_or(0.0, |st| st.hold);
         }
         for (k, st) in steps.iter().enumerate() {
             it.travs.push_back(Trav {

@@ -231,7 +231,9 @@ impl Floor {
                 } => (self.remaining_goals(o, goal), true),
                 Cur::Dwell { until } => (self.working_goals(o, (until - t).max(0.0)), false),
                 Cur::Workcell { .. } => (self.working_goals(o, WORKCELL_ESTIMATE), false),
-                Cur::Charge { .. } => (self.working_goals(o, 60.0), false),
+                // It charges on where it stands until it is full (it used to be planned
+                // to leave after a minute, and the robots planned behind it waited hours).
+                Cur::Charge { pct, .. } => (self.working_goals(o, self.charge_left(o, pct)), false),
                 Cur::None if pending => {
                     let steps: Vec<Step> = r.steps.iter().cloned().collect();
                     (self.goals_of(o, &steps), false)

@@ -542,3 +542,20 @@ fn a_retime_that_reads_only_what_changed_equals_a_full_one() {
     // changes only; the others were full passes.
     assert_eq!((s.bufs.followed, s.bufs.full), (2, 10));
 }
+
+/// A plan that starts with work where its robot stands (charging, say: the first step's
+/// hold) leaves after the work, in the retime too: robots planned later against the
+/// schedule see it standing there until then (it used to leave at once, and a robot
+/// planned behind a charging one waited for hours).
+#[test]
+fn work_where_a_robot_stands_holds_its_first_traversal_back() {
+    let nav = nav();
+    let mut s = standing(&nav);
+    let mut first = step(&nav, e(&nav, "a", "b"), 3600.0, 10.0);
+    first.hold = 3600.0;
+    s.install(0, 0, &[first], 0.0, None);
+    s.retime(5.0).expect("acyclic");
+    let it = s.itinerary(0);
+    assert_eq!(it.ready, 3600.0);
+    assert_eq!((it.travs[0].start, it.travs[0].end), (3600.0, 3610.0));
+}
