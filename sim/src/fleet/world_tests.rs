@@ -1464,3 +1464,42 @@ fn world_a_robot_given_a_task_and_made_to_make_room_keeps_its_task() {
     let at = leg.checked_sub(1).map_or(it.at, |k| it.travs[k].to);
     assert_eq!(at, c2, "x's first leg ends at its task's place");
 }
+
+#[test]
+fn world_a_charging_robot_made_to_make_room_charges_until_full_in_its_plan() {
+    // Robot x charges at c2 (its battery at 10 %, to 100 %) when robot y's plan to far_end
+    // (through c2) asks it to make room. It charges on until full, so its new plan holds
+    // it at c2 for the whole charge, and robots planned later see it there that long (it
+    // used to be planned to leave after a minute; on a public map the robots planned
+    // behind it waited for hours).
+    let b = load("comb", Some(COMB));
+    let s = scenario(
+        vec![
+            fleet("x", 1, spawn(&["c2"])),
+            fleet("y", 1, spawn(&["dead_end"])),
+        ],
+        vec![],
+    );
+    let (mut fleets, _world) = start(&b, &s);
+    let slot = fleets.floor.robots[0].slot;
+    let far = fleets.floor.nav.find(slot, "far_end").expect("far_end");
+    let x = &mut fleets.floor.robots[0];
+    x.state = Some(crate::msgs::RobotState {
+        battery_percent: 10.0,
+        ..Default::default()
+    });
+    x.cur = Cur::Charge {
+        pct: 100.0,
+        best: 10.0,
+        best_t: 0.0,
+    };
+    let left = fleets.floor.charge_left(0, 100.0);
+    assert!(left > 600.0, "a charge of {left} s");
+    fleets.floor.displace_for(1, &[(far, 0.0)], 0.0);
+    let it = fleets.floor.traffic.sched.itinerary(0);
+    assert!(
+        it.ready >= left.min(4.0 * 3600.0) - 1e-6,
+        "x leaves at {} s, with {left} s of charge left",
+        it.ready
+    );
+}
