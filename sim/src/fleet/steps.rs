@@ -3,6 +3,11 @@
 
 use super::*;
 
+/// The longest work at one place a plan holds (s): a bound against absurd inputs (a
+/// charging current near zero). It was 4 h, less than a TinyRobot's charge from 10 % (4.3
+/// h): a plan that holds a charge short lets others be planned behind the charging robot.
+const LONGEST_WORK: f64 = 48.0 * 3600.0;
+
 impl Floor {
     /// The places of `steps` in order, each with how long robot `i` stays there (the
     /// work of the steps up to the next place).
@@ -19,7 +24,7 @@ impl Floor {
                 Step::Charge(pct) => self.charge_left(i, *pct),
             };
             if let Some(g) = goals.last_mut() {
-                g.1 = (g.1 + dwell).min(4.0 * 3600.0);
+                g.1 = (g.1 + dwell).min(LONGEST_WORK);
             }
         }
         goals
