@@ -217,7 +217,7 @@ fn required_of(nav: &Nav, scenario: &Scenario, spawns: &[usize], chargers: bool)
 }
 
 /// Per graph slot, per vertex: the waypoints tasks name.
-fn task_places(nav: &Nav, scenario: &Scenario) -> Vec<Vec<bool>> {
+pub(super) fn task_places(nav: &Nav, scenario: &Scenario) -> Vec<Vec<bool>> {
     required_of(nav, scenario, &[], false)
 }
 
