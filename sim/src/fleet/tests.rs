@@ -218,35 +218,12 @@ fn crossing_lanes_conflict_and_far_ones_do_not() {
     assert!(sched.granted(1, 0));
 }
 
-/// A 30 m corridor from `room_w` to `room_e`, with a parking spot off it 10 m from each end
-/// (`park_w` first in waypoint order).
-const CORRIDOR_WITH_TWO_PARKS: &str = r#"
-coordinate_system: cartesian_meters
-name: corridor
-graphs:
-  0: {name: fleet, default_lane_width: 1}
-levels:
-  L1:
-    elevation: 0
-    lanes:
-      - [0, 1, {bidirectional: [4, true], graph_idx: [2, 0]}]
-      - [1, 2, {bidirectional: [4, true], graph_idx: [2, 0]}]
-      - [2, 3, {bidirectional: [4, true], graph_idx: [2, 0]}]
-      - [1, 4, {bidirectional: [4, true], graph_idx: [2, 0]}]
-      - [2, 5, {bidirectional: [4, true], graph_idx: [2, 0]}]
-    vertices:
-      - [0, 0, 0, "room_w"]
-      - [10, 0, 0, ""]
-      - [20, 0, 0, ""]
-      - [30, 0, 0, "room_e"]
-      - [10, 4, 0, "park_w", {is_parking_spot: [4, true]}]
-      - [20, 4, 0, "park_e", {is_parking_spot: [4, true]}]
-"#;
-
 #[test]
 fn auto_spawn_starts_robots_nearest_the_task_places() {
-    let parsed = mapc_frontend::parse_str("corridor", CORRIDOR_WITH_TWO_PARKS);
-    let b = parsed.building.expect("corridor parses");
+    // The traffic tests' corridor a - b - c - d (4 m apart), parking spots p1 off b and
+    // p2 off c (3 m off the corridor).
+    let parsed = mapc_frontend::parse_str("t.building.yaml", crate::traffic::test_map::YAML);
+    let b = parsed.building.expect("test map parses");
     let go_to = |place: &str| {
         task(
             0.0,
@@ -260,13 +237,13 @@ fn auto_spawn_starts_robots_nearest_the_task_places() {
             .expect("placement");
         (p.robots[0].x, p.robots[0].y)
     };
-    // Work at the east end: the robot starts on the east spot, though the west one comes
-    // first in waypoint order.
-    assert_eq!(start(vec![go_to("room_e")]), (20.0, 4.0));
-    assert_eq!(start(vec![go_to("room_w")]), (10.0, 4.0));
-    // Work at both ends: the drives from either spot sum to 38 m (4 + 10 to one end,
-    // 4 + 20 to the other), a tie broken by waypoint order.
-    assert_eq!(start(vec![go_to("room_w"), go_to("room_e")]), (10.0, 4.0));
+    // Work at d: the robot starts on p2 (7 m from d), though p1 (11 m) comes first in
+    // waypoint order.
+    assert_eq!(start(vec![go_to("d")]), (8.0, 3.0));
+    assert_eq!(start(vec![go_to("a")]), (4.0, 3.0));
+    // Work at both ends: the drives from either spot sum to 18 m, a tie broken by
+    // waypoint order.
+    assert_eq!(start(vec![go_to("a"), go_to("d")]), (4.0, 3.0));
 }
 
 #[test]

@@ -20,6 +20,6 @@ pub mod parks;
 pub mod schedule;
 pub mod sipp;
 #[cfg(test)]
-mod test_map;
+pub(crate) mod test_map;
 
 pub use conflicts::{Clearance, Conflicts, Res};
