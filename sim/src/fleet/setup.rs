@@ -130,7 +130,7 @@ impl Fleets {
         } else {
             spawn::reach(&nav, &park::task_places(&nav, scenario))
         };
-        let mut auto_chosen = spawn::auto_spawn(&nav, &conf, (&parks, &reach), &auto, &spawned);
+        let mut auto_chosen = spawn::auto_spawn(&nav, &conf, &parks, &reach, &auto, &spawned);
         // A building that holds fewer robots than asked: parking and spawns are chosen again
         // for the robots on the floor, so that the run depends on them and not on how many
         // more were asked (asking 32 or 64 where 15 fit is the same run). Kept only when
@@ -154,7 +154,7 @@ impl Fleets {
                 on_floor[a.slot] -= a.count - p.count;
             }
             let parks2 = choose_parks(&nav, &conf, scenario, &spawned, &on_floor);
-            let chosen2 = spawn::auto_spawn(&nav, &conf, (&parks2, &reach), &placed, &spawned);
+            let chosen2 = spawn::auto_spawn(&nav, &conf, &parks2, &reach, &placed, &spawned);
             if chosen2.iter().zip(&placed).all(|(c, p)| c.len() == p.count) {
                 parks = parks2;
                 auto_chosen = chosen2;

@@ -70,7 +70,8 @@ pub(super) fn reach(nav: &Nav, places: &[Vec<bool>]) -> Vec<Vec<(usize, f64)>> {
 pub(super) fn auto_spawn(
     nav: &Nav,
     conf: &Conflicts,
-    (parks, reach): (&Parks, &[Vec<(usize, f64)>]),
+    parks: &Parks,
+    reach: &[Vec<(usize, f64)>],
     fleets: &[AutoFleet],
     taken: &[usize],
 ) -> Vec<Vec<usize>> {
