@@ -442,20 +442,39 @@ pub fn scenario_mix(
 
 /// Random faults for `b`'s runs with `robots` robots (of [`scenario`]): each a robot
 /// paused, a door or the lift out of service, for 30 to 200 s, all starting in
-/// `[0, before)`. Scenario lines to append to [`scenario`]'s text.
+/// `[0, before)`. A door or lift is never out of service twice at once: two overlapping
+/// faults would make one outage longer than the 300 s a robot waits for it (a lift out
+/// from 348 s to 547 s and from 544 s to 686 s failed a task, as it should); the
+/// second becomes a robot's pause. Scenario lines to append to [`scenario`]'s text.
 pub fn faults(b: &Building, robots: usize, before: f64, n: usize, seed: u64) -> String {
     let mut rng = fastrand::Rng::with_seed(seed ^ 0x5eed_fa17);
     let mut out = String::from("faults:\n");
     let big = if seed % 3 == 2 { robots / 2 } else { 0 };
+    // Doors and lifts out of service: (target, from, to).
+    let mut out_of_service: Vec<(String, f64, f64)> = Vec::new();
     for _ in 0..n {
         let at = (rng.f64() * before).floor();
         let len = 30.0 + (rng.f64() * 170.0).floor();
-        let target = match rng.usize(0..3) {
-            1 if !b.doors.is_empty() => format!("door: {}", b.doors[rng.usize(0..b.doors.len())]),
-            2 if !b.lifts.is_empty() => format!("lift: {}", b.lifts[0]),
+        let device = match rng.usize(0..3) {
+            1 if !b.doors.is_empty() => {
+                Some(format!("door: {}", b.doors[rng.usize(0..b.doors.len())]))
+            }
+            2 if !b.lifts.is_empty() => Some(format!("lift: {}", b.lifts[0])),
+            _ => None,
+        };
+        let free = |d: &String| {
+            !out_of_service
+                .iter()
+                .any(|(o, from, to)| o == d && at <= *to && *from <= at + len)
+        };
+        let target = match device.filter(free) {
+            Some(d) => {
+                out_of_service.push((d.clone(), at, at + len));
+                d
+            }
             // The first robot of a fleet: `spawn: auto` may keep the others off the floor.
-            _ if big > 0 && rng.bool() => "robot: big_0".to_string(),
-            _ => "robot: fleet_0".to_string(),
+            None if big > 0 && rng.bool() => "robot: big_0".to_string(),
+            None => "robot: fleet_0".to_string(),
         };
         let _ = writeln!(out, "  - {{at: {at}s, for: {len}s, {target}}}");
     }
