@@ -249,6 +249,19 @@ fn a_second_robot_on_one_corridor_does_not_hold_the_first_up() {
     }
 }
 
+/// A generated building never run before the rule was written (a TinyRobot and a
+/// DeliveryRobot fleet, deliveries between two rooms at the dead ends of one corridor):
+/// with a second Tiny, the Tinies took the deliveries while the DeliveryRobot stood idle
+/// for half the hour, its plans refused for waiting on them, and three robots completed 89
+/// tasks where two completed 101. A slower robot now leaves a task to a faster one refused
+/// it for traffic (`Dispatcher::yield_to_faster`).
+#[test]
+fn a_slower_robot_leaves_the_corridor_to_a_faster_one() {
+    let b = gen::building(569);
+    let (done, fewer) = check_building_every(&b, &[1, 2, 3], 60.0, 10.0, gen::Mix::Deliveries);
+    assert!(fewer.is_empty(), "{done:?}\n{}", fewer.join("\n"));
+}
+
 /// Runs `cases` generated buildings from `MAPC_TRAFFIC_FIRST` (default 0), each with the
 /// task mix `mix_of` gives its seed, for `MAPC_TRAFFIC_MINUTES` (default 8) at
 /// `MAPC_TRAFFIC_SIZES` (default 1, 4, 16) robots, and asserts the rule on all of them:

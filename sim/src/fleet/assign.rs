@@ -184,7 +184,8 @@ impl Deferred {
 /// arrives first, a plan that would wait long for traffic is never taken, and a robot
 /// whose plan for a task waited too long (or found no way) is not planned for it, nor for
 /// the same places from the same start, again until its backoff ends (its excess wait, at
-/// most `MAX_BACKOFF`; `NO_WAY_BACKOFF`).
+/// most `MAX_BACKOFF`; `NO_WAY_BACKOFF`), nor is a robot of a slower fleet given the task
+/// meanwhile ([`Dispatcher::yield_to_faster`]).
 pub(super) struct Dispatcher {
     /// (request time, source order, kind, fleet) of tasks not yet requested, sorted.
     upcoming: VecDeque<(f64, usize, NewTask)>,
@@ -212,6 +213,9 @@ pub(super) struct Dispatcher {
     /// Plans refused (or that found no way, or were undone), by what they were a plan of:
     /// until when planning the same again cannot succeed, and why.
     same: BTreeMap<Same, (f64, Refused)>,
+    /// Per robot, until when its plans were last refused for waiting too long (while it
+    /// stays free): see [`Dispatcher::yield_to_faster`].
+    late_until: Vec<f64>,
 }
 
 /// Why a plan was not taken.
@@ -276,6 +280,7 @@ impl Dispatcher {
             work: WORK_MAX,
             work_at: 0.0,
             same: BTreeMap::new(),
+            late_until: Vec::new(),
         }
     }
 
@@ -294,6 +299,7 @@ impl Dispatcher {
         }
         self.work = (self.work + (t - self.work_at) * WORK_PER_S).min(WORK_MAX);
         self.work_at = t;
+        self.late_until.resize(robots, f64::NEG_INFINITY);
     }
 
     /// Whether robot `i` was free in the last round.
