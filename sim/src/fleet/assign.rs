@@ -213,8 +213,9 @@ pub(super) struct Dispatcher {
     /// Plans refused (or that found no way, or were undone), by what they were a plan of:
     /// until when planning the same again cannot succeed, and why.
     same: BTreeMap<Same, (f64, Refused)>,
-    /// Per robot, until when its plans were last refused for waiting too long (while it
-    /// stays free): see [`Dispatcher::yield_to_faster`].
+    /// Per robot, until when its plans were last refused for waiting too long (cleared
+    /// when it takes a task; read only for free robots): see
+    /// [`Dispatcher::yield_to_faster`].
     late_until: Vec<f64>,
 }
 

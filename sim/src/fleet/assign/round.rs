@@ -544,7 +544,7 @@ impl Dispatcher {
     /// DeliveryRobot stood idle 1,731 s of the hour, and three robots completed 12 % less
     /// than two.) Robots of one speed are not held up by each other.
     fn yield_to_faster(
-        &mut self,
+        &self,
         fl: &Floor,
         best: Option<Best>,
         refused: &mut Vec<(usize, f64)>,
